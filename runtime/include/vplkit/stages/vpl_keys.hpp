@@ -1,0 +1,38 @@
+#pragma once
+// VPL sort keys: the VPLs' bounding box (vpl_bounds.comp), then one 64-bit key per VPL
+// (morton_keys.comp): 30-bit Morton code | 9-bit normal code | 25-bit id, with the VPL index as value.
+
+#include "vplkit/shaders/types.hpp"
+
+#include <cstdint>
+#include <span>
+
+namespace vplkit {
+class Buffer;
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+// Keys hold a 25-bit id, so at most this many VPLs can be keyed at once.
+inline constexpr uint32_t kMaxKeyedVpls = 1u << 25;
+// Bytes of the bounds buffer: ordered-uint lo[3], hi[3] (see shaders/include/vplkit/ordered_float.glsl).
+inline constexpr uint32_t kVplBoundsBytes = sizeof(shaders::VplBoundsBuffer);
+
+// Throws vplkit::Error naming the first bad VPL and field: a non-finite position or normal, or a
+// count above kMaxKeyedVpls. Call before uploading VPLs that come from the host.
+void validate_vpls(std::span<const shaders::Vpl> vpls);
+
+struct VplKeyBuffers {
+    const Buffer* vpls = nullptr;  // Vpl[count]
+    Buffer* bounds = nullptr;      // kVplBoundsBytes; written here
+    Buffer* keys = nullptr;        // uint64_t[count]; written here
+    Buffer* values = nullptr;      // uint32_t[count]; written here (VPL index)
+};
+
+// Adds three passes to `passes`: clear the bounds, reduce the bounds, write the keys.
+// `count` must be at least 1 and at most kMaxKeyedVpls.
+void add_vpl_key_passes(Context& context, PassList& passes, const VplKeyBuffers& buffers, uint32_t count);
+
+}  // namespace vplkit::stages

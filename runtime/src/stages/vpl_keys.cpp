@@ -1,0 +1,80 @@
+#include "vplkit/stages/vpl_keys.hpp"
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/morton_keys.hpp"
+#include "vplkit/shaders/vpl_bounds.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace vplkit::stages {
+
+namespace {
+
+bool finite(const shaders::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string format(const shaders::vec3& v) {
+    return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+}
+
+}  // namespace
+
+void validate_vpls(std::span<const shaders::Vpl> vpls) {
+    if (vpls.size() > kMaxKeyedVpls) {
+        throw Error("VPL keys: " + std::to_string(vpls.size()) + " VPLs, but a key's 25-bit id allows at most " +
+                    std::to_string(kMaxKeyedVpls));
+    }
+    for (size_t i = 0; i < vpls.size(); ++i) {
+        if (!finite(vpls[i].position)) {
+            throw Error("VPL " + std::to_string(i) + " has a non-finite position " + format(vpls[i].position));
+        }
+        if (!finite(vpls[i].normal)) {
+            throw Error("VPL " + std::to_string(i) + " has a non-finite normal " + format(vpls[i].normal));
+        }
+    }
+}
+
+void add_vpl_key_passes(Context& context, PassList& passes, const VplKeyBuffers& buffers, uint32_t count) {
+    if (count == 0 || count > kMaxKeyedVpls) {
+        throw Error("VPL keys: count " + std::to_string(count) + " is outside 1.." + std::to_string(kMaxKeyedVpls));
+    }
+    const Buffer& vpls = *buffers.vpls;
+    Buffer& bounds = *buffers.bounds;
+    Buffer& keys = *buffers.keys;
+    Buffer& values = *buffers.values;
+
+    passes.add("vpl bounds clear", {Use::transfer_dst(bounds)}, [&bounds](VkCommandBuffer cmd) {
+        // An empty box: lo at the largest ordered value, hi at the smallest.
+        vkCmdFillBuffer(cmd, bounds.handle(), offsetof(shaders::VplBoundsBuffer, lo), 3 * sizeof(uint32_t), 0xffffffffu);
+        vkCmdFillBuffer(cmd, bounds.handle(), offsetof(shaders::VplBoundsBuffer, hi), 3 * sizeof(uint32_t), 0u);
+    });
+
+    const auto& bounds_pipeline = context.pipeline<shaders::vpl_bounds::Pipeline>();
+    passes.add("vpl bounds", {Use::read(vpls), Use::read_write(bounds)},
+               [&bounds_pipeline, &vpls, &bounds, count](VkCommandBuffer cmd) {
+                   shaders::vpl_bounds::Bindings bindings;
+                   bindings.vpls = vpls.descriptor();
+                   bindings.bounds = bounds.descriptor();
+                   shaders::vpl_bounds::Push push{};
+                   push.vpl_count = count;
+                   bounds_pipeline.dispatch(cmd, bindings, push, count);
+               });
+
+    const auto& keys_pipeline = context.pipeline<shaders::morton_keys::Pipeline>();
+    passes.add("morton keys", {Use::read(vpls), Use::read(bounds), Use::write(keys), Use::write(values)},
+               [&keys_pipeline, &vpls, &bounds, &keys, &values, count](VkCommandBuffer cmd) {
+                   shaders::morton_keys::Bindings bindings;
+                   bindings.vpls = vpls.descriptor();
+                   bindings.bounds = bounds.descriptor();
+                   bindings.keys = keys.descriptor();
+                   bindings.values = values.descriptor();
+                   shaders::morton_keys::Push push{};
+                   push.vpl_count = count;
+                   keys_pipeline.dispatch(cmd, bindings, push, count);
+               });
+}
+
+}  // namespace vplkit::stages
