@@ -7,7 +7,7 @@
 #include "vplkit/morton.glsl"
 #include "vplkit/ordered_float.glsl"
 
-layout(local_size_x_id = 0) in;
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) readonly buffer VplBuffer { Vpl items[]; } vpls;
 layout(std430, set = 0, binding = 1) readonly buffer VplBoundsBuffer { uint lo[3]; uint hi[3]; } bounds;

@@ -7,7 +7,7 @@
 #include "vplkit/vpl.glsl"
 #include "vplkit/ordered_float.glsl"
 
-layout(local_size_x_id = 0) in;
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) readonly buffer VplBuffer { Vpl items[]; } vpls;
 // Ordered-uint encoded box (see ordered_float.glsl); decoded by morton_keys.comp.

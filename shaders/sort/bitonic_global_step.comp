@@ -6,7 +6,7 @@
 
 #include "vplkit/bitonic.glsl"
 
-layout(local_size_x_id = 0) in;
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) buffer SortKeyBuffer { uint64_t items[]; } keys;
 layout(std430, set = 0, binding = 1) buffer SortValueBuffer { uint items[]; } values;

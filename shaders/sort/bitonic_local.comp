@@ -10,7 +10,7 @@
 
 #include "vplkit/bitonic.glsl"
 
-layout(local_size_x_id = 0) in;
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 const uint kTile = 2u * gl_WorkGroupSize.x;
 
 layout(std430, set = 0, binding = 0) buffer SortKeyBuffer { uint64_t items[]; } keys;
