@@ -111,8 +111,10 @@ DeviceChoice choose_device(const std::vector<DeviceInfo>& devices, const std::st
     }
     if (usable.empty()) throw Error("vplkit: no Vulkan device can run vplkit: " + device_list(devices));
     const DeviceInfo& best = *best_of(usable);
+    std::vector<const DeviceInfo*> ranked = usable;
+    std::sort(ranked.begin(), ranked.end(), [](const DeviceInfo* a, const DeviceInfo* b) { return better(*a, *b); });
     std::vector<std::string> others;
-    for (const DeviceInfo* d : usable) {
+    for (const DeviceInfo* d : ranked) {
       if (d != &best) others.push_back(label(*d));
     }
     std::string reason;

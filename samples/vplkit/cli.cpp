@@ -1,0 +1,51 @@
+#include "cli.hpp"
+
+namespace vplkit::cli {
+
+bool Args::flag(std::string_view name, std::string_view short_name) {
+  for (auto it = args_.begin(); it != args_.end(); ++it) {
+    if (*it == name || (!short_name.empty() && *it == short_name)) {
+      args_.erase(it);
+      return true;
+    }
+  }
+  return false;
+}
+
+std::optional<std::string> Args::value(std::string_view name) {
+  const std::string prefix = std::string(name) + "=";
+  for (auto it = args_.begin(); it != args_.end(); ++it) {
+    if (it->rfind(prefix, 0) == 0) {
+      std::string v = it->substr(prefix.size());
+      args_.erase(it);
+      return v;
+    }
+    if (*it == name) {
+      if (it + 1 == args_.end()) throw UsageError("option " + std::string(name) + " needs a value");
+      std::string v = *(it + 1);
+      args_.erase(it, it + 2);
+      return v;
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> Args::positional() {
+  for (auto it = args_.begin(); it != args_.end(); ++it) {
+    if (it->empty() || (*it)[0] != '-' || *it == "-") {
+      std::string v = *it;
+      args_.erase(it);
+      return v;
+    }
+  }
+  return std::nullopt;
+}
+
+void Args::finish() const {
+  if (args_.empty()) return;
+  const std::string& first = args_.front();
+  if (!first.empty() && first[0] == '-') throw UsageError("unknown option '" + first + "' for '" + command_ + "'");
+  throw UsageError("unexpected argument '" + first + "' for '" + command_ + "'");
+}
+
+}  // namespace vplkit::cli

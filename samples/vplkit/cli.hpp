@@ -1,0 +1,47 @@
+#pragma once
+// The small command-line toolkit the subcommands share: an argument cursor that rejects what it
+// does not understand, and the usage error that makes the program print usage and exit 2.
+
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vplkit::cli {
+
+// A mistake on the command line: main prints "vplkit: <message>", the usage, and exits 2.
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A subcommand's arguments. Take what the command understands, then call finish(): anything
+// left over is an unknown option or a surplus argument, reported as a UsageError.
+class Args {
+ public:
+  Args(std::string command, std::vector<std::string> args) : command_(std::move(command)), args_(std::move(args)) {}
+
+  // --name (or -short): true when present.
+  bool flag(std::string_view name, std::string_view short_name = {});
+  // --name VALUE or --name=VALUE.
+  std::optional<std::string> value(std::string_view name);
+  // The next argument that is not an option.
+  std::optional<std::string> positional();
+  void finish() const;
+
+  const std::string& command() const { return command_; }
+
+ private:
+  std::string command_;
+  std::vector<std::string> args_;
+};
+
+// One subcommand: `run` returns the exit code (0 ok, 1 failure); a UsageError means exit 2.
+struct Command {
+  const char* name;
+  const char* summary;  // one line for `vplkit --help`
+  const char* usage;    // `vplkit <name> --help`
+  int (*run)(Args& args);
+};
+
+}  // namespace vplkit::cli

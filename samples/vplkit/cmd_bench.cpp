@@ -1,0 +1,210 @@
+// `vplkit bench sort`: GPU time of the VPL key passes and the bitonic sort for several VPL
+// counts, from timestamp queries, median over many runs, as a table and optionally CSV.
+// Random VPLs (uniform in a unit box, uniform normals) stand in for a scene's until scenes load.
+
+#include "cli.hpp"
+#include "commands.hpp"
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/bitonic_sort.hpp"
+#include "vplkit/stages/vpl_keys.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace vplkit::cli {
+
+const char* const kBenchUsage =
+    "usage: vplkit bench sort [--counts N,N,...] [--runs R] [--workgroup-size W] [--csv FILE] [--device SEL]\n"
+    "\n"
+    "Times the VPL key passes (bounds, Morton/normal keys) and the bitonic sort of the\n"
+    "(key, index) pairs on the GPU with timestamp queries: one warm-up run, then R timed runs\n"
+    "per count; prints median, min and max per stage. Checks the last run's output is sorted.\n"
+    "  --counts N,...        VPL counts (default 4096,65536,1048576; at most 2^25)\n"
+    "  --runs R              timed runs per count (default 20)\n"
+    "  --workgroup-size W    sort workgroup size, a power of two (default 256)\n"
+    "  --csv FILE            also write every statistic as CSV\n"
+    "  --device SEL          auto, gpu, cpu (lavapipe), an index, or part of a name\n";
+
+namespace {
+
+uint32_t parse_positive(const std::string& option, const std::string& text, uint64_t max) {
+    size_t used = 0;
+    unsigned long long value = 0;
+    try {
+        value = std::stoull(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != text.size() || text.empty() || text[0] == '-' || value == 0 || value > max) {
+        throw UsageError(option + " expects a whole number from 1 to " + std::to_string(max) + ", got '" + text + "'");
+    }
+    return uint32_t(value);
+}
+
+std::vector<uint32_t> parse_counts(const std::string& text) {
+    std::vector<uint32_t> counts;
+    std::stringstream stream(text);
+    std::string item;
+    while (std::getline(stream, item, ',')) {
+        counts.push_back(parse_positive("--counts", item, stages::kMaxKeyedVpls));
+    }
+    if (counts.empty()) {
+        throw UsageError("--counts needs at least one count");
+    }
+    return counts;
+}
+
+std::vector<shaders::Vpl> random_vpls(uint32_t count, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    std::normal_distribution<float> gauss;
+    std::vector<shaders::Vpl> vpls(count);
+    for (shaders::Vpl& vpl : vpls) {
+        vpl.position = {unit(rng), unit(rng), unit(rng)};
+        float x = gauss(rng), y = gauss(rng), z = gauss(rng);
+        float length = std::max(std::sqrt(x * x + y * y + z * z), 1e-20f);
+        vpl.normal = {x / length, y / length, z / length};
+        vpl.flux = {1.0f, 1.0f, 1.0f};
+    }
+    return vpls;
+}
+
+struct Stats {
+    double median = 0, min = 0, max = 0;
+};
+
+Stats stats_of(std::vector<double> samples) {
+    std::sort(samples.begin(), samples.end());
+    const size_t n = samples.size();
+    Stats s;
+    s.min = samples.front();
+    s.max = samples.back();
+    s.median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
+    return s;
+}
+
+// The last run's keys must be ascending and its values a permutation of 0..count-1: a benchmark
+// of a wrong result is worth nothing.
+void check_sorted(const Buffer& keys, const Buffer& values, uint32_t count) {
+    auto k = keys.download<uint64_t>(count);
+    auto v = values.download<uint32_t>(count);
+    if (!std::is_sorted(k.begin(), k.end())) {
+        throw Error("bench sort: the keys of " + std::to_string(count) + " VPLs came out unsorted");
+    }
+    std::vector<bool> seen(count, false);
+    for (uint32_t i = 0; i < count; ++i) {
+        if (v[i] >= count || seen[v[i]] || (k[i] & (stages::kMaxKeyedVpls - 1)) != v[i]) {
+            throw Error("bench sort: sorted values are not the VPL indices of their keys (at " + std::to_string(i) + ")");
+        }
+        seen[v[i]] = true;
+    }
+}
+
+}  // namespace
+
+int run_bench(Args& args) {
+    const auto what = args.positional();
+    if (!what) {
+        throw UsageError("bench needs a benchmark name: sort");
+    }
+    if (*what != "sort") {
+        throw UsageError("unknown benchmark '" + *what + "' (available: sort)");
+    }
+    ContextOptions options;
+    if (auto device = args.value("--device")) {
+        options.device = *device;
+    }
+    std::vector<uint32_t> counts = {4096, 65536, 1048576};
+    if (auto text = args.value("--counts")) {
+        counts = parse_counts(*text);
+    }
+    uint32_t runs = 20;
+    if (auto text = args.value("--runs")) {
+        runs = parse_positive("--runs", *text, 100000);
+    }
+    stages::BitonicSortOptions sort_options;
+    if (auto text = args.value("--workgroup-size")) {
+        sort_options.workgroup_size = parse_positive("--workgroup-size", *text, 1024);
+    }
+    const auto csv_path = args.value("--csv");
+    args.finish();
+
+    auto context = Context::create(options);
+    const DeviceInfo& device = context->info();
+    std::printf("device: %s (%s) - %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
+    std::printf("%10s  %-18s %10s %10s %10s\n", "vpls", "stage", "median ms", "min ms", "max ms");
+
+    std::ostringstream csv;
+    csv << "device,vpls,stage,runs,median_ms,min_ms,max_ms,sort_dispatches\n";
+    for (uint32_t count : counts) {
+        auto vpls = random_vpls(count, count);
+        auto vpl_buffer = Buffer::create(*context, uint64_t(count) * sizeof(shaders::Vpl),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpls");
+        auto bounds = Buffer::create(*context, stages::kVplBoundsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryUse::device, "vpl bounds");
+        auto keys = Buffer::create(*context, uint64_t(count) * sizeof(uint64_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                   MemoryUse::device, "vpl keys");
+        auto values = Buffer::create(*context, uint64_t(count) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryUse::device, "vpl key values");
+        vpl_buffer.upload(vpls);
+
+        PassList passes("bench sort");
+        stages::add_vpl_key_passes(*context, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
+        stages::add_bitonic_sort_pass(*context, passes, keys, values, count, sort_options);
+
+        std::map<std::string, std::vector<double>> samples;  // stage -> ms per run
+        std::vector<std::string> order;
+        for (uint32_t run = 0; run <= runs; ++run) {
+            std::fprintf(stderr, "\r[%u VPLs] run %u/%u", count, run, runs);
+            std::fflush(stderr);
+            passes.run(*context);  // the key passes rewrite the keys, so every run sorts unsorted input
+            if (run == 0) {
+                continue;  // warm-up: lavapipe compiles shaders at their first dispatch
+            }
+            double total = 0.0;
+            for (const PassTiming& t : passes.timings()) {
+                if (samples.find(t.name) == samples.end()) {
+                    order.push_back(t.name);
+                }
+                samples[t.name].push_back(t.gpu_ms);
+                total += t.gpu_ms;
+            }
+            samples["total"].push_back(total);
+        }
+        std::fprintf(stderr, "\r%40s\r", "");
+        check_sorted(keys, values, count);
+
+        order.push_back("total");
+        const uint32_t dispatches = stages::bitonic_sort_dispatch_count(count, sort_options);
+        for (const std::string& stage : order) {
+            Stats s = stats_of(samples[stage]);
+            std::printf("%10u  %-18s %10.3f %10.3f %10.3f\n", count, stage.c_str(), s.median, s.min, s.max);
+            csv << '"' << device.name << "\"," << count << ',' << stage << ',' << runs << ',' << s.median << ','
+                << s.min << ',' << s.max << ',' << dispatches << '\n';
+        }
+    }
+
+    if (csv_path) {
+        // Written whole at the end: a failed run leaves no partial file.
+        std::ofstream file(*csv_path, std::ios::binary | std::ios::trunc);
+        file << csv.str();
+        if (!file.flush()) {
+            throw Error("bench sort: could not write " + *csv_path);
+        }
+        std::printf("wrote %s\n", csv_path->c_str());
+    }
+    return 0;
+}
+
+}  // namespace vplkit::cli

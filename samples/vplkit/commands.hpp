@@ -1,0 +1,11 @@
+#pragma once
+// Every subcommand's entry point and usage text; main.cpp lists them in its command table.
+
+#include "cli.hpp"
+
+namespace vplkit::cli {
+
+int run_info(Args& args);
+extern const char* const kInfoUsage;
+
+}  // namespace vplkit::cli
