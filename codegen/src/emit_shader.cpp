@@ -230,10 +230,12 @@ class ShaderEmitter {
 
   std::string spec() {
     std::string out =
-        "\n// Specialization constants, defaults from the shader. The members are the specialization\n"
-        "// data itself (standard layout, no implicit padding): info() points into this Spec,\n"
-        "// so keep it alive until the pipeline is created.\n"
-        "struct Spec {\n";
+        s_.spec_constants.empty()
+            ? "\n// Specialization constants: none; info() is empty.\n"
+            : "\n// Specialization constants, defaults from the shader. The members are the specialization\n"
+              "// data itself (standard layout, no implicit padding): info() points into this Spec,\n"
+              "// so keep it alive until the pipeline is created.\n";
+    out += "struct Spec {\n";
     CommentedLines lines;
     uint32_t offset = 0;
     int pad_index = 0;
@@ -318,6 +320,7 @@ class ShaderEmitter {
     std::string out =
         "\n// The compute pipeline, its layout and its push-descriptor set layout.\n"
         "struct Pipeline {\n"
+        "  using Spec = ::" + options_.cpp_namespace + "::" + s_.name + "::Spec;  // what create() takes (the runtime caches pipelines by it)\n"
         "  VkDevice device = VK_NULL_HANDLE;\n"
         "  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;\n"
         "  VkPipelineLayout layout = VK_NULL_HANDLE;\n"
