@@ -46,7 +46,7 @@ function(vplkit_add_shader_library target)
     add_custom_command(
       OUTPUT "${spv}"
       COMMAND "${CMAKE_COMMAND}" -E make_directory "${spv_dir}"
-      COMMAND "${GLSLANG_VALIDATOR}" -V --target-env vulkan1.2 ${include_flags}
+      COMMAND "${GLSLANG_VALIDATOR}" -V --quiet --target-env vulkan1.2 ${include_flags}
               --depfile "${spv}.d" -o "${spv}" "${src}"
       MAIN_DEPENDENCY "${src}"
       DEPFILE "${spv}.d"

@@ -319,8 +319,14 @@ class ShaderEmitter {
   std::string pipeline_declaration() const {
     std::string out =
         "\n// The compute pipeline, its layout and its push-descriptor set layout.\n"
-        "struct Pipeline {\n"
-        "  using Spec = ::" + options_.cpp_namespace + "::" + s_.name + "::Spec;  // what create() takes (the runtime caches pipelines by it)\n"
+        "struct Pipeline {\n";
+    // The shader's types, reachable from the pipeline type alone: generic host code (the
+    // runtime's pipeline cache, keyed by P and P::Spec) needs nothing but P.
+    const std::string qualified = "::" + options_.cpp_namespace + "::" + s_.name + "::";
+    out += "  using Spec = " + qualified + "Spec;\n";
+    out += "  using Bindings = " + qualified + "Bindings;\n";
+    if (s_.push) out += "  using Push = " + qualified + "Push;\n";
+    out += "\n"
         "  VkDevice device = VK_NULL_HANDLE;\n"
         "  VkDescriptorSetLayout set_layout = VK_NULL_HANDLE;\n"
         "  VkPipelineLayout layout = VK_NULL_HANDLE;\n"

@@ -121,6 +121,11 @@ TEST_CASE("dispatch takes a Push only when the shader has push constants") {
   static_assert(std::is_same_v<decltype(&sc::Pipeline::dispatch),
                                void (sc::Pipeline::*)(VkCommandBuffer, const sc::Bindings&, uint32_t, uint32_t,
                                                       uint32_t) const>);
+  // The shader's types are reachable from the Pipeline type (generic code takes only P).
+  static_assert(std::is_same_v<rt::Pipeline::Spec, rt::Spec>);
+  static_assert(std::is_same_v<rt::Pipeline::Bindings, rt::Bindings>);
+  static_assert(std::is_same_v<rt::Pipeline::Push, rt::Push>);
+  static_assert(std::is_trivially_copyable_v<rt::Spec> && std::is_standard_layout_v<rt::Spec>);
   static_assert(std::is_same_v<decltype(&rt::Pipeline::create),
                                VkResult (*)(VkDevice, VkPipelineCache, const rt::Spec&, rt::Pipeline*)>);
   CHECK(true);
