@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <optional>
 #include <string>
@@ -149,6 +150,11 @@ TEST_CASE("this machine: automatic choice picks the best device and says why") {
 }
 
 TEST_CASE("this machine: 'cpu' gives lavapipe") {
+  const auto devices = vplkit::Context::enumerate_devices();
+  if (std::none_of(devices.begin(), devices.end(), [](const DeviceInfo& d) { return d.type == DeviceType::cpu; })) {
+    MESSAGE("no CPU Vulkan device on this machine (mesa-vulkan-drivers not installed): nothing to check");
+    return;
+  }
   auto context = vplkit::Context::create(vplkit::test::context_options("cpu"));
   CHECK(context->info().type == DeviceType::cpu);
   CHECK(context->info().reason.find("as requested by device option 'cpu'") != std::string::npos);
@@ -159,8 +165,8 @@ TEST_CASE("this machine: VPLKIT_DEVICE applies when the program leaves the choic
   CHECK_THROWS_WITH_AS(vplkit::Context::create(vplkit::test::context_options("")),
                        doctest::Contains("no Vulkan device matches 'no-such-device' (VPLKIT_DEVICE)"), vplkit::Error);
   // An explicit option wins over the environment.
-  auto context = vplkit::Context::create(vplkit::test::context_options("cpu"));
-  CHECK(context->info().type == DeviceType::cpu);
+  auto context = vplkit::Context::create(vplkit::test::context_options(vplkit::test::test_device()));
+  CHECK(context->info().usable());
 }
 
 TEST_CASE("this machine: a nonexistent device name is a clear error") {
