@@ -101,15 +101,23 @@ int run(int argc, char** argv) {
   return 0;
 }
 
+// Errors are one line: build logs and tests match on it.
+void report(const std::string& prefix, std::string message) {
+  for (char& c : message) {
+    if (c == '\n' || c == '\r') c = ' ';
+  }
+  std::fprintf(stderr, "vplkit-codegen: %s%s\n", prefix.c_str(), message.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   try {
     return run(argc, argv);
   } catch (const vc::Error& e) {
-    std::fprintf(stderr, "vplkit-codegen: %s\n", e.what());
+    report("", e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "vplkit-codegen: internal error: %s\n", e.what());
+    report("internal error: ", e.what());
   }
   return 1;
 }

@@ -17,17 +17,6 @@
 
 namespace vplkit::codegen {
 
-uint32_t scalar_size(Scalar s) {
-  switch (s) {
-    case Scalar::Int8: case Scalar::UInt8: return 1;
-    case Scalar::Int16: case Scalar::UInt16: return 2;
-    case Scalar::Int32: case Scalar::UInt32: case Scalar::Float32: return 4;
-    case Scalar::Int64: case Scalar::UInt64: case Scalar::Float64: case Scalar::DeviceAddress:
-      return 8;
-  }
-  return 4;
-}
-
 namespace {
 
 using spirv_cross::SPIRType;
