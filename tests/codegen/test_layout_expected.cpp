@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <type_traits>
 
+#include "vplkit/fixtures/layout_only.hpp"
 #include "vplkit/fixtures/roundtrip.hpp"
 #include "vplkit/fixtures/spec_consts.hpp"
 
@@ -84,6 +85,18 @@ TEST_CASE("std140 block: array and matrix strides round up to 16") {
   CHECK(offsetof(T, after_inner) == 272);
   CHECK(offsetof(T, u2) == 280);         // uvec2: align 8 -> 276 rounds up to 280
   CHECK(sizeof(T) == 288);
+}
+
+TEST_CASE("std140 two-dimensional array: a stride per dimension") {
+  // FragParams { TrapInner inner; vec4 tint; float grid[2][3]; }
+  using T = fx::FragParams;
+  CHECK(offsetof(T, inner) == 0);
+  CHECK(offsetof(T, tint) == 16);
+  CHECK(offsetof(T, grid) == 32);
+  CHECK(sizeof(T::grid[0][0]) == 16);  // float padded to the std140 stride
+  CHECK(sizeof(T::grid[0]) == 48);     // 3 x 16
+  CHECK(sizeof(T::grid) == 96);
+  CHECK(sizeof(T) == 128);
 }
 
 TEST_CASE("scalar block: packed members, nested structs follow the SPIR-V offsets") {
