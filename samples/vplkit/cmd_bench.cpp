@@ -22,6 +22,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 namespace vplkit::cli {
 
 const char* const kBenchUsage =
@@ -165,9 +167,15 @@ int run_bench(Args& args) {
 
         std::map<std::string, std::vector<double>> samples;  // stage -> ms per run
         std::vector<std::string> order;
+        const bool terminal = isatty(fileno(stderr));
+        if (!terminal) {
+            std::fprintf(stderr, "[%u VPLs] 1 warm-up + %u timed runs\n", count, runs);
+        }
         for (uint32_t run = 0; run <= runs; ++run) {
-            std::fprintf(stderr, "\r[%u VPLs] run %u/%u", count, run, runs);
-            std::fflush(stderr);
+            if (terminal) {  // a progress line that rewrites itself; logs get the one line above
+                std::fprintf(stderr, "\r[%u VPLs] run %u/%u", count, run, runs);
+                std::fflush(stderr);
+            }
             passes.run(*context);  // the key passes rewrite the keys, so every run sorts unsorted input
             if (run == 0) {
                 continue;  // warm-up: lavapipe compiles shaders at their first dispatch
@@ -182,7 +190,9 @@ int run_bench(Args& args) {
             }
             samples["total"].push_back(total);
         }
-        std::fprintf(stderr, "\r%40s\r", "");
+        if (terminal) {
+            std::fprintf(stderr, "\r%40s\r", "");
+        }
         check_sorted(keys, values, count);
 
         order.push_back("total");

@@ -8,4 +8,7 @@ namespace vplkit::cli {
 int run_info(Args& args);
 extern const char* const kInfoUsage;
 
+int run_bench(Args& args);
+extern const char* const kBenchUsage;
+
 }  // namespace vplkit::cli

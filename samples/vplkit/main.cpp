@@ -20,6 +20,8 @@ using vplkit::cli::UsageError;
 const Command kCommands[] = {
     {"info", "list the Vulkan devices, the one vplkit picks and why, and its features", vplkit::cli::kInfoUsage,
      vplkit::cli::run_info},
+    {"bench", "GPU timings of the kit's stages (bench sort: VPL keys + bitonic sort)", vplkit::cli::kBenchUsage,
+     vplkit::cli::run_bench},
 };
 
 void print_usage(std::FILE* out) {

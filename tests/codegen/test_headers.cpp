@@ -46,7 +46,7 @@ int run_codegen(const fs::path& out, const std::vector<std::string>& order) {
 
 }  // namespace
 
-TEST_CASE("Spec: defaults, explicit 64-bit alignment padding, map entries into the Spec") {
+TEST_CASE("Spec: defaults - explicit 64-bit alignment padding - map entries into the Spec") {
   namespace sc = fx::spec_consts;
   const sc::Spec spec;
   CHECK(spec.kEnabled == VK_TRUE);
@@ -81,7 +81,7 @@ TEST_CASE("Spec: defaults, explicit 64-bit alignment padding, map entries into t
   }
 }
 
-TEST_CASE("workgroup size: defaults, and specialized through local_size_*_id") {
+TEST_CASE("workgroup size: defaults - and specialized through local_size_x_id") {
   namespace sc = fx::spec_consts;
   CHECK(sc::kWorkgroupSize[0] == 32);  // the named constant's default (kGroupX = 32)
   CHECK(sc::kWorkgroupSize[1] == 2);   // a literal local_size_y
@@ -96,7 +96,7 @@ TEST_CASE("workgroup size: defaults, and specialized through local_size_*_id") {
   CHECK(fx::roundtrip::Spec{}.workgroup_size()[0] == 64);
 }
 
-TEST_CASE("bindings: named constants, instance names, block names for anonymous blocks") {
+TEST_CASE("bindings: named constants - instance names - block names for anonymous blocks") {
   namespace rt = fx::roundtrip;
   CHECK(rt::kBindingStd430Traps == 0);
   CHECK(rt::kBindingStd140Traps == 1);
@@ -131,7 +131,7 @@ TEST_CASE("dispatch takes a Push only when the shader has push constants") {
   CHECK(true);
 }
 
-TEST_CASE("graphics stages: layout parts only, descriptor arrays, image descriptors") {
+TEST_CASE("graphics stages: layout parts only - descriptor arrays - image descriptors") {
   namespace lo = fx::layout_only;
   CHECK(lo::kStage == VK_SHADER_STAGE_FRAGMENT_BIT);
   REQUIRE(std::size(lo::kSetLayoutBindings) == 5);

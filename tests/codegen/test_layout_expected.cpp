@@ -21,7 +21,7 @@
 
 namespace fx = vplkit::fixtures;
 
-TEST_CASE("std430 struct: vec3 + scalar packing, trailing padding to the array stride") {
+TEST_CASE("std430 struct: vec3 + scalar packing - trailing padding to the array stride") {
   // TrapItem { vec3 position; float radius; vec3 normal; } : radius fills position's 4th slot.
   CHECK(offsetof(fx::TrapItem, position) == 0);
   CHECK(offsetof(fx::TrapItem, radius) == 12);
@@ -99,7 +99,7 @@ TEST_CASE("std140 two-dimensional array: a stride per dimension") {
   CHECK(sizeof(T) == 128);
 }
 
-TEST_CASE("scalar block: packed members, nested structs follow the SPIR-V offsets") {
+TEST_CASE("scalar block: packed members - nested structs follow the SPIR-V offsets") {
   using T = fx::ScalarTraps;
   CHECK(offsetof(T, f) == 0);
   CHECK(offsetof(T, v3) == 4);           // vec3 needs only 4-byte alignment
@@ -124,7 +124,7 @@ TEST_CASE("scalar block: packed members, nested structs follow the SPIR-V offset
   CHECK(sizeof(fx::ScalarInner) == 16);
 }
 
-TEST_CASE("runtime arrays: offset and stride constants, padded element types") {
+TEST_CASE("runtime arrays: offset and stride constants - padded element types") {
   // ItemList { uint count; TrapItem items[]; }: items aligned to 16.
   CHECK(offsetof(fx::ItemList, count) == 0);
   CHECK(fx::ItemList::kItemsOffset == 16);
@@ -139,7 +139,7 @@ TEST_CASE("runtime arrays: offset and stride constants, padded element types") {
   CHECK(fx::Counters::kCountersStride == 8);  // uint64_t[]
 }
 
-TEST_CASE("basic types: 4-byte aligned vectors, padded matrix columns") {
+TEST_CASE("basic types: 4-byte aligned vectors - padded matrix columns") {
   CHECK(sizeof(fx::vec3) == 12);
   CHECK(alignof(fx::vec3) == 4);
   CHECK(sizeof(fx::mat3) == 48);

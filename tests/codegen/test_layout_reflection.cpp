@@ -152,7 +152,7 @@ TEST_CASE("generated struct layouts agree with SPIRV-Cross reflection of the fix
   CHECK(seen.size() == fx::kStructCount);
 }
 
-TEST_CASE("generated bindings, push ranges, specialization constants and SPIR-V agree with the modules") {
+TEST_CASE("generated bindings - push ranges - specialization constants and SPIR-V agree with the modules") {
   const auto modules = fixture_modules();
   const auto headers = shader_headers();
   REQUIRE(modules.size() == headers.size());

@@ -94,7 +94,7 @@ T read(const HostBuffer& b, std::size_t offset = 0) {
 
 }  // namespace
 
-TEST_CASE("round trip on lavapipe: every trap field, generated Pipeline create and dispatch") {
+TEST_CASE("round trip on lavapipe: every trap field - generated Pipeline create and dispatch") {
   TestDevice device;
 
   rt::Spec spec;

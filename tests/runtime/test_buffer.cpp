@@ -93,7 +93,7 @@ TEST_CASE("typed helpers") {
   CHECK(part.range == 32);
 }
 
-TEST_CASE("buffers move, and a moved-from buffer is empty") {
+TEST_CASE("buffers move - and a moved-from buffer is empty") {
   vplkit::Context& ctx = vplkit::test::context();
   auto a = Buffer::create(ctx, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "moved");
   const VkBuffer handle = a.handle();

@@ -42,7 +42,7 @@ TEST_CASE("the context reports the device it runs on") {
   MESSAGE(info.name << ": subgroup " << info.subgroup_size << ", ops " << vplkit::subgroup_operations_string(info.subgroup_operations));
 }
 
-TEST_CASE("one_shot records, submits and waits") {
+TEST_CASE("one_shot records - submits and waits") {
   vplkit::Context& ctx = vplkit::test::context();
   auto buffer = vplkit::Buffer::create(ctx, 64, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "one_shot");
   ctx.one_shot([&](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, buffer.handle(), 0, VK_WHOLE_SIZE, 0xabcdef01u); });

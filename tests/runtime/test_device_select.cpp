@@ -99,7 +99,7 @@ TEST_CASE("between two discrete GPUs the one with more memory wins") {
   CHECK(vplkit::choose_device({small, kH100}, "").index == 2);
 }
 
-TEST_CASE("explicit requests: gpu, cpu, index, name part") {
+TEST_CASE("explicit requests: gpu - cpu - index - name part") {
   const std::vector<DeviceInfo> devices = {kLavapipe, kIntegrated, kH100};
   CHECK(vplkit::choose_device(devices, "gpu").index == 2);
   CHECK(vplkit::choose_device(devices, "cpu").index == 0);

@@ -24,7 +24,7 @@ std::vector<T> ramp(size_t count, T scale) {
 
 }  // namespace
 
-TEST_CASE("image round trip: R32_SFLOAT, odd extent") {
+TEST_CASE("image round trip: R32_SFLOAT - odd extent") {
   vplkit::Context& ctx = vplkit::test::context();
   auto image = Image::create(ctx, 7, 5, VK_FORMAT_R32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "r32f");
   CHECK(image.texel_bytes() == 4);
@@ -38,7 +38,7 @@ TEST_CASE("image round trip: R32_SFLOAT, odd extent") {
   CHECK(image.layout() == VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
 }
 
-TEST_CASE("image round trip: RGBA8, RGBA16F bits, RGBA32F, RG32UI") {
+TEST_CASE("image round trip: RGBA8 - RGBA16F bits - RGBA32F - RG32UI") {
   vplkit::Context& ctx = vplkit::test::context();
   {
     auto image = Image::create(ctx, 13, 3, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_SAMPLED_BIT, "rgba8");

@@ -133,7 +133,7 @@ TEST_CASE("no barrier between independent passes or between reads") {
   check_timings(passes, {"write b", "write c", "read a into d"});
 }
 
-TEST_CASE("read after write, once per reading stage") {
+TEST_CASE("read after write - once per reading stage") {
   vplkit::Context& ctx = vplkit::test::context();
   auto a = storage(ctx, 256, "a");
   auto b = storage(ctx, 256, "b");

@@ -88,7 +88,7 @@ TEST_CASE("a context's own callback receives messages") {
   CHECK(ctx->validation_message_count() == uint64_t(received));
 }
 
-TEST_CASE("validation off: no layer, no messages") {
+TEST_CASE("validation off: no layer - no messages") {
   vplkit::ContextOptions options;
   options.device = vplkit::test::test_device();
   auto ctx = vplkit::Context::create(options);

@@ -80,7 +80,7 @@ TEST_CASE("bitonic sort: one element is left as it is") {
     check_sorted({42}, {7}, gpu_sort({42}, {7}));
 }
 
-TEST_CASE("bitonic sort: powers of two and one more, around the tile size") {
+TEST_CASE("bitonic sort: powers of two and one more - around the tile size") {
     // The default tile is 512 pairs: below, at, above one tile, and several stages of global steps.
     for (uint32_t count : {2u, 3u, 8u, 9u, 511u, 512u, 513u, 1024u, 1025u, 4096u, 4097u}) {
         CAPTURE(count);

@@ -156,7 +156,7 @@ TEST_CASE("vpl keys: random VPLs match the reference") {
     check_random_scene(3000, 1, {0.0f, 0.0f, 0.0f}, 1.0f);
 }
 
-TEST_CASE("vpl keys: scenes at 1e-3 and 1e4 scale, off the origin") {
+TEST_CASE("vpl keys: scenes at 1e-3 and 1e4 scale - off the origin") {
     check_random_scene(2000, 2, {0.01f, -0.02f, 0.005f}, 1e-3f);
     check_random_scene(2000, 3, {3e4f, 1e4f, -2e4f}, 1e4f);
 }
@@ -222,7 +222,7 @@ TEST_CASE("vpl keys: normals on the axes and on octant and subdivision borders")
     CHECK(vplkit::reference::normal_code({d2, d2, 0}).code == 0b000'11'01'01u);
 }
 
-TEST_CASE("vpl keys: 2^k and 2^k + 1 VPLs, sorted by key") {
+TEST_CASE("vpl keys: 2^k and 2^k + 1 VPLs - sorted by key") {
     for (uint32_t count : {1024u, 1025u}) {
         CAPTURE(count);
         auto vpls = random_vpls(count, 10 + count, {1.0f, 2.0f, 3.0f}, 5.0f);
@@ -253,7 +253,7 @@ TEST_CASE("vpl keys: duplicate positions and normals differ only in the id") {
     }
 }
 
-TEST_CASE("vpl keys: non-finite input is refused on the host, naming the VPL") {
+TEST_CASE("vpl keys: non-finite input is refused on the host - naming the VPL") {
     auto vpls = random_vpls(8, 5, {0, 0, 0}, 1.0f);
     vpls[3].position.y = std::numeric_limits<float>::quiet_NaN();
     CHECK_THROWS_WITH_AS(vplkit::stages::validate_vpls(vpls), doctest::Contains("VPL 3 has a non-finite position"),

@@ -25,5 +25,7 @@ function(vplkit_add_test_suite name)
   target_compile_options(${target} PRIVATE -Wno-missing-field-initializers)
   doctest_discover_tests(${target}
     TEST_PREFIX "${name}/"
-    PROPERTIES LABELS ${name} TIMEOUT 300)
+    # A case name with ',' '*' or '?' becomes a filter that selects no case, and doctest exits 0
+    # when it ran nothing: make that a failure, not a silent pass.
+    PROPERTIES LABELS ${name} TIMEOUT 300 FAIL_REGULAR_EXPRESSION "test cases: *0 [|]")
 endfunction()
