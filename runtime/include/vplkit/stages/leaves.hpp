@@ -1,0 +1,24 @@
+#pragma once
+// Gathers VPLs into leaf order after the key sort (gather_leaves.comp): leaves[i] =
+// vpls[sorted_values[i]] for i < count, then all-zero bogus leaves up to leaf_count(count).
+
+#include <bit>
+#include <cstdint>
+
+namespace vplkit {
+class Buffer;
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+// Leaves of the perfect binary trees over `count` VPLs: count rounded up to a power of two.
+inline uint32_t leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_ceil(count); }
+
+// Adds the pass "gather leaves". `leaves` holds leaf_count(count) Vpls; `sorted_values` holds
+// the count VPL indices in key order (the values the key sort moved).
+void add_gather_leaves_pass(Context& context, PassList& passes, const Buffer& vpls, const Buffer& sorted_values,
+                            Buffer& leaves, uint32_t count);
+
+}  // namespace vplkit::stages
