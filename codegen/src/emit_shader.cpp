@@ -139,9 +139,11 @@ class ShaderEmitter {
     if (s_.stage == Stage::Compute) out += workgroup();
     out += spec();
     out += bindings();
+    out += descriptor_writes();
     if (s_.stage == Stage::Compute) out += pipeline_declaration();
     out += spirv();
     out += spec_definitions();
+    out += module_type();
     if (s_.stage == Stage::Compute) out += pipeline_definitions();
     out += "\n}  // namespace " + options_.cpp_namespace + "::" + s_.name + "\n";
     return out;
@@ -314,6 +316,60 @@ class ShaderEmitter {
     return out;
   }
 
+  // The writes that push a Bindings: shared by the compute dispatch and by host code that
+  // records draws with a vertex and a fragment shader (see Module).
+  std::string descriptor_writes() const {
+    const std::string n = std::to_string(s_.bindings.size());
+    std::string out = "\n// The descriptor writes for `bindings`, for vkCmdPushDescriptorSetKHR (dstSet is ignored).\n"
+                      "inline constexpr uint32_t kDescriptorWriteCount = " + n + ";\n";
+    if (s_.bindings.empty()) {
+      return out + "inline void write_descriptors(const Bindings&, VkWriteDescriptorSet*) {}\n";
+    }
+    out += "inline void write_descriptors(const Bindings& bindings, VkWriteDescriptorSet* writes) {\n";
+    size_t i = 0;
+    for (const Binding& b : s_.bindings) {
+      const std::string field = "bindings." + cpp_identifier(b.name);
+      const std::string pointer = b.is_array ? field + ".data()" : "&" + field;
+      out += "  writes[" + std::to_string(i++) + "] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, VK_NULL_HANDLE, kBinding" +
+             camel_case(b.name) + ", 0, " + std::to_string(b.count) + ", " + descriptor_type(b.kind) + ",\n               " +
+             (is_buffer(b.kind) ? "nullptr, " + pointer : pointer + ", nullptr") + ", nullptr};\n";
+    }
+    out += "}\n";
+    return out;
+  }
+
+  // The shader as one type, so host code can be templated on shaders: a graphics pipeline
+  // takes a vertex and a fragment Module and merges their layouts.
+  std::string module_type() const {
+    const std::string qualified = "::" + options_.cpp_namespace + "::" + s_.name + "::";
+    std::string out = "\n// This shader as a type, for host code templated on shaders (e.g. a graphics pipeline\n"
+                      "// made of a vertex and a fragment Module).\n"
+                      "struct Module {\n";
+    out += "  using Spec = " + qualified + "Spec;\n";
+    out += "  using Bindings = " + qualified + "Bindings;\n";
+    if (s_.push) out += "  using Push = " + qualified + "Push;\n";
+    out += "  static constexpr VkShaderStageFlagBits stage = kStage;\n"
+           "  static constexpr const char* entry_point = kEntryPoint;\n"
+           "  static constexpr const uint32_t* spirv = kSpirv;\n"
+           "  static constexpr size_t spirv_bytes = sizeof(kSpirv);\n";
+    if (s_.bindings.empty()) {
+      out += "  static constexpr const VkDescriptorSetLayoutBinding* set_layout_bindings = nullptr;\n"
+             "  static constexpr uint32_t set_layout_binding_count = 0;\n";
+    } else {
+      out += "  static constexpr const VkDescriptorSetLayoutBinding* set_layout_bindings = kSetLayoutBindings;\n"
+             "  static constexpr uint32_t set_layout_binding_count = " + std::to_string(s_.bindings.size()) + ";\n";
+    }
+    out += std::string("  static constexpr bool has_push_constants = ") + (s_.push ? "true" : "false") + ";\n";
+    out += s_.push ? "  static constexpr VkPushConstantRange push_constant_range = kPushConstantRange;\n"
+                   : "  static constexpr VkPushConstantRange push_constant_range = {kStage, 0, 0};\n";
+    out += "  static constexpr uint32_t descriptor_write_count = kDescriptorWriteCount;\n"
+           "  static void write_descriptors(const Bindings& bindings, VkWriteDescriptorSet* writes) {\n"
+           "    " + qualified + "write_descriptors(bindings, writes);\n"
+           "  }\n"
+           "};\n";
+    return out;
+  }
+
   std::string push_parameter() const { return s_.push ? "const Push& push, " : ""; }
 
   std::string pipeline_declaration() const {
@@ -417,16 +473,9 @@ class ShaderEmitter {
            "                               uint32_t threads_y, uint32_t threads_z) const {\n"
            "  vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);\n";
     if (has_set) {
-      out += "  const VkWriteDescriptorSet writes[" + n + "] = {\n";
-      for (const Binding& b : s_.bindings) {
-        const std::string field = "bindings." + cpp_identifier(b.name);
-        const std::string pointer = b.is_array ? field + ".data()" : "&" + field;
-        out += "      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET, nullptr, VK_NULL_HANDLE, kBinding" + camel_case(b.name) +
-               ", 0, " + std::to_string(b.count) + ", " + descriptor_type(b.kind) + ",\n       " +
-               (is_buffer(b.kind) ? "nullptr, " + pointer : pointer + ", nullptr") + ", nullptr},\n";
-      }
-      out += "  };\n"
-             "  push_descriptor_set(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, " + n + ", writes);\n";
+      out += "  VkWriteDescriptorSet writes[kDescriptorWriteCount];\n"
+             "  write_descriptors(bindings, writes);\n"
+             "  push_descriptor_set(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, kDescriptorWriteCount, writes);\n";
     }
     if (s_.push) {
       out += "  vkCmdPushConstants(cmd, layout, kPushConstantRange.stageFlags, kPushConstantRange.offset,\n"
