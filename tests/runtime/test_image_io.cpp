@@ -1,0 +1,107 @@
+// PNG and PFM files: exact round trips, and failures that name the file and leave nothing behind.
+
+#include "vplkit/error.hpp"
+#include "vplkit/image_io.hpp"
+
+#include <doctest/doctest.h>
+
+#define STB_IMAGE_STATIC
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <vector>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path temp_dir() {
+    fs::path dir = fs::temp_directory_path() / ("vplkit_image_io_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
+TEST_CASE("PFM round trip is exact - including extreme and non-finite values") {
+    const uint32_t width = 5, height = 3;
+    std::vector<float> rgb(width * height * 3);
+    for (size_t i = 0; i < rgb.size(); ++i) {
+        rgb[i] = float(i) * 0.37f - 2.0f;
+    }
+    rgb[1] = 1e-30f;
+    rgb[2] = 3e38f;
+    rgb[4] = std::numeric_limits<float>::infinity();
+    const fs::path path = temp_dir() / "roundtrip.pfm";
+    vplkit::write_pfm(path, width, height, rgb);
+    vplkit::PfmImage back = vplkit::read_pfm(path);
+    CHECK(back.width == width);
+    CHECK(back.height == height);
+    CHECK(back.rgb == rgb);  // top row first in memory, whatever the file order
+}
+
+TEST_CASE("PFM files written by other tools: big-endian and greyscale") {
+    const fs::path path = temp_dir() / "other.pfm";
+    {
+        std::ofstream out(path, std::ios::binary);
+        out << "Pf\n2 2\n1.0\n";  // greyscale, big-endian (positive scale), bottom row first
+        const uint32_t values[4] = {0x3f800000u, 0x40000000u, 0x40400000u, 0x40800000u};  // 1, 2, 3, 4
+        for (uint32_t v : values) {
+            const unsigned char bytes[4] = {uint8_t(v >> 24), uint8_t(v >> 16), uint8_t(v >> 8), uint8_t(v)};
+            out.write(reinterpret_cast<const char*>(bytes), 4);
+        }
+    }
+    vplkit::PfmImage image = vplkit::read_pfm(path);
+    // Top row (file's second row) is 3, 4; bottom row 1, 2; each grey value in all three channels.
+    const std::vector<float> expected = {3, 3, 3, 4, 4, 4, 1, 1, 1, 2, 2, 2};
+    CHECK(image.rgb == expected);
+}
+
+TEST_CASE("PFM: truncated and non-PFM files are refused by name") {
+    const fs::path dir = temp_dir();
+    {
+        std::ofstream out(dir / "short.pfm", std::ios::binary);
+        out << "PF\n4 4\n-1.0\n" << "abc";
+    }
+    CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "short.pfm"), doctest::Contains("short.pfm is truncated"), vplkit::Error);
+    {
+        std::ofstream out(dir / "text.pfm");
+        out << "hello";
+    }
+    CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "text.pfm"), doctest::Contains("text.pfm is not a PFM file"), vplkit::Error);
+}
+
+TEST_CASE("PNG round trip is exact") {
+    const uint32_t width = 7, height = 4;
+    std::vector<uint8_t> rgba(width * height * 4);
+    for (size_t i = 0; i < rgba.size(); ++i) {
+        rgba[i] = uint8_t(i * 37 + 11);
+    }
+    const fs::path path = temp_dir() / "roundtrip.png";
+    vplkit::write_png(path, width, height, rgba);
+    int w = 0, h = 0, channels = 0;
+    stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
+    REQUIRE(pixels != nullptr);
+    CHECK(w == int(width));
+    CHECK(h == int(height));
+    CHECK(std::vector<uint8_t>(pixels, pixels + rgba.size()) == rgba);
+    stbi_image_free(pixels);
+}
+
+TEST_CASE("image files: a folder that does not exist gives an error and no file") {
+    const fs::path path = temp_dir() / "no_such_folder" / "out.png";
+    std::vector<uint8_t> rgba(4, 255);
+    CHECK_THROWS_WITH_AS(vplkit::write_png(path, 1, 1, rgba), doctest::Contains("could not write"), vplkit::Error);
+    CHECK_FALSE(fs::exists(path));
+    std::vector<float> rgb(2, 0.0f);  // wrong size for 1x1
+    CHECK_THROWS_WITH_AS(vplkit::write_pfm(temp_dir() / "bad.pfm", 1, 1, rgb), doctest::Contains("needs 3 values"),
+                         vplkit::Error);
+    CHECK_FALSE(fs::exists(temp_dir() / "bad.pfm"));
+}
