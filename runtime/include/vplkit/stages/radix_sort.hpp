@@ -1,0 +1,115 @@
+#pragma once
+// GPU LSD radix sort of (uint64 key, uint32 value) pairs by key, ascending and stable, for any
+// count. Each pass orders by one digit of the key (lowest first) in three steps, reduce-then-scan,
+// so that no workgroup ever waits for another (Vulkan promises no forward progress between them):
+//   radix_histogram.comp                      each tile's count of every digit value, digit-major;
+//   radix_scan_reduce.comp, radix_scan_chunks.comp
+//                                             the exclusive prefix sum of those counts (a hierarchy
+//                                             of chunk sums, one dispatch per level and direction),
+//                                             i.e. every (digit, tile)'s first output position;
+//   radix_scatter.comp                        a stable sort of each tile by the digit in shared
+//                                             memory, then each pair to its output position.
+// The pairs ping-pong between the caller's buffers and the sorter's scratch buffers; after an odd
+// number of passes radix_copy.comp moves them back, so the result always ends in the caller's.
+// No shader uses subgroup operations: nothing depends on the subgroup size.
+
+#include "vplkit/buffer.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace vplkit {
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::shaders {
+namespace radix_histogram { struct Pipeline; }
+namespace radix_scan_reduce { struct Pipeline; }
+namespace radix_scan_chunks { struct Pipeline; }
+namespace radix_scatter { struct Pipeline; }
+namespace radix_copy { struct Pipeline; }
+}  // namespace vplkit::shaders
+
+namespace vplkit::stages {
+
+struct RadixSortOptions {
+    // Pairs are ordered by the low `key_bits` bits of their keys (1..64); the bits above travel
+    // with the key but take no part in the order. Fewer bits, fewer passes:
+    // ceil(key_bits / digit_bits) of them.
+    uint32_t key_bits = 64;
+    // Bits per pass, 4 or 8. 8 is faster on lavapipe (half the passes; see `vplkit bench sort`).
+    uint32_t digit_bits = 8;
+    // Threads per workgroup, any size up to the device limit. A workgroup sorts a tile of
+    // workgroup_size x items_per_thread pairs in shared memory: 12 bytes per pair, 68 bytes per
+    // thread (slice counters, scan), 4 bytes per digit value; see radix_sort_shared_bytes().
+    // The defaults need 30 KiB: lavapipe has 32 KiB, NVIDIA 48 KiB; Vulkan only promises 16 KiB,
+    // where 128 threads fit.
+    uint32_t workgroup_size = 256;
+    uint32_t items_per_thread = 4;
+};
+
+// Shared memory (bytes) the scatter shader of these options needs (the largest of the sort's shaders).
+uint32_t radix_sort_shared_bytes(const RadixSortOptions& options);
+
+// Digit passes for these options: ceil(key_bits / digit_bits).
+uint32_t radix_sort_pass_count(const RadixSortOptions& options);
+
+// Owns the scratch buffers (a copy of the pairs, and the digit counts with their prefix-sum
+// hierarchy) for sorting up to `max_count` pairs, and the pipelines. Reusable for any number of
+// sorts of up to max_count pairs, one at a time (they share the scratch buffers).
+class RadixSorter {
+ public:
+    // Creates the pipelines and scratch buffers. Throws vplkit::Error for bad options (naming the
+    // option and the device limit it breaks) or a max_count the device cannot sort in one go.
+    RadixSorter(Context& context, uint32_t max_count, const RadixSortOptions& options = {});
+
+    RadixSorter(RadixSorter&&) noexcept = default;
+    RadixSorter& operator=(RadixSorter&&) noexcept = default;
+
+    uint32_t max_count() const { return max_count_; }
+    const RadixSortOptions& options() const { return options_; }
+    // Number of dispatches record() makes for `count` pairs (for benchmarks and tests).
+    uint32_t dispatch_count(uint32_t count) const;
+
+    // Records the sort of the first `count` pairs of `keys` (uint64_t[]) and `values` (uint32_t[])
+    // into `cmd`, with compute barriers between its dispatches; every write it makes, to these
+    // buffers and to the scratch buffers, is a compute-shader write. The caller orders it against
+    // what wrote the buffers before and reads them after (a PassList pass does: see add_pass).
+    // Throws vplkit::Error when count > max_count() or a buffer is too small.
+    void record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& values, uint32_t count) const;
+
+    // Adds one pass named `name` that runs record() on the buffers, declaring the scratch buffers
+    // among its uses. The sorter (at the same address) and the buffers must outlive the PassList's runs.
+    void add_pass(PassList& passes, Buffer& keys, Buffer& values, uint32_t count, std::string name = "radix sort");
+
+    // The scratch buffers record() writes, for callers that declare uses themselves.
+    std::vector<const Buffer*> scratch_buffers() const { return {&scratch_keys_, &scratch_values_, &counts_}; }
+
+ private:
+    // Where each level of the digit-count prefix-sum hierarchy lives in counts_ for `count` pairs:
+    // level 0 holds the tile counts, level i + 1 one sum per chunk of level i, the last fits one chunk.
+    struct ScanLevel {
+        VkDeviceSize offset = 0;
+        uint32_t length = 0;
+    };
+    std::vector<ScanLevel> scan_levels(uint32_t count) const;
+    uint32_t tile_count(uint32_t count) const;
+
+    Context* context_ = nullptr;
+    RadixSortOptions options_;
+    uint32_t max_count_ = 0;
+    Buffer scratch_keys_;
+    Buffer scratch_values_;
+    Buffer counts_;
+    const shaders::radix_histogram::Pipeline* histogram_ = nullptr;
+    const shaders::radix_scan_reduce::Pipeline* scan_reduce_ = nullptr;
+    const shaders::radix_scan_chunks::Pipeline* scan_chunks_ = nullptr;
+    const shaders::radix_scatter::Pipeline* scatter_ = nullptr;
+    const shaders::radix_copy::Pipeline* copy_ = nullptr;
+};
+
+}  // namespace vplkit::stages

@@ -1,0 +1,265 @@
+#include "vplkit/stages/radix_sort.hpp"
+
+#include "vplkit/barriers.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/radix_copy.hpp"
+#include "vplkit/shaders/radix_histogram.hpp"
+#include "vplkit/shaders/radix_scan_chunks.hpp"
+#include "vplkit/shaders/radix_scan_reduce.hpp"
+#include "vplkit/shaders/radix_scatter.hpp"
+
+#include <algorithm>
+#include <string>
+#include <utility>
+
+namespace vplkit::stages {
+
+namespace {
+
+// Counts per workgroup of the prefix-sum shaders (their kItemsPerThread).
+constexpr uint32_t kScanItemsPerThread = 4;
+// The scatter keeps one counter per value of a 4-bit slice of the digit and per thread.
+constexpr uint32_t kSliceValues = 16;
+
+uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+
+uint32_t scan_shared_bytes(uint32_t workgroup_size) {
+    // radix.glsl: one value per invocation, one offset per run of 16, the total.
+    return 4 * (workgroup_size + uint32_t(ceil_div(workgroup_size, 16)) + 1);
+}
+
+void check_options(const Context& context, const RadixSortOptions& options) {
+    const DeviceInfo& info = context.info();
+    if (options.key_bits < 1 || options.key_bits > 64) {
+        throw Error("radix sort: key_bits " + std::to_string(options.key_bits) + " is outside 1..64");
+    }
+    if (options.digit_bits != 4 && options.digit_bits != 8) {
+        throw Error("radix sort: digit_bits " + std::to_string(options.digit_bits) + " is neither 4 nor 8");
+    }
+    if (options.items_per_thread < 1 || options.items_per_thread > 32) {
+        throw Error("radix sort: items_per_thread " + std::to_string(options.items_per_thread) +
+                    " is outside 1..32");
+    }
+    const uint32_t size = options.workgroup_size;
+    if (size < 1 || size > info.max_workgroup_invocations || size > info.max_workgroup_size[0]) {
+        throw Error("radix sort: workgroup size " + std::to_string(size) + " is outside 1.." +
+                    std::to_string(std::min(info.max_workgroup_invocations, info.max_workgroup_size[0])) +
+                    " (the device's limit)");
+    }
+    const uint32_t shared = radix_sort_shared_bytes(options);
+    if (shared > info.max_shared_memory_bytes) {
+        throw Error("radix sort: workgroup size " + std::to_string(size) + " with " +
+                    std::to_string(options.items_per_thread) + " items per thread needs " + std::to_string(shared) +
+                    " bytes of shared memory; the device has " + std::to_string(info.max_shared_memory_bytes) +
+                    " (lower either)");
+    }
+}
+
+}  // namespace
+
+uint32_t radix_sort_shared_bytes(const RadixSortOptions& options) {
+    const uint64_t tile = uint64_t(options.workgroup_size) * options.items_per_thread;
+    const uint64_t bytes = tile * (sizeof(uint64_t) + sizeof(uint32_t))               // the tile's pairs
+                           + uint64_t(kSliceValues) * options.workgroup_size * 4     // slice counters
+                           + (uint64_t(1) << options.digit_bits) * 4                 // digit bases
+                           + scan_shared_bytes(options.workgroup_size);
+    return uint32_t(std::min<uint64_t>(bytes, UINT32_MAX));
+}
+
+uint32_t radix_sort_pass_count(const RadixSortOptions& options) {
+    return uint32_t(ceil_div(options.key_bits, options.digit_bits));
+}
+
+RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOptions& options)
+    : context_(&context), options_(options), max_count_(max_count) {
+    check_options(context, options);
+    if (max_count < 1) {
+        throw Error("radix sort: max_count must be at least 1");
+    }
+    const DeviceInfo& info = context.info();
+    const uint64_t key_bytes = uint64_t(max_count) * sizeof(uint64_t);
+    if (key_bytes > info.max_storage_buffer_range) {
+        throw Error("radix sort: " + std::to_string(max_count) + " keys take " + std::to_string(key_bytes) +
+                    " bytes, more than the device's storage-buffer range of " +
+                    std::to_string(info.max_storage_buffer_range));
+    }
+    // The largest dispatches: one workgroup per tile (histogram, scatter), and one per pair (copy).
+    const uint64_t tiles = tile_count(max_count);
+    const uint64_t copy_groups = ceil_div(max_count, options.workgroup_size);
+    if (std::max(tiles, copy_groups) > info.max_workgroup_count[0]) {
+        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " +
+                    std::to_string(std::max(tiles, copy_groups)) + " workgroups in one dispatch; the device allows " +
+                    std::to_string(info.max_workgroup_count[0]) + " (raise the workgroup size or items per thread)");
+    }
+
+    const std::vector<ScanLevel> levels = scan_levels(max_count);
+    const VkDeviceSize count_bytes = levels.back().offset + VkDeviceSize(levels.back().length) * sizeof(uint32_t);
+    if (VkDeviceSize(levels.front().length) * sizeof(uint32_t) > info.max_storage_buffer_range) {
+        throw Error("radix sort: the digit counts of " + std::to_string(max_count) +
+                    " pairs exceed the device's storage-buffer range (raise items per thread)");
+    }
+    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    scratch_keys_ = Buffer::create(context, key_bytes, usage, MemoryUse::device, "radix sort scratch keys");
+    scratch_values_ = Buffer::create(context, uint64_t(max_count) * sizeof(uint32_t), usage, MemoryUse::device,
+                                     "radix sort scratch values");
+    counts_ = Buffer::create(context, count_bytes, usage, MemoryUse::device, "radix sort digit counts");
+
+    shaders::radix_histogram::Spec histogram_spec;
+    histogram_spec.local_size_x = options.workgroup_size;
+    histogram_spec.items_per_thread = options.items_per_thread;
+    histogram_spec.digit_bits = options.digit_bits;
+    shaders::radix_scatter::Spec scatter_spec;
+    scatter_spec.local_size_x = options.workgroup_size;
+    scatter_spec.items_per_thread = options.items_per_thread;
+    scatter_spec.digit_bits = options.digit_bits;
+    shaders::radix_scan_reduce::Spec reduce_spec;
+    reduce_spec.local_size_x = options.workgroup_size;
+    shaders::radix_scan_chunks::Spec chunks_spec;
+    chunks_spec.local_size_x = options.workgroup_size;
+    shaders::radix_copy::Spec copy_spec;
+    copy_spec.local_size_x = options.workgroup_size;
+    histogram_ = &context.pipeline<shaders::radix_histogram::Pipeline>(histogram_spec);
+    scan_reduce_ = &context.pipeline<shaders::radix_scan_reduce::Pipeline>(reduce_spec);
+    scan_chunks_ = &context.pipeline<shaders::radix_scan_chunks::Pipeline>(chunks_spec);
+    scatter_ = &context.pipeline<shaders::radix_scatter::Pipeline>(scatter_spec);
+    copy_ = &context.pipeline<shaders::radix_copy::Pipeline>(copy_spec);
+}
+
+uint32_t RadixSorter::tile_count(uint32_t count) const {
+    return uint32_t(ceil_div(count, uint64_t(options_.workgroup_size) * options_.items_per_thread));
+}
+
+std::vector<RadixSorter::ScanLevel> RadixSorter::scan_levels(uint32_t count) const {
+    const uint64_t chunk = uint64_t(options_.workgroup_size) * kScanItemsPerThread;
+    // Descriptor offsets must be multiples of this (a power of two, at most 256 by the spec).
+    const VkDeviceSize alignment = std::max<VkDeviceSize>(context_->info().min_storage_buffer_offset_alignment, 4);
+    std::vector<ScanLevel> levels;
+    uint64_t length = uint64_t(tile_count(count)) << options_.digit_bits;
+    VkDeviceSize offset = 0;
+    while (true) {
+        levels.push_back({offset, uint32_t(length)});
+        if (length <= chunk) {
+            return levels;
+        }
+        offset = ceil_div(offset + length * sizeof(uint32_t), alignment) * alignment;
+        length = ceil_div(length, chunk);
+    }
+}
+
+uint32_t RadixSorter::dispatch_count(uint32_t count) const {
+    if (count <= 1) {
+        return 0;
+    }
+    const uint32_t passes = radix_sort_pass_count(options_);
+    const uint32_t reduce_levels = uint32_t(scan_levels(count).size()) - 1;
+    // Per pass: histogram, a reduce and a chunk scan per lower level, the top scan, the scatter.
+    return passes * (3 + 2 * reduce_levels) + passes % 2;
+}
+
+void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& values, uint32_t count) const {
+    if (count <= 1) {
+        return;  // already sorted
+    }
+    if (count > max_count_) {
+        throw Error("radix sort: " + std::to_string(count) + " pairs, but the sorter was made for at most " +
+                    std::to_string(max_count_));
+    }
+    if (keys.size() < uint64_t(count) * sizeof(uint64_t) || values.size() < uint64_t(count) * sizeof(uint32_t)) {
+        throw Error("radix sort: buffers '" + keys.name() + "' / '" + values.name() + "' are too small for " +
+                    std::to_string(count) + " pairs");
+    }
+    const uint32_t size = options_.workgroup_size;
+    const uint32_t tiles = tile_count(count);
+    const std::vector<ScanLevel> levels = scan_levels(count);
+    auto level_descriptor = [this](const ScanLevel& level) {
+        return counts_.descriptor(level.offset, VkDeviceSize(level.length) * sizeof(uint32_t));
+    };
+    // Exactly the first `count` pairs: a descriptor no larger than the data keeps the sort's
+    // reads and writes (and what synchronization validation tracks) to the pairs it sorts.
+    const VkDescriptorBufferInfo pairs[2][2] = {
+        {keys.descriptor(0, uint64_t(count) * sizeof(uint64_t)), values.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
+        {scratch_keys_.descriptor(0, uint64_t(count) * sizeof(uint64_t)),
+         scratch_values_.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
+    };
+
+    const uint32_t passes = radix_sort_pass_count(options_);
+    for (uint32_t pass = 0; pass < passes; ++pass) {
+        const uint32_t shift = pass * options_.digit_bits;
+        const uint32_t bits = std::min(options_.digit_bits, options_.key_bits - shift);
+        const auto& in = pairs[pass % 2];
+        const auto& out = pairs[(pass + 1) % 2];
+        if (pass > 0) {
+            compute_barrier(cmd);
+        }
+
+        shaders::radix_histogram::Bindings histogram_bindings;
+        histogram_bindings.keys = in[0];
+        histogram_bindings.counts = level_descriptor(levels[0]);
+        shaders::radix_histogram::Push histogram_push{};
+        histogram_push.count = count;
+        histogram_push.shift = shift;
+        histogram_push.bits = bits;
+        histogram_push.tile_count = tiles;
+        histogram_->dispatch(cmd, histogram_bindings, histogram_push, tiles * size);
+
+        for (size_t level = 0; level + 1 < levels.size(); ++level) {
+            compute_barrier(cmd);
+            shaders::radix_scan_reduce::Bindings reduce_bindings;
+            reduce_bindings.counts = level_descriptor(levels[level]);
+            reduce_bindings.chunk_sums = level_descriptor(levels[level + 1]);
+            shaders::radix_scan_reduce::Push reduce_push{};
+            reduce_push.count = levels[level].length;
+            scan_reduce_->dispatch(cmd, reduce_bindings, reduce_push, levels[level + 1].length * size);
+        }
+        for (size_t level = levels.size(); level-- > 0;) {
+            compute_barrier(cmd);
+            const bool top = level + 1 == levels.size();
+            shaders::radix_scan_chunks::Bindings chunks_bindings;
+            chunks_bindings.counts = level_descriptor(levels[level]);
+            // The top level reads no chunk offsets, but the binding must still hold a valid buffer.
+            chunks_bindings.chunk_offsets = level_descriptor(levels[top ? level : level + 1]);
+            shaders::radix_scan_chunks::Push chunks_push{};
+            chunks_push.count = levels[level].length;
+            chunks_push.add_chunk_offsets = top ? 0u : 1u;
+            const uint32_t chunks = top ? 1u : levels[level + 1].length;
+            scan_chunks_->dispatch(cmd, chunks_bindings, chunks_push, chunks * size);
+        }
+
+        compute_barrier(cmd);
+        shaders::radix_scatter::Bindings scatter_bindings;
+        scatter_bindings.keys = {in[0], out[0]};
+        scatter_bindings.values = {in[1], out[1]};
+        scatter_bindings.digit_offsets = level_descriptor(levels[0]);
+        shaders::radix_scatter::Push scatter_push{};
+        scatter_push.count = count;
+        scatter_push.shift = shift;
+        scatter_push.bits = bits;
+        scatter_push.tile_count = tiles;
+        scatter_->dispatch(cmd, scatter_bindings, scatter_push, tiles * size);
+    }
+
+    if (passes % 2 == 1) {
+        compute_barrier(cmd);
+        shaders::radix_copy::Bindings copy_bindings;
+        copy_bindings.keys = {pairs[1][0], pairs[0][0]};
+        copy_bindings.values = {pairs[1][1], pairs[0][1]};
+        shaders::radix_copy::Push copy_push{};
+        copy_push.count = count;
+        copy_->dispatch(cmd, copy_bindings, copy_push, count);
+    }
+}
+
+void RadixSorter::add_pass(PassList& passes, Buffer& keys, Buffer& values, uint32_t count, std::string name) {
+    if (count > max_count_) {  // fail now, not in the middle of recording
+        throw Error("radix sort: " + std::to_string(count) + " pairs, but the sorter was made for at most " +
+                    std::to_string(max_count_));
+    }
+    passes.add(std::move(name),
+               {Use::read_write(keys), Use::read_write(values), Use::read_write(scratch_keys_),
+                Use::read_write(scratch_values_), Use::read_write(counts_)},
+               [this, &keys, &values, count](VkCommandBuffer cmd) { record(cmd, keys, values, count); });
+}
+
+}  // namespace vplkit::stages
