@@ -1,0 +1,52 @@
+#pragma once
+// The perfect binary light tree of real-time stochastic lightcuts (seed 003 sec. 3.1 and 4) over
+// the sorted leaf array (gather_leaves.comp): light_tree_leaves.comp writes the leaf level, then
+// light_tree_levels.comp builds the internal levels in groups of `group_levels` levels, each
+// group in one dispatch straight from the level below it.
+//
+// Layout (shaders/include/vplkit/light_tree.glsl): heap order, root 0, children 2n+1 and 2n+2,
+// leaf i at node leaf_count - 1 + i, where leaf_count = bit_ceil(count) (1 for count 1).
+// A node (shaders::LightTreeNode, 32 bytes) holds box_min, intensity (sum of the RGB flux),
+// box_max and vpl_count (real VPLs below it). Bogus subtrees have vpl_count 0, intensity 0 and
+// the empty box [+FLT_MAX, -FLT_MAX]; no field is ever Inf or NaN for finite input.
+
+#include <cstdint>
+
+namespace vplkit {
+class Buffer;
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+// Most levels one group may build (the stack of partial sums in light_tree_levels.comp).
+inline constexpr uint32_t kLightTreeMaxGroupLevels = 8;
+// Most leaves a tree may have: its 2 * leaf_count - 1 node indices fit in 32 bits.
+inline constexpr uint32_t kLightTreeMaxLeaves = 1u << 31;
+
+struct LightTreeOptions {
+    // Threads per workgroup of both shaders (one thread per node written).
+    uint32_t workgroup_size = 256;
+    // Levels built per dispatch, 1..kLightTreeMaxGroupLevels. A node `d` levels above its
+    // group's source level reads 2^d nodes, so a group of g levels reads the source level g
+    // times but saves g - 1 barriers. 4 measured fastest on lavapipe (see the light tree report).
+    uint32_t group_levels = 4;
+};
+
+// Leaves of the tree over `count` VPLs (count rounded up to a power of two; 1 for count 1).
+uint32_t light_tree_leaf_count(uint32_t count);
+// Nodes of the tree over `count` VPLs: 2 * light_tree_leaf_count(count) - 1.
+uint32_t light_tree_node_count(uint32_t count);
+// Dispatches add_light_tree_passes records: one for the leaves, one per group of levels.
+uint32_t light_tree_dispatch_count(uint32_t count, const LightTreeOptions& options = {});
+
+// Adds the passes "light tree leaves" and "light tree levels" (the groups, with compute
+// barriers between them). `leaves` holds light_tree_leaf_count(count) Vpls in sorted order, the
+// first `count` real; `nodes` receives light_tree_node_count(count) LightTreeNodes.
+// Throws vplkit::Error for count 0 or above kLightTreeMaxLeaves, bad options, buffers too small,
+// or a tree the device cannot dispatch or address in one storage buffer.
+void add_light_tree_passes(Context& context, PassList& passes, const Buffer& leaves, Buffer& nodes, uint32_t count,
+                           const LightTreeOptions& options = {});
+
+}  // namespace vplkit::stages

@@ -1,0 +1,138 @@
+#include "vplkit/stages/light_tree.hpp"
+
+#include "vplkit/barriers.hpp"
+#include "vplkit/buffer.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/light_tree_leaves.hpp"
+#include "vplkit/shaders/light_tree_levels.hpp"
+
+#include <algorithm>
+#include <bit>
+#include <string>
+
+namespace vplkit::stages {
+
+namespace {
+
+// The groups of internal levels, leaves first: for each, the complete source level and how many
+// levels above it the group builds. Full groups at the bottom, where the levels are wide; the
+// remainder goes to the top, where a level is a handful of nodes.
+template <class Group>
+void for_each_group(uint32_t leaf_count, uint32_t group_levels, Group group) {
+    uint32_t source_level = uint32_t(std::countr_zero(leaf_count));
+    while (source_level > 0) {
+        const uint32_t levels = std::min(group_levels, source_level);
+        group(source_level, levels);
+        source_level -= levels;
+    }
+}
+
+// Nodes of the `levels` levels above `source_level`: 2^source - 2^(source - levels).
+uint32_t group_threads(uint32_t source_level, uint32_t levels) {
+    return (1u << source_level) - (1u << (source_level - levels));
+}
+
+void check(const Context& context, uint32_t count, const LightTreeOptions& options) {
+    if (count == 0 || count > kLightTreeMaxLeaves) {
+        throw Error("light tree: count " + std::to_string(count) + " is outside 1.." +
+                    std::to_string(kLightTreeMaxLeaves));
+    }
+    const DeviceInfo& info = context.info();
+    const uint32_t size = options.workgroup_size;
+    if (size == 0 || size > info.max_workgroup_invocations || size > info.max_workgroup_size[0]) {
+        throw Error("light tree: workgroup size " + std::to_string(size) + " is outside 1.." +
+                    std::to_string(std::min(info.max_workgroup_invocations, info.max_workgroup_size[0])) +
+                    " (the device's limit)");
+    }
+    if (options.group_levels == 0 || options.group_levels > kLightTreeMaxGroupLevels) {
+        throw Error("light tree: group_levels " + std::to_string(options.group_levels) + " is outside 1.." +
+                    std::to_string(kLightTreeMaxGroupLevels));
+    }
+    // The leaf dispatch is the widest: one thread per leaf.
+    const uint64_t leaf_count = light_tree_leaf_count(count);
+    const uint64_t groups = (leaf_count + size - 1) / size;
+    if (groups > info.max_workgroup_count[0]) {
+        throw Error("light tree: " + std::to_string(leaf_count) + " leaves need " + std::to_string(groups) +
+                    " workgroups in one dispatch; the device allows " + std::to_string(info.max_workgroup_count[0]) +
+                    " (raise the workgroup size)");
+    }
+    const uint64_t node_bytes = uint64_t(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
+    const uint64_t leaf_bytes = leaf_count * sizeof(shaders::Vpl);
+    if (std::max(node_bytes, leaf_bytes) > info.max_storage_buffer_range) {
+        throw Error("light tree: " + std::to_string(count) + " VPLs need " + std::to_string(node_bytes) +
+                    " bytes of nodes and " + std::to_string(leaf_bytes) +
+                    " bytes of leaves; the device's storage buffer range is " +
+                    std::to_string(info.max_storage_buffer_range));
+    }
+}
+
+}  // namespace
+
+uint32_t light_tree_leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_ceil(count); }
+
+uint32_t light_tree_node_count(uint32_t count) { return 2 * light_tree_leaf_count(count) - 1; }
+
+uint32_t light_tree_dispatch_count(uint32_t count, const LightTreeOptions& options) {
+    uint32_t dispatches = 1;
+    for_each_group(light_tree_leaf_count(count), std::max(options.group_levels, 1u),
+                   [&dispatches](uint32_t, uint32_t) { ++dispatches; });
+    return dispatches;
+}
+
+void add_light_tree_passes(Context& context, PassList& passes, const Buffer& leaves, Buffer& nodes, uint32_t count,
+                           const LightTreeOptions& options) {
+    check(context, count, options);
+    const uint32_t leaf_count = light_tree_leaf_count(count);
+    const VkDeviceSize leaf_bytes = VkDeviceSize(leaf_count) * sizeof(shaders::Vpl);
+    const VkDeviceSize node_bytes = VkDeviceSize(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
+    if (leaves.size() < leaf_bytes) {
+        throw Error("light tree: buffer '" + leaves.name() + "' holds fewer than the " + std::to_string(leaf_count) +
+                    " leaves of " + std::to_string(count) + " VPLs");
+    }
+    if (nodes.size() < node_bytes) {
+        throw Error("light tree: buffer '" + nodes.name() + "' holds fewer than the " +
+                    std::to_string(light_tree_node_count(count)) + " nodes of " + std::to_string(count) + " VPLs");
+    }
+
+    shaders::light_tree_leaves::Spec leaves_spec;
+    leaves_spec.local_size_x = options.workgroup_size;
+    shaders::light_tree_levels::Spec levels_spec;
+    levels_spec.local_size_x = options.workgroup_size;
+    const auto& leaves_pipeline = context.pipeline<shaders::light_tree_leaves::Pipeline>(leaves_spec);
+    const auto& levels_pipeline = context.pipeline<shaders::light_tree_levels::Pipeline>(levels_spec);
+
+    passes.add("light tree leaves", {Use::read(leaves), Use::write(nodes)},
+               [&leaves_pipeline, &leaves, &nodes, count, leaf_count, leaf_bytes, node_bytes](VkCommandBuffer cmd) {
+                   shaders::light_tree_leaves::Bindings bindings;
+                   bindings.leaves = leaves.descriptor(0, leaf_bytes);
+                   bindings.nodes = nodes.descriptor(0, node_bytes);
+                   shaders::light_tree_leaves::Push push{};
+                   push.count = count;
+                   push.leaf_count = leaf_count;
+                   leaves_pipeline.dispatch(cmd, bindings, push, leaf_count);
+               });
+    if (leaf_count == 1) {
+        return;  // the root is the only leaf
+    }
+    passes.add("light tree levels", {Use::read_write(nodes)},
+               [&levels_pipeline, &nodes, leaf_count, node_bytes, group_levels = options.group_levels](
+                   VkCommandBuffer cmd) {
+                   shaders::light_tree_levels::Bindings bindings;
+                   bindings.nodes = nodes.descriptor(0, node_bytes);
+                   bool first = true;
+                   for_each_group(leaf_count, group_levels, [&](uint32_t source_level, uint32_t levels) {
+                       if (!first) {
+                           compute_barrier(cmd);  // the next group's source level is this group's top
+                       }
+                       first = false;
+                       shaders::light_tree_levels::Push push{};
+                       push.source_level = source_level;
+                       push.levels = levels;
+                       levels_pipeline.dispatch(cmd, bindings, push, group_threads(source_level, levels));
+                   });
+               });
+}
+
+}  // namespace vplkit::stages
