@@ -15,6 +15,7 @@
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
+#include "vplkit/device_info.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/types.hpp"
@@ -408,16 +409,32 @@ TEST_CASE("light tree: every group size and workgroup size builds the same tree"
 
 TEST_CASE("light tree: the dispatch schedule") {
     using vplkit::stages::light_tree_dispatch_count;
+    CHECK(light_tree_dispatch_count(1, 4) == 1);          // the root is the leaf
+    CHECK(light_tree_dispatch_count(2, 4) == 2);          // leaves, one group of one level
+    CHECK(light_tree_dispatch_count(65536, 4) == 5);      // 16 levels: 4 groups of 4
+    CHECK(light_tree_dispatch_count(65537, 4) == 6);      // 17 levels: 4 x 4 + 1
+    CHECK(light_tree_dispatch_count(1u << 20, 3) == 8);   // 20 levels: 6 x 3 + 2
+    CHECK(light_tree_dispatch_count(4096, 1) == 13);
+    CHECK_THROWS_AS(light_tree_dispatch_count(4096, 0), vplkit::Error);
+    CHECK_THROWS_AS(light_tree_dispatch_count(4096, 9), vplkit::Error);
+}
+
+TEST_CASE("light tree: the default group size follows the device type") {
+    vplkit::DeviceInfo device;
+    device.type = vplkit::DeviceType::cpu;
+    CHECK(vplkit::stages::light_tree_default_group_levels(device) == 1);
+    device.type = vplkit::DeviceType::discrete_gpu;
+    CHECK(vplkit::stages::light_tree_default_group_levels(device) == 4);
+    // Group size 0 (the default) builds the same tree as an explicit one.
+    const std::vector<RefVpl> vpls = random_vpls(300, 17);
     vplkit::stages::LightTreeOptions options;
-    options.group_levels = 4;
-    CHECK(light_tree_dispatch_count(1, options) == 1);        // the root is the leaf
-    CHECK(light_tree_dispatch_count(2, options) == 2);        // leaves, one group of one level
-    CHECK(light_tree_dispatch_count(65536, options) == 5);    // 16 levels: 4 groups of 4
-    CHECK(light_tree_dispatch_count(65537, options) == 6);    // 17 levels: 4 x 4 + 1
     options.group_levels = 3;
-    CHECK(light_tree_dispatch_count(1u << 20, options) == 8);  // 20 levels: 6 x 3 + 2
-    options.group_levels = 1;
-    CHECK(light_tree_dispatch_count(4096, options) == 13);
+    const auto explicit_groups = gpu_tree(vpls, BogusData::garbage, options);
+    const auto default_groups = check_tree(vpls);
+    for (size_t n = 0; n < explicit_groups.size(); ++n) {
+        CAPTURE(n);
+        CHECK(same_node(explicit_groups[n], default_groups[n]));
+    }
 }
 
 TEST_CASE("light tree: bad input is refused with a clear message") {
@@ -439,12 +456,9 @@ TEST_CASE("light tree: bad input is refused with a clear message") {
     CHECK_THROWS_WITH_AS(add_light_tree_passes(ctx, passes, small, nodes, 9),
                          doctest::Contains("buffer 'small' holds fewer than the 16 leaves"), vplkit::Error);
     vplkit::stages::LightTreeOptions options;
-    options.group_levels = 0;
-    CHECK_THROWS_WITH_AS(add_light_tree_passes(ctx, passes, leaves, nodes, 5, options),
-                         doctest::Contains("group_levels 0 is outside 1..8"), vplkit::Error);
     options.group_levels = 9;
     CHECK_THROWS_WITH_AS(add_light_tree_passes(ctx, passes, leaves, nodes, 5, options),
-                         doctest::Contains("group_levels 9 is outside 1..8"), vplkit::Error);
+                         doctest::Contains("group_levels 9 is outside 0..8"), vplkit::Error);
     options.group_levels = 4;
     options.workgroup_size = 0;
     CHECK_THROWS_WITH_AS(add_light_tree_passes(ctx, passes, leaves, nodes, 5, options),

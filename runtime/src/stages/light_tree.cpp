@@ -3,6 +3,7 @@
 #include "vplkit/barriers.hpp"
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
+#include "vplkit/device_info.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/light_tree_leaves.hpp"
@@ -46,9 +47,9 @@ void check(const Context& context, uint32_t count, const LightTreeOptions& optio
                     std::to_string(std::min(info.max_workgroup_invocations, info.max_workgroup_size[0])) +
                     " (the device's limit)");
     }
-    if (options.group_levels == 0 || options.group_levels > kLightTreeMaxGroupLevels) {
-        throw Error("light tree: group_levels " + std::to_string(options.group_levels) + " is outside 1.." +
-                    std::to_string(kLightTreeMaxGroupLevels));
+    if (options.group_levels > kLightTreeMaxGroupLevels) {
+        throw Error("light tree: group_levels " + std::to_string(options.group_levels) + " is outside 0.." +
+                    std::to_string(kLightTreeMaxGroupLevels) + " (0: the device's default)");
     }
     // The leaf dispatch is the widest: one thread per leaf.
     const uint64_t leaf_count = light_tree_leaf_count(count);
@@ -70,14 +71,21 @@ void check(const Context& context, uint32_t count, const LightTreeOptions& optio
 
 }  // namespace
 
+uint32_t light_tree_default_group_levels(const DeviceInfo& device) {
+    return device.type == DeviceType::cpu ? 1u : 4u;
+}
+
 uint32_t light_tree_leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_ceil(count); }
 
 uint32_t light_tree_node_count(uint32_t count) { return 2 * light_tree_leaf_count(count) - 1; }
 
-uint32_t light_tree_dispatch_count(uint32_t count, const LightTreeOptions& options) {
+uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
+    if (group_levels == 0 || group_levels > kLightTreeMaxGroupLevels) {
+        throw Error("light tree: group_levels " + std::to_string(group_levels) + " is outside 1.." +
+                    std::to_string(kLightTreeMaxGroupLevels));
+    }
     uint32_t dispatches = 1;
-    for_each_group(light_tree_leaf_count(count), std::max(options.group_levels, 1u),
-                   [&dispatches](uint32_t, uint32_t) { ++dispatches; });
+    for_each_group(light_tree_leaf_count(count), group_levels, [&dispatches](uint32_t, uint32_t) { ++dispatches; });
     return dispatches;
 }
 
@@ -117,7 +125,9 @@ void add_light_tree_passes(Context& context, PassList& passes, const Buffer& lea
         return;  // the root is the only leaf
     }
     passes.add("light tree levels", {Use::read_write(nodes)},
-               [&levels_pipeline, &nodes, leaf_count, node_bytes, group_levels = options.group_levels](
+               [&levels_pipeline, &nodes, leaf_count, node_bytes,
+                group_levels = options.group_levels != 0 ? options.group_levels
+                                                         : light_tree_default_group_levels(context.info())](
                    VkCommandBuffer cmd) {
                    shaders::light_tree_levels::Bindings bindings;
                    bindings.nodes = nodes.descriptor(0, node_bytes);

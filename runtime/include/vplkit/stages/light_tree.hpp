@@ -16,6 +16,7 @@ namespace vplkit {
 class Buffer;
 class Context;
 class PassList;
+struct DeviceInfo;
 }  // namespace vplkit
 
 namespace vplkit::stages {
@@ -28,18 +29,29 @@ inline constexpr uint32_t kLightTreeMaxLeaves = 1u << 31;
 struct LightTreeOptions {
     // Threads per workgroup of both shaders (one thread per node written).
     uint32_t workgroup_size = 256;
-    // Levels built per dispatch, 1..kLightTreeMaxGroupLevels. A node `d` levels above its
-    // group's source level reads 2^d nodes, so a group of g levels reads the source level g
-    // times but saves g - 1 barriers. 4 measured fastest on lavapipe (see the light tree report).
-    uint32_t group_levels = 4;
+    // Levels built per dispatch, 1..kLightTreeMaxGroupLevels, or 0 for
+    // light_tree_default_group_levels(device). A node `d` levels above its group's source level
+    // reads 2^d nodes, so a group of g levels reads the source level g times but saves g - 1
+    // barriers. The tree is the same, bit for bit, whatever the group size.
+    uint32_t group_levels = 0;
 };
+
+// The group size add_light_tree_passes uses when LightTreeOptions::group_levels is 0.
+// CPU devices: 1 (level by level). Measured on lavapipe (2 cores), where a dispatch costs
+// ~30 us and re-reading the source level costs more than the barriers it saves: levels of
+// 1M leaves take 16 ms level by level, 21 / 28 / 39 ms in groups of 2 / 3 / 4; only at 4096
+// leaves do groups of 2-3 win (0.33 vs 0.45 ms).
+// Other devices: 4, not measured yet: on a GPU each barrier drains the whole device while
+// the re-reads of a source level mostly hit the cache; seed 003 sec. 4 builds in groups.
+uint32_t light_tree_default_group_levels(const DeviceInfo& device);
 
 // Leaves of the tree over `count` VPLs (count rounded up to a power of two; 1 for count 1).
 uint32_t light_tree_leaf_count(uint32_t count);
 // Nodes of the tree over `count` VPLs: 2 * light_tree_leaf_count(count) - 1.
 uint32_t light_tree_node_count(uint32_t count);
-// Dispatches add_light_tree_passes records: one for the leaves, one per group of levels.
-uint32_t light_tree_dispatch_count(uint32_t count, const LightTreeOptions& options = {});
+// Dispatches add_light_tree_passes records with groups of `group_levels` (1..8) levels: one for
+// the leaves, one per group. Throws vplkit::Error for a group size out of range.
+uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels);
 
 // Adds the passes "light tree leaves" and "light tree levels" (the groups, with compute
 // barriers between them). `leaves` holds light_tree_leaf_count(count) Vpls in sorted order, the
