@@ -1,0 +1,103 @@
+#pragma once
+// The BVH over the scene's triangles that every visibility query traverses
+// (shaders/include/vplkit/bvh.glsl), built on the host.
+//
+// Why a binned SAH build on the host rather than an LBVH on the GPU: the scenes are static, so
+// the tree is built once per scene load, and what matters is the cost of the many millions of
+// shadow rays traced through it every frame. Shadow rays towards VPLs are incoherent (origins
+// and directions spread over the whole scene), so each ray pays for every box it enters, and a
+// SAH tree's boxes are the ones that minimize that expected cost, where an LBVH (Karras 2012)
+// splits at Morton-code bits wherever they fall (Karras and Aila 2013 use LBVH as the
+// fast-to-build, slow-to-trace end of their comparison). A binned build costs O(n log n) and
+// is paid once per scene load (Sponza: see README / the report's measurement);
+// a GPU LBVH would win only for geometry that changes every frame, which this kit does not have.
+//
+// Build (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"): at each
+// node the triangle centroids are binned into `bins` equal slabs per axis, and the split between
+// two bins with the least SAH cost (MacDonald and Booth 1990)
+//     C = traversal_cost + triangle_cost * (A_left * N_left + A_right * N_right) / A_node
+// is taken; a node of at most max_leaf_triangles becomes a leaf when its cost
+// triangle_cost * N is not above the best split's. Constants: traversal_cost = triangle_cost = 1
+// (a 32-byte node visit and a 48-byte watertight triangle test cost about the same on a GPU,
+// where both are dominated by the memory fetch), 32 bins, at most 4 triangles per leaf.
+//
+// Depth cap: no leaf is deeper than max_depth (<= kBvhMaxDepth, the traversal's stack size), by
+// construction: a SAH split is only taken when both children can still be finished by median
+// splits within the remaining levels (a node of n triangles needs ceil(log2(n / leaf size))
+// more levels); where none can, the node is split at the object median of its longest
+// centroid axis, which always fits.
+//
+// Degenerate triangles (zero area: the cross product of two edges, in double precision, is
+// exactly zero) are left out of the tree, and counted: the watertight test could never hit them
+// (its determinant is 0). Non-finite vertices, and coordinates of 2^32 or more in magnitude (the
+// float intersection math would overflow), are refused with an Error naming the triangle.
+// The empty scene (no triangles, or only degenerate ones) gives one leaf with no triangles:
+// every ray misses it.
+
+#include "vplkit/shaders/types.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vplkit {
+
+// The traversal stack size of bvh.glsl (kBvhStackSize): no leaf is deeper (root at depth 0).
+inline constexpr uint32_t kBvhMaxDepth = 32;
+inline constexpr uint32_t kBvhMaxLeafTriangles = 4;
+// BvhNode::meta of a leaf: kBvhLeafFlag | triangle count; of an interior node: the split axis.
+inline constexpr uint32_t kBvhLeafFlag = 0x80000000u;
+inline constexpr uint32_t kBvhCountMask = 0x7fffffffu;
+// BvhHit::id and BvhHit::triangle of a miss; not allowed as a triangle id.
+inline constexpr uint32_t kBvhNoHit = 0xffffffffu;
+// Vertex coordinates must be smaller than this in magnitude (2^32).
+inline constexpr float kBvhMaxCoordinate = 4294967296.0f;
+// Boxes are padded outward by this fraction of the scene scale (see bvh.glsl: it covers the
+// traversal's raised direction components and the rounding of the slab distances).
+inline constexpr float kBvhBoxPadding = 1.0f / 1048576.0f;  // 2^-20
+// offset_ray_origin in bvh.glsl: the offset is this times max(scene scale, |p|_max).
+inline constexpr float kBvhOriginOffset = 1.0f / 65536.0f;  // 2^-16
+// The scene scale never falls below this (empty scenes).
+inline constexpr float kBvhMinScale = 1e-30f;
+
+struct BvhBuildOptions {
+    uint32_t bins = 32;                                // 2..256 per axis
+    uint32_t max_leaf_triangles = kBvhMaxLeafTriangles;  // 1..kBvhMaxLeafTriangles
+    uint32_t max_depth = kBvhMaxDepth;                 // 1..kBvhMaxDepth
+    float traversal_cost = 1.0f;                       // > 0
+    float triangle_cost = 1.0f;                        // > 0
+};
+
+struct Bvh {
+    // Depth-first: nodes[0] is the root, an interior node's first child follows it.
+    std::vector<shaders::BvhNode> nodes;
+    // In leaf order; empty for an empty scene (upload_bvh still makes a non-empty buffer).
+    std::vector<shaders::BvhTriangle> triangles;
+
+    uint32_t input_triangles = 0;       // triangles given to build_bvh
+    uint32_t degenerate_triangles = 0;  // of those, left out for zero area
+    uint32_t leaf_count = 0;
+    uint32_t depth = 0;                 // of the deepest leaf (the root is at depth 0)
+    uint32_t median_splits = 0;         // SAH splits replaced by median splits to respect max_depth
+    // The largest coordinate magnitude of the (padded) root box, at least kBvhMinScale: what
+    // bvh_scene_scale() in bvh.glsl returns, the scale offsets and tolerances are relative to.
+    float scene_scale = kBvhMinScale;
+    // Expected cost of a random ray that meets the root box (the SAH of the whole tree, in the
+    // units of the build options' costs).
+    double sah_cost = 0.0;
+};
+
+// Builds the BVH of `vertices.size() / 3` triangles (vertices 3i, 3i+1, 3i+2 are triangle i,
+// world space). `triangle_ids`, when not empty, gives each triangle the id the traversal reports
+// (one per triangle, none equal to kBvhNoHit); otherwise a triangle's id is its index i.
+// Throws vplkit::Error for a vertex count that is not a multiple of 3, a wrong number of ids,
+// a reserved id, a non-finite or out-of-range vertex (naming the triangle), or bad options.
+Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids = {},
+              const BvhBuildOptions& options = {});
+
+inline bool bvh_is_leaf(const shaders::BvhNode& node) { return (node.meta & kBvhLeafFlag) != 0; }
+inline uint32_t bvh_leaf_triangles(const shaders::BvhNode& node) { return node.meta & kBvhCountMask; }
+
+}  // namespace vplkit
