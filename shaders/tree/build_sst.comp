@@ -4,9 +4,10 @@
 // sec. 3.3 and 5, seed 000 sec. 4.2.2): one thread per pair of leaves merges its pair into their
 // parent, then climbs. At each inner node above, the first of its two subtrees' threads to
 // arrive stops and the second merges both children and goes on, so exactly one thread reaches
-// the root. No thread ever waits for another (Vulkan promises no forward progress between
-// workgroups): a thread either has both children finished or leaves the work to the thread
-// that will finish the other one.
+// the root. No thread ever waits for another workgroup (Vulkan promises no forward progress
+// between workgroups): a thread either has both children finished or leaves the work to the
+// thread that will finish the other one. The only waits are workgroup barriers, which every
+// thread of the workgroup reaches.
 //
 // Layout and padding rules: see vplkit/sst.glsl. The host clears `counters` to 0 before this
 // dispatch (one per inner node above the lowest inner level).

@@ -132,6 +132,12 @@ std::vector<SstNode> build_on_gpu(const Scene& scene, const SstOptions& options 
     vplkit::PassList passes("sst test");
     vplkit::stages::add_sst_passes(ctx, passes, leaves, nodes, counters, scene.count, options);
     passes.run(ctx);
+    // Every inner node above the lowest level is reached exactly twice, once from each subtree,
+    // counted from the cleared 0 (a trivial tree uses none of its one counter).
+    const uint32_t arrivals = scene.leaves.size() >= 4 ? 2u : 0u;
+    for (uint32_t value : counters.download<uint32_t>(counter_count)) {
+        CHECK(value == arrivals);
+    }
     return nodes.download<SstNode>(node_count);
 }
 
@@ -529,6 +535,38 @@ TEST_CASE("sst: suitability flags at the thesis and the paper thresholds") {
         CHECK((paper_nodes[3].flags & 1u) == 1u);
         CHECK((thesis_nodes[0].flags & 1u) == 0u);
         CHECK((paper_nodes[0].flags & 1u) == 0u);
+    }
+}
+
+TEST_CASE("sst: sigma_max is a length in world units") {
+    // The floor + bent sheet + wall scene at 1e-3, 1 and 1e4 scale, 1000x its size away from the
+    // origin. With sigma_max scaled along, the same nodes are suitable; with the unscaled 0.3
+    // the small scene accepts every planar-enough node and the large one almost none.
+    auto scene_at = [](double s) {
+        const std::array<double, 3> far{1000 * s, -700 * s, 300 * s};
+        std::vector<Vpl> vpls = patch(4, 0.1 * s, 0.0, 0.005 * s, 1, far);
+        const std::vector<Vpl> bent = patch(4, 0.1 * s, 1.0 * s, 0.02 * s, 2, {far[0] + 5 * s, far[1], far[2]});
+        vpls.insert(vpls.end(), bent.begin(), bent.end());
+        return padded(vpls);
+    };
+    const Scene unit_scene = scene_at(1.0);
+    const auto unit_nodes = build_on_gpu(unit_scene, kThesis);
+    compare_with_reference(unit_scene, unit_nodes, kThesis);
+    for (double s : {1e-3, 1e4}) {
+        CAPTURE(s);
+        const Scene scene = scene_at(s);
+        const SstOptions scaled{0.7f, float(0.3 * s)};
+        const auto nodes = build_on_gpu(scene, scaled);
+        const Comparison c = compare_with_reference(scene, nodes, scaled);
+        CHECK(c.ambiguous_flags <= c.nodes / 50);
+        uint32_t same = 0;
+        for (size_t i = 0; i < nodes.size(); ++i) same += (nodes[i].flags & 1u) == (unit_nodes[i].flags & 1u) ? 1 : 0;
+        CHECK(same + c.ambiguous_flags >= nodes.size());
+        CHECK((nodes[1].flags & 1u) == 1u);  // the whole floor (leaves 0..255)
+
+        const auto unscaled = build_on_gpu(scene, kThesis);
+        compare_with_reference(scene, unscaled, kThesis);
+        CHECK((unscaled[1].flags & 1u) == (s < 1.0 ? 1u : 0u));
     }
 }
 

@@ -108,6 +108,9 @@ SstNode sst_leaf_node(Vpl vpl, float nu_min, float sigma_max) {
 // child's variance unrotated, which the paper notes is invalid when normals diverge; the
 // rotation keeps each variance >= 0 and the trace (total variance) unchanged.
 vec3 sst_variance_in_frame(SstNode child, vec3 t, vec3 b, vec3 n) {
+    if (child.variance == vec3(0.0)) {
+        return vec3(0.0);  // leaves and coincident VPLs: no frame needed (half of all merges)
+    }
     vec3 ct, cb;
     sst_frame(child.normal, ct, cb);
     vec3 v = child.variance;
