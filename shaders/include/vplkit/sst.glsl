@@ -11,7 +11,8 @@
 // node 0 and the children of node i are 2i + 1 and 2i + 2. A child index c >= L - 1 is leaf
 // c - (L - 1): leaves are not stored as nodes (they are the leaf buffer's Vpls; sst_leaf_node()
 // turns one into a node when needed), which halves the tree's memory (seed 000 sec. 4.2.2 on
-// the perfect tree's smaller footprint). For one VPL (L = 1) node 0 is leaf 0; the builder then
+// the perfect tree's smaller footprint) and keeps 2^20 VPLs' nodes (~96 MiB) inside a 128 MiB
+// storage-buffer range. For one VPL (L = 1) node 0 is leaf 0; the builder then
 // still writes nodes[0] = sst_leaf_node(leaf 0), so nodes[0] always describes the whole tree.
 //
 // Leaves with index >= count are bogus padding: they are told apart by index, never by their
@@ -50,10 +51,10 @@ const float kSstMinMergedNormalLength = 1e-3;
 // (Rodrigues: R u = c u + k x u + (k . u) / (1 + c) k with c = h . n, k = h x n), then
 // re-orthonormalized. It is continuous everywhere except at n = -h, so nearby normals (float
 // and double, or a child and its parent) get nearby frames; an axis-by-axis switch (Duff et
-// al. 2017's branchless basis jumps at n.z = 0, every vertical wall) would not. h points
-// away from the axis, face-diagonal and space-diagonal directions of walls, floors and
-// ceilings; within ~0.8 degrees of -h (1 + c < 1e-4) the frame is u's, where the rotation
-// would divide by almost 0.
+// al. 2017's branchless basis jumps at n.z = 0, every vertical wall) would not. -h is 19+
+// degrees from every axis, face-diagonal and space-diagonal direction (walls, floors,
+// ceilings), so those get well-conditioned frames; within ~0.8 degrees of -h (1 + c < 1e-4)
+// the frame is u's, where the rotation would divide by almost 0.
 const vec3 kSstFrameAxis = vec3(0.26726124, 0.53452248, 0.80178373);     // (1, 2, 3) / sqrt(14)
 const vec3 kSstFrameTangent = vec3(0.89442719, -0.44721360, 0.0);        // (2, -1, 0) / sqrt(5)
 const float kSstFramePoleGuard = 1e-4;
