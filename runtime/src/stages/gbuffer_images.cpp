@@ -1,0 +1,25 @@
+#include "vplkit/stages/gbuffer_images.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+
+#include <string>
+
+namespace vplkit::stages {
+
+GbufferImages GbufferImages::create(Context& context, uint32_t width, uint32_t height) {
+    if (width == 0 || height == 0) {
+        throw Error("G-buffer: size " + std::to_string(width) + "x" + std::to_string(height) + " has no pixels");
+    }
+    constexpr VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
+    GbufferImages g;
+    g.position = Image::create(context, width, height, kGbufferPositionFormat, color, "gbuffer position");
+    g.normal = Image::create(context, width, height, kGbufferNormalFormat, color, "gbuffer normal");
+    g.geometric_normal = Image::create(context, width, height, kGbufferGeometricNormalFormat, color, "gbuffer geometric normal");
+    g.albedo = Image::create(context, width, height, kGbufferAlbedoFormat, color, "gbuffer albedo");
+    g.emission = Image::create(context, width, height, kGbufferEmissionFormat, color, "gbuffer emission");
+    g.depth = Image::create(context, width, height, kGbufferDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "gbuffer depth");
+    return g;
+}
+
+}  // namespace vplkit::stages
