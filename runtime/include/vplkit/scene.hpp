@@ -1,0 +1,221 @@
+#pragma once
+// The scene model a renderer consumes directly, loaded from a glTF 2.0 file (.gltf or .glb):
+// world-space triangles flattened from every instance of every triangle primitive (node
+// transforms applied, one copy per node that uses a mesh), PBR metallic-roughness materials,
+// RGBA8 images, KHR_lights_punctual lights and perspective cameras. Units are the file's.
+//
+// load_gltf() either returns a complete Scene or throws one vplkit::Error whose message starts
+// with the file's path and names the problem; nothing partial is ever returned.
+
+#include "vplkit/scene_lights.hpp"
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vplkit::scene {
+
+// One vertex: 48 bytes, no padding, so the vector uploads as a vertex buffer or as a
+// scalar-layout storage buffer as it is.
+struct Vertex {
+    glm::vec3 position{0.0f};  // world space
+    glm::vec3 normal{0.0f};    // world space, unit length
+    // World space: xyz unit length and orthogonal to the normal; w = +1 or -1, the bitangent is
+    // w * cross(normal, tangent.xyz) (the glTF convention). All zero when the file gives no
+    // tangents and the primitive's material has no normal texture (nothing needs one then).
+    glm::vec4 tangent{0.0f};
+    glm::vec2 uv0{0.0f};  // TEXCOORD_0 ((0, 0) when the primitive has none)
+};
+static_assert(sizeof(Vertex) == 48, "Vertex is uploaded as is: no padding");
+
+enum class AlphaMode : uint32_t { opaque, mask, blend };
+enum class Wrap : uint32_t { repeat, clamp_to_edge, mirrored_repeat };
+enum class Filter : uint32_t { nearest, linear };
+enum class MipmapMode : uint32_t { none, nearest, linear };
+
+// A glTF sampler; the file's "undefined" filters become linear with linear mipmaps.
+struct Sampler {
+    Wrap wrap_s = Wrap::repeat;
+    Wrap wrap_t = Wrap::repeat;
+    Filter mag_filter = Filter::linear;
+    Filter min_filter = Filter::linear;
+    MipmapMode mipmap_mode = MipmapMode::linear;
+};
+
+// A decoded image, kept once however many textures use it.
+struct Image {
+    std::string name;  // the file's uri, else its name, else "image N"
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba;  // width * height * 4 bytes, rows top to bottom, 8 bits a channel
+    // How the materials use it: colour data (base colour, emissive: sample through an sRGB view)
+    // and/or plain data (metallic-roughness, normal map: sample through a UNORM view). An image
+    // used both ways has both set; the renderer then needs both views.
+    bool srgb = false;
+    bool linear = false;
+};
+
+struct Texture {
+    uint32_t image = 0;  // index into Scene::images
+    Sampler sampler;
+};
+
+inline constexpr int32_t kNoTexture = -1;
+
+// glTF 2.0 metallic-roughness material; texture members index Scene::textures (kNoTexture: none).
+// Every texture is read with TEXCOORD_0 (Vertex::uv0).
+struct Material {
+    std::string name;
+    glm::vec4 base_color_factor{1.0f};  // linear RGBA
+    int32_t base_color_texture = kNoTexture;  // sRGB; multiplies the factor
+    float metallic_factor = 1.0f;
+    float roughness_factor = 1.0f;
+    int32_t metallic_roughness_texture = kNoTexture;  // linear; G = roughness, B = metallic
+    int32_t normal_texture = kNoTexture;              // linear, tangent space
+    float normal_scale = 1.0f;
+    glm::vec3 emissive_factor{0.0f};  // linear RGB
+    float emissive_strength = 1.0f;   // KHR_materials_emissive_strength
+    int32_t emissive_texture = kNoTexture;  // sRGB; multiplies the factor
+    AlphaMode alpha_mode = AlphaMode::opaque;
+    float alpha_cutoff = 0.5f;  // AlphaMode::mask only
+    bool double_sided = false;
+
+    // Emitted radiance scale: emissive factor times strength (times the texture, where there is one).
+    glm::vec3 emission() const { return emissive_factor * emissive_strength; }
+    bool emits() const {
+        const glm::vec3 e = emission();
+        return e.x > 0.0f || e.y > 0.0f || e.z > 0.0f;
+    }
+};
+
+enum class CameraOrigin : uint32_t { file, generated, setup };
+
+// A perspective camera. position/forward/up are the node's world transform with any scale
+// removed (glTF cameras look down their local -Z with +Y up).
+struct Camera {
+    std::string name;
+    CameraOrigin origin = CameraOrigin::file;
+    glm::vec3 position{0.0f};
+    glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
+    glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
+    float yfov = 0.0f;    // vertical field of view, radians
+    float aspect = 0.0f;  // width / height; 0 when the file leaves it to the image
+    float znear = 0.0f;
+    float zfar = 0.0f;  // 0 = infinite (glTF)
+
+    // Rigid transform: columns right, up, -forward, position.
+    glm::mat4 world_from_camera() const;
+    // Its inverse (a right-handed look-at view matrix).
+    glm::mat4 view() const;
+};
+
+// A camera at `position` looking at `target` (up is made orthogonal to the view direction).
+// Throws vplkit::Error when target == position, up is parallel to the view direction, or yfov is
+// not in (0, pi).
+Camera look_at(glm::vec3 position, glm::vec3 target, glm::vec3 up, float yfov);
+
+struct Bounds {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{0.0f};
+    glm::vec3 center() const { return (min + max) * 0.5f; }
+    glm::vec3 extent() const { return max - min; }
+};
+
+enum class NormalSource : uint32_t {
+    file,           // the primitive's NORMAL, transformed with the inverse transpose
+    generated_flat  // no NORMAL: one face normal per triangle (its vertices are not shared),
+                    // as the glTF 2.0 specification asks of a client
+};
+enum class TangentSource : uint32_t {
+    none,      // no TANGENT and no normal texture: tangents are zero
+    file,      // the primitive's TANGENT, transformed
+    generated  // per triangle from the UVs, area-weighted average per vertex, Gram-Schmidt
+               // against the normal, handedness in w (see generate_tangents in the loader)
+};
+
+// One node's instance of one glTF primitive: a contiguous range of vertices and triangles.
+struct PrimitiveInstance {
+    uint32_t node = 0;
+    uint32_t mesh = 0;
+    uint32_t primitive = 0;  // index within the mesh
+    uint32_t material = 0;   // index into Scene::materials
+    uint32_t first_vertex = 0;
+    uint32_t vertex_count = 0;
+    uint32_t first_triangle = 0;
+    uint32_t triangle_count = 0;
+    NormalSource normals = NormalSource::file;
+    TangentSource tangents = TangentSource::none;
+    bool mirrored = false;  // negative-determinant transform: winding was reversed to stay CCW
+};
+
+// What the loader skipped or repaired instead of failing.
+struct LoadWarnings {
+    uint32_t skipped_primitives = 0;    // mode other than TRIANGLES (points, lines, strips, fans)
+    uint32_t degenerate_triangles = 0;  // zero area in world space: dropped
+    uint32_t repaired_normals = 0;      // zero-length NORMAL: replaced by the adjacent faces' normal
+    uint32_t untangented_vertices = 0;  // generated tangent undefined (no UVs or degenerate UVs):
+                                        // an arbitrary unit vector orthogonal to the normal, w = +1
+    std::vector<std::string> messages;  // each other thing ignored, one line each
+};
+
+struct Scene {
+    std::filesystem::path source;  // the file it was loaded from
+
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;             // 3 per triangle; counter-clockwise = front
+    std::vector<uint32_t> triangle_materials;  // one per triangle, index into materials
+    std::vector<uint32_t> emissive_triangles;  // the triangles whose material emits, ascending
+    std::vector<PrimitiveInstance> primitives;
+
+    // The file's materials in the file's order; a last one named "default" (glTF's default
+    // material: white, metallic 1, roughness 1) when some primitive has none.
+    std::vector<Material> materials;
+    std::vector<Texture> textures;  // only those the materials use, in order of first use
+    std::vector<Image> images;      // only those the textures use, in order of first use
+
+    std::vector<Light> lights;
+    // The scene's perspective cameras in node order (depth first from the scene's root nodes);
+    // when the file has none, one generated camera (see load_gltf).
+    std::vector<Camera> cameras;
+    uint32_t active_camera = 0;
+
+    Bounds bounds;  // of every triangle's vertices
+    LoadWarnings warnings;
+
+    size_t triangle_count() const { return indices.size() / 3; }
+    const Camera& camera() const { return cameras.at(active_camera); }
+};
+
+struct LoadOptions {
+    // The camera to make active (index into the file's cameras, as Scene::cameras orders them).
+    // A file without that camera is an error. Unset: camera 0, or the generated one.
+    std::optional<uint32_t> camera;
+};
+
+// Loads `path` (.gltf with external or embedded buffers and images, or .glb) and the scene it
+// names as default (else scene 0; else every root node). When the file has no perspective camera,
+// one is generated to frame the bounds: looking down -Z from the +Z side (glTF's front), at the
+// centre of the bounds' bounding sphere, vertical field of view 45 degrees, far enough that the
+// whole sphere is in view for any aspect ratio >= 1.
+//
+// Errors (vplkit::Error, message "<path>: <problem>"): file missing or unreadable, malformed JSON,
+// missing or truncated buffer, missing or undecodable image a material uses, an accessor or
+// bufferView outside its buffer, an index outside its vertices, NaN/Inf in a vertex attribute or a
+// transform, no triangle left, an extension in extensionsRequired that vplkit does not support,
+// options.camera out of range.
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// The vertices of every triangle in order, 3 per triangle (for BVH builders and tests).
+std::vector<glm::vec3> triangle_positions(const Scene& scene);
+
+// The generated camera load_gltf uses when a file has none.
+Camera framing_camera(const Bounds& bounds);
+
+}  // namespace vplkit::scene

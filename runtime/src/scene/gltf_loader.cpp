@@ -1,0 +1,687 @@
+// load_gltf: tinygltf parses the file and loads its buffers; everything it does not check
+// (indices into arrays, accessor and bufferView bounds, finite values, required extensions) is
+// checked here before the data is used, and each failure is one Error naming file and problem.
+
+#include "scene/gltf_accessors.hpp"
+#include "scene/gltf_geometry.hpp"
+#include "scene/gltf_images.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/scene.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/mat3x3.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <utility>
+
+namespace vplkit::scene {
+namespace {
+
+using detail::GltfSource;
+using detail::PrimitiveData;
+
+constexpr const char* kLightsExtension = "KHR_lights_punctual";
+constexpr const char* kEmissiveStrengthExtension = "KHR_materials_emissive_strength";
+const std::set<std::string> kSupportedExtensions = {kLightsExtension, kEmissiveStrengthExtension};
+
+std::string one_line(const std::string& text) {
+    std::string out;
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) {
+        while (!line.empty() && (line.back() == ' ' || line.back() == '\r')) line.pop_back();
+        if (line.empty()) continue;
+        if (!out.empty()) out += "; ";
+        out += line;
+    }
+    return out;
+}
+
+std::string quoted_name(const std::string& name) { return name.empty() ? "" : " '" + name + "'"; }
+
+bool finite(double v) { return std::isfinite(v); }
+
+template <typename T>
+void check_index(const GltfSource& source, int index, const std::vector<T>& items, const char* kind,
+                 const std::string& referrer) {
+    if (index < 0 || size_t(index) >= items.size()) {
+        source.fail(referrer + " refers to " + kind + " " + std::to_string(index) + ", but the file has " +
+                    std::to_string(items.size()) + " " + kind + (items.size() == 1 ? "" : "s"));
+    }
+}
+
+// --- Materials and textures -----------------------------------------------------------------
+
+// Turns the file's textures and images into the scene's, keeping only those materials use, each
+// once, in order of first use.
+class TextureTable {
+ public:
+    explicit TextureTable(const GltfSource& source) : source_(source) {}
+
+    // `slot` names the use for messages ("base colour texture of material 0 'floor'").
+    int32_t use(int gltf_texture, int tex_coord, bool srgb, const std::string& slot, LoadWarnings& warnings) {
+        if (gltf_texture < 0) return kNoTexture;
+        const auto& model = source_.model;
+        check_index(source_, gltf_texture, model.textures, "texture", slot);
+        if (tex_coord != 0) {
+            warnings.messages.push_back(slot + " uses TEXCOORD_" + std::to_string(tex_coord) +
+                                        "; vplkit reads every texture with TEXCOORD_0");
+        }
+        const tinygltf::Texture& texture = model.textures[size_t(gltf_texture)];
+        const std::string texture_label = "texture " + std::to_string(gltf_texture);
+        if (texture.source < 0) {
+            source_.fail(texture_label + " (" + slot +
+                         ") has no image source in core glTF 2.0 (an image only an extension can read)");
+        }
+        check_index(source_, texture.source, model.images, "image", texture_label);
+        uint32_t image;
+        if (auto it = image_index_.find(texture.source); it != image_index_.end()) {
+            image = it->second;
+        } else {
+            image = uint32_t(image_uses_.size());
+            image_index_.emplace(texture.source, image);
+            image_uses_.push_back({texture.source, slot, false, false});
+        }
+        (srgb ? image_uses_[image].srgb : image_uses_[image].linear) = true;
+
+        if (auto it = texture_index_.find(gltf_texture); it != texture_index_.end()) return it->second;
+        Texture out;
+        out.image = image;
+        if (texture.sampler >= 0) {
+            check_index(source_, texture.sampler, model.samplers, "sampler", texture_label);
+            out.sampler = convert_sampler(model.samplers[size_t(texture.sampler)], texture.sampler);
+        }
+        const int32_t index = int32_t(textures_.size());
+        textures_.push_back(out);
+        texture_index_.emplace(gltf_texture, index);
+        return index;
+    }
+
+    std::vector<Texture> take_textures() { return std::move(textures_); }
+    const std::vector<detail::ImageUse>& image_uses() const { return image_uses_; }
+
+ private:
+    Sampler convert_sampler(const tinygltf::Sampler& s, int index) const {
+        const std::string label = "sampler " + std::to_string(index);
+        auto wrap = [&](int mode, const char* axis) {
+            switch (mode) {
+                case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::repeat;
+                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::clamp_to_edge;
+                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::mirrored_repeat;
+                default:
+                    source_.fail(label + " has " + axis + " " + std::to_string(mode) +
+                                 ", not a glTF wrap mode (10497, 33071, 33648)");
+            }
+        };
+        Sampler out;
+        out.wrap_s = wrap(s.wrapS, "wrapS");
+        out.wrap_t = wrap(s.wrapT, "wrapT");
+        switch (s.magFilter) {
+            case -1:
+            case TINYGLTF_TEXTURE_FILTER_LINEAR: out.mag_filter = Filter::linear; break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST: out.mag_filter = Filter::nearest; break;
+            default: source_.fail(label + " has magFilter " + std::to_string(s.magFilter) + ", not 9728 or 9729");
+        }
+        switch (s.minFilter) {
+            case -1:
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR:
+                out.min_filter = Filter::linear, out.mipmap_mode = MipmapMode::linear;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST:
+                out.min_filter = Filter::nearest, out.mipmap_mode = MipmapMode::none;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR:
+                out.min_filter = Filter::linear, out.mipmap_mode = MipmapMode::none;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+                out.min_filter = Filter::nearest, out.mipmap_mode = MipmapMode::nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+                out.min_filter = Filter::linear, out.mipmap_mode = MipmapMode::nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+                out.min_filter = Filter::nearest, out.mipmap_mode = MipmapMode::linear;
+                break;
+            default: source_.fail(label + " has minFilter " + std::to_string(s.minFilter) + ", not a glTF filter");
+        }
+        return out;
+    }
+
+    const GltfSource& source_;
+    std::map<int, int32_t> texture_index_;
+    std::map<int, uint32_t> image_index_;
+    std::vector<Texture> textures_;
+    std::vector<detail::ImageUse> image_uses_;
+};
+
+Material convert_material(const GltfSource& source, int index, TextureTable& textures, LoadWarnings& warnings) {
+    const tinygltf::Material& m = source.model.materials[size_t(index)];
+    const std::string label = "material " + std::to_string(index) + quoted_name(m.name);
+    Material out;
+    out.name = m.name.empty() ? "material " + std::to_string(index) : m.name;
+
+    const auto& pbr = m.pbrMetallicRoughness;
+    if (pbr.baseColorFactor.size() != 4) source.fail(label + ": baseColorFactor does not have 4 components");
+    for (int c = 0; c < 4; ++c) {
+        const double v = pbr.baseColorFactor[size_t(c)];
+        if (!finite(v) || v < 0.0 || v > 1.0) source.fail(label + ": baseColorFactor is not in [0, 1]");
+        out.base_color_factor[c] = float(v);
+    }
+    if (!finite(pbr.metallicFactor) || pbr.metallicFactor < 0.0 || pbr.metallicFactor > 1.0 ||
+        !finite(pbr.roughnessFactor) || pbr.roughnessFactor < 0.0 || pbr.roughnessFactor > 1.0) {
+        source.fail(label + ": metallicFactor or roughnessFactor is not in [0, 1]");
+    }
+    out.metallic_factor = float(pbr.metallicFactor);
+    out.roughness_factor = float(pbr.roughnessFactor);
+
+    if (m.emissiveFactor.size() != 3) source.fail(label + ": emissiveFactor does not have 3 components");
+    for (int c = 0; c < 3; ++c) {
+        const double v = m.emissiveFactor[size_t(c)];
+        if (!finite(v) || v < 0.0 || v > 1.0) source.fail(label + ": emissiveFactor is not in [0, 1]");
+        out.emissive_factor[c] = float(v);
+    }
+    if (auto it = m.extensions.find(kEmissiveStrengthExtension); it != m.extensions.end()) {
+        const tinygltf::Value& ext = it->second;
+        if (ext.IsObject() && ext.Has("emissiveStrength")) {
+            const tinygltf::Value& strength = ext.Get("emissiveStrength");
+            const double v = strength.IsNumber() ? strength.GetNumberAsDouble() : -1.0;
+            if (!finite(v) || v < 0.0) {
+                source.fail(label + ": " + kEmissiveStrengthExtension + " emissiveStrength is not a number >= 0");
+            }
+            out.emissive_strength = float(v);
+        }
+    }
+
+    if (m.alphaMode == "OPAQUE") {
+        out.alpha_mode = AlphaMode::opaque;
+    } else if (m.alphaMode == "MASK") {
+        out.alpha_mode = AlphaMode::mask;
+    } else if (m.alphaMode == "BLEND") {
+        out.alpha_mode = AlphaMode::blend;
+    } else {
+        source.fail(label + ": alphaMode '" + m.alphaMode + "' is not OPAQUE, MASK or BLEND");
+    }
+    if (!finite(m.alphaCutoff) || m.alphaCutoff < 0.0) source.fail(label + ": alphaCutoff is negative");
+    out.alpha_cutoff = float(m.alphaCutoff);
+    out.double_sided = m.doubleSided;
+    if (!finite(m.normalTexture.scale)) source.fail(label + ": normalTexture scale is not finite");
+    out.normal_scale = float(m.normalTexture.scale);
+
+    out.base_color_texture = textures.use(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
+                                          "base colour texture of " + label, warnings);
+    out.metallic_roughness_texture =
+        textures.use(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
+                     "metallic-roughness texture of " + label, warnings);
+    out.normal_texture = textures.use(m.normalTexture.index, m.normalTexture.texCoord, false,
+                                      "normal texture of " + label, warnings);
+    out.emissive_texture = textures.use(m.emissiveTexture.index, m.emissiveTexture.texCoord, true,
+                                        "emissive texture of " + label, warnings);
+    if (m.occlusionTexture.index >= 0) {
+        warnings.messages.push_back(label + ": occlusion texture ignored (VPLs compute indirect light)");
+    }
+    return out;
+}
+
+// --- Node hierarchy -------------------------------------------------------------------------
+
+glm::dmat4 local_transform(const GltfSource& source, const tinygltf::Node& node, const std::string& label) {
+    auto check_finite = [&](const std::vector<double>& values, const char* what) {
+        for (double v : values) {
+            if (!finite(v)) source.fail(label + ": " + what + " is not finite");
+        }
+    };
+    if (!node.matrix.empty()) {
+        if (node.matrix.size() != 16) source.fail(label + ": matrix does not have 16 components");
+        check_finite(node.matrix, "matrix");
+        glm::dmat4 m;
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) m[c][r] = node.matrix[size_t(4 * c + r)];  // column-major
+        }
+        return m;
+    }
+    glm::dmat4 t(1.0), r(1.0), s(1.0);
+    if (!node.translation.empty()) {
+        if (node.translation.size() != 3) source.fail(label + ": translation does not have 3 components");
+        check_finite(node.translation, "translation");
+        t[3] = glm::dvec4(node.translation[0], node.translation[1], node.translation[2], 1.0);
+    }
+    if (!node.rotation.empty()) {
+        if (node.rotation.size() != 4) source.fail(label + ": rotation does not have 4 components");
+        check_finite(node.rotation, "rotation");
+        // glTF stores (x, y, z, w); glm's constructor takes w first.
+        glm::dquat q(node.rotation[3], node.rotation[0], node.rotation[1], node.rotation[2]);
+        const double length = glm::length(q);
+        if (!(length > 0.0)) source.fail(label + ": rotation quaternion is zero");
+        r = glm::mat4_cast(q / length);
+    }
+    if (!node.scale.empty()) {
+        if (node.scale.size() != 3) source.fail(label + ": scale does not have 3 components");
+        check_finite(node.scale, "scale");
+        s = glm::dmat4(glm::dvec4(node.scale[0], 0, 0, 0), glm::dvec4(0, node.scale[1], 0, 0),
+                       glm::dvec4(0, 0, node.scale[2], 0), glm::dvec4(0, 0, 0, 1));
+    }
+    return t * r * s;
+}
+
+struct NodeInstance {
+    int node;
+    glm::dmat4 world;
+};
+
+// Depth-first, pre-order (a parent before its children, children in the file's order), without
+// recursion: a corrupt file's deep chain must not overflow the stack.
+std::vector<NodeInstance> traverse(const GltfSource& source, LoadWarnings& warnings) {
+    const auto& model = source.model;
+    std::vector<int> roots;
+    if (!model.scenes.empty()) {
+        int scene = model.defaultScene;
+        if (scene < 0) scene = 0;
+        check_index(source, scene, model.scenes, "scene", "the default scene");
+        roots = model.scenes[size_t(scene)].nodes;
+        if (model.scenes.size() > 1) {
+            warnings.messages.push_back("the file has " + std::to_string(model.scenes.size()) +
+                                        " scenes; loaded scene " + std::to_string(scene));
+        }
+    } else {
+        // No scene: every node nobody lists as a child is a root.
+        std::vector<bool> is_child(model.nodes.size(), false);
+        for (const auto& node : model.nodes) {
+            for (int child : node.children) {
+                if (child >= 0 && size_t(child) < model.nodes.size()) is_child[size_t(child)] = true;
+            }
+        }
+        for (size_t i = 0; i < model.nodes.size(); ++i) {
+            if (!is_child[i]) roots.push_back(int(i));
+        }
+    }
+
+    std::vector<NodeInstance> out;
+    std::vector<bool> seen(model.nodes.size(), false);
+    std::vector<std::pair<int, glm::dmat4>> stack;
+    std::vector<std::string> referrer;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) {
+        check_index(source, *it, model.nodes, "node", "the scene");
+        stack.emplace_back(*it, glm::dmat4(1.0));
+    }
+    while (!stack.empty()) {
+        const auto [index, parent] = stack.back();
+        stack.pop_back();
+        const tinygltf::Node& node = model.nodes[size_t(index)];
+        const std::string label = "node " + std::to_string(index) + quoted_name(node.name);
+        if (seen[size_t(index)]) {
+            source.fail(label + " appears twice in the node hierarchy (glTF 2.0 requires disjoint trees: a cycle "
+                                "or a node with two parents)");
+        }
+        seen[size_t(index)] = true;
+        const glm::dmat4 world = parent * local_transform(source, node, label);
+        out.push_back({index, world});
+        for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) {
+            check_index(source, *child, model.nodes, "node", label + " (as a child)");
+            stack.emplace_back(*child, world);
+        }
+    }
+    return out;
+}
+
+// --- Meshes ---------------------------------------------------------------------------------
+
+// One glTF primitive decoded and validated once, however many nodes instance its mesh.
+std::optional<PrimitiveData> decode_primitive(const GltfSource& source, int mesh_index, int primitive_index,
+                                              uint32_t default_material, LoadWarnings& warnings) {
+    const tinygltf::Mesh& mesh = source.model.meshes[size_t(mesh_index)];
+    const tinygltf::Primitive& primitive = mesh.primitives[size_t(primitive_index)];
+    const std::string label =
+        "mesh " + std::to_string(mesh_index) + quoted_name(mesh.name) + " primitive " + std::to_string(primitive_index);
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    if (mode != TINYGLTF_MODE_TRIANGLES) {
+        ++warnings.skipped_primitives;
+        return std::nullopt;
+    }
+    auto attribute = [&](const char* name) {
+        const auto it = primitive.attributes.find(name);
+        return it == primitive.attributes.end() ? -1 : it->second;
+    };
+    const int position_accessor = attribute("POSITION");
+    if (position_accessor < 0) {
+        warnings.messages.push_back(label + " has no POSITION: skipped");
+        return std::nullopt;
+    }
+    if (!primitive.targets.empty()) warnings.messages.push_back(label + ": morph targets ignored");
+
+    PrimitiveData data;
+    data.positions = detail::read_vec3(source, position_accessor, "POSITION of " + label);
+    const size_t vertex_count = data.positions.size();
+    auto check_count = [&](size_t count, const char* name) {
+        if (count != vertex_count) {
+            source.fail(label + ": " + name + " has " + std::to_string(count) + " elements but POSITION has " +
+                        std::to_string(vertex_count));
+        }
+    };
+    auto check_finite = [&](const float* values, size_t components, const char* name) {
+        for (size_t i = 0; i < vertex_count * components; ++i) {
+            if (!std::isfinite(values[i])) {
+                std::ostringstream value;
+                value << values[i];
+                source.fail(label + ": " + name + " of vertex " + std::to_string(i / components) + " is " +
+                            value.str() + " (NaN or infinite)");
+            }
+        }
+    };
+    check_finite(&data.positions[0].x, 3, "POSITION");
+    if (const int a = attribute("NORMAL"); a >= 0) {
+        data.normals = detail::read_vec3(source, a, "NORMAL of " + label);
+        check_count(data.normals.size(), "NORMAL");
+        check_finite(&data.normals[0].x, 3, "NORMAL");
+    }
+    if (const int a = attribute("TANGENT"); a >= 0) {
+        data.tangents = detail::read_vec4(source, a, "TANGENT of " + label);
+        check_count(data.tangents.size(), "TANGENT");
+        check_finite(&data.tangents[0].x, 4, "TANGENT");
+    }
+    if (const int a = attribute("TEXCOORD_0"); a >= 0) {
+        data.uvs = detail::read_texcoords(source, a, "TEXCOORD_0 of " + label);
+        check_count(data.uvs.size(), "TEXCOORD_0");
+        check_finite(&data.uvs[0].x, 2, "TEXCOORD_0");
+    }
+
+    if (primitive.indices >= 0) {
+        data.indices = detail::read_indices(source, primitive.indices, "indices of " + label);
+        for (size_t i = 0; i < data.indices.size(); ++i) {
+            if (data.indices[i] >= vertex_count) {
+                source.fail(label + ": index " + std::to_string(i) + " is " + std::to_string(data.indices[i]) +
+                            ", but the primitive has " + std::to_string(vertex_count) + " vertices");
+            }
+        }
+    } else {
+        data.indices.resize(vertex_count);
+        for (size_t i = 0; i < vertex_count; ++i) data.indices[i] = uint32_t(i);
+    }
+    if (data.indices.size() % 3 != 0) {
+        source.fail(label + ": " + std::to_string(data.indices.size()) +
+                    (primitive.indices >= 0 ? " indices" : " vertices") + " do not make whole triangles");
+    }
+
+    if (primitive.material >= 0) {
+        check_index(source, primitive.material, source.model.materials, "material", label);
+        data.material = uint32_t(primitive.material);
+    } else {
+        data.material = default_material;
+    }
+    return data;
+}
+
+// --- Lights and cameras ---------------------------------------------------------------------
+
+Light convert_light(const GltfSource& source, int index, const glm::dmat4& world, const std::string& node_label) {
+    const tinygltf::Light& l = source.model.lights[size_t(index)];
+    const std::string label = "light " + std::to_string(index) + quoted_name(l.name) + " (on " + node_label + ")";
+    Light out;
+    out.origin = LightOrigin::file;
+    out.name = l.name.empty() ? "light " + std::to_string(index) : l.name;
+    if (l.type == "directional") {
+        out.type = LightType::directional;
+    } else if (l.type == "point") {
+        out.type = LightType::point;
+    } else if (l.type == "spot") {
+        out.type = LightType::spot;
+    } else {
+        source.fail(label + ": type '" + l.type + "' is not directional, point or spot");
+    }
+    if (!l.color.empty()) {
+        if (l.color.size() != 3) source.fail(label + ": color does not have 3 components");
+        for (int c = 0; c < 3; ++c) {
+            if (!finite(l.color[size_t(c)]) || l.color[size_t(c)] < 0.0) source.fail(label + ": color is negative or not finite");
+            out.color[c] = float(l.color[size_t(c)]);
+        }
+    }
+    if (!finite(l.intensity) || l.intensity < 0.0) source.fail(label + ": intensity is negative or not finite");
+    out.intensity = float(l.intensity);
+    if (!finite(l.range) || l.range < 0.0) source.fail(label + ": range is negative or not finite");
+    out.range = float(l.range);
+    if (out.type == LightType::spot) {
+        const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+        // Tolerance for exporters that write pi/2 rounded up in the last digit.
+        if (!(inner >= 0.0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-6)) {
+            source.fail(label + ": cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+        }
+        out.inner_cone_angle = float(inner);
+        out.outer_cone_angle = float(std::min(outer, std::numbers::pi / 2));
+    }
+    out.position = glm::vec3(world[3]);
+    const glm::dvec3 direction = glm::dmat3(world) * glm::dvec3(0.0, 0.0, -1.0);
+    const double length = glm::length(direction);
+    if (out.type != LightType::point && !(length > 0.0)) {
+        source.fail(label + ": the node's transform has a zero scale, so the light has no direction");
+    }
+    if (length > 0.0) out.direction = glm::vec3(direction / length);
+    return out;
+}
+
+Camera convert_camera(const GltfSource& source, int index, const glm::dmat4& world, const std::string& node_label) {
+    const tinygltf::Camera& c = source.model.cameras[size_t(index)];
+    const std::string label = "camera " + std::to_string(index) + quoted_name(c.name) + " (on " + node_label + ")";
+    const auto& p = c.perspective;
+    if (!(finite(p.yfov) && p.yfov > 0.0 && p.yfov < std::numbers::pi)) source.fail(label + ": yfov is not in (0, pi)");
+    if (!(finite(p.znear) && p.znear > 0.0)) source.fail(label + ": znear is not > 0");
+    if (!(finite(p.zfar) && (p.zfar == 0.0 || p.zfar > p.znear))) source.fail(label + ": zfar is not > znear");
+    if (!(finite(p.aspectRatio) && p.aspectRatio >= 0.0)) source.fail(label + ": aspectRatio is negative");
+    const glm::dmat3 linear(world);
+    const glm::dvec3 forward = linear * glm::dvec3(0.0, 0.0, -1.0);
+    const glm::dvec3 up = linear * glm::dvec3(0.0, 1.0, 0.0);
+    const double forward_length = glm::length(forward);
+    const glm::dvec3 f = forward / forward_length;
+    const glm::dvec3 u = up - f * glm::dot(f, up);
+    const double up_length = glm::length(u);
+    if (!(forward_length > 0.0) || !(up_length > 0.0)) {
+        source.fail(label + ": the node's transform is singular, so the camera has no orientation");
+    }
+    Camera out;
+    out.name = c.name.empty() ? "camera " + std::to_string(index) : c.name;
+    out.origin = CameraOrigin::file;
+    out.position = glm::vec3(world[3]);
+    out.forward = glm::vec3(f);
+    out.up = glm::vec3(u / up_length);
+    out.yfov = float(p.yfov);
+    out.aspect = float(p.aspectRatio);
+    out.znear = float(p.znear);
+    out.zfar = float(p.zfar);
+    return out;
+}
+
+// --- Loading the file -----------------------------------------------------------------------
+
+// tinygltf reports a missing or short buffer file as "File not found : <uri>" or
+// "File size mismatch : <path>, requestedBytes N, but got M": say it in vplkit's words, with the
+// full path.
+std::optional<std::string> buffer_problem(const std::string& why, const std::filesystem::path& base_dir) {
+    constexpr std::string_view kNotFound = "File not found : ";
+    constexpr std::string_view kMismatch = "File size mismatch : ";
+    if (why.rfind(kNotFound, 0) == 0) {
+        const std::string uri = why.substr(kNotFound.size(), why.find(';') - kNotFound.size());
+        return "buffer file " + (base_dir / uri).lexically_normal().string() + " not found";
+    }
+    if (why.rfind(kMismatch, 0) == 0) {
+        const size_t comma = why.find(", requestedBytes ");
+        const size_t got = why.find(", but got ");
+        if (comma != std::string::npos && got != std::string::npos) {
+            const std::string buffer = why.substr(kMismatch.size(), comma - kMismatch.size());
+            const std::string requested = why.substr(comma + 17, got - comma - 17);
+            const std::string actual = why.substr(got + 10, why.find(';', got) - got - 10);
+            return "buffer file " + buffer + " has " + actual + " bytes, but the glTF declares " + requested +
+                   " (truncated or the wrong file)";
+        }
+    }
+    return std::nullopt;
+}
+
+bool is_glb(const std::filesystem::path& path) {
+    std::ifstream file(path, std::ios::binary);
+    char magic[4] = {};
+    file.read(magic, 4);
+    return file.gcount() == 4 && std::string_view(magic, 4) == "glTF";
+}
+
+void check_extensions(const GltfSource& source, LoadWarnings& warnings) {
+    for (const std::string& name : source.model.extensionsRequired) {
+        if (!kSupportedExtensions.count(name)) {
+            source.fail("the file requires extension " + name + ", which vplkit does not support (supported: " +
+                        kLightsExtension + ", " + kEmissiveStrengthExtension + ")");
+        }
+    }
+    for (const std::string& name : source.model.extensionsUsed) {
+        if (!kSupportedExtensions.count(name)) {
+            warnings.messages.push_back("extension " + name + " ignored (not required by the file)");
+        }
+    }
+}
+
+}  // namespace
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
+    const std::string file = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) throw Error(file + ": file not found");
+    if (std::filesystem::is_directory(path, ec)) throw Error(file + ": is a directory, not a glTF file");
+
+    tinygltf::Model model;
+    detail::CapturedImages captured;
+    std::string warn;
+    {
+        tinygltf::TinyGLTF loader;
+        loader.SetImageLoader(&detail::capture_image_bytes, &captured);
+        std::string err;
+        const bool ok = is_glb(path) ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
+                                     : loader.LoadASCIIFromFile(&model, &err, &warn, file);
+        if (!ok) {
+            std::string why = one_line(err.empty() ? warn : err);
+            // nlohmann's "[json.exception.parse_error.101] parse error at ..." says what, not where from.
+            constexpr std::string_view kJsonParse = "[json.exception.parse_error.";
+            if (const size_t at = why.find(kJsonParse); at != std::string::npos) {
+                const size_t end = why.find("] ", at);
+                if (end != std::string::npos) why = "malformed JSON: " + why.substr(end + 2);
+            }
+            why = buffer_problem(why, path.parent_path()).value_or("cannot be loaded: " + why);
+            throw Error(file + ": " + (why.empty() ? "cannot be loaded (tinygltf gave no reason)" : why));
+        }
+    }
+    const GltfSource source{model, file};
+
+    Scene scene;
+    scene.source = path;
+    {
+        std::istringstream lines(warn);
+        for (std::string line; std::getline(lines, line);) {
+            if (!line.empty()) scene.warnings.messages.push_back("tinygltf: " + line);
+        }
+    }
+    check_extensions(source, scene.warnings);
+    if (!model.animations.empty()) scene.warnings.messages.push_back("animations ignored (static scene)");
+
+    // Materials first: a primitive's need for tangents depends on its material's normal texture.
+    TextureTable textures(source);
+    for (size_t m = 0; m < model.materials.size(); ++m) {
+        scene.materials.push_back(convert_material(source, int(m), textures, scene.warnings));
+    }
+    const uint32_t default_material = uint32_t(model.materials.size());
+    bool default_material_used = false;
+
+    std::vector<std::optional<std::vector<std::optional<PrimitiveData>>>> decoded(model.meshes.size());
+    for (const NodeInstance& instance : traverse(source, scene.warnings)) {
+        const tinygltf::Node& node = model.nodes[size_t(instance.node)];
+        const std::string node_label = "node " + std::to_string(instance.node) + quoted_name(node.name);
+        if (node.skin >= 0) scene.warnings.messages.push_back(node_label + ": skin ignored (bind pose used)");
+        if (node.camera >= 0) {
+            check_index(source, node.camera, model.cameras, "camera", node_label);
+            if (model.cameras[size_t(node.camera)].type == "perspective") {
+                scene.cameras.push_back(convert_camera(source, node.camera, instance.world, node_label));
+            } else {
+                scene.warnings.messages.push_back(node_label + ": camera " + std::to_string(node.camera) + " is " +
+                                                  model.cameras[size_t(node.camera)].type +
+                                                  ", not perspective: skipped");
+            }
+        }
+        if (auto it = node.extensions.find(kLightsExtension); it != node.extensions.end()) {
+            const tinygltf::Value& ext = it->second;
+            if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber()) {
+                source.fail(node_label + ": " + kLightsExtension + " has no light index");
+            }
+            const int light = ext.Get("light").GetNumberAsInt();
+            check_index(source, light, model.lights, "light", node_label);
+            scene.lights.push_back(convert_light(source, light, instance.world, node_label));
+        }
+        if (node.mesh < 0) continue;
+        check_index(source, node.mesh, model.meshes, "mesh", node_label);
+        auto& primitives = decoded[size_t(node.mesh)];
+        const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
+        if (!primitives) {
+            primitives.emplace();
+            for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+                primitives->push_back(decode_primitive(source, node.mesh, int(p), default_material, scene.warnings));
+            }
+        }
+        for (size_t p = 0; p < primitives->size(); ++p) {
+            const auto& data = (*primitives)[p];
+            if (!data) continue;
+            default_material_used |= data->material == default_material;
+            const bool wants_tangents =
+                data->material != default_material && scene.materials[data->material].normal_texture != kNoTexture;
+            PrimitiveInstance info;
+            info.node = uint32_t(instance.node);
+            info.mesh = uint32_t(node.mesh);
+            info.primitive = uint32_t(p);
+            detail::append_instance(source, scene, *data, instance.world, wants_tangents, info,
+                                    node_label + " mesh " + std::to_string(node.mesh) + quoted_name(mesh.name) +
+                                        " primitive " + std::to_string(p));
+        }
+    }
+    if (scene.indices.empty()) {
+        std::string why = "no triangles to render";
+        if (scene.warnings.skipped_primitives) {
+            why += " (" + std::to_string(scene.warnings.skipped_primitives) + " non-triangle primitive(s) skipped)";
+        }
+        if (scene.warnings.degenerate_triangles) {
+            why += " (" + std::to_string(scene.warnings.degenerate_triangles) + " degenerate triangle(s) dropped)";
+        }
+        source.fail(why);
+    }
+    if (default_material_used) {
+        Material fallback;  // glTF 2.0's default material: the member defaults
+        fallback.name = "default";
+        scene.materials.push_back(fallback);
+    }
+
+    scene.textures = textures.take_textures();
+    scene.images = detail::decode_images(source, captured, textures.image_uses(), path.parent_path());
+
+    scene.bounds.min = glm::vec3(std::numeric_limits<float>::max());
+    scene.bounds.max = glm::vec3(std::numeric_limits<float>::lowest());
+    for (uint32_t i : scene.indices) {
+        scene.bounds.min = glm::min(scene.bounds.min, scene.vertices[i].position);
+        scene.bounds.max = glm::max(scene.bounds.max, scene.vertices[i].position);
+    }
+    for (size_t t = 0; t < scene.triangle_materials.size(); ++t) {
+        if (scene.materials[scene.triangle_materials[t]].emits()) scene.emissive_triangles.push_back(uint32_t(t));
+    }
+
+    const size_t file_cameras = scene.cameras.size();
+    if (options.camera && *options.camera >= file_cameras) {
+        source.fail("camera " + std::to_string(*options.camera) + " was asked for, but the file has " +
+                    (file_cameras == 0 ? std::string("no perspective camera")
+                                       : std::to_string(file_cameras) + " (0.." + std::to_string(file_cameras - 1) +
+                                             ")"));
+    }
+    if (scene.cameras.empty()) scene.cameras.push_back(framing_camera(scene.bounds));
+    scene.active_camera = options.camera.value_or(0);
+    return scene;
+}
+
+}  // namespace vplkit::scene
