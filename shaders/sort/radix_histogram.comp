@@ -5,8 +5,8 @@
 // (counts[digit * tile_count + tile]) so that one exclusive prefix sum over the whole array gives
 // each (digit, tile) its first output position: all smaller digits, then this digit in earlier tiles.
 
-layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
-layout(constant_id = 1) const uint items_per_thread = 4u;
+layout(local_size_x = 32, local_size_x_id = 0) in;  // 32 unless specialized
+layout(constant_id = 1) const uint items_per_thread = 128u;
 layout(constant_id = 2) const uint digit_bits = 8u;  // 4 or 8: the widest digit a pass may use
 
 #include "vplkit/radix.glsl"

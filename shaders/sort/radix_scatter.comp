@@ -1,27 +1,32 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-// Step 3 of a radix-sort pass: each workgroup sorts its tile by the pass's digit in shared memory,
-// stably, then writes every pair to its output position: the (digit, tile) offset from the scanned
-// counts (radix_histogram.comp, radix_scan_*.comp) plus its rank among the tile's pairs of that digit.
+// Step 3 of a radix-sort pass: every pair of the tile goes to its output position, which is the
+// (digit, tile) offset from the scanned counts (radix_histogram.comp, radix_scan_*.comp) plus the
+// pair's stable rank among the tile's pairs of that digit.
 //
-// The tile sort is a stable counting sort per 4-bit slice of the digit, lowest slice first (one
-// round for 4-bit digits, two for 8-bit ones). Invocation t holds a consecutive run of the tile,
-// so with a count per (slice value, invocation), laid out slice-major, one exclusive prefix sum
-// gives each invocation the first tile position of each slice value among its own pairs: smaller
-// values first, then the same value in earlier runs. Only shared memory and barriers: nothing
-// depends on the subgroup size, and no workgroup waits for another.
+// The rank: invocation t owns a run of consecutive pairs of the tile. It counts the digits of its
+// run, one counter per (digit, invocation) in shared memory, laid out digit-major; one exclusive
+// prefix sum over the counters in memory order then gives every (digit, invocation) the number of
+// the tile's pairs that come before its own first pair of that digit in a stable sort: all pairs
+// of smaller digits, then those of this digit in earlier runs. The invocation walks its run again
+// in order, bumping its own counters: stable. Only shared memory and barriers: nothing depends on
+// the subgroup size, and no workgroup waits for another.
+//
+// Counters are 16 bits, two to a uint (digit d in the low half, d + radix/2 in the high half), so
+// that an 8-bit digit's 256 counters per invocation take 512 bytes; a tile holds at most 65535
+// pairs (the host checks), so no half ever carries into the other.
 
-layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
-layout(constant_id = 1) const uint items_per_thread = 4u;
+layout(local_size_x = 32, local_size_x_id = 0) in;  // 32 unless specialized
+layout(constant_id = 1) const uint items_per_thread = 128u;
 layout(constant_id = 2) const uint digit_bits = 8u;  // 4 or 8: the widest digit a pass may use
 
 #include "vplkit/radix.glsl"
 
 const uint kTile = gl_WorkGroupSize.x * items_per_thread;
 const uint kRadix = 1u << digit_bits;
-const uint kSliceBits = 4u;
-const uint kSliceValues = 1u << kSliceBits;
+const uint kHalfRadix = kRadix / 2u;
+const uint kDigitsPerThread = (kRadix + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
 
 // [0]: the pass's input, [1]: its output (the sort ping-pongs between the caller's and scratch buffers).
 layout(std430, set = 0, binding = 0) buffer SortKeyBuffer { uint64_t items[]; } keys[2];
@@ -36,91 +41,82 @@ layout(push_constant) uniform RadixScatterPush {
     uint tile_count;
 } push;
 
-shared uint64_t tile_keys[kTile];     // the tile, sorted by the slices done so far
-shared uint tile_values[kTile];
-shared uint slice_counts[kSliceValues * gl_WorkGroupSize.x];  // [slice value][invocation]
-shared uint digit_base[kRadix];       // output position of tile position 0 if it held this digit
+shared uint rank_counters[kHalfRadix * gl_WorkGroupSize.x];  // [digit mod radix/2][invocation], packed
+shared uint run_offsets[gl_WorkGroupSize.x];  // prefix sum of the counters before each invocation's run of them
+shared uint digit_base[kRadix];               // output position of the digit's pairs, less their first tile position
+
+// The counter unit of a digit: 1 in the low half, 1 << 16 in the high half.
+uint counter_unit(uint digit) {
+    return digit < kHalfRadix ? 1u : 0x10000u;
+}
 
 void main() {
     uint t = gl_LocalInvocationID.x;
     uint tile = gl_WorkGroupID.x;
     uint tile_start = tile * kTile;
-    uint valid = min(push.count - tile_start, kTile);
 
-    for (uint d = t; d < kRadix; d += gl_WorkGroupSize.x) {
-        digit_base[d] = digit_offsets.items[d * push.tile_count + tile];
+    // The tile's count of a digit is the difference of consecutive scanned counts: digit-major,
+    // the entry after (d, last tile) is (d + 1, tile 0), and after the very last, the total count.
+    // Its exclusive prefix sum over the digits is the digit's first position in the sorted tile.
+    uint entries = kRadix * push.tile_count;
+    uint digit_begin = t * kDigitsPerThread;
+    uint digit_sum = 0u;
+    for (uint j = 0u; j < kDigitsPerThread; ++j) {
+        uint d = digit_begin + j;
+        if (d < kRadix) {
+            uint i = d * push.tile_count + tile;
+            uint next = i + 1u < entries ? digit_offsets.items[i + 1u] : push.count;
+            digit_sum += next - digit_offsets.items[i];
+        }
+    }
+    uint tile_total;
+    uint digit_start = radix_workgroup_exclusive_scan(digit_sum, tile_total);
+    for (uint j = 0u; j < kDigitsPerThread; ++j) {
+        uint d = digit_begin + j;
+        if (d < kRadix) {
+            uint i = d * push.tile_count + tile;
+            uint first = digit_offsets.items[i];
+            uint next = i + 1u < entries ? digit_offsets.items[i + 1u] : push.count;
+            digit_base[d] = first - digit_start;  // unsigned wrap-around is undone by + position below
+            digit_start += next - first;
+        }
     }
 
-    // Missing pairs of the last tile get the all-ones key: the largest digit in every slice, and
-    // after every real pair in input order, so the stable sort leaves them at positions >= valid.
-    uint64_t key[items_per_thread];
-    uint value[items_per_thread];
-    for (uint k = 0u; k < items_per_thread; ++k) {
-        uint local_index = t * items_per_thread + k;
-        bool real = local_index < valid;
-        key[k] = real ? keys[0].items[tile_start + local_index] : 0xffffffffffffffffUL;
-        value[k] = real ? values[0].items[tile_start + local_index] : 0u;
+    for (uint d = 0u; d < kHalfRadix; ++d) {
+        rank_counters[d * gl_WorkGroupSize.x + t] = 0u;
     }
-
-    uint rounds = (push.bits + kSliceBits - 1u) / kSliceBits;
-    for (uint round = 0u; round < rounds; ++round) {
-        uint slice_shift = push.shift + round * kSliceBits;
-        uint slice_bits = min(kSliceBits, push.bits - round * kSliceBits);
-        if (round > 0u) {
-            // The previous round's barrier made its whole sorted tile visible.
-            for (uint k = 0u; k < items_per_thread; ++k) {
-                key[k] = tile_keys[t * items_per_thread + k];
-                value[k] = tile_values[t * items_per_thread + k];
-            }
-        }
-        for (uint s = 0u; s < kSliceValues; ++s) {
-            slice_counts[s * gl_WorkGroupSize.x + t] = 0u;
-        }
-        for (uint k = 0u; k < items_per_thread; ++k) {
-            slice_counts[radix_digit(key[k], slice_shift, slice_bits) * gl_WorkGroupSize.x + t] += 1u;
-        }
-        barrier();
-
-        // Exclusive prefix sum of slice_counts in memory order: a run of kSliceValues entries per
-        // invocation, then the workgroup scan of the run sums.
-        uint run_start = t * kSliceValues;
-        uint run_sum = 0u;
-        for (uint s = 0u; s < kSliceValues; ++s) {
-            uint c = slice_counts[run_start + s];
-            slice_counts[run_start + s] = run_sum;
-            run_sum += c;
-        }
-        uint total;
-        uint run_offset = radix_workgroup_exclusive_scan(run_sum, total);
-        for (uint s = 0u; s < kSliceValues; ++s) {
-            slice_counts[run_start + s] += run_offset;
-        }
-        barrier();
-
-        // Each invocation reads and bumps only its own column, in its run's order: stable.
-        for (uint k = 0u; k < items_per_thread; ++k) {
-            uint counter = radix_digit(key[k], slice_shift, slice_bits) * gl_WorkGroupSize.x + t;
-            uint position = slice_counts[counter];
-            slice_counts[counter] = position + 1u;
-            tile_keys[position] = key[k];
-            tile_values[position] = value[k];
-        }
-        barrier();
-    }
-
-    // The tile is sorted by digit. A digit's first tile position p0 maps to its (digit, tile)
-    // offset, so position p goes to digit_offsets + (p - p0); fold -p0 into digit_base once.
-    for (uint p = t; p < valid; p += gl_WorkGroupSize.x) {
-        uint digit = radix_digit(tile_keys[p], push.shift, push.bits);
-        if (p == 0u || radix_digit(tile_keys[p - 1u], push.shift, push.bits) != digit) {
-            digit_base[digit] -= p;  // unsigned wrap-around is undone by the + p below
-        }
+    uint run_start = tile_start + t * items_per_thread;
+    uint run_end = min(run_start + items_per_thread, push.count);  // empty past the end
+    for (uint i = run_start; i < run_end; ++i) {
+        uint digit = radix_digit(keys[0].items[i], push.shift, push.bits);
+        rank_counters[(digit % kHalfRadix) * gl_WorkGroupSize.x + t] += counter_unit(digit);
     }
     barrier();
-    for (uint p = t; p < valid; p += gl_WorkGroupSize.x) {
-        uint64_t k = tile_keys[p];
-        uint destination = digit_base[radix_digit(k, push.shift, push.bits)] + p;
-        keys[1].items[destination] = k;
-        values[1].items[destination] = tile_values[p];
+
+    // Exclusive prefix sum of the counters in memory order: a run of kHalfRadix per invocation,
+    // then the workgroup scan of the run sums (kept apart, added when a counter is read).
+    uint counter_start = t * kHalfRadix;
+    uint counter_sum = 0u;
+    for (uint d = 0u; d < kHalfRadix; ++d) {
+        uint c = rank_counters[counter_start + d];
+        rank_counters[counter_start + d] = counter_sum;
+        counter_sum += c;
+    }
+    uint packed_total;
+    run_offsets[t] = radix_workgroup_exclusive_scan(counter_sum, packed_total);
+    uint low_digits = packed_total & 0xffffu;  // the tile's pairs whose digit is in the low half
+    barrier();
+
+    for (uint i = run_start; i < run_end; ++i) {
+        uint64_t key = keys[0].items[i];
+        uint digit = radix_digit(key, push.shift, push.bits);
+        uint counter = (digit % kHalfRadix) * gl_WorkGroupSize.x + t;
+        uint packed = rank_counters[counter];
+        rank_counters[counter] = packed + counter_unit(digit);
+        packed += run_offsets[counter / kHalfRadix];
+        uint position = digit < kHalfRadix ? (packed & 0xffffu) : (packed >> 16) + low_digits;
+        uint destination = digit_base[digit] + position;
+        keys[1].items[destination] = key;
+        values[1].items[destination] = values[0].items[i];
     }
 }

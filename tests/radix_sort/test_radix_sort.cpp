@@ -28,9 +28,9 @@ TEST_CASE("radix sort: one pair is left as it is") {
 }
 
 TEST_CASE("radix sort: counts around the tile size") {
-    // The default tile is 256 threads x 4 = 1024 pairs; 255..257 cross the workgroup size, the
-    // rest a tile and the point where the digit counts (256 per tile) outgrow one scan chunk.
-    for (uint32_t count : {2u, 3u, 255u, 256u, 257u, 1023u, 1024u, 1025u, 4096u, 4097u}) {
+    // The default tile on lavapipe is 32 threads x 128 = 4096 pairs (16 on a GPU: 512): 255..257
+    // cross the digit count, 4096 and 4097 a tile; with the 1024-count scan chunks, 4 tiles fill one.
+    for (uint32_t count : {2u, 3u, 31u, 32u, 33u, 255u, 256u, 257u, 1023u, 1024u, 1025u, 4096u, 4097u, 16385u}) {
         CAPTURE(count);
         check_radix(random_pairs(count, UINT64_MAX, count));
     }
@@ -105,19 +105,23 @@ TEST_CASE("radix sort: 4-bit digits") {
     check_radix(random_pairs(2500, UINT64_MAX, 23), options);
 }
 
-TEST_CASE("radix sort: small and odd workgroups make deep scan hierarchies") {
-    // 32 threads x 2 items: 64-pair tiles and 128-count scan chunks, so 65537 pairs make 1025
-    // tiles, 262400 digit counts and four levels of chunk sums. 48 and 20 threads are not powers
-    // of two (the raking scan then has a short last run); one item per thread is the least there is.
+TEST_CASE("radix sort: workgroup shapes") {
+    // 32 threads x 2 pairs: 64-pair tiles, so 65537 pairs make 1025 tiles, 262400 digit counts and
+    // three levels of chunk sums. 48 and 20 threads are not powers of two (the raking scan then
+    // has a short last run) and 20 < 256 digits; one pair per thread is the least there is;
+    // 4-bit digits let 256 threads fit. 8 x 4000 is close to the largest tile (65535 pairs).
     struct Shape {
-        uint32_t workgroup_size, items_per_thread, count;
+        uint32_t workgroup_size, items_per_thread, digit_bits, count;
     };
-    for (Shape shape : {Shape{32, 2, 65537}, Shape{48, 3, 10000}, Shape{20, 1, 3001}, Shape{64, 8, 9000}}) {
+    for (Shape shape : {Shape{32, 2, 8, 65537}, Shape{48, 3, 8, 10000}, Shape{20, 1, 8, 3001},
+                        Shape{256, 16, 4, 9000}, Shape{8, 4000, 8, 70001}}) {
         CAPTURE(shape.workgroup_size);
         CAPTURE(shape.items_per_thread);
+        CAPTURE(shape.digit_bits);
         RadixSortOptions options;
         options.workgroup_size = shape.workgroup_size;
         options.items_per_thread = shape.items_per_thread;
+        options.digit_bits = shape.digit_bits;
         check_radix(random_pairs(shape.count, UINT64_MAX, shape.count), options);
         check_radix(random_pairs(shape.count, 9, shape.count + 1, 20), options);
     }
@@ -157,18 +161,30 @@ TEST_CASE("radix sort: pairs past the count are left alone") {
 
 TEST_CASE("radix sort: the dispatch schedule") {
     vplkit::Context& ctx = vplkit::test::context();
-    vplkit::stages::RadixSorter sorter(ctx, 1u << 16);
-    // Default tile: 1024 pairs; a scan chunk holds 1024 counts, i.e. the 256 digits of 4 tiles.
-    // Per pass: histogram, (reduce, chunk scan) per level below the top, top scan, scatter.
+    RadixSortOptions options;
+    options.workgroup_size = 32;
+    options.items_per_thread = 128;  // 4096-pair tiles (lavapipe's default, fixed here for any device)
+    vplkit::stages::RadixSorter sorter(ctx, 1u << 20, options);
+    // Per pass: histogram, (reduce, chunk scan) per level below the top, top scan, scatter. A scan
+    // chunk holds 256 x 4 = 1024 counts: the 256 digits of 4 tiles.
     CHECK(sorter.dispatch_count(1) == 0);
     CHECK(sorter.dispatch_count(2) == 8 * 3);
-    CHECK(sorter.dispatch_count(4096) == 8 * 3);      // 4 tiles: 1024 counts, one chunk
-    CHECK(sorter.dispatch_count(4097) == 8 * 5);      // 5 tiles: two chunks
-    CHECK(sorter.dispatch_count(1u << 16) == 8 * 5);  // 64 tiles: 16 chunks
-    RadixSortOptions options;
+    CHECK(sorter.dispatch_count(4 * 4096) == 8 * 3);
+    CHECK(sorter.dispatch_count(4 * 4096 + 1) == 8 * 5);  // 5 tiles: two chunks
+    CHECK(sorter.dispatch_count(1u << 20) == 8 * 5);      // 256 tiles: 64 chunks
     options.key_bits = 20;  // 3 passes and the copy back
     CHECK(vplkit::stages::RadixSorter(ctx, 100, options).dispatch_count(100) == 3 * 3 + 1);
     CHECK(vplkit::stages::radix_sort_pass_count(options) == 3);
+}
+
+TEST_CASE("radix sort: items per thread default to the device kind") {
+    vplkit::Context& ctx = vplkit::test::context();
+    vplkit::stages::RadixSorter sorter(ctx, 100);
+    const uint32_t expected = ctx.info().type == vplkit::DeviceType::cpu ? 128 : 16;
+    CHECK(sorter.options().items_per_thread == expected);
+    RadixSortOptions options;
+    options.items_per_thread = 7;
+    CHECK(vplkit::stages::RadixSorter(ctx, 100, options).options().items_per_thread == 7);
 }
 
 TEST_CASE("radix sort: bad options and counts are refused with the reason") {
@@ -185,9 +201,13 @@ TEST_CASE("radix sort: bad options and counts are refused with the reason") {
     CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("key_bits 65"),
                          vplkit::Error);
     options = {};
-    options.items_per_thread = 32;  // 256 x 32 pairs in shared memory: no device has 96 KiB
-    options.workgroup_size = 256;
+    options.workgroup_size = 1024;  // 8-bit counters for 1024 threads: 513 KiB of shared memory
+    options.items_per_thread = 1;
     CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("shared memory"),
+                         vplkit::Error);
+    options = {};
+    options.items_per_thread = 4096;  // 32 x 4096: a tile past the 16-bit rank counters
+    CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("16 bits"),
                          vplkit::Error);
     options = {};
     options.workgroup_size = 0;

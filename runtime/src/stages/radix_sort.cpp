@@ -18,10 +18,13 @@ namespace vplkit::stages {
 
 namespace {
 
-// Counts per workgroup of the prefix-sum shaders (their kItemsPerThread).
+// Counts per thread of the prefix-sum shaders (their kItemsPerThread).
 constexpr uint32_t kScanItemsPerThread = 4;
-// The scatter keeps one counter per value of a 4-bit slice of the digit and per thread.
-constexpr uint32_t kSliceValues = 16;
+// Threads per workgroup of the prefix-sum and copy shaders, whose work has no tile: wide
+// workgroups make wide scan chunks, so fewer levels (at most the device's limit, >= 128).
+constexpr uint32_t kScanWorkgroupSize = 256;
+// The scatter's rank counters are 16 bits: a tile's positions must fit.
+constexpr uint32_t kMaxTile = 0xffff;
 
 uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
 
@@ -38,34 +41,42 @@ void check_options(const Context& context, const RadixSortOptions& options) {
     if (options.digit_bits != 4 && options.digit_bits != 8) {
         throw Error("radix sort: digit_bits " + std::to_string(options.digit_bits) + " is neither 4 nor 8");
     }
-    if (options.items_per_thread < 1 || options.items_per_thread > 32) {
-        throw Error("radix sort: items_per_thread " + std::to_string(options.items_per_thread) +
-                    " is outside 1..32");
-    }
     const uint32_t size = options.workgroup_size;
     if (size < 1 || size > info.max_workgroup_invocations || size > info.max_workgroup_size[0]) {
         throw Error("radix sort: workgroup size " + std::to_string(size) + " is outside 1.." +
                     std::to_string(std::min(info.max_workgroup_invocations, info.max_workgroup_size[0])) +
                     " (the device's limit)");
     }
+    if (uint64_t(size) * options.items_per_thread > kMaxTile) {
+        throw Error("radix sort: workgroup size " + std::to_string(size) + " x " +
+                    std::to_string(options.items_per_thread) + " items per thread is a tile of more than " +
+                    std::to_string(kMaxTile) + " pairs (the rank counters are 16 bits)");
+    }
     const uint32_t shared = radix_sort_shared_bytes(options);
     if (shared > info.max_shared_memory_bytes) {
         throw Error("radix sort: workgroup size " + std::to_string(size) + " with " +
-                    std::to_string(options.items_per_thread) + " items per thread needs " + std::to_string(shared) +
+                    std::to_string(options.digit_bits) + "-bit digits needs " + std::to_string(shared) +
                     " bytes of shared memory; the device has " + std::to_string(info.max_shared_memory_bytes) +
-                    " (lower either)");
+                    " (lower the workgroup size)");
     }
 }
 
 }  // namespace
 
 uint32_t radix_sort_shared_bytes(const RadixSortOptions& options) {
-    const uint64_t tile = uint64_t(options.workgroup_size) * options.items_per_thread;
-    const uint64_t bytes = tile * (sizeof(uint64_t) + sizeof(uint32_t))               // the tile's pairs
-                           + uint64_t(kSliceValues) * options.workgroup_size * 4     // slice counters
-                           + (uint64_t(1) << options.digit_bits) * 4                 // digit bases
+    const uint64_t radix = uint64_t(1) << options.digit_bits;
+    const uint64_t bytes = radix / 2 * options.workgroup_size * 4  // rank counters, two to a uint
+                           + uint64_t(options.workgroup_size) * 4  // run offsets
+                           + radix * 4                             // digit bases
                            + scan_shared_bytes(options.workgroup_size);
     return uint32_t(std::min<uint64_t>(bytes, UINT32_MAX));
+}
+
+uint32_t radix_sort_items_per_thread(const DeviceInfo& device, const RadixSortOptions& options) {
+    if (options.items_per_thread != 0) {
+        return options.items_per_thread;
+    }
+    return device.type == DeviceType::cpu ? 128 : 16;
 }
 
 uint32_t radix_sort_pass_count(const RadixSortOptions& options) {
@@ -74,7 +85,8 @@ uint32_t radix_sort_pass_count(const RadixSortOptions& options) {
 
 RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOptions& options)
     : context_(&context), options_(options), max_count_(max_count) {
-    check_options(context, options);
+    options_.items_per_thread = radix_sort_items_per_thread(context.info(), options);
+    check_options(context, options_);
     if (max_count < 1) {
         throw Error("radix sort: max_count must be at least 1");
     }
@@ -87,7 +99,7 @@ RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOp
     }
     // The largest dispatches: one workgroup per tile (histogram, scatter), and one per pair (copy).
     const uint64_t tiles = tile_count(max_count);
-    const uint64_t copy_groups = ceil_div(max_count, options.workgroup_size);
+    const uint64_t copy_groups = ceil_div(max_count, scan_workgroup_size());
     if (std::max(tiles, copy_groups) > info.max_workgroup_count[0]) {
         throw Error("radix sort: " + std::to_string(max_count) + " pairs need " +
                     std::to_string(std::max(tiles, copy_groups)) + " workgroups in one dispatch; the device allows " +
@@ -108,18 +120,18 @@ RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOp
 
     shaders::radix_histogram::Spec histogram_spec;
     histogram_spec.local_size_x = options.workgroup_size;
-    histogram_spec.items_per_thread = options.items_per_thread;
+    histogram_spec.items_per_thread = options_.items_per_thread;
     histogram_spec.digit_bits = options.digit_bits;
     shaders::radix_scatter::Spec scatter_spec;
     scatter_spec.local_size_x = options.workgroup_size;
-    scatter_spec.items_per_thread = options.items_per_thread;
+    scatter_spec.items_per_thread = options_.items_per_thread;
     scatter_spec.digit_bits = options.digit_bits;
     shaders::radix_scan_reduce::Spec reduce_spec;
-    reduce_spec.local_size_x = options.workgroup_size;
+    reduce_spec.local_size_x = scan_workgroup_size();
     shaders::radix_scan_chunks::Spec chunks_spec;
-    chunks_spec.local_size_x = options.workgroup_size;
+    chunks_spec.local_size_x = scan_workgroup_size();
     shaders::radix_copy::Spec copy_spec;
-    copy_spec.local_size_x = options.workgroup_size;
+    copy_spec.local_size_x = scan_workgroup_size();
     histogram_ = &context.pipeline<shaders::radix_histogram::Pipeline>(histogram_spec);
     scan_reduce_ = &context.pipeline<shaders::radix_scan_reduce::Pipeline>(reduce_spec);
     scan_chunks_ = &context.pipeline<shaders::radix_scan_chunks::Pipeline>(chunks_spec);
@@ -127,12 +139,16 @@ RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOp
     copy_ = &context.pipeline<shaders::radix_copy::Pipeline>(copy_spec);
 }
 
+uint32_t RadixSorter::scan_workgroup_size() const {
+    return std::min(kScanWorkgroupSize, context_->info().max_workgroup_invocations);
+}
+
 uint32_t RadixSorter::tile_count(uint32_t count) const {
     return uint32_t(ceil_div(count, uint64_t(options_.workgroup_size) * options_.items_per_thread));
 }
 
 std::vector<RadixSorter::ScanLevel> RadixSorter::scan_levels(uint32_t count) const {
-    const uint64_t chunk = uint64_t(options_.workgroup_size) * kScanItemsPerThread;
+    const uint64_t chunk = uint64_t(scan_workgroup_size()) * kScanItemsPerThread;
     // Descriptor offsets must be multiples of this (a power of two, at most 256 by the spec).
     const VkDeviceSize alignment = std::max<VkDeviceSize>(context_->info().min_storage_buffer_offset_alignment, 4);
     std::vector<ScanLevel> levels;
@@ -171,6 +187,7 @@ void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& 
                     std::to_string(count) + " pairs");
     }
     const uint32_t size = options_.workgroup_size;
+    const uint32_t scan_size = scan_workgroup_size();
     const uint32_t tiles = tile_count(count);
     const std::vector<ScanLevel> levels = scan_levels(count);
     auto level_descriptor = [this](const ScanLevel& level) {
@@ -211,7 +228,7 @@ void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& 
             reduce_bindings.chunk_sums = level_descriptor(levels[level + 1]);
             shaders::radix_scan_reduce::Push reduce_push{};
             reduce_push.count = levels[level].length;
-            scan_reduce_->dispatch(cmd, reduce_bindings, reduce_push, levels[level + 1].length * size);
+            scan_reduce_->dispatch(cmd, reduce_bindings, reduce_push, levels[level + 1].length * scan_size);
         }
         for (size_t level = levels.size(); level-- > 0;) {
             compute_barrier(cmd);
@@ -224,7 +241,7 @@ void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& 
             chunks_push.count = levels[level].length;
             chunks_push.add_chunk_offsets = top ? 0u : 1u;
             const uint32_t chunks = top ? 1u : levels[level + 1].length;
-            scan_chunks_->dispatch(cmd, chunks_bindings, chunks_push, chunks * size);
+            scan_chunks_->dispatch(cmd, chunks_bindings, chunks_push, chunks * scan_size);
         }
 
         compute_barrier(cmd);

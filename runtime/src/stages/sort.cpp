@@ -16,14 +16,18 @@ namespace {
 
 BitonicSortOptions bitonic_options(const SortOptions& options) {
     BitonicSortOptions bitonic;
-    bitonic.workgroup_size = options.workgroup_size;
+    if (options.workgroup_size != 0) {
+        bitonic.workgroup_size = options.workgroup_size;
+    }
     return bitonic;
 }
 
 RadixSortOptions radix_options(const SortOptions& options) {
     RadixSortOptions radix;
     radix.key_bits = options.key_bits;
-    radix.workgroup_size = options.workgroup_size;
+    if (options.workgroup_size != 0) {
+        radix.workgroup_size = options.workgroup_size;
+    }
     return radix;
 }
 

@@ -5,8 +5,7 @@
 // Include after the `layout(local_size_x ...) in;` line: the scan's shared arrays are sized by
 // gl_WorkGroupSize, which only exists once the workgroup size is declared.
 
-// The digit of `key` that one sort pass orders by: `bits` bits from bit `shift`. A key of all
-// ones (what the last tile's missing elements hold) has the largest digit of every pass.
+// The digit of `key` that one sort pass orders by: `bits` bits from bit `shift` (bits <= 31).
 uint radix_digit(uint64_t key, uint shift, uint bits) {
     return uint(key >> shift) & ((1u << bits) - 1u);
 }

@@ -7,8 +7,9 @@
 //                                             the exclusive prefix sum of those counts (a hierarchy
 //                                             of chunk sums, one dispatch per level and direction),
 //                                             i.e. every (digit, tile)'s first output position;
-//   radix_scatter.comp                        a stable sort of each tile by the digit in shared
-//                                             memory, then each pair to its output position.
+//   radix_scatter.comp                        each pair's stable rank within its tile (per-thread
+//                                             digit counters in shared memory), and the pair to
+//                                             its output position.
 // The pairs ping-pong between the caller's buffers and the sorter's scratch buffers; after an odd
 // number of passes radix_copy.comp moves them back, so the result always ends in the caller's.
 // No shader uses subgroup operations: nothing depends on the subgroup size.
@@ -24,6 +25,7 @@
 namespace vplkit {
 class Context;
 class PassList;
+struct DeviceInfo;
 }  // namespace vplkit
 
 namespace vplkit::shaders {
@@ -41,16 +43,23 @@ struct RadixSortOptions {
     // with the key but take no part in the order. Fewer bits, fewer passes:
     // ceil(key_bits / digit_bits) of them.
     uint32_t key_bits = 64;
-    // Bits per pass, 4 or 8. 8 is faster on lavapipe (half the passes; see `vplkit bench sort`).
+    // Bits per pass, 4 or 8. 8 is faster on lavapipe: 2^20 pairs in about 150 ms against 280 ms
+    // with 4 (the best workgroup shape of each; `vplkit bench sort`), half the passes.
     uint32_t digit_bits = 8;
-    // Threads per workgroup, any size up to the device limit. A workgroup sorts a tile of
-    // workgroup_size x items_per_thread pairs in shared memory: 12 bytes per pair, 68 bytes per
-    // thread (slice counters, scan), 4 bytes per digit value; see radix_sort_shared_bytes().
-    // The defaults need 30 KiB: lavapipe has 32 KiB, NVIDIA 48 KiB; Vulkan only promises 16 KiB,
-    // where 128 threads fit.
-    uint32_t workgroup_size = 256;
-    uint32_t items_per_thread = 4;
+    // Threads per workgroup, any size up to the device limit. Each thread ranks a run of
+    // items_per_thread consecutive pairs with a 16-bit counter per digit value in shared memory:
+    // 2^digit_bits x 2 + 8 bytes per thread, plus 4 bytes per digit value (see
+    // radix_sort_shared_bytes()); 32 threads with 8-bit digits take 17.3 KiB.
+    uint32_t workgroup_size = 32;
+    // Pairs per thread; a workgroup's tile is workgroup_size x items_per_thread pairs (at most
+    // 65535: the counters are 16 bits). 0: 128 on a CPU device (lavapipe, where a thread's
+    // counters cost as much as a hundred pairs, so long runs pay), 16 on a GPU (for enough
+    // workgroups: 2^20 pairs make 2048 of them).
+    uint32_t items_per_thread = 0;
 };
+
+// items_per_thread as the sorter uses it on this device (resolves 0).
+uint32_t radix_sort_items_per_thread(const DeviceInfo& device, const RadixSortOptions& options);
 
 // Shared memory (bytes) the scatter shader of these options needs (the largest of the sort's shaders).
 uint32_t radix_sort_shared_bytes(const RadixSortOptions& options);
@@ -71,6 +80,7 @@ class RadixSorter {
     RadixSorter& operator=(RadixSorter&&) noexcept = default;
 
     uint32_t max_count() const { return max_count_; }
+    // The options in use (items_per_thread resolved for the device).
     const RadixSortOptions& options() const { return options_; }
     // Number of dispatches record() makes for `count` pairs (for benchmarks and tests).
     uint32_t dispatch_count(uint32_t count) const;
@@ -98,6 +108,7 @@ class RadixSorter {
     };
     std::vector<ScanLevel> scan_levels(uint32_t count) const;
     uint32_t tile_count(uint32_t count) const;
+    uint32_t scan_workgroup_size() const;
 
     Context* context_ = nullptr;
     RadixSortOptions options_;

@@ -36,14 +36,16 @@ const char* sort_algorithm_name(SortAlgorithm algorithm);
 std::optional<SortAlgorithm> parse_sort_algorithm(std::string_view name);
 
 struct SortOptions {
-    // Radix by default: on lavapipe it sorts 2^20 pairs about 20 times faster than bitonic
-    // (`vplkit bench sort`, see the README).
+    // Radix by default: on lavapipe it sorts 2^20 pairs about ten times faster than bitonic
+    // (`vplkit bench sort`).
     SortAlgorithm algorithm = SortAlgorithm::radix;
     // Every key must be below 2^key_bits (1..64): the radix sort then skips the passes over the
     // zero bits above; the bitonic sort compares whole keys either way, so both give one order.
     uint32_t key_bits = 64;
-    // Threads per workgroup of the algorithm's shaders (see BitonicSortOptions, RadixSortOptions).
-    uint32_t workgroup_size = 256;
+    // Threads per workgroup of the algorithm's shaders; 0: the algorithm's own default
+    // (BitonicSortOptions: 256; RadixSortOptions: 32, as its 8-bit digit counters take shared
+    // memory per thread).
+    uint32_t workgroup_size = 0;
 };
 
 class KeyValueSorter {
