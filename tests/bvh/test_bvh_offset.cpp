@@ -10,6 +10,7 @@
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/bvh_test_shaders/segment_visibility.hpp"
 #include "vplkit/bvh_test_shaders/surface_rays.hpp"
 #include "vplkit_test/context.hpp"
 
@@ -60,6 +61,33 @@ std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh, const
                });
     passes.run(ctx);
     return result_buffer.download<ts::SurfaceResult>(count);
+}
+
+std::vector<uint32_t> run_segments(const vplkit::GpuBvh& bvh, const std::vector<ts::SegmentQuery>& queries) {
+    vplkit::Context& ctx = vplkit::test::context();
+    const uint32_t count = uint32_t(queries.size());
+    auto query_buffer = vplkit::Buffer::create(ctx, count * sizeof(ts::SegmentQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                               vplkit::MemoryUse::device, "segment queries");
+    auto result_buffer = vplkit::Buffer::create(ctx, count * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                vplkit::MemoryUse::device, "segment occlusion");
+    query_buffer.upload(queries);
+    const auto& pipeline = ctx.pipeline<ts::segment_visibility::Pipeline>();
+    vplkit::PassList passes("segment visibility test");
+    passes.add("segment visibility",
+               {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(query_buffer),
+                vplkit::Use::write(result_buffer)},
+               [&](VkCommandBuffer cmd) {
+                   ts::segment_visibility::Bindings bindings;
+                   bindings.bvh_nodes = bvh.nodes.descriptor();
+                   bindings.bvh_triangles = bvh.triangles.descriptor();
+                   bindings.queries = query_buffer.descriptor();
+                   bindings.occluded = result_buffer.descriptor();
+                   ts::segment_visibility::Push push{};
+                   push.count = count;
+                   pipeline.dispatch(cmd, bindings, push, count);
+               });
+    passes.run(ctx);
+    return result_buffer.download<uint32_t>(count);
 }
 
 // Points to start from on a triangle: its corners, edge midpoints and random interior points.
@@ -286,5 +314,141 @@ TEST_CASE("bvh offset: an occluder twice the offset away is never missed") {
         CHECK(missed == 0);
         CHECK(floor_hits == 0);
         CHECK(offset_failures == 0);
+    }
+}
+
+namespace {
+
+ts::SegmentQuery segment(uint32_t p_triangle, glm::vec2 p_b, float p_side, uint32_t q_triangle, glm::vec2 q_b,
+                         float q_side) {
+    ts::SegmentQuery s{};
+    s.p_triangle = p_triangle;
+    s.p_barycentrics = {p_b.x, p_b.y};
+    s.p_side = p_side;
+    s.q_triangle = q_triangle;
+    s.q_barycentrics = {q_b.x, q_b.y};
+    s.q_side = q_side;
+    return s;
+}
+
+glm::dvec3 surface_point(const vplkit::shaders::BvhTriangle& tri, glm::vec2 b) {
+    return (1.0 - b.x - b.y) * to_dvec(tri.v0) + double(b.x) * to_dvec(tri.v1) + double(b.y) * to_dvec(tri.v2);
+}
+
+}  // namespace
+
+TEST_CASE("bvh offset: segments between points on a convex mesh are never blocked by their own ends") {
+    // A segment between two points of a convex mesh runs inside it: nothing can block it but the
+    // surfaces at its two ends. Pairs on the same face, on neighbouring faces (consecutive in
+    // leaf order, mostly adjacent) and far apart, from corners, edges and interiors.
+    std::mt19937 rng(44);
+    for (const Scale& s : kScales) {
+        CAPTURE(s.scale);
+        CAPTURE(s.offset.x);
+        const Triangles sphere = vplkit::bvh_test::transformed(vplkit::bvh_test::icosphere(2), s.scale, s.offset);
+        const auto bvh = vplkit::build_bvh(sphere);
+        const auto gpu = vplkit::upload_bvh(vplkit::test::context(), bvh);
+        const uint32_t n = uint32_t(bvh.triangles.size());
+        std::uniform_int_distribution<uint32_t> any(0, n - 1);
+        std::vector<ts::SegmentQuery> queries;
+        for (uint32_t t = 0; t < n; ++t) {
+            const auto points = surface_points(rng);
+            for (size_t k = 0; k < points.size(); ++k) {
+                const glm::vec2 other = points[(k + 1) % points.size()];
+                // Inward (-1): the side of each face the segment runs on.
+                queries.push_back(segment(t, points[k], -1.0f, t, other, -1.0f));
+                queries.push_back(segment(t, points[k], -1.0f, (t + 1) % n, other, -1.0f));
+                queries.push_back(segment(t, points[k], -1.0f, any(rng), other, -1.0f));
+            }
+        }
+        const auto occluded = run_segments(gpu, queries);
+        size_t blocked = 0;
+        for (uint32_t o : occluded) {
+            blocked += o;
+        }
+        MESSAGE(queries.size() << " segments inside a convex mesh: " << blocked << " blocked");
+        CHECK(blocked == 0);
+    }
+}
+
+TEST_CASE("bvh offset: segments and point-light rays through a plate are blocked exactly where they cross it") {
+    std::mt19937 rng(45);
+    for (const Scale& s : kScales) {
+        CAPTURE(s.scale);
+        CAPTURE(s.offset.x);
+        // The unit sphere mesh, and inside it a square plate z = 0, |x|, |y| < 0.5.
+        Triangles scene = vplkit::bvh_test::transformed(vplkit::bvh_test::icosphere(2), s.scale, s.offset);
+        const uint32_t sphere_triangles = uint32_t(scene.size() / 3);
+        const Triangles plate = {{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0},
+                                 {-0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}};
+        const Triangles placed = vplkit::bvh_test::transformed(plate, s.scale, s.offset);
+        scene.insert(scene.end(), placed.begin(), placed.end());
+        const auto bvh = vplkit::build_bvh(scene);
+        const auto gpu = vplkit::upload_bvh(vplkit::test::context(), bvh);
+
+        std::vector<uint32_t> on_sphere;
+        for (uint32_t t = 0; t < bvh.triangles.size(); ++t) {
+            if (bvh.triangles[t].id < sphere_triangles) {
+                on_sphere.push_back(t);
+            }
+        }
+        std::uniform_int_distribution<size_t> pick(0, on_sphere.size() - 1);
+        std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+        auto random_b = [&] {
+            float a = unit(rng), b = unit(rng);
+            return a + b > 1.0f ? glm::vec2(1.0f - a, 1.0f - b) : glm::vec2(a, b);
+        };
+        // The light: a free point inside the sphere, above the plate.
+        const glm::vec3 light = glm::vec3(0.1f, -0.2f, 0.6f) * s.scale + s.offset;
+        std::vector<ts::SegmentQuery> queries;
+        std::vector<int> expected;  // 1 blocked, 0 free, -1 within rounding of the plate's rim: either
+        // The expected answer uses the offset endpoints (the policy, in double), so the GPU's
+        // only freedom is float rounding of positions: a few ulps of the largest coordinate
+        // (1e-3 at 1e4 from the origin), in the unscaled frame divided by the scale.
+        const double far = std::max({std::fabs(s.offset.x), std::fabs(s.offset.y), std::fabs(s.offset.z)}) + s.scale;
+        const double rim_tolerance = std::max(1e-4, 8.0 * std::exp2(-24.0) * far / s.scale);
+        auto offset_point = [&](const glm::dvec3& x, const glm::dvec3& n) {
+            const double x_max = std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)});
+            return x + n * (double(vplkit::kBvhOriginOffset) * std::max(double(bvh.scene_scale), x_max));
+        };
+        for (int i = 0; i < 4000; ++i) {
+            const uint32_t tp = on_sphere[pick(rng)];
+            const glm::vec2 bp = random_b();
+            const glm::dvec3 p = offset_point(surface_point(bvh.triangles[tp], bp), -geometric_normal(bvh.triangles[tp]));
+            ts::SegmentQuery query;
+            glm::dvec3 q;
+            if (i % 2 == 0) {
+                const uint32_t tq = on_sphere[pick(rng)];
+                const glm::vec2 bq = random_b();
+                query = segment(tp, bp, -1.0f, tq, bq, -1.0f);
+                q = offset_point(surface_point(bvh.triangles[tq], bq), -geometric_normal(bvh.triangles[tq]));
+            } else {
+                query = segment(tp, bp, -1.0f, vplkit::kBvhNoHit, {0, 0}, 0.0f);
+                query.q_point = {light.x, light.y, light.z};
+                q = glm::dvec3(light);
+            }
+            // Where the segment crosses the plate's plane, in the unscaled frame.
+            const glm::dvec3 a = (p - glm::dvec3(s.offset)) / double(s.scale);
+            const glm::dvec3 b = (q - glm::dvec3(s.offset)) / double(s.scale);
+            int e = 0;
+            if ((a.z > 0.0) != (b.z > 0.0)) {
+                const glm::dvec3 x = a + (a.z / (a.z - b.z)) * (b - a);
+                const double rim = 0.5 - std::max(std::fabs(x.x), std::fabs(x.y));
+                e = std::fabs(rim) < rim_tolerance ? -1 : (rim > 0.0 ? 1 : 0);
+            }
+            queries.push_back(query);
+            expected.push_back(e);
+        }
+        const auto occluded = run_segments(gpu, queries);
+        size_t wrong = 0, blocked = 0;
+        for (size_t i = 0; i < queries.size(); ++i) {
+            blocked += occluded[i];
+            if (expected[i] >= 0 && int(occluded[i]) != expected[i]) {
+                ++wrong;
+            }
+        }
+        MESSAGE(queries.size() << " segments: " << blocked << " blocked by the plate, " << wrong << " wrong");
+        CHECK(wrong == 0);
+        CHECK(blocked > 400);
     }
 }

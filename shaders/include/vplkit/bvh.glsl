@@ -339,12 +339,24 @@ vec3 bvh_hit_position(BvhHit hit) {
 // occluders there. Tying the offset to the scene scale instead makes it the same fraction
 // (1.5e-5) of any scene: occluders farther than that from the surface are never missed.
 // A shadow ray towards a point q on another surface stops short of it the same way: offset q
-// too (along its own normal), and trace origin o' towards q' with direction q' - o', tmax = 1.
-// n must not be zero.
+// too (along its own normal), and trace origin o' towards q' with direction q' - o', tmax = 1
+// (bvh_segment_occluded does exactly that). n must not be zero.
 vec3 offset_ray_origin(vec3 p, vec3 n, float scale) {
     vec3 m = abs(p);
     float h = kBvhOriginOffset * max(max(scale, kBvhMinScale), max(max(m.x, m.y), m.z));
     return p + normalize(n) * h;
+}
+
+// Whether anything blocks the segment between surface point p and point q: the visibility term
+// between a shading point and a VPL or a light. np is p's geometric normal oriented to the side
+// the segment leaves p on (a caller with two-sided surfaces flips it when q lies behind); nq is
+// q's, oriented to the side facing p, or vec3(0) when q is not on a surface (a point light).
+// Both ends are moved off their surfaces with offset_ray_origin, then one shadow ray goes from
+// p' to q' with tmax = 1, so neither surface the segment ends on can block it.
+bool bvh_segment_occluded(vec3 p, vec3 np, vec3 q, vec3 nq, float scale) {
+    vec3 origin = offset_ray_origin(p, np, scale);
+    vec3 target = dot(nq, nq) > 0.0 ? offset_ray_origin(q, nq, scale) : q;
+    return bvh_occluded(origin, target - origin, 0.0, 1.0);
 }
 
 #endif
