@@ -136,7 +136,6 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
         // glTF 2.0 (3.7.2.1): without normals a client must use flat normals, so no vertex is
         // shared between triangles.
         info.normals = NormalSource::generated_flat;
-        out.reserve(out.size() + kept.size());
         for (size_t k = 0; k < kept.size(); k += 3) {
             const glm::dvec3 p0(positions[kept[k]]), p1(positions[kept[k + 1]]), p2(positions[kept[k + 2]]);
             const glm::vec3 normal(glm::normalize(glm::cross(p1 - p0, p2 - p0)));
@@ -153,7 +152,6 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
         }
     } else {
         info.normals = NormalSource::file;
-        out.reserve(out.size() + positions.size());
         std::vector<uint32_t> zero_normals;
         for (size_t i = 0; i < positions.size(); ++i) {
             Vertex v;
@@ -203,7 +201,6 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
     info.first_vertex = base;
     info.first_triangle = uint32_t(scene.indices.size() / 3);
     info.triangle_count = uint32_t(local.size() / 3);
-    scene.indices.reserve(scene.indices.size() + local.size());
     for (uint32_t i : local) scene.indices.push_back(base + i);
     scene.triangle_materials.insert(scene.triangle_materials.end(), info.triangle_count, info.material);
     scene.primitives.push_back(info);
