@@ -16,8 +16,9 @@ layout(push_constant) uniform RadixCopyPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
-    if (i < push.count) {
+    // A grid-stride loop: the host may dispatch fewer threads than pairs (the dispatch-size limit).
+    uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint i = gl_GlobalInvocationID.x; i < push.count; i += stride) {
         keys[1].items[i] = keys[0].items[i];
         values[1].items[i] = values[0].items[i];
     }

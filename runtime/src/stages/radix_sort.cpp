@@ -97,13 +97,13 @@ RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOp
                     " bytes, more than the device's storage-buffer range of " +
                     std::to_string(info.max_storage_buffer_range));
     }
-    // The largest dispatches: one workgroup per tile (histogram, scatter), and one per pair (copy).
+    // The largest dispatches: one workgroup per tile (histogram, scatter). The scans have a
+    // workgroup per 1024 counts, of which a tile has 2^digit_bits, and the copy loops.
     const uint64_t tiles = tile_count(max_count);
-    const uint64_t copy_groups = ceil_div(max_count, scan_workgroup_size());
-    if (std::max(tiles, copy_groups) > info.max_workgroup_count[0]) {
-        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " +
-                    std::to_string(std::max(tiles, copy_groups)) + " workgroups in one dispatch; the device allows " +
-                    std::to_string(info.max_workgroup_count[0]) + " (raise the workgroup size or items per thread)");
+    if (tiles > info.max_workgroup_count[0]) {
+        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " + std::to_string(tiles) +
+                    " workgroups in one dispatch; the device allows " + std::to_string(info.max_workgroup_count[0]) +
+                    " (raise the workgroup size or items per thread)");
     }
 
     const std::vector<ScanLevel> levels = scan_levels(max_count);
@@ -264,7 +264,8 @@ void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& 
         copy_bindings.values = {pairs[1][1], pairs[0][1]};
         shaders::radix_copy::Push copy_push{};
         copy_push.count = count;
-        copy_->dispatch(cmd, copy_bindings, copy_push, count);
+        const uint64_t max_threads = uint64_t(context_->info().max_workgroup_count[0]) * scan_size;
+        copy_->dispatch(cmd, copy_bindings, copy_push, uint32_t(std::min<uint64_t>(count, max_threads)));
     }
 }
 
