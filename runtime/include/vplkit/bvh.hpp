@@ -9,8 +9,9 @@
 // SAH tree's boxes are the ones that minimize that expected cost, where an LBVH (Karras 2012)
 // splits at Morton-code bits wherever they fall (Karras and Aila 2013 use LBVH as the
 // fast-to-build, slow-to-trace end of their comparison). A binned build costs O(n log n) and
-// is paid once per scene load (Sponza: see README / the report's measurement);
-// a GPU LBVH would win only for geometry that changes every frame, which this kit does not have.
+// is paid once per scene load: Sponza's 262k triangles take 0.35-0.5 s on one core of the
+// 2-core development machine (261645 nodes, depth 28). A GPU LBVH would win only for geometry
+// that changes every frame, which this kit does not have.
 //
 // Build (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"): at each
 // node the triangle centroids are binned into `bins` equal slabs per axis, and the split between
@@ -19,7 +20,9 @@
 // is taken; a node of at most max_leaf_triangles becomes a leaf when its cost
 // triangle_cost * N is not above the best split's. Constants: traversal_cost = triangle_cost = 1
 // (a 32-byte node visit and a 48-byte watertight triangle test cost about the same on a GPU,
-// where both are dominated by the memory fetch), 32 bins, at most 4 triangles per leaf.
+// where both are dominated by the memory fetch), 32 bins, at most 4 triangles per leaf. The
+// choice is not delicate: on Sponza, triangle_cost 0.5 .. 1.5 changes the box and triangle tests
+// per ray by under 2%, and 16 or 64 bins by under 5%.
 //
 // Depth cap: no leaf is deeper than max_depth (<= kBvhMaxDepth, the traversal's stack size), by
 // construction: a SAH split is only taken when both children can still be finished by median
@@ -28,8 +31,8 @@
 // centroid axis, which always fits.
 //
 // Degenerate triangles (zero area: the cross product of two edges, in double precision, is
-// exactly zero) are left out of the tree, and counted: the watertight test could never hit them
-// (its determinant is 0). Non-finite vertices, and coordinates of 2^32 or more in magnitude (the
+// exactly zero) are left out of the tree, and counted: they have no area that a ray could hit,
+// while the float test, working on rounded projections, might report a spurious hit on one. Non-finite vertices, and coordinates of 2^32 or more in magnitude (the
 // float intersection math would overflow), are refused with an Error naming the triangle.
 // The empty scene (no triangles, or only degenerate ones) gives one leaf with no triangles:
 // every ray misses it.

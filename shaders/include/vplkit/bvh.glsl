@@ -2,8 +2,11 @@
 #define VPLKIT_BVH_GLSL
 
 // Ray queries against the scene's triangle BVH (built on the host: runtime/include/vplkit/bvh.hpp),
-// for every stage that needs visibility: shadow rays (bvh_occluded) and first hits
-// (bvh_closest_hit). Plain compute code, so it runs on every Vulkan device, lavapipe included.
+// for every stage that needs visibility: shadow rays (bvh_occluded), first hits
+// (bvh_closest_hit), and the visibility of a segment between two surface points
+// (bvh_segment_occluded). Plain compute code, so it runs on every Vulkan device, lavapipe
+// included. Helpers for rays that start on surfaces: bvh_hit_position, bvh_triangle_normal,
+// bvh_scene_scale, offset_ray_origin.
 //
 // Including it: define the set-0 binding numbers of the two buffers first,
 //     #define VPLKIT_BVH_NODES_BINDING 0
@@ -81,7 +84,8 @@ const uint kBvhNoHit = 0xffffffffu;
 const float kBvhMinDirection = 5.421010862427522e-20;
 // 1 + 2 gamma(3), gamma(n) = n u / (1 - n u), u = 2^-24 (pbrt-v4, Bounds3::IntersectP).
 const float kBvhExitWiden = 1.0000004;
-// offset_ray_origin: 2^-16, i.e. 256 float ulps of the scene scale (Wachter and Binder's 256).
+// offset_ray_origin: 2^-16, i.e. 128 to 256 float ulps of max(scene scale, |p|) (Wachter and
+// Binder offset by 256 ulps).
 const float kBvhOriginOffset = 1.52587890625e-5;
 // Floor of the scene scale, so a point at the origin of an empty scene still moves.
 const float kBvhMinScale = 1e-30;
@@ -129,7 +133,8 @@ BvhRayState bvh_make_ray(vec3 origin, vec3 direction) {
     ray.origin = origin;
     ray.direction = direction;
     vec3 safe = mix(vec3(kBvhMinDirection), abs(direction), greaterThanEqual(abs(direction), vec3(kBvhMinDirection)));
-    // A -0.0 component becomes -kBvhMinDirection: which side does not matter, the box padding covers both.
+    // A zero component, +0.0 or -0.0, becomes +kBvhMinDirection: which side does not matter, the
+    // box padding covers both.
     safe *= mix(vec3(1.0), vec3(-1.0), lessThan(direction, vec3(0.0)));
     ray.inv_direction = 1.0 / safe;
 
