@@ -162,6 +162,17 @@ TEST_CASE("bvh build: boxes are padded by the stated fraction of the scene scale
     CHECK(bvh.scene_scale == 3.0f + pad);
 }
 
+TEST_CASE("bvh build: tiny and huge coordinates keep the structure") {
+    // Centroids closer than the smallest normal float (binning must not divide by them), and
+    // coordinates near the 2^32 limit.
+    for (const float scale : {1e-39f, 1e-30f, 1e9f}) {
+        CAPTURE(scale);
+        const Triangles scene = vplkit::bvh_test::transformed(vplkit::bvh_test::random_soup(500, 9), scale, {0, 0, 0});
+        const Bvh bvh = build_bvh(scene);
+        check_structure(bvh, scene);
+    }
+}
+
 TEST_CASE("bvh build: user ids are carried to the stored triangles") {
     const Triangles soup = vplkit::bvh_test::random_soup(100, 2);
     std::vector<uint32_t> ids(100);

@@ -161,11 +161,11 @@ private:
         uint32_t count = 0;
     };
 
+    // In double: a float extent can be as small as a denormal, whose float reciprocal overflows.
     uint32_t bin_of(const glm::vec3& centroid, uint32_t axis, const Box& centroids) const {
-        const float extent = centroids.hi[axis] - centroids.lo[axis];
-        const float scale = float(options_.bins) / extent;
-        const float offset = (centroid[axis] - centroids.lo[axis]) * scale;
-        return std::min(options_.bins - 1, uint32_t(std::max(offset, 0.0f)));
+        const double extent = double(centroids.hi[axis]) - centroids.lo[axis];
+        const double offset = (double(centroid[axis]) - centroids.lo[axis]) * (options_.bins / extent);
+        return std::min(options_.bins - 1, uint32_t(std::max(offset, 0.0)));
     }
 
     Split best_split(uint32_t begin, uint32_t end, uint32_t depth, double area, const Box& centroids) {
