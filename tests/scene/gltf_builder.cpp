@@ -70,7 +70,8 @@ int GltfBuilder::view(const void* data, size_t bytes, size_t stride) {
     const size_t offset = bin.size();
     bin.resize(offset + bytes);
     std::memcpy(bin.data() + offset, data, bytes);
-    std::string v = "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) + ",\"byteLength\":" + std::to_string(bytes);
+    std::string v =
+        "{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) + ",\"byteLength\":" + std::to_string(bytes);
     if (stride) v += ",\"byteStride\":" + std::to_string(stride);
     buffer_views.push_back(v + "}");
     return int(buffer_views.size() - 1);
@@ -124,8 +125,8 @@ int GltfBuilder::image_view(const std::vector<uint8_t>& encoded, const std::stri
 }
 
 int GltfBuilder::mesh(const std::string& primitives, const std::string& name) {
-    meshes.push_back("{" + (name.empty() ? std::string() : "\"name\":\"" + name + "\",") + "\"primitives\":" +
-                     primitives + "}");
+    meshes.push_back("{" + (name.empty() ? std::string() : "\"name\":\"" + name + "\",") +
+                     "\"primitives\":" + primitives + "}");
     return int(meshes.size() - 1);
 }
 

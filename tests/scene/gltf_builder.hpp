@@ -44,8 +44,8 @@ std::string json_float(double v);
 class GltfBuilder {
  public:
     // Each entry is one JSON object, without brackets around the array.
-    std::vector<std::string> buffer_views, accessors, meshes, nodes, materials, textures, images, samplers,
-        cameras, lights;
+    std::vector<std::string> buffer_views, accessors, meshes, nodes, materials, textures, images, samplers, cameras,
+        lights;
     std::vector<int> roots;  // the scene's nodes
     std::vector<std::string> extensions_used, extensions_required;
     std::string top_level_extra;  // appended inside the top-level object, e.g. ",\"x\":1"
@@ -68,8 +68,8 @@ class GltfBuilder {
 };
 
 // {"attributes":{"POSITION":p,...},"indices":i,"material":m,"mode":mode}; -1 leaves a member out.
-std::string primitive(int position, int normal = -1, int uv = -1, int tangent = -1, int indices = -1,
-                      int material = -1, int mode = -1);
+std::string primitive(int position, int normal = -1, int uv = -1, int tangent = -1, int indices = -1, int material = -1,
+                      int mode = -1);
 
 // A 2-triangle unit quad in z = 0 (corners (0,0),(1,0),(1,1),(0,1), counter-clockwise seen from
 // +z) with normals +z and UVs (x, 1 - y) (image top at +y): adds its accessors, returns the

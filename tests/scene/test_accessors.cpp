@@ -25,10 +25,10 @@ TEST_CASE("interleaved and sparse and normalized accessors") {
     const float sparse_value[3] = {2, 2, 0};
     const int iv = b.view(&sparse_index, 1);
     const int vv = b.view(sparse_value, 12);
-    const int position = b.accessor(v, kFloat, 4, "VEC3",
-                                    R"(,"min":[0,0,0],"max":[2,2,0],"sparse":{"count":1,"indices":{"bufferView":)" +
-                                        std::to_string(iv) + R"(,"componentType":5121},"values":{"bufferView":)" +
-                                        std::to_string(vv) + "}}");
+    const int position =
+        b.accessor(v, kFloat, 4, "VEC3",
+                   R"(,"min":[0,0,0],"max":[2,2,0],"sparse":{"count":1,"indices":{"bufferView":)" + std::to_string(iv) +
+                       R"(,"componentType":5121},"values":{"bufferView":)" + std::to_string(vv) + "}}");
     const int normal = b.accessor(v, kFloat, 4, "VEC3", R"(,"byteOffset":12)");
     const uint16_t uv[8] = {0, 65535, 65535, 65535, 65535, 0, 0, 32768};
     const int uvs = b.accessor(b.view(uv, sizeof uv), kUnsignedShort, 4, "VEC2", R"(,"normalized":true)");
@@ -58,16 +58,18 @@ TEST_CASE("a sparse index outside the accessor is an error") {
     const int v = b.view(p, sizeof p);
     const int iv = b.view(&bad_index, 1);
     const int vv = b.view(value, 12);
-    const int position = b.accessor(v, kFloat, 3, "VEC3",
-                                    R"(,"sparse":{"count":1,"indices":{"bufferView":)" + std::to_string(iv) +
-                                        R"(,"componentType":5121},"values":{"bufferView":)" + std::to_string(vv) + "}}");
+    const int position =
+        b.accessor(v, kFloat, 3, "VEC3",
+                   R"(,"sparse":{"count":1,"indices":{"bufferView":)" + std::to_string(iv) +
+                       R"(,"componentType":5121},"values":{"bufferView":)" + std::to_string(vv) + "}}");
     b.mesh("[" + primitive(position) + "]");
     b.node(R"({"mesh":0})");
     b.roots = {0};
     const fs::path path = b.write(dir.path(), "sparse");
-    CHECK_THROWS_WITH_AS(load_gltf(path), (path.string() +
-                                           ": accessor 0 (POSITION of mesh 0 primitive 0) sparse index 0 is 9, "
-                                           "outside the accessor's 3 elements").c_str(),
+    CHECK_THROWS_WITH_AS(load_gltf(path),
+                         (path.string() + ": accessor 0 (POSITION of mesh 0 primitive 0) sparse index 0 is 9, "
+                                          "outside the accessor's 3 elements")
+                             .c_str(),
                          vplkit::Error);
 }
 

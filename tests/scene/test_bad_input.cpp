@@ -87,8 +87,9 @@ TEST_CASE("bad input: a texture file is missing") {
     b.node(R"({"mesh":0})");
     b.roots = {0};
     const fs::path path = b.write(dir.path(), "textured");
-    check_error(load_error(path), path,
-                {"brick%20wall.png", (dir.path() / "brick wall.png").string().c_str(), "not found", "material 0 'wall'"});
+    check_error(
+        load_error(path), path,
+        {"brick%20wall.png", (dir.path() / "brick wall.png").string().c_str(), "not found", "material 0 'wall'"});
 }
 
 TEST_CASE("bad input: a texture file that is not an image") {
@@ -110,7 +111,8 @@ TEST_CASE("bad input: an accessor reads past the end of its bufferView") {
     GltfBuilder b = quad_builder();
     b.accessors[0].replace(b.accessors[0].find("\"count\":4"), 9, "\"count\":40");
     const fs::path path = b.write(dir.path(), "model");
-    check_error(load_error(path), path, {"accessor 0 (POSITION of mesh 0 'quad' primitive 0)", "40 element", "bufferView 0 has only 48 bytes"});
+    check_error(load_error(path), path,
+                {"accessor 0 (POSITION of mesh 0 'quad' primitive 0)", "40 element", "bufferView 0 has only 48 bytes"});
 }
 
 TEST_CASE("bad input: a bufferView lies outside its buffer") {

@@ -14,6 +14,7 @@
 #include <glm/trigonometric.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <string>
 
@@ -26,7 +27,9 @@ namespace {
 constexpr float kPosition = 1e-5f;
 constexpr float kUnit = 1e-4f;
 
-bool near(glm::vec3 a, glm::vec3 b, float tolerance) { return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(tolerance))); }
+bool near(glm::vec3 a, glm::vec3 b, float tolerance) {
+    return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(tolerance)));
+}
 
 // What must hold for any scene load_gltf returns.
 void check_invariants(const Scene& s) {
@@ -40,8 +43,7 @@ void check_invariants(const Scene& s) {
         if (std::abs(glm::length(v.normal) - 1.0f) > kUnit) ++bad_normals;
         if (v.tangent.w != 0.0f) {
             if (std::abs(glm::length(glm::vec3(v.tangent)) - 1.0f) > kUnit ||
-                std::abs(glm::dot(glm::vec3(v.tangent), v.normal)) > kUnit ||
-                std::abs(v.tangent.w) != 1.0f) {
+                std::abs(glm::dot(glm::vec3(v.tangent), v.normal)) > kUnit || std::abs(v.tangent.w) != 1.0f) {
                 ++bad_tangents;
             }
         }
@@ -91,9 +93,24 @@ const PrimitiveInstance* instance_of_node(const Scene& s, uint32_t node) {
     return nullptr;
 }
 
+// Loads `path` and reports (not asserts: timing belongs to benchmarks) how long it took, for
+// `ctest -R 'scene/shared' -V`.
+Scene timed_load(const std::filesystem::path& path) {
+    const auto start = std::chrono::steady_clock::now();
+    Scene s = load_gltf(path);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    size_t pixels = 0;
+    for (const Image& image : s.images) pixels += size_t(image.width) * image.height;
+    MESSAGE(path.filename().string() << " loaded in " << seconds << " s: " << s.triangle_count() << " triangles, "
+                                     << s.materials.size() << " materials, " << s.textures.size() << " textures, "
+                                     << s.images.size() << " images (" << double(pixels) * 1e-6 << " Mpixel)");
+    return s;
+}
+
 glm::vec3 centroid(const Scene& s, const PrimitiveInstance& p) {
     glm::dvec3 sum(0.0);
-    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count; ++v) sum += glm::dvec3(s.vertices[v].position);
+    for (uint32_t v = p.first_vertex; v < p.first_vertex + p.vertex_count; ++v)
+        sum += glm::dvec3(s.vertices[v].position);
     return glm::vec3(sum / double(p.vertex_count));
 }
 
@@ -210,7 +227,7 @@ TEST_CASE("shared Sponza: counts and textures and generated tangents") {
         MESSAGE("skipped: " << path.string() << " not found");
         return;
     }
-    const Scene s = load_gltf(path);
+    const Scene s = timed_load(path);
     check_invariants(s);
     CHECK(s.triangle_count() == 262087);
     CHECK(s.materials.size() == 24);
@@ -227,7 +244,7 @@ TEST_CASE("shared Sponza: counts and textures and generated tangents") {
     CHECK(srgb > 0);
     CHECK(linear > 0);
     CHECK(srgb + linear == s.images.size());  // no image is both colour and data here
-    CHECK(generated > 0);  // normal-mapped primitives have no TANGENT (PROVENANCE.md)
+    CHECK(generated > 0);                     // normal-mapped primitives have no TANGENT (PROVENANCE.md)
 }
 
 TEST_CASE("shared BreakfastRoom: counts and the ignored extension") {
@@ -236,7 +253,7 @@ TEST_CASE("shared BreakfastRoom: counts and the ignored extension") {
         MESSAGE("skipped: " << path.string() << " not found");
         return;
     }
-    const Scene s = load_gltf(path);
+    const Scene s = timed_load(path);
     check_invariants(s);
     CHECK(s.triangle_count() == 262685);
     CHECK(s.materials.size() == 14);

@@ -4,6 +4,7 @@
 // glTF default material for primitives without one. Also: a .glb loads like its .gltf.
 
 #include "gltf_builder.hpp"
+#include "vplkit/error.hpp"
 #include "vplkit/scene.hpp"
 
 #include <doctest/doctest.h>
@@ -18,7 +19,7 @@ namespace {
 
 const std::vector<uint8_t> kPixelsA = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 128, 10, 20, 30, 40};  // 2x2
 const std::vector<uint8_t> kPixelsB = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};                           // 4x1 RGB
-const std::vector<uint8_t> kPixelsC = {128, 128, 255, 255};                                            // 1x1
+const std::vector<uint8_t> kPixelsC = {128, 128, 255, 255};                                              // 1x1
 
 // Images: 0 external file, 1 in a bufferView, 2 a data URI, 3 an external file that does not
 // exist. Textures: 0 and 3 both show image 0 (0 with a sampler), 1 image 1, 2 image 2, 4 the
@@ -26,7 +27,8 @@ const std::vector<uint8_t> kPixelsC = {128, 128, 255, 255};                     
 fs::path write_textured(const fs::path& dir) {
     GltfBuilder b;
     const auto a = png(2, 2, kPixelsA);
-    std::ofstream(dir / "albedo.png", std::ios::binary).write(reinterpret_cast<const char*>(a.data()), std::streamsize(a.size()));
+    std::ofstream(dir / "albedo.png", std::ios::binary)
+        .write(reinterpret_cast<const char*>(a.data()), std::streamsize(a.size()));
     b.images.push_back(R"({"uri":"albedo.png"})");
     b.image_view(png(4, 1, kPixelsB, 3));
     b.images.push_back(R"({"uri":"data:image/png;base64,)" + base64(png(1, 1, kPixelsC)) + "\"}");
@@ -35,7 +37,8 @@ fs::path write_textured(const fs::path& dir) {
     b.textures = {R"({"source":0,"sampler":0})", R"({"source":1})", R"({"source":2})", R"({"source":0})",
                   R"({"source":3})"};
     b.materials.push_back(
-        R"({"name":"painted","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,1,0.75],"baseColorTexture":{"index":0},)"
+        R"({"name":"painted","pbrMetallicRoughness":{"baseColorFactor":[0.5,0.25,1,0.75],)"
+        R"("baseColorTexture":{"index":0},)"
         R"("metallicFactor":0.2,"roughnessFactor":0.7,"metallicRoughnessTexture":{"index":1}},)"
         R"("normalTexture":{"index":2,"scale":0.5},"emissiveFactor":[1,0.5,0],"emissiveTexture":{"index":3},)"
         R"("extensions":{"KHR_materials_emissive_strength":{"emissiveStrength":3}},)"
@@ -152,7 +155,9 @@ TEST_CASE("a binary glb loads like the same gltf") {
     std::vector<uint8_t> bin = b.bin;
     while (bin.size() % 4) bin.push_back(0);
     std::vector<uint8_t> glb;
-    auto u32 = [&](uint32_t v) { glb.insert(glb.end(), reinterpret_cast<uint8_t*>(&v), reinterpret_cast<uint8_t*>(&v) + 4); };
+    auto u32 = [&](uint32_t v) {
+        glb.insert(glb.end(), reinterpret_cast<uint8_t*>(&v), reinterpret_cast<uint8_t*>(&v) + 4);
+    };
     u32(0x46546C67);  // "glTF"
     u32(2);
     u32(uint32_t(12 + 8 + json.size() + 8 + bin.size()));
@@ -167,7 +172,31 @@ TEST_CASE("a binary glb loads like the same gltf") {
 
     const Scene from_glb = load_gltf(path);
     REQUIRE(from_glb.vertices.size() == from_gltf.vertices.size());
-    CHECK(std::memcmp(from_glb.vertices.data(), from_gltf.vertices.data(), from_glb.vertices.size() * sizeof(Vertex)) == 0);
+    CHECK(std::memcmp(from_glb.vertices.data(), from_gltf.vertices.data(), from_glb.vertices.size() * sizeof(Vertex)) ==
+          0);
     CHECK(from_glb.indices == from_gltf.indices);
     CHECK(from_glb.vertices[0].position == glm::vec3(0, 0, -2));
+}
+
+TEST_CASE("factors outside their range are clamped with a warning and negative emission is an error") {
+    TempDir dir("factor_range");
+    GltfBuilder b;
+    b.materials.push_back(
+        R"({"name":"hot","pbrMetallicRoughness":{"baseColorFactor":[1.2,0.5,-0.1,1],"roughnessFactor":1.5},)"
+        R"("emissiveFactor":[4,0,0]})");
+    b.mesh("[" + unit_quad(b, true, true, 0) + "]");
+    b.node(R"({"mesh":0})");
+    b.roots = {0};
+    const Scene s = load_gltf(b.write(dir.path(), "clamped"));
+    CHECK(s.materials[0].base_color_factor == glm::vec4(1.0f, 0.5f, 0.0f, 1.0f));
+    CHECK(s.materials[0].roughness_factor == 1.0f);
+    CHECK(s.materials[0].emission() == glm::vec3(4, 0, 0));  // above 1 is kept: a bright emitter
+    REQUIRE(s.warnings.messages.size() == 1);
+    CHECK(s.warnings.messages[0].find("material 0 'hot'") != std::string::npos);
+
+    b.materials[0] = R"({"emissiveFactor":[0,-1,0]})";
+    const fs::path negative = b.write(dir.path(), "negative");
+    CHECK_THROWS_WITH_AS(load_gltf(negative),
+                         (negative.string() + ": material 0: emissiveFactor is negative or not finite").c_str(),
+                         vplkit::Error);
 }

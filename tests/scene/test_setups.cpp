@@ -62,8 +62,8 @@ TEST_CASE("the repository's set-ups file parses and names the standard set-ups")
     const Setups setups = load_setups(setups_file());
     CHECK(setups.default_name == "cornell");
     CHECK(setups.default_setup().name == "cornell");
-    for (const char* name : {"cornell", "cornell-emissive", "cornell-shared", "sponza-sun", "sponza-lite-sun",
-                             "breakfast-sun"}) {
+    for (const char* name :
+         {"cornell", "cornell-emissive", "cornell-shared", "sponza-sun", "sponza-lite-sun", "breakfast-sun"}) {
         INFO(name);
         const Setup& setup = setups.find(name);
         CHECK(setup.scene.is_absolute());
@@ -77,14 +77,13 @@ TEST_CASE("the repository's set-ups file parses and names the standard set-ups")
     CHECK(sponza.lights[0].origin == LightOrigin::setup);
     CHECK(sponza.lights[0].direction.y < 0.0f);  // the sun shines down
     CHECK(setups.find("breakfast-sun").lights.size() == 1);
-    check_contains([&] {
-        try {
-            (void)setups.find("nope");
-        } catch (const vplkit::Error& e) {
-            return std::string(e.what());
-        }
-        return std::string();
-    }(), {"no set-up named 'nope'", "cornell-emissive"});
+    std::string unknown;
+    try {
+        (void)setups.find("nope");
+    } catch (const vplkit::Error& e) {
+        unknown = e.what();
+    }
+    check_contains(unknown, {"no set-up named 'nope'", "cornell-emissive"});
 }
 
 TEST_CASE("every set-up's scene resolves from any working directory") {
@@ -148,7 +147,8 @@ TEST_CASE("a set-up whose scene is missing names the path") {
     } catch (const vplkit::Error& e) {
         message = e.what();
     }
-    const std::string resolved = (dir.path() / "../../elsewhere/shared/scenes/Gone/Gone.gltf").lexically_normal().string();
+    const std::string resolved =
+        (dir.path() / "../../elsewhere/shared/scenes/Gone/Gone.gltf").lexically_normal().string();
     check_contains(message, {"set-up 'far'", "setups.txt:2", resolved.c_str(), "../shared/scenes", "not found"});
 }
 
@@ -156,13 +156,16 @@ TEST_CASE("malformed set-ups files fail with file and line") {
     CHECK(setups_error(kValid).empty());
     check_contains(setups_error(std::string(kValid) + "colour = red\n"), {"setups.txt:8", "unknown key 'colour'"});
     check_contains(setups_error(std::string(kValid) + "fov = 30\n"), {"setups.txt:8", "'fov' given twice"});
-    check_contains(setups_error(std::string(kValid) + "sun = 0,-1,0,1,1\n"), {"setups.txt:8", "sun light", "got 5 fields"});
+    check_contains(setups_error(std::string(kValid) + "sun = 0,-1,0,1,1\n"),
+                   {"setups.txt:8", "sun light", "got 5 fields"});
     check_contains(setups_error(std::string(kValid) + "[a]\n"), {"setups.txt:8", "'a' is defined twice"});
     check_contains(setups_error("default = a\n[a]\nscene = x.gltf\n"), {"setups.txt:2", "has no fov line"});
     check_contains(setups_error("[a]\nscene = x.gltf\nposition = 0,0,5\ntarget = 0,0,0\nfov = 40\nresolution = 8x8\n"),
                    {"no 'default = NAME' line"});
-    check_contains(setups_error("default = b\n[a]\nscene = x.gltf\nposition = 0,0,5\ntarget = 0,0,0\nfov = 40\nresolution = 8x8\n"),
-                   {"setups.txt:1", "default 'b' names no set-up"});
+    check_contains(
+        setups_error(
+            "default = b\n[a]\nscene = x.gltf\nposition = 0,0,5\ntarget = 0,0,0\nfov = 40\nresolution = 8x8\n"),
+        {"setups.txt:1", "default 'b' names no set-up"});
     std::string bad_vector = kValid;
     bad_vector.replace(bad_vector.find("0,0,5"), 5, "0,0");
     check_contains(setups_error(bad_vector), {"setups.txt:4", "three comma-separated numbers"});

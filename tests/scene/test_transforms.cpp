@@ -44,14 +44,14 @@ fs::path write_hierarchy(const fs::path& dir) {
     b.mesh("[" + primitive(p1, n1) + "]", "slanted");  // not indexed
     const std::string h = json_float(kHalfSqrt2);
     b.node(R"({"name":"A","mesh":0,"translation":[1,2,3],"rotation":[0,0,)" + h + "," + h +
-           R"(],"scale":[2,2,2],"children":[1,2]})");                                                        // 0
-    b.node(R"({"name":"B","mesh":1,"translation":[1,0,0],"scale":[1,3,1]})");                              // 1
+           R"(],"scale":[2,2,2],"children":[1,2]})");                          // 0
+    b.node(R"({"name":"B","mesh":1,"translation":[1,0,0],"scale":[1,3,1]})");  // 1
     b.node(R"({"name":"E","translation":[0,0,1],"rotation":[-)" + h + ",0,0," + h +
-           R"(],"extensions":{"KHR_lights_punctual":{"light":0}}})");                                        // 2
-    b.node(R"({"name":"C","mesh":0,"matrix":[-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1]})");                      // 3
+           R"(],"extensions":{"KHR_lights_punctual":{"light":0}}})");                   // 2
+    b.node(R"({"name":"C","mesh":0,"matrix":[-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1]})");  // 3
     b.node(R"({"name":"D","camera":0,"translation":[0,0,10],"rotation":[0,)" + h + ",0," + h +
-           R"(],"scale":[2,2,2]})");                                                                         // 4
-    b.node(R"({"name":"G","translation":[3,3,3],"extensions":{"KHR_lights_punctual":{"light":1}}})");    // 5
+           R"(],"scale":[2,2,2]})");                                                                   // 4
+    b.node(R"({"name":"G","translation":[3,3,3],"extensions":{"KHR_lights_punctual":{"light":1}}})");  // 5
     b.roots = {0, 3, 4, 5};
     b.cameras.push_back(R"({"name":"side","type":"perspective","perspective":{"yfov":0.5,"znear":0.1}})");
     b.lights.push_back(R"({"name":"spot","type":"spot","color":[1,0.5,0.25],"intensity":3,"range":7,)"

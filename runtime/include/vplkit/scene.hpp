@@ -73,15 +73,15 @@ inline constexpr int32_t kNoTexture = -1;
 // Every texture is read with TEXCOORD_0 (Vertex::uv0).
 struct Material {
     std::string name;
-    glm::vec4 base_color_factor{1.0f};  // linear RGBA
+    glm::vec4 base_color_factor{1.0f};        // linear RGBA
     int32_t base_color_texture = kNoTexture;  // sRGB; multiplies the factor
     float metallic_factor = 1.0f;
     float roughness_factor = 1.0f;
     int32_t metallic_roughness_texture = kNoTexture;  // linear; G = roughness, B = metallic
     int32_t normal_texture = kNoTexture;              // linear, tangent space
     float normal_scale = 1.0f;
-    glm::vec3 emissive_factor{0.0f};  // linear RGB
-    float emissive_strength = 1.0f;   // KHR_materials_emissive_strength
+    glm::vec3 emissive_factor{0.0f};        // linear RGB
+    float emissive_strength = 1.0f;         // KHR_materials_emissive_strength
     int32_t emissive_texture = kNoTexture;  // sRGB; multiplies the factor
     AlphaMode alpha_mode = AlphaMode::opaque;
     float alpha_cutoff = 0.5f;  // AlphaMode::mask only
@@ -105,8 +105,8 @@ struct Camera {
     glm::vec3 position{0.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
     glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
-    float yfov = 0.0f;    // vertical field of view, radians
-    float aspect = 0.0f;  // width / height; 0 when the file leaves it to the image
+    float yfov = 0.0f;                     // vertical field of view, radians
+    float aspect = 0.0f;                   // width / height; 0 when the file leaves it to the image
     float znear = 0.0f;
     float zfar = 0.0f;  // 0 = infinite (glTF)
 

@@ -26,7 +26,7 @@ struct SetupCamera {
 struct Setup {
     std::string name;
     std::string description;
-    std::filesystem::path scene;  // absolute, resolved against the set-ups file's folder
+    std::filesystem::path scene;   // absolute, resolved against the set-ups file's folder
     std::string scene_as_written;  // the path as the file gives it
     SetupCamera camera;
     std::vector<Light> lights;  // added to the scene's own (origin LightOrigin::setup)

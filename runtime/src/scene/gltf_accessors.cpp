@@ -66,8 +66,8 @@ void check_fits(const GltfSource& source, std::span<const uint8_t> bytes, size_t
                 size_t element_size, size_t stride, const std::string& owner, const std::string& container) {
     if (count == 0) return;
     const size_t size = bytes.size();
-    const bool fits = offset <= size && element_size <= size - offset &&
-                      (count - 1) <= (size - offset - element_size) / stride;
+    const bool fits =
+        offset <= size && element_size <= size - offset && (count - 1) <= (size - offset - element_size) / stride;
     if (!fits) {
         // In 128 bits: a corrupt count or stride must not wrap around in the message either.
         const unsigned __int128 end =
@@ -75,8 +75,7 @@ void check_fits(const GltfSource& source, std::span<const uint8_t> bytes, size_t
         const auto end_text = end > UINT64_MAX ? std::string("more than 2^64") : std::to_string(uint64_t(end));
         source.fail(owner + " reads " + std::to_string(count) + " element(s) of " + std::to_string(element_size) +
                     " bytes (stride " + std::to_string(stride) + ") from byte " + std::to_string(offset) +
-                    ", up to byte " + end_text + ", but " + container + " has only " + std::to_string(size) +
-                    " bytes");
+                    ", up to byte " + end_text + ", but " + container + " has only " + std::to_string(size) + " bytes");
     }
 }
 
@@ -152,12 +151,14 @@ std::vector<float> read_floats(const GltfSource& source, int index, size_t compo
     const std::string owner = "accessor " + std::to_string(index) + " (" + what + ")";
     if (type_components(accessor.type) != components || accessor.type == TINYGLTF_TYPE_MAT2) {
         source.fail(owner + " has type " + type_name(accessor.type) + ", expected " +
-                    (components == 2 ? "VEC2" : components == 3 ? "VEC3" : "VEC4"));
+                    (components == 2   ? "VEC2"
+                     : components == 3 ? "VEC3"
+                                       : "VEC4"));
     }
     const int ct = accessor.componentType;
-    const bool normalized_ok = allow_normalized && accessor.normalized &&
-                               (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    const bool normalized_ok =
+        allow_normalized && accessor.normalized &&
+        (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
     if (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalized_ok) {
         source.fail(owner + " has " + (accessor.normalized ? "normalized " : "") + component_name(ct) +
                     " components; glTF 2.0 allows FLOAT" +
@@ -246,9 +247,8 @@ std::span<const uint8_t> buffer_view_bytes(const GltfSource& source, int index, 
     const tinygltf::Buffer& buffer = model.buffers[size_t(view.buffer)];
     const size_t size = buffer.data.size();
     if (view.byteOffset > size || view.byteLength > size - view.byteOffset) {
-        const std::string name = buffer.uri.empty() || buffer.uri.rfind("data:", 0) == 0
-                                     ? std::string()
-                                     : " ('" + buffer.uri + "')";
+        const std::string name =
+            buffer.uri.empty() || buffer.uri.rfind("data:", 0) == 0 ? std::string() : " ('" + buffer.uri + "')";
         source.fail("bufferView " + std::to_string(index) + " (used by " + what + ") spans bytes " +
                     std::to_string(view.byteOffset) + " + " + std::to_string(view.byteLength) + " of buffer " +
                     std::to_string(view.buffer) + name + ", which has only " + std::to_string(size) + " bytes");

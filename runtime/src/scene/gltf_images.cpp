@@ -76,8 +76,7 @@ std::string decode_one(int gltf_index, std::span<const uint8_t> encoded, Image& 
 }  // namespace
 
 bool capture_image_bytes(tinygltf::Image* image, int image_index, std::string* /*err*/, std::string* /*warn*/,
-                         int /*req_width*/, int /*req_height*/, const unsigned char* bytes, int size,
-                         void* user_data) {
+                         int /*req_width*/, int /*req_height*/, const unsigned char* bytes, int size, void* user_data) {
     // An embedded image's pointer was computed from an unchecked bufferView: leave it alone.
     if (image->bufferView >= 0 || image_index < 0) return true;
     auto& captured = *static_cast<CapturedImages*>(user_data);
@@ -102,8 +101,8 @@ std::vector<Image> decode_images(const GltfSource& source, const CapturedImages&
         const tinygltf::Image& image = model.images[size_t(index)];
         Image& out = images[k];
         out.name = !image.uri.empty() && !is_data_uri(image.uri) ? image.uri
-                   : !image.name.empty()                          ? image.name
-                                                                  : "image " + std::to_string(index);
+                   : !image.name.empty()                         ? image.name
+                                                                 : "image " + std::to_string(index);
         out.srgb = uses[k].srgb;
         out.linear = uses[k].linear;
         labels[k] = "image " + std::to_string(index) + " ('" + out.name + "', " + uses[k].user + ")";

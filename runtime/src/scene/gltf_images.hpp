@@ -19,8 +19,8 @@ struct CapturedImages {
 };
 
 // tinygltf::LoadImageDataFunction; user_data is a CapturedImages*.
-bool capture_image_bytes(tinygltf::Image* image, int image_index, std::string* err, std::string* warn,
-                         int req_width, int req_height, const unsigned char* bytes, int size, void* user_data);
+bool capture_image_bytes(tinygltf::Image* image, int image_index, std::string* err, std::string* warn, int req_width,
+                         int req_height, const unsigned char* bytes, int size, void* user_data);
 
 struct ImageUse {
     int gltf_image = -1;

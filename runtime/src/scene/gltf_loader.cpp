@@ -169,24 +169,28 @@ Material convert_material(const GltfSource& source, int index, TextureTable& tex
     Material out;
     out.name = m.name.empty() ? "material " + std::to_string(index) : m.name;
 
+    // Factors outside glTF's [0, 1] are clamped with a warning (exporters round past 1); only
+    // a value that is not a number at all is an error. Emissive factors above 1 are kept: they
+    // are what files without KHR_materials_emissive_strength use for bright emitters.
+    bool clamped = false;
+    auto unit_factor = [&](double v, const char* what) {
+        if (!finite(v)) source.fail(label + ": " + what + " is not finite");
+        clamped |= v < 0.0 || v > 1.0;
+        return float(std::clamp(v, 0.0, 1.0));
+    };
     const auto& pbr = m.pbrMetallicRoughness;
     if (pbr.baseColorFactor.size() != 4) source.fail(label + ": baseColorFactor does not have 4 components");
-    for (int c = 0; c < 4; ++c) {
-        const double v = pbr.baseColorFactor[size_t(c)];
-        if (!finite(v) || v < 0.0 || v > 1.0) source.fail(label + ": baseColorFactor is not in [0, 1]");
-        out.base_color_factor[c] = float(v);
-    }
-    if (!finite(pbr.metallicFactor) || pbr.metallicFactor < 0.0 || pbr.metallicFactor > 1.0 ||
-        !finite(pbr.roughnessFactor) || pbr.roughnessFactor < 0.0 || pbr.roughnessFactor > 1.0) {
-        source.fail(label + ": metallicFactor or roughnessFactor is not in [0, 1]");
-    }
-    out.metallic_factor = float(pbr.metallicFactor);
-    out.roughness_factor = float(pbr.roughnessFactor);
+    for (int c = 0; c < 4; ++c)
+        out.base_color_factor[c] = unit_factor(pbr.baseColorFactor[size_t(c)], "baseColorFactor");
+    out.metallic_factor = unit_factor(pbr.metallicFactor, "metallicFactor");
+    out.roughness_factor = unit_factor(pbr.roughnessFactor, "roughnessFactor");
+    if (clamped)
+        warnings.messages.push_back(label + ": a base colour, metallic or roughness factor outside [0, 1] was clamped");
 
     if (m.emissiveFactor.size() != 3) source.fail(label + ": emissiveFactor does not have 3 components");
     for (int c = 0; c < 3; ++c) {
         const double v = m.emissiveFactor[size_t(c)];
-        if (!finite(v) || v < 0.0 || v > 1.0) source.fail(label + ": emissiveFactor is not in [0, 1]");
+        if (!finite(v) || v < 0.0) source.fail(label + ": emissiveFactor is negative or not finite");
         out.emissive_factor[c] = float(v);
     }
     if (auto it = m.extensions.find(kEmissiveStrengthExtension); it != m.extensions.end()) {
@@ -221,8 +225,8 @@ Material convert_material(const GltfSource& source, int index, TextureTable& tex
     out.metallic_roughness_texture =
         textures.use(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
                      "metallic-roughness texture of " + label, warnings);
-    out.normal_texture = textures.use(m.normalTexture.index, m.normalTexture.texCoord, false,
-                                      "normal texture of " + label, warnings);
+    out.normal_texture =
+        textures.use(m.normalTexture.index, m.normalTexture.texCoord, false, "normal texture of " + label, warnings);
     out.emissive_texture = textures.use(m.emissiveTexture.index, m.emissiveTexture.texCoord, true,
                                         "emissive texture of " + label, warnings);
     if (m.occlusionTexture.index >= 0) {
@@ -318,8 +322,9 @@ std::vector<NodeInstance> traverse(const GltfSource& source, LoadWarnings& warni
         const tinygltf::Node& node = model.nodes[size_t(index)];
         const std::string label = "node " + std::to_string(index) + quoted_name(node.name);
         if (seen[size_t(index)]) {
-            source.fail(label + " appears twice in the node hierarchy (glTF 2.0 requires disjoint trees: a cycle "
-                                "or a node with two parents)");
+            source.fail(label +
+                        " appears twice in the node hierarchy (glTF 2.0 requires disjoint trees: a cycle "
+                        "or a node with two parents)");
         }
         seen[size_t(index)] = true;
         const glm::dmat4 world = parent * local_transform(source, node, label);
@@ -439,7 +444,8 @@ Light convert_light(const GltfSource& source, int index, const glm::dmat4& world
     if (!l.color.empty()) {
         if (l.color.size() != 3) source.fail(label + ": color does not have 3 components");
         for (int c = 0; c < 3; ++c) {
-            if (!finite(l.color[size_t(c)]) || l.color[size_t(c)] < 0.0) source.fail(label + ": color is negative or not finite");
+            if (!finite(l.color[size_t(c)]) || l.color[size_t(c)] < 0.0)
+                source.fail(label + ": color is negative or not finite");
             out.color[c] = float(l.color[size_t(c)]);
         }
     }
@@ -675,9 +681,9 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
     const size_t file_cameras = scene.cameras.size();
     if (options.camera && *options.camera >= file_cameras) {
         source.fail("camera " + std::to_string(*options.camera) + " was asked for, but the file has " +
-                    (file_cameras == 0 ? std::string("no perspective camera")
-                                       : std::to_string(file_cameras) + " (0.." + std::to_string(file_cameras - 1) +
-                                             ")"));
+                    (file_cameras == 0
+                         ? std::string("no perspective camera")
+                         : std::to_string(file_cameras) + " (0.." + std::to_string(file_cameras - 1) + ")"));
     }
     if (scene.cameras.empty()) scene.cameras.push_back(framing_camera(scene.bounds));
     scene.active_camera = options.camera.value_or(0);

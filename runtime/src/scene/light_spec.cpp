@@ -29,14 +29,14 @@ std::array<float, kFields> parse_fields(std::string_view spec, const char* kind,
     size_t start = 0;
     while (true) {
         const size_t comma = spec.find(',', start);
-        fields.push_back(trim(spec.substr(start, comma == std::string_view::npos ? std::string_view::npos
-                                                                                   : comma - start)));
+        fields.push_back(
+            trim(spec.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
         if (comma == std::string_view::npos) break;
         start = comma + 1;
     }
     if (fields.size() != kFields) {
-        throw Error(quoted + "expected " + std::to_string(kFields) + " comma-separated numbers " + syntax +
-                    ", got " + std::to_string(fields.size()) + " field" + (fields.size() == 1 ? "" : "s"));
+        throw Error(quoted + "expected " + std::to_string(kFields) + " comma-separated numbers " + syntax + ", got " +
+                    std::to_string(fields.size()) + " field" + (fields.size() == 1 ? "" : "s"));
     }
     std::array<float, kFields> values{};
     // The field names in order, taken from the syntax string, for messages like "G is not a number".

@@ -41,7 +41,8 @@ struct Parser {
         for (int c = 0; c < 3; ++c) {
             const size_t comma = value.find(',', start);
             if ((c < 2) != (comma != std::string_view::npos)) {
-                fail(std::string(key) + " = '" + std::string(value) + "': expected three comma-separated numbers X,Y,Z");
+                fail(std::string(key) + " = '" + std::string(value) +
+                     "': expected three comma-separated numbers X,Y,Z");
             }
             const std::string_view field = value.substr(start, c < 2 ? comma - start : std::string_view::npos);
             if (!parse_float(field, out[c])) {
@@ -56,8 +57,8 @@ struct Parser {
 
 // Keys a set-up must have; the rest (description, up, sun, point) are optional.
 const std::set<std::string> kRequired = {"scene", "position", "target", "fov", "resolution"};
-const std::set<std::string> kKnown = {"scene", "description", "position", "target", "up", "fov", "resolution",
-                                      "sun", "point"};
+const std::set<std::string> kKnown = {"scene", "description", "position", "target", "up",
+                                      "fov",   "resolution",  "sun",      "point"};
 
 void finish(const Parser& parser, const Setup& setup, const std::set<std::string>& seen, size_t header_line) {
     for (const std::string& key : kRequired) {
@@ -154,7 +155,8 @@ Setups load_setups(const std::filesystem::path& path) {
         } else if (key == "fov") {
             float fov = 0.0f;
             if (!parse_float(value, fov) || !(fov > 0.0f && fov < 180.0f)) {
-                parser.fail("fov = '" + std::string(value) + "': expected a vertical field of view in degrees, in (0, 180)");
+                parser.fail("fov = '" + std::string(value) +
+                            "': expected a vertical field of view in degrees, in (0, 180)");
             }
             current->camera.yfov_degrees = fov;
         } else if (key == "resolution") {
@@ -206,8 +208,8 @@ const std::filesystem::path& require_scene(const Setup& setup) {
 }
 
 Camera setup_camera(const Setup& setup, const Bounds& bounds) {
-    Camera camera = look_at(setup.camera.position, setup.camera.target, setup.camera.up,
-                            glm::radians(setup.camera.yfov_degrees));
+    Camera camera =
+        look_at(setup.camera.position, setup.camera.target, setup.camera.up, glm::radians(setup.camera.yfov_degrees));
     camera.name = setup.name;
     camera.origin = CameraOrigin::setup;
     camera.aspect = float(setup.width) / float(setup.height);
