@@ -1,5 +1,5 @@
-// `vplkit bench sort`: GPU time of the VPL key passes and the bitonic sort for several VPL
-// counts, from timestamp queries, median over many runs, as a table and optionally CSV.
+// `vplkit bench sort`: GPU time of the VPL key passes and the sort (bitonic, radix or both) for
+// several VPL counts, from timestamp queries, median over many runs, as a table and optionally CSV.
 // Random VPLs (uniform in a unit box, uniform normals) stand in for a scene's until scenes load.
 
 #include "cli.hpp"
@@ -9,7 +9,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
-#include "vplkit/stages/bitonic_sort.hpp"
+#include "vplkit/stages/sort.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
 
 #include <algorithm>
@@ -20,6 +20,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -27,14 +28,16 @@
 namespace vplkit::cli {
 
 const char* const kBenchUsage =
-    "usage: vplkit bench sort [--counts N,N,...] [--runs R] [--workgroup-size W] [--csv FILE] [--device SEL]\n"
+    "usage: vplkit bench sort [--counts N,N,...] [--runs R] [--algorithm A] [--workgroup-size W] [--csv FILE]\n"
+    "                         [--device SEL]\n"
     "\n"
-    "Times the VPL key passes (bounds, Morton/normal keys) and the bitonic sort of the\n"
-    "(key, index) pairs on the GPU with timestamp queries: one warm-up run, then R timed runs\n"
-    "per count; prints median, min and max per stage. Checks the last run's output is sorted.\n"
+    "Times the VPL key passes (bounds, Morton/normal keys) and the sort of the (key, index)\n"
+    "pairs on the GPU with timestamp queries: one warm-up run, then R timed runs per count and\n"
+    "algorithm; prints median, min and max per stage. Checks the last run's output is sorted.\n"
     "  --counts N,...        VPL counts (default 4096,65536,1048576; at most 2^25)\n"
     "  --runs R              timed runs per count (default 20)\n"
-    "  --workgroup-size W    sort workgroup size, a power of two (default 256)\n"
+    "  --algorithm A         bitonic, radix or both (default both)\n"
+    "  --workgroup-size W    sort workgroup size (default: bitonic 256, radix 32; bitonic: a power of two)\n"
     "  --csv FILE            also write every statistic as CSV\n"
     "  --device SEL          auto, gpu, cpu (lavapipe), an index, or part of a name\n";
 
@@ -135,7 +138,15 @@ int run_bench(Args& args) {
     if (auto text = args.value("--runs")) {
         runs = parse_positive("--runs", *text, 100000);
     }
-    stages::BitonicSortOptions sort_options;
+    std::vector<stages::SortAlgorithm> algorithms = {stages::SortAlgorithm::bitonic, stages::SortAlgorithm::radix};
+    if (auto text = args.value("--algorithm"); text && *text != "both") {
+        auto algorithm = stages::parse_sort_algorithm(*text);
+        if (!algorithm) {
+            throw UsageError("--algorithm expects bitonic, radix or both, got '" + *text + "'");
+        }
+        algorithms = {*algorithm};
+    }
+    stages::SortOptions sort_options;
     if (auto text = args.value("--workgroup-size")) {
         sort_options.workgroup_size = parse_positive("--workgroup-size", *text, 1024);
     }
@@ -145,11 +156,18 @@ int run_bench(Args& args) {
     auto context = Context::create(options);
     const DeviceInfo& device = context->info();
     std::printf("device: %s (%s) - %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
-    std::printf("%10s  %-18s %10s %10s %10s\n", "vpls", "stage", "median ms", "min ms", "max ms");
+    std::printf("%10s  %-18s %-9s %10s %10s %10s\n", "vpls", "stage", "algorithm", "median ms", "min ms", "max ms");
 
     std::ostringstream csv;
-    csv << "device,vpls,stage,runs,median_ms,min_ms,max_ms,sort_dispatches\n";
+    csv << "device,vpls,algorithm,stage,runs,median_ms,min_ms,max_ms,sort_dispatches\n";
+    std::vector<std::pair<uint32_t, stages::SortAlgorithm>> cases;  // every count with every algorithm
     for (uint32_t count : counts) {
+        for (stages::SortAlgorithm algorithm : algorithms) {
+            cases.emplace_back(count, algorithm);
+        }
+    }
+    for (const auto& [count, algorithm] : cases) {
+        const char* algorithm_name = stages::sort_algorithm_name(algorithm);
         auto vpls = random_vpls(count, count);
         auto vpl_buffer = Buffer::create(*context, uint64_t(count) * sizeof(shaders::Vpl),
                                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpls");
@@ -161,19 +179,21 @@ int run_bench(Args& args) {
                                      MemoryUse::device, "vpl key values");
         vpl_buffer.upload(vpls);
 
+        sort_options.algorithm = algorithm;
+        stages::KeyValueSorter sorter(*context, count, sort_options);
         PassList passes("bench sort");
         stages::add_vpl_key_passes(*context, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
-        stages::add_bitonic_sort_pass(*context, passes, keys, values, count, sort_options);
+        sorter.add_pass(passes, keys, values, count);
 
         std::map<std::string, std::vector<double>> samples;  // stage -> ms per run
         std::vector<std::string> order;
         const bool terminal = isatty(fileno(stderr));
         if (!terminal) {
-            std::fprintf(stderr, "[%u VPLs] 1 warm-up + %u timed runs\n", count, runs);
+            std::fprintf(stderr, "[%u VPLs, %s] 1 warm-up + %u timed runs\n", count, algorithm_name, runs);
         }
         for (uint32_t run = 0; run <= runs; ++run) {
             if (terminal) {  // a progress line that rewrites itself; logs get the one line above
-                std::fprintf(stderr, "\r[%u VPLs] run %u/%u", count, run, runs);
+                std::fprintf(stderr, "\r[%u VPLs, %s] run %u/%u", count, algorithm_name, run, runs);
                 std::fflush(stderr);
             }
             passes.run(*context);  // the key passes rewrite the keys, so every run sorts unsorted input
@@ -196,12 +216,13 @@ int run_bench(Args& args) {
         check_sorted(keys, values, count);
 
         order.push_back("total");
-        const uint32_t dispatches = stages::bitonic_sort_dispatch_count(count, sort_options);
+        const uint32_t dispatches = sorter.dispatch_count(count);
         for (const std::string& stage : order) {
             Stats s = stats_of(samples[stage]);
-            std::printf("%10u  %-18s %10.3f %10.3f %10.3f\n", count, stage.c_str(), s.median, s.min, s.max);
-            csv << '"' << device.name << "\"," << count << ',' << stage << ',' << runs << ',' << s.median << ','
-                << s.min << ',' << s.max << ',' << dispatches << '\n';
+            std::printf("%10u  %-18s %-9s %10.3f %10.3f %10.3f\n", count, stage.c_str(), algorithm_name, s.median,
+                        s.min, s.max);
+            csv << '"' << device.name << "\"," << count << ',' << algorithm_name << ',' << stage << ',' << runs << ','
+                << s.median << ',' << s.min << ',' << s.max << ',' << dispatches << '\n';
         }
     }
 
