@@ -235,7 +235,8 @@ Agreement compare_with_reference(std::span<const reference::Triangle> triangles,
             } else if (ref.hit) {
                 excused = true;
             }
-            if (gpu.t != rays[r].tmax) {
+            const float tmax = std::isinf(rays[r].tmax) ? std::numeric_limits<float>::max() : rays[r].tmax;
+            if (gpu.t != tmax) {
                 fail("a miss must report t = tmax");
             }
         } else if (gpu.id >= triangles.size()) {

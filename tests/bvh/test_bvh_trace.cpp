@@ -24,7 +24,8 @@ using vplkit::bvh_test::make_ray;
 using vplkit::bvh_test::Triangles;
 
 // Rays from random points in a box of half-size `spread` around `centre` towards random
-// directions, with tmax random in (0, 3 * spread * 2) so that occlusion has both answers.
+// directions, with tmax random in (0, 6 * spread) so that occlusion has both answers (and a
+// quarter of the rays unbounded: +infinity or the largest float).
 std::vector<BvhRay> random_rays(uint32_t count, uint32_t seed, glm::vec3 centre, float spread) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
@@ -34,7 +35,7 @@ std::vector<BvhRay> random_rays(uint32_t count, uint32_t seed, glm::vec3 centre,
         const glm::vec3 origin = centre + spread * glm::vec3(unit(rng), unit(rng), unit(rng));
         // Lengths other than 1: t is in units of the direction.
         const glm::vec3 direction = vplkit::bvh_test::random_direction(rng) * (0.5f + 2.0f * fraction(rng));
-        const float tmax = (i % 4 == 0) ? 3.4e38f : 6.0f * spread * fraction(rng);
+        const float tmax = (i % 8 == 0) ? INFINITY : (i % 8 == 4) ? 3.4e38f : 6.0f * spread * fraction(rng);
         rays.push_back(make_ray(origin, direction, (i % 8 == 1) ? 0.1f * spread : 0.0f, tmax));
     }
     return rays;
@@ -97,7 +98,7 @@ TEST_CASE("bvh trace: the empty scene misses every ray") {
     for (int i = 0; i < 256; ++i) {
         // Some through the world origin, where the empty root box sits.
         const glm::vec3 d = vplkit::bvh_test::random_direction(rng);
-        rays.push_back(make_ray(i % 2 ? -d : glm::vec3(0.0f), d, 0.0f, 3.4e38f));
+        rays.push_back(make_ray(i % 2 ? -d : glm::vec3(0.0f), d, 0.0f, i % 4 < 2 ? 3.4e38f : INFINITY));
     }
     const glm::vec3 p(1, 1, 1);
     for (const Triangles& scene : {Triangles{}, Triangles{p, p, p, {0, 0, 0}, {1, 1, 1}, {2, 2, 2}}}) {
@@ -109,7 +110,8 @@ TEST_CASE("bvh trace: the empty scene misses every ray") {
         for (size_t i = 0; i < rays.size(); ++i) {
             CHECK(hits[i].id == kBvhNoHit);
             CHECK(hits[i].triangle == kBvhNoHit);
-            CHECK(hits[i].t == rays[i].tmax);
+            // +infinity comes back as the largest float (kBvhMaxT in bvh.glsl).
+            CHECK(hits[i].t == (std::isinf(rays[i].tmax) ? std::numeric_limits<float>::max() : rays[i].tmax));
             CHECK(occlusion[i] == 0);
         }
     }
@@ -266,7 +268,7 @@ TEST_CASE("bvh trace: rays in the plane of a triangle give a finite answer on th
     MESSAGE(hit_count << " of " << rays.size() << " in-plane rays reported a hit");
 }
 
-TEST_CASE("bvh trace: invalid rays miss") {
+TEST_CASE("bvh trace: invalid rays miss and tmax = +infinity is unbounded") {
     const Triangles one = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
@@ -277,19 +279,26 @@ TEST_CASE("bvh trace: invalid rays miss") {
         make_ray({0, 0, 1}, {0, 0, -1}, 3.0f, 2.0f),
         make_ray({nan, 0, 1}, {0, 0, -1}, 0.0f, 10.0f),
         make_ray({0, 0, 1}, {0, nan, -1}, 0.0f, 10.0f),
-        make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, inf),
+        make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, -inf),
+        make_ray({0, 0, 1}, {0, 0, -1}, -inf, 10.0f),
+        make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, nan),
         make_ray({0, 0, 1}, {0, 0, -1}, nan, 10.0f),
     };
+    rays.push_back(make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, inf));  // +inf: unbounded, valid
     rays.push_back(make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, 10.0f));  // a valid one, for contrast
     const auto bvh = vplkit::build_bvh(one);
     const auto gpu = vplkit::upload_bvh(vplkit::test::context(), bvh);
     const auto hits = vplkit::bvh_test::trace_closest(gpu, rays);
     const auto occlusion = vplkit::bvh_test::trace_occlusion(gpu, rays);
-    for (size_t i = 0; i + 1 < rays.size(); ++i) {
+    for (size_t i = 0; i + 2 < rays.size(); ++i) {
         CAPTURE(i);
         CHECK(hits[i].id == kBvhNoHit);
         CHECK(occlusion[i] == 0);
     }
+    const size_t unbounded = rays.size() - 2;
+    CHECK(hits[unbounded].id == 0);
+    CHECK(hits[unbounded].t == 1.0f);
+    CHECK(occlusion[unbounded] == 1);
     CHECK(hits.back().id == 0);
     CHECK(hits.back().t == 1.0f);
     CHECK(occlusion.back() == 1);

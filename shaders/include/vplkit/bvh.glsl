@@ -22,8 +22,9 @@
 // 16-byte aligned rows), with the caller's id.
 //
 // Rays. Hits count in the open interval tmin < t < tmax; the direction need not be unit length
-// (t is in units of it). A ray is answered "miss" when its origin, direction, tmin or tmax is
-// not finite, its direction is shorter than kBvhMinDirection in every component, or
+// (t is in units of it). tmax = +infinity means unbounded (it becomes kBvhMaxT, the largest
+// float). A ray is answered "miss" when its origin, direction or tmin is not finite, its tmax
+// is NaN or -infinity, its direction is shorter than kBvhMinDirection in every component, or
 // tmin >= tmax. Coordinates must stay below 2^32 in magnitude (the host refuses larger ones):
 // then every product in here stays finite.
 //
@@ -89,9 +90,11 @@ const float kBvhExitWiden = 1.0000004;
 const float kBvhOriginOffset = 1.52587890625e-5;
 // Floor of the scene scale, so a point at the origin of an empty scene still moves.
 const float kBvhMinScale = 1e-30;
+// The largest float: what tmax = +infinity becomes.
+const float kBvhMaxT = 3.4028234663852886e38;
 
 struct BvhHit {
-    float t;            // tmax when nothing was hit
+    float t;            // tmax when nothing was hit (kBvhMaxT for tmax = +infinity)
     uint id;            // BvhTriangle.id, kBvhNoHit when nothing was hit
     vec2 barycentrics;  // weights of v1 and v2: p = (1 - b.x - b.y) v0 + b.x v1 + b.y v2
     uint triangle;      // index into bvh_triangles (leaf order), kBvhNoHit when nothing was hit
@@ -119,9 +122,14 @@ bool bvh_finite(vec3 v) {
     return !any(isnan(v)) && !any(isinf(v));
 }
 
+// tmax after bvh_bounded_tmax.
 bool bvh_ray_valid(vec3 origin, vec3 direction, float tmin, float tmax) {
     return bvh_finite(origin) && bvh_finite(direction) && !isnan(tmin) && !isinf(tmin) && !isnan(tmax) &&
            !isinf(tmax) && tmin < tmax && max(max(abs(direction.x), abs(direction.y)), abs(direction.z)) >= kBvhMinDirection;
+}
+
+float bvh_bounded_tmax(float tmax) {
+    return (isinf(tmax) && tmax > 0.0) ? kBvhMaxT : tmax;
 }
 
 vec3 bvh_permute(vec3 v, ivec3 axes) {
@@ -216,6 +224,7 @@ BvhHit bvh_no_hit(float tmax) {
 
 // The nearest hit with tmin < t < tmax (see BvhHit for a miss).
 BvhHit bvh_closest_hit(vec3 origin, vec3 direction, float tmin, float tmax) {
+    tmax = bvh_bounded_tmax(tmax);
     BvhHit hit = bvh_no_hit(tmax);
     if (!bvh_ray_valid(origin, direction, tmin, tmax)) {
         return hit;
@@ -268,6 +277,7 @@ BvhHit bvh_closest_hit(BvhRay ray) {
 // Whether anything lies between tmin and tmax (exclusive) on the ray: a shadow ray. Stops at
 // the first hit found, in no particular order.
 bool bvh_occluded(vec3 origin, vec3 direction, float tmin, float tmax) {
+    tmax = bvh_bounded_tmax(tmax);
     if (!bvh_ray_valid(origin, direction, tmin, tmax)) {
         return false;
     }
