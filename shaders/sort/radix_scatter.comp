@@ -15,7 +15,9 @@
 //
 // Counters are 16 bits, two to a uint (digit d in the low half, d + radix/2 in the high half), so
 // that an 8-bit digit's 256 counters per invocation take 512 bytes; a tile holds at most 65535
-// pairs (the host checks), so no half ever carries into the other.
+// pairs (the host checks), so no half ever carries into the other. One unused uint after every
+// radix/2 of them staggers the invocations' runs across shared-memory banks: without it every
+// invocation of a 32-wide workgroup would scan its run in the same bank at the same time.
 
 layout(local_size_x = 32, local_size_x_id = 0) in;  // 32 unless specialized
 layout(constant_id = 1) const uint items_per_thread = 128u;
@@ -41,13 +43,18 @@ layout(push_constant) uniform RadixScatterPush {
     uint tile_count;
 } push;
 
-shared uint rank_counters[kHalfRadix * gl_WorkGroupSize.x];  // [digit mod radix/2][invocation], packed
+shared uint rank_counters[(kHalfRadix + 1u) * gl_WorkGroupSize.x];  // [digit mod radix/2][invocation], packed
 shared uint run_offsets[gl_WorkGroupSize.x];  // prefix sum of the counters before each invocation's run of them
 shared uint digit_base[kRadix];               // output position of the digit's pairs, less their first tile position
 
 // The counter unit of a digit: 1 in the low half, 1 << 16 in the high half.
 uint counter_unit(uint digit) {
     return digit < kHalfRadix ? 1u : 0x10000u;
+}
+
+// Where counter number i (digit-major: (digit mod radix/2) x workgroup size + invocation) lives.
+uint counter_slot(uint i) {
+    return i + i / kHalfRadix;
 }
 
 void main() {
@@ -83,23 +90,23 @@ void main() {
     }
 
     for (uint d = 0u; d < kHalfRadix; ++d) {
-        rank_counters[d * gl_WorkGroupSize.x + t] = 0u;
+        rank_counters[counter_slot(d * gl_WorkGroupSize.x + t)] = 0u;
     }
     uint run_start = tile_start + t * items_per_thread;
     uint run_end = min(run_start + items_per_thread, push.count);  // empty past the end
     for (uint i = run_start; i < run_end; ++i) {
         uint digit = radix_digit(keys[0].items[i], push.shift, push.bits);
-        rank_counters[(digit % kHalfRadix) * gl_WorkGroupSize.x + t] += counter_unit(digit);
+        rank_counters[counter_slot((digit % kHalfRadix) * gl_WorkGroupSize.x + t)] += counter_unit(digit);
     }
     barrier();
 
     // Exclusive prefix sum of the counters in memory order: a run of kHalfRadix per invocation,
     // then the workgroup scan of the run sums (kept apart, added when a counter is read).
-    uint counter_start = t * kHalfRadix;
+    uint run_slot = counter_slot(t * kHalfRadix);  // the run's counters are consecutive slots
     uint counter_sum = 0u;
     for (uint d = 0u; d < kHalfRadix; ++d) {
-        uint c = rank_counters[counter_start + d];
-        rank_counters[counter_start + d] = counter_sum;
+        uint c = rank_counters[run_slot + d];
+        rank_counters[run_slot + d] = counter_sum;
         counter_sum += c;
     }
     uint packed_total;
@@ -111,8 +118,9 @@ void main() {
         uint64_t key = keys[0].items[i];
         uint digit = radix_digit(key, push.shift, push.bits);
         uint counter = (digit % kHalfRadix) * gl_WorkGroupSize.x + t;
-        uint packed = rank_counters[counter];
-        rank_counters[counter] = packed + counter_unit(digit);
+        uint slot = counter_slot(counter);
+        uint packed = rank_counters[slot];
+        rank_counters[slot] = packed + counter_unit(digit);
         packed += run_offsets[counter / kHalfRadix];
         uint position = digit < kHalfRadix ? (packed & 0xffffu) : (packed >> 16) + low_digits;
         uint destination = digit_base[digit] + position;

@@ -65,7 +65,7 @@ void check_options(const Context& context, const RadixSortOptions& options) {
 
 uint32_t radix_sort_shared_bytes(const RadixSortOptions& options) {
     const uint64_t radix = uint64_t(1) << options.digit_bits;
-    const uint64_t bytes = radix / 2 * options.workgroup_size * 4  // rank counters, two to a uint
+    const uint64_t bytes = (radix / 2 + 1) * options.workgroup_size * 4  // rank counters, two to a uint, padded
                            + uint64_t(options.workgroup_size) * 4  // run offsets
                            + radix * 4                             // digit bases
                            + scan_shared_bytes(options.workgroup_size);

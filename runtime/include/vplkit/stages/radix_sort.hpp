@@ -48,13 +48,14 @@ struct RadixSortOptions {
     uint32_t digit_bits = 8;
     // Threads per workgroup, any size up to the device limit. Each thread ranks a run of
     // items_per_thread consecutive pairs with a 16-bit counter per digit value in shared memory:
-    // 2^digit_bits x 2 + 8 bytes per thread, plus 4 bytes per digit value (see
-    // radix_sort_shared_bytes()); 32 threads with 8-bit digits take 17.3 KiB.
+    // 2^digit_bits x 2 + 12 bytes per thread, plus 4 bytes per digit value (see
+    // radix_sort_shared_bytes()); 32 threads with 8-bit digits take 17.4 KiB.
     uint32_t workgroup_size = 32;
     // Pairs per thread; a workgroup's tile is workgroup_size x items_per_thread pairs (at most
-    // 65535: the counters are 16 bits). 0: 128 on a CPU device (lavapipe, where a thread's
-    // counters cost as much as a hundred pairs, so long runs pay), 16 on a GPU (for enough
-    // workgroups: 2^20 pairs make 2048 of them).
+    // 65535: the counters are 16 bits). 0: 128 on a CPU device (on lavapipe clearing and
+    // scanning a thread's 128 counter words costs about as much as ranking 40 pairs, so long runs
+    // pay: 32 x 128 sorts 2^20 pairs nearly 3 times faster than 32 x 16), 16 on a GPU (for enough
+    // workgroups: 2^20 pairs make 2048 of them; not measured here, no GPU was at hand).
     uint32_t items_per_thread = 0;
 };
 
