@@ -27,9 +27,10 @@ namespace vplkit::scene {
 struct Vertex {
     glm::vec3 position{0.0f};  // world space
     glm::vec3 normal{0.0f};    // world space, unit length
-    // World space: xyz unit length and orthogonal to the normal; w = +1 or -1, the bitangent is
-    // w * cross(normal, tangent.xyz) (the glTF convention). All zero when the file gives no
-    // tangents and the primitive's material has no normal texture (nothing needs one then).
+    // World space: xyz unit length and orthogonal to the normal, pointing where u grows; w = +1
+    // or -1, the bitangent is w * cross(normal, tangent.xyz) (the glTF convention) and points
+    // where v shrinks (up in the image, as normal maps store green). All zero when the file gives
+    // no tangents and the primitive's material has no normal texture (nothing needs one then).
     glm::vec4 tangent{0.0f};
     glm::vec2 uv0{0.0f};  // TEXCOORD_0 ((0, 0) when the primitive has none)
 };
@@ -54,7 +55,9 @@ struct Image {
     std::string name;  // the file's uri, else its name, else "image N"
     uint32_t width = 0;
     uint32_t height = 0;
-    std::vector<uint8_t> rgba;  // width * height * 4 bytes, rows top to bottom, 8 bits a channel
+    // width * height * 4 bytes, rows top to bottom, 8 bits a channel (16-bit files are rounded;
+    // grey and RGB files get A = 255).
+    std::vector<uint8_t> rgba;
     // How the materials use it: colour data (base colour, emissive: sample through an sRGB view)
     // and/or plain data (metallic-roughness, normal map: sample through a UNORM view). An image
     // used both ways has both set; the renderer then needs both views.
@@ -70,7 +73,8 @@ struct Texture {
 inline constexpr int32_t kNoTexture = -1;
 
 // glTF 2.0 metallic-roughness material; texture members index Scene::textures (kNoTexture: none).
-// Every texture is read with TEXCOORD_0 (Vertex::uv0).
+// Every texture is read with TEXCOORD_0 (Vertex::uv0). The occlusion texture is not kept (VPLs
+// compute the indirect light it would approximate).
 struct Material {
     std::string name;
     glm::vec4 base_color_factor{1.0f};        // linear RGBA
@@ -158,7 +162,9 @@ struct PrimitiveInstance {
 // What the loader skipped or repaired instead of failing.
 struct LoadWarnings {
     uint32_t skipped_primitives = 0;    // mode other than TRIANGLES (points, lines, strips, fans)
-    uint32_t degenerate_triangles = 0;  // zero area in world space: dropped
+    // Zero area in world space (a repeated corner, collinear corners, or a height below float
+    // resolution of the longest edge: under FLT_EPSILON times its length): dropped.
+    uint32_t degenerate_triangles = 0;
     uint32_t repaired_normals = 0;      // zero-length NORMAL: replaced by the adjacent faces' normal
     uint32_t untangented_vertices = 0;  // generated tangent undefined (no UVs or degenerate UVs):
                                         // an arbitrary unit vector orthogonal to the normal, w = +1
