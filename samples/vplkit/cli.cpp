@@ -1,5 +1,7 @@
 #include "cli.hpp"
 
+#include <sstream>
+
 namespace vplkit::cli {
 
 bool Args::flag(std::string_view name, std::string_view short_name) {
@@ -46,6 +48,29 @@ void Args::finish() const {
   const std::string& first = args_.front();
   if (!first.empty() && first[0] == '-') throw UsageError("unknown option '" + first + "' for '" + command_ + "'");
   throw UsageError("unexpected argument '" + first + "' for '" + command_ + "'");
+}
+
+uint32_t parse_whole_number(const std::string& option, const std::string& text, uint64_t max) {
+  size_t used = 0;
+  unsigned long long value = 0;
+  try {
+    value = std::stoull(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || text[0] == '-' || text[0] == '+' || value == 0 || value > max) {
+    throw UsageError(option + " expects a whole number from 1 to " + std::to_string(max) + ", got '" + text + "'");
+  }
+  return uint32_t(value);
+}
+
+std::vector<uint32_t> parse_whole_number_list(const std::string& option, const std::string& text, uint64_t max) {
+  std::vector<uint32_t> values;
+  std::stringstream stream(text);
+  std::string item;
+  while (std::getline(stream, item, ',')) values.push_back(parse_whole_number(option, item, max));
+  if (values.empty()) throw UsageError(option + " needs at least one number");
+  return values;
 }
 
 }  // namespace vplkit::cli

@@ -36,6 +36,11 @@ class Args {
   std::vector<std::string> args_;
 };
 
+// A whole number from 1 to max, or a UsageError naming the option and the text.
+uint32_t parse_whole_number(const std::string& option, const std::string& text, uint64_t max);
+// Comma-separated whole numbers, each from 1 to max (at least one).
+std::vector<uint32_t> parse_whole_number_list(const std::string& option, const std::string& text, uint64_t max);
+
 // One subcommand: `run` returns the exit code (0 ok, 1 failure); a UsageError means exit 2.
 struct Command {
   const char* name;

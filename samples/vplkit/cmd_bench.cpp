@@ -39,36 +39,25 @@ const char* const kBenchUsage =
     "  --algorithm A         bitonic, radix or both (default both)\n"
     "  --workgroup-size W    sort workgroup size (default: bitonic 256, radix 32; bitonic: a power of two)\n"
     "  --csv FILE            also write every statistic as CSV\n"
-    "  --device SEL          auto, gpu, cpu (lavapipe), an index, or part of a name\n";
+    "  --device SEL          auto, gpu, cpu (lavapipe), an index, or part of a name\n"
+    "\n"
+    "usage: vplkit bench tree [--counts N,N,...] [--runs R] [--source random|SETUP] [--sort radix|bitonic]\n"
+    "                         [--group-levels G] [--csv FILE] [--device SEL]\n"
+    "\n"
+    "Times, per VPL count, every stage from a VPL buffer to both light trees: bounds and keys,\n"
+    "the key sort, gathering the leaves, the RTSLC light tree and the SST. One warm-up run, then\n"
+    "R timed runs; prints median, min and max per stage, and checks the last run's trees.\n"
+    "  --counts N,...     VPL counts (default 4096,65536,1048576)\n"
+    "  --runs R           timed runs per count (default 10)\n"
+    "  --source S         random (default), or a standard set-up (scenes/setups.txt) whose scene\n"
+    "                     surfaces the VPLs are sampled on, e.g. sponza-sun\n"
+    "  --sort A           radix (default) or bitonic\n"
+    "  --group-levels G   light-tree levels built per dispatch (default: the device's)\n"
+    "  --csv FILE         also write every statistic as CSV\n"
+    "  --device SEL       auto, gpu, cpu (lavapipe), an index, or part of a name\n";
 
 namespace {
 
-uint32_t parse_positive(const std::string& option, const std::string& text, uint64_t max) {
-    size_t used = 0;
-    unsigned long long value = 0;
-    try {
-        value = std::stoull(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || text.empty() || text[0] == '-' || value == 0 || value > max) {
-        throw UsageError(option + " expects a whole number from 1 to " + std::to_string(max) + ", got '" + text + "'");
-    }
-    return uint32_t(value);
-}
-
-std::vector<uint32_t> parse_counts(const std::string& text) {
-    std::vector<uint32_t> counts;
-    std::stringstream stream(text);
-    std::string item;
-    while (std::getline(stream, item, ',')) {
-        counts.push_back(parse_positive("--counts", item, stages::kMaxKeyedVpls));
-    }
-    if (counts.empty()) {
-        throw UsageError("--counts needs at least one count");
-    }
-    return counts;
-}
 
 std::vector<shaders::Vpl> random_vpls(uint32_t count, uint32_t seed) {
     std::mt19937 rng(seed);
@@ -121,10 +110,13 @@ void check_sorted(const Buffer& keys, const Buffer& values, uint32_t count) {
 int run_bench(Args& args) {
     const auto what = args.positional();
     if (!what) {
-        throw UsageError("bench needs a benchmark name: sort");
+        throw UsageError("bench needs a benchmark name: sort or tree");
+    }
+    if (*what == "tree") {
+        return run_bench_tree(args);
     }
     if (*what != "sort") {
-        throw UsageError("unknown benchmark '" + *what + "' (available: sort)");
+        throw UsageError("unknown benchmark '" + *what + "' (available: sort, tree)");
     }
     ContextOptions options;
     if (auto device = args.value("--device")) {
@@ -132,11 +124,11 @@ int run_bench(Args& args) {
     }
     std::vector<uint32_t> counts = {4096, 65536, 1048576};
     if (auto text = args.value("--counts")) {
-        counts = parse_counts(*text);
+        counts = parse_whole_number_list("--counts", *text, stages::kMaxKeyedVpls);
     }
     uint32_t runs = 20;
     if (auto text = args.value("--runs")) {
-        runs = parse_positive("--runs", *text, 100000);
+        runs = parse_whole_number("--runs", *text, 100000);
     }
     std::vector<stages::SortAlgorithm> algorithms = {stages::SortAlgorithm::bitonic, stages::SortAlgorithm::radix};
     if (auto text = args.value("--algorithm"); text && *text != "both") {
@@ -148,7 +140,7 @@ int run_bench(Args& args) {
     }
     stages::SortOptions sort_options;
     if (auto text = args.value("--workgroup-size")) {
-        sort_options.workgroup_size = parse_positive("--workgroup-size", *text, 1024);
+        sort_options.workgroup_size = parse_whole_number("--workgroup-size", *text, 1024);
     }
     const auto csv_path = args.value("--csv");
     args.finish();

@@ -11,4 +11,7 @@ extern const char* const kInfoUsage;
 int run_bench(Args& args);
 extern const char* const kBenchUsage;
 
+// `vplkit bench tree` (reached through run_bench; its usage is part of kBenchUsage).
+int run_bench_tree(Args& args);
+
 }  // namespace vplkit::cli

@@ -1,0 +1,170 @@
+// `vplkit bench tree`: GPU time of every stage from VPLs to both light trees (keys, sort, leaves,
+// RTSLC light tree, SST), from timestamp queries, median over many runs, as a table and CSV.
+// VPLs are random or sampled on the surfaces of a standard set-up's scene.
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "vpl_sources.hpp"
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/scene_setups.hpp"
+#include "vplkit/stages/leaves.hpp"
+#include "vplkit/stages/light_tree.hpp"
+#include "vplkit/stages/sort.hpp"
+#include "vplkit/stages/sst.hpp"
+#include "vplkit/stages/vpl_keys.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#ifndef VPLKIT_SETUPS_FILE
+#error "VPLKIT_SETUPS_FILE (the repository's scenes/setups.txt) must be defined by the build"
+#endif
+
+namespace vplkit::cli {
+
+
+namespace {
+
+struct Stats {
+    double median = 0, min = 0, max = 0;
+};
+
+Stats stats_of(std::vector<double> samples) {
+    std::sort(samples.begin(), samples.end());
+    const size_t n = samples.size();
+    return {n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]), samples.front(), samples.back()};
+}
+
+// Both roots must hold all the flux (within float summation error): a benchmark of a wrong
+// tree is worth nothing.
+void check_roots(const std::vector<shaders::Vpl>& vpls, const Buffer& light_tree, const Buffer& sst) {
+    double sum_rgb = 0.0;
+    for (const auto& v : vpls) sum_rgb += double(v.flux.x) + v.flux.y + v.flux.z;
+    const auto light_root = light_tree.download<shaders::LightTreeNode>(1)[0];
+    const auto sst_root = sst.download<shaders::SstNode>(1)[0];
+    const double sst_rgb = double(sst_root.colour.x) + sst_root.colour.y + sst_root.colour.z;
+    const double tolerance = 1e-4 * sum_rgb;
+    if (std::abs(light_root.intensity - sum_rgb) > tolerance || std::abs(sst_rgb - sum_rgb) > tolerance ||
+        light_root.vpl_count != vpls.size() || sst_root.leaf_count != vpls.size()) {
+        throw Error("bench tree: a tree root does not hold all " + std::to_string(vpls.size()) + " VPLs' flux");
+    }
+}
+
+}  // namespace
+
+int run_bench_tree(Args& args) {
+    ContextOptions options;
+    if (auto device = args.value("--device")) options.device = *device;
+    std::vector<uint32_t> counts = {4096, 65536, 1048576};
+    if (auto text = args.value("--counts")) counts = parse_whole_number_list("--counts", *text, stages::kMaxKeyedVpls);
+    uint32_t runs = 10;
+    if (auto text = args.value("--runs")) runs = parse_whole_number("--runs", *text, 100000);
+    const std::string source = args.value("--source").value_or("random");
+    stages::SortOptions sort_options;
+    if (auto text = args.value("--sort")) {
+        auto algorithm = stages::parse_sort_algorithm(*text);
+        if (!algorithm) throw UsageError("--sort expects radix or bitonic, got '" + *text + "'");
+        sort_options.algorithm = *algorithm;
+    }
+    stages::LightTreeOptions tree_options;
+    if (auto text = args.value("--group-levels")) {
+        tree_options.group_levels = parse_whole_number("--group-levels", *text, stages::kLightTreeMaxGroupLevels);
+    }
+    const auto csv_path = args.value("--csv");
+    args.finish();
+
+    // The scene first: a bad set-up name fails before any device work.
+    std::optional<scene::Scene> surfaces;
+    if (source != "random") {
+        const scene::Setups setups = scene::load_setups(VPLKIT_SETUPS_FILE);
+        surfaces = scene::load_setup_scene(setups.find(source));
+    }
+
+    auto context = Context::create(options);
+    const DeviceInfo& device = context->info();
+    std::printf("device: %s (%s) - %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
+    std::printf("VPLs: %s; sort: %s\n", source.c_str(), stages::sort_algorithm_name(sort_options.algorithm));
+    std::printf("%10s  %-22s %10s %10s %10s\n", "vpls", "stage", "median ms", "min ms", "max ms");
+
+    std::ostringstream csv;
+    csv << "device,source,sort,vpls,stage,runs,median_ms,min_ms,max_ms\n";
+    const bool terminal = isatty(fileno(stderr));
+    for (uint32_t count : counts) {
+        const auto vpls = surfaces ? surface_vpls(*surfaces, count, count) : random_vpls(count, count);
+        const uint32_t leaves = stages::leaf_count(count);
+        constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+        auto vpl_buffer = Buffer::create(*context, uint64_t(count) * sizeof(shaders::Vpl), storage, MemoryUse::device, "vpls");
+        auto bounds = Buffer::create(*context, stages::kVplBoundsBytes, storage, MemoryUse::device, "vpl bounds");
+        auto keys = Buffer::create(*context, uint64_t(count) * 8, storage, MemoryUse::device, "vpl keys");
+        auto values = Buffer::create(*context, uint64_t(count) * 4, storage, MemoryUse::device, "vpl key values");
+        auto leaf_buffer = Buffer::create(*context, uint64_t(leaves) * sizeof(shaders::Vpl), storage, MemoryUse::device, "leaves");
+        auto light_tree = Buffer::create(*context, uint64_t(stages::light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
+                                         storage, MemoryUse::device, "light tree");
+        auto sst = Buffer::create(*context, uint64_t(stages::sst_node_count(count)) * sizeof(shaders::SstNode), storage,
+                                  MemoryUse::device, "sst");
+        auto counters = Buffer::create(*context, uint64_t(stages::sst_counter_count(count)) * 4, storage, MemoryUse::device,
+                                       "sst counters");
+        vpl_buffer.upload(vpls);
+
+        stages::KeyValueSorter sorter(*context, count, sort_options);
+        PassList passes("bench tree");
+        stages::add_vpl_key_passes(*context, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
+        sorter.add_pass(passes, keys, values, count);
+        stages::add_gather_leaves_pass(*context, passes, vpl_buffer, values, leaf_buffer, count);
+        stages::add_light_tree_passes(*context, passes, leaf_buffer, light_tree, count, tree_options);
+        stages::add_sst_passes(*context, passes, leaf_buffer, sst, counters, count);
+
+        std::map<std::string, std::vector<double>> samples;
+        std::vector<std::string> order;
+        if (!terminal) std::fprintf(stderr, "[%u VPLs] 1 warm-up + %u timed runs\n", count, runs);
+        for (uint32_t run = 0; run <= runs; ++run) {
+            if (terminal) {
+                std::fprintf(stderr, "\r[%u VPLs] run %u/%u", count, run, runs);
+                std::fflush(stderr);
+            }
+            passes.run(*context);
+            if (run == 0) continue;  // warm-up: lavapipe compiles shaders at their first dispatch
+            double total = 0.0;
+            for (const PassTiming& t : passes.timings()) {
+                if (samples.find(t.name) == samples.end()) order.push_back(t.name);
+                samples[t.name].push_back(t.gpu_ms);
+                total += t.gpu_ms;
+            }
+            samples["total"].push_back(total);
+        }
+        if (terminal) std::fprintf(stderr, "\r%40s\r", "");
+        check_roots(vpls, light_tree, sst);
+
+        order.push_back("total");
+        for (const std::string& stage : order) {
+            const Stats s = stats_of(samples[stage]);
+            std::printf("%10u  %-22s %10.3f %10.3f %10.3f\n", count, stage.c_str(), s.median, s.min, s.max);
+            csv << '"' << device.name << "\"," << source << ',' << stages::sort_algorithm_name(sort_options.algorithm) << ','
+                << count << ',' << stage << ',' << runs << ',' << s.median << ',' << s.min << ',' << s.max << '\n';
+        }
+    }
+    if (csv_path) {
+        std::ofstream file(*csv_path + ".tmp", std::ios::binary | std::ios::trunc);
+        file << csv.str();
+        if (!file.flush()) throw Error("bench tree: could not write " + *csv_path);
+        file.close();
+        std::rename((*csv_path + ".tmp").c_str(), csv_path->c_str());
+        std::printf("wrote %s\n", csv_path->c_str());
+    }
+    return 0;
+}
+
+}  // namespace vplkit::cli
