@@ -1,0 +1,32 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_scalar_block_layout : require
+// G-buffer pass, vertex stage: pulls its triangle's vertex (non-indexed draw, see
+// vplkit/raster_scene.glsl) and passes world-space attributes and the exact face normal on.
+
+#define VPLKIT_SCENE_VERTICES_BINDING 0
+#define VPLKIT_SCENE_INDICES_BINDING 1
+#include "vplkit/raster_scene.glsl"
+
+layout(push_constant) uniform GbufferPush {
+    mat4 view_projection;  // world -> Vulkan clip space (y down, depth 0 near .. 1 far)
+    vec3 viewer_position;  // the camera's world position
+    uint material;         // index into the material buffer (one per draw)
+} push;
+
+layout(location = 0) out vec3 world_position;
+layout(location = 1) out vec3 world_normal;
+layout(location = 2) out vec4 world_tangent;
+layout(location = 3) out vec2 uv0;
+layout(location = 4) flat out vec3 face_normal;
+
+void main() {
+    uint triangle = uint(gl_VertexIndex) / 3u;
+    SceneVertex v = scene_triangle_vertex(triangle, uint(gl_VertexIndex) % 3u);
+    world_position = v.position;
+    world_normal = v.normal;
+    world_tangent = v.tangent;
+    uv0 = v.uv0;
+    face_normal = scene_face_normal(triangle);
+    gl_Position = push.view_projection * vec4(v.position, 1.0);
+}

@@ -1,0 +1,114 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Shadow map + reflective shadow map pass, fragment stage. One texel of a reflective shadow map
+// (seed 000 section 4.1; Dachsbacher and Stamminger 2005) is a small surface patch lit by the
+// light: its world position, its normal, and the flux it reflects. The depth attachment of the
+// same pass is the light's shadow map. Images: runtime/include/vplkit/stages/shadow_maps.hpp.
+
+#define VPLKIT_SCENE_MATERIALS_BINDING 2
+#define VPLKIT_SCENE_TEXTURES_BINDING 3
+#include "vplkit/raster_material.glsl"
+
+const uint kRsmDirectional = 0u;  // scene::LightType order
+const uint kRsmPoint = 1u;
+const uint kRsmSpot = 2u;
+
+layout(push_constant) uniform RsmPush {
+    mat4 view_projection;
+    vec2 face_origin;
+    uint material;
+} push;
+
+layout(std140, set = 0, binding = 7) uniform RsmLight {
+    vec3 intensity;  // colour x intensity: irradiance W/m^2 (directional) or intensity W/sr
+    uint type;       // kRsm*
+    vec3 position;   // point and spot
+    float range;     // point and spot; 0 = unlimited
+    vec3 direction;  // unit, the direction the light travels (directional and spot)
+    float texel_area;      // directional: cross-section of one texel's beam, m^2
+    float tan_half_fov;    // point and spot: a face spans [-tan_half_fov, tan_half_fov]^2 at distance 1
+    float face_texels;     // point and spot: texels along a face's side
+    float spot_scale;      // KHR_lights_punctual spot falloff: clamp(cd * scale + offset, 0, 1)^2
+    float spot_offset;
+} light;
+
+layout(location = 0) in vec3 world_position;
+layout(location = 1) in vec3 world_normal;
+layout(location = 2) in vec4 world_tangent;
+layout(location = 3) in vec2 uv0;
+layout(location = 4) flat in vec3 face_normal;
+
+layout(location = 0) out vec4 out_position;
+layout(location = 1) out vec4 out_normal;
+layout(location = 2) out vec4 out_flux;
+
+// Solid angle of the triangle (a, b, c) seen from the origin, given the triple product
+// a . (b x c) (Van Oosterom and Strackee 1983, "The solid angle of a plane triangle").
+float triangle_solid_angle(vec3 a, vec3 b, vec3 c, float triple) {
+    float la = length(a);
+    float lb = length(b);
+    float lc = length(c);
+    return 2.0 * atan(triple, la * lb * lc + dot(a, b) * lc + dot(a, c) * lb + dot(b, c) * la);
+}
+
+// Exact solid angle of the rectangle [lo, hi] on the plane z = 1, as the triangles (a, b, c) and
+// (a, c, d). Both triple products equal (hi - lo).x * (hi - lo).y exactly (expand
+// a . ((b - a) x (c - a))), so no difference of nearly equal numbers is formed even for the tiny
+// texels of a 2048^2 face.
+float rect_solid_angle(vec2 lo, vec2 hi) {
+    vec3 a = vec3(lo.x, lo.y, 1.0);
+    vec3 b = vec3(hi.x, lo.y, 1.0);
+    vec3 c = vec3(hi.x, hi.y, 1.0);
+    vec3 d = vec3(lo.x, hi.y, 1.0);
+    float triple = (hi.x - lo.x) * (hi.y - lo.y);
+    return triangle_solid_angle(a, b, c, triple) + triangle_solid_angle(a, c, d, triple);
+}
+
+// Power the light sends into this texel's beam; all of it lands on the surface patch the texel
+// sees (the first surface along the beam).
+//   directional: irradiance E on a plane facing the light times the beam's cross-section A; the
+//     patch has area A / cos(theta) and receives E cos(theta), so the cosines cancel: E A.
+//   point, spot: intensity I (W/sr) times the texel's solid angle omega, times the spot falloff
+//     and the range window at the patch (both taken at the texel centre's surface point).
+// The reflected flux is albedo x that (seed 000 section 4.1: Phi_p = Phi_light(texel) x rho):
+// summed over the texels it is the light's power reflected by the surfaces it reaches, which
+// the tests check on planes against the analytic value. `albedo` is the base colour for metals
+// and dielectrics alike: a dielectric reflects about its base colour diffusely, a metal its base
+// colour specularly.
+vec3 texel_incident_power() {
+    if (light.type == kRsmDirectional) {
+        return light.intensity * light.texel_area;
+    }
+    // The texel's square on the face's plane at distance 1 (the sign convention of the axes does
+    // not change a rectangle's solid angle).
+    vec2 texel = floor(gl_FragCoord.xy - push.face_origin);
+    float step = 2.0 * light.tan_half_fov / light.face_texels;
+    vec2 lo = texel * step - light.tan_half_fov;
+    float omega = rect_solid_angle(lo, lo + step);
+
+    vec3 to_point = world_position - light.position;
+    float distance = length(to_point);
+    float falloff = 1.0;
+    if (light.range > 0.0) {
+        // KHR_lights_punctual range window (the inverse-square law is in omega already):
+        // clamp(1 - (d / range)^4, 0, 1).
+        float r = distance / light.range;
+        falloff = clamp(1.0 - r * r * r * r, 0.0, 1.0);
+    }
+    if (light.type == kRsmSpot && distance > 0.0) {
+        // KHR_lights_punctual spot falloff, cd = cosine between the spot axis and the ray.
+        float cd = dot(light.direction, to_point / distance);
+        float a = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
+        falloff *= a * a;
+    }
+    return light.intensity * (omega * falloff);
+}
+
+void main() {
+    vec3 to_light = light.type == kRsmDirectional ? -light.direction : light.position - world_position;
+    RasterSurface s = raster_surface(scene_materials.items[push.material], world_normal, world_tangent, uv0, face_normal,
+                                     to_light);
+    out_position = vec4(world_position, 1.0);
+    out_normal = vec4(s.normal, 0.0);
+    out_flux = vec4(s.albedo * texel_incident_power(), 0.0);
+}

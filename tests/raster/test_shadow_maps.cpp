@@ -1,0 +1,224 @@
+// Shadow maps and reflective shadow maps on lavapipe, against analytic values on a floor plane
+// (y = 0, front side up) under a directional, a point and two spot lights.
+//
+// What is analytic here: where each texel's beam meets the plane (position, normal), the depth
+// that point must have (linear along a directional light; f/(f-n) (1 - n/z) at the constant
+// face depth z = h under a point light), and the total reflected flux:
+//   directional  albedo x E x cos(theta) x plane area (the fit covers exactly the plane's shadow)
+//   point        albedo x I x the plane's solid angle, 4 atan(a^2 / (h sqrt(2 a^2 + h^2)))
+//   spot         albedo x I x 2 pi ((cos_i - cos_o) / 3 + 1 - cos_i) (the KHR falloff integrated
+//                over the cone, which the plane holds entirely)
+// Tolerances: positions 1e-4 (scene of a few units, float unprojection), normals 1e-6, depth
+// 1e-6 (D32), flux sums 1e-4 relative where the texels tile the lit region exactly (texel solid
+// angles are exact; measured 1e-7 directional, 2e-5 point: float sums of thousands of texels),
+// 1e-3 for the spot lights, whose falloff is taken at texel centres (midpoint rule over a
+// falloff band ~12 texels wide; measured 2e-4).
+
+#include "raster_test_scenes.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/gpu_scene.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit_test/context.hpp"
+
+#include <doctest/doctest.h>
+#include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace {
+
+using vplkit::stages::ShadowMap;
+
+struct RsmRead {
+    std::vector<glm::vec4> position, normal, flux;
+    std::vector<float> depth;
+};
+
+RsmRead render(vplkit::Context& ctx, const vplkit::GpuScene& gpu, ShadowMap& map) {
+    vplkit::PassList passes("shadow map test");
+    vplkit::stages::add_shadow_map_pass(ctx, passes, gpu, map);
+    passes.run(ctx);
+    RsmRead r;
+    r.position = raster_test::download_rgba(map.position);
+    r.normal = raster_test::download_rgba(map.normal);
+    r.flux = raster_test::download_rgba(map.flux);
+    r.depth = map.depth.download<float>();
+    return r;
+}
+
+// Where the beam through the centre of atlas texel (x, y) of `face` meets the plane y = 0.
+struct Beam {
+    glm::dvec3 hit;
+    double t;  // > 0: the plane is ahead
+};
+Beam beam_hit(const vplkit::stages::ShadowFace& face, uint32_t x, uint32_t y) {
+    const glm::dmat4 inverse = glm::inverse(glm::dmat4(face.view_projection));
+    const double nx = (x - face.rect.offset.x + 0.5) / face.rect.extent.width * 2.0 - 1.0;
+    const double ny = (y - face.rect.offset.y + 0.5) / face.rect.extent.height * 2.0 - 1.0;
+    const glm::dvec4 a = inverse * glm::dvec4(nx, ny, 0.0, 1.0);
+    const glm::dvec4 b = inverse * glm::dvec4(nx, ny, 1.0, 1.0);
+    const glm::dvec3 origin = glm::dvec3(a) / a.w, end = glm::dvec3(b) / b.w;
+    const glm::dvec3 d = end - origin;
+    const double t = -origin.y / d.y;
+    return {origin + t * d, t};
+}
+
+double flux_sum(const RsmRead& r, int channel) {
+    double sum = 0.0;
+    for (const glm::vec4& f : r.flux) sum += f[channel];
+    return sum;
+}
+
+}  // namespace
+
+TEST_CASE("shadow maps: a directional light on a plane") {
+    vplkit::Context& ctx = vplkit::test::context();
+    constexpr float half = 1.0f;
+    const glm::vec3 albedo(0.5f, 0.25f, 0.75f);
+    const auto scene = raster_test::floor_scene(half, albedo);
+    auto gpu = vplkit::GpuScene::create(ctx, scene);
+    constexpr uint32_t res = 64;
+
+    for (double degrees : {0.0, 35.0}) {
+        CAPTURE(degrees);
+        const double theta = glm::radians(degrees);
+        vplkit::scene::Light light;
+        light.type = vplkit::scene::LightType::directional;
+        light.name = "sun";
+        light.direction = glm::normalize(glm::vec3(float(std::sin(theta)), float(-std::cos(theta)), 0.0f));
+        light.color = {1.0f, 0.8f, 0.6f};
+        light.intensity = 3.0f;
+        ShadowMap map = ShadowMap::create(ctx, light, gpu.bounds(), res);
+        REQUIRE(map.faces.size() == 1);
+        REQUIRE(map.width() == res);
+        const RsmRead r = render(ctx, gpu, map);
+
+        const glm::dvec3 dir(light.direction);
+        const glm::dvec3 centre(gpu.bounds().center());
+        const glm::dvec3 irradiance = glm::dvec3(light.color) * double(light.intensity);
+        for (uint32_t y = 0; y < res; ++y) {
+            for (uint32_t x = 0; x < res; ++x) {
+                CAPTURE(x);
+                CAPTURE(y);
+                const size_t i = size_t(y) * res + x;
+                const Beam beam = beam_hit(map.faces[0], x, y);
+                // The fit is the plane's shadow: every beam hits the plane.
+                REQUIRE(std::abs(beam.hit.x) < half);
+                REQUIRE(std::abs(beam.hit.z) < half);
+                REQUIRE(r.position[i].w == 1.0f);
+                CHECK(glm::length(glm::dvec3(glm::vec3(r.position[i])) - beam.hit) < 1e-4);
+                CHECK(glm::length(glm::dvec3(glm::vec3(r.normal[i])) - glm::dvec3(0, 1, 0)) < 1e-6);
+                const glm::dvec3 expected_flux = glm::dvec3(albedo) * irradiance * double(map.texel_area);
+                for (int c = 0; c < 3; ++c) CHECK(std::abs(r.flux[i][c] - expected_flux[c]) <= 1e-5 * expected_flux[c]);
+                // Depth is linear in the distance along the light.
+                const double along = glm::dot(beam.hit - centre, dir);
+                CHECK(std::abs(r.depth[i] - (along - map.near_plane) / (map.far_plane - map.near_plane)) < 1e-6);
+            }
+        }
+        // Reflected power: albedo x irradiance x the plane's area seen across the beam.
+        const double area = 4.0 * half * half;
+        for (int c = 0; c < 3; ++c) {
+            const double expected = albedo[c] * irradiance[c] * std::cos(theta) * area;
+            CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-4));
+        }
+    }
+}
+
+TEST_CASE("shadow maps: a point light's cube map over a plane") {
+    vplkit::Context& ctx = vplkit::test::context();
+    // At res 64 the -Y face's texel borders fall at tan = k / 32: a plane of half size 0.75 at
+    // height 1 ends exactly on texel borders (24 texels out from the centre), so the texels
+    // tile it and the sum of their exact solid angles is the plane's.
+    constexpr float half = 0.75f, height = 1.0f;
+    const glm::vec3 albedo(0.6f, 0.3f, 0.1f);
+    const auto scene = raster_test::floor_scene(half, albedo);
+    auto gpu = vplkit::GpuScene::create(ctx, scene);
+    constexpr uint32_t res = 64;
+    vplkit::scene::Light light;
+    light.type = vplkit::scene::LightType::point;
+    light.name = "bulb";
+    light.position = {0.0f, height, 0.0f};
+    light.color = {1.0f, 0.5f, 0.25f};
+    light.intensity = 10.0f;
+    ShadowMap map = ShadowMap::create(ctx, light, gpu.bounds(), res);
+    REQUIRE(map.faces.size() == 6);
+    REQUIRE(map.width() == 3 * res);
+    REQUIRE(map.height() == 2 * res);
+    const RsmRead r = render(ctx, gpu, map);
+
+    const auto& below = map.faces[3];  // -Y
+    const double n = map.near_plane, f = map.far_plane;
+    const double face_depth = f / (f - n) * (1.0 - n / height);
+    int covered = 0;
+    for (uint32_t y = 0; y < map.height(); ++y) {
+        for (uint32_t x = 0; x < map.width(); ++x) {
+            CAPTURE(x);
+            CAPTURE(y);
+            const size_t i = size_t(y) * map.width() + x;
+            const bool in_below = x >= uint32_t(below.rect.offset.x) && x < below.rect.offset.x + res &&
+                                  y >= uint32_t(below.rect.offset.y) && y < below.rect.offset.y + res;
+            bool expected_cover = false;
+            Beam beam{};
+            if (in_below) {
+                beam = beam_hit(below, x, y);
+                expected_cover = beam.t > 0.0 && std::abs(beam.hit.x) < half && std::abs(beam.hit.z) < half;
+            }
+            REQUIRE(r.position[i].w == (expected_cover ? 1.0f : 0.0f));
+            if (!expected_cover) {
+                CHECK(r.depth[i] == 1.0f);
+                CHECK(r.flux[i] == glm::vec4(0.0f));
+                continue;
+            }
+            ++covered;
+            CHECK(glm::length(glm::dvec3(glm::vec3(r.position[i])) - beam.hit) < 1e-4);
+            CHECK(glm::length(glm::dvec3(glm::vec3(r.normal[i])) - glm::dvec3(0, 1, 0)) < 1e-6);
+            CHECK(std::abs(r.depth[i] - face_depth) < 1e-6);
+        }
+    }
+    CHECK(covered == 48 * 48);
+    const double solid_angle = 4.0 * std::atan(double(half) * half / (height * std::sqrt(2.0 * half * half + height * height)));
+    for (int c = 0; c < 3; ++c) {
+        const double expected = albedo[c] * light.color[c] * light.intensity * solid_angle;
+        CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-4));
+    }
+}
+
+TEST_CASE("shadow maps: spot lights reflect their cone's power from a plane") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const glm::vec3 albedo(0.4f, 0.7f, 0.2f);
+    constexpr uint32_t res = 64;
+    // A narrow spot (one face) and a wide one (a cube map), the plane larger than either cone.
+    struct Case {
+        double inner, outer;
+        float half;
+        size_t faces;
+    };
+    for (const Case& k : {Case{20.0, 30.0, 3.0f, 1}, Case{60.0, 75.0, 6.0f, 6}}) {
+        CAPTURE(k.outer);
+        const auto scene = raster_test::floor_scene(k.half, albedo);
+        auto gpu = vplkit::GpuScene::create(ctx, scene);
+        vplkit::scene::Light light;
+        light.type = vplkit::scene::LightType::spot;
+        light.name = "spot";
+        light.position = {0.0f, 1.0f, 0.0f};
+        light.direction = {0.0f, -1.0f, 0.0f};
+        light.inner_cone_angle = float(glm::radians(k.inner));
+        light.outer_cone_angle = float(glm::radians(k.outer));
+        light.color = {1.0f, 1.0f, 0.5f};
+        light.intensity = 4.0f;
+        ShadowMap map = ShadowMap::create(ctx, light, gpu.bounds(), res);
+        REQUIRE(map.faces.size() == k.faces);
+        const RsmRead r = render(ctx, gpu, map);
+        const double cos_i = std::cos(double(light.inner_cone_angle)), cos_o = std::cos(double(light.outer_cone_angle));
+        const double cone = 2.0 * std::numbers::pi * ((cos_i - cos_o) / 3.0 + 1.0 - cos_i);
+        for (int c = 0; c < 3; ++c) {
+            const double expected = albedo[c] * light.color[c] * light.intensity * cone;
+            CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-3));
+        }
+    }
+}
