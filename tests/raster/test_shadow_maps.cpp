@@ -9,15 +9,17 @@
 //   spot         albedo x I x 2 pi ((cos_i - cos_o) / 3 + 1 - cos_i) (the KHR falloff integrated
 //                over the cone, which the plane holds entirely)
 // Tolerances: positions 1e-4 (scene of a few units, float unprojection), normals 1e-6, depth
-// 1e-6 (D32), flux sums 1e-4 relative where the texels tile the lit region exactly (texel solid
-// angles are exact; measured 1e-7 directional, 2e-5 point: float sums of thousands of texels),
-// 1e-3 for the spot lights, whose falloff is taken at texel centres (midpoint rule over a
-// falloff band ~12 texels wide; measured 2e-4).
+// 1e-6 (D32); per-texel flux 1e-5 (directional: float products) and 1e-6 relative (point: the
+// shader's solid angle against the corner formula in double; measured 1.2e-7); flux sums 1e-5
+// relative where the texels tile the lit region exactly (measured <1e-7), 1e-3 for the spot
+// lights, whose falloff is taken at texel centres (midpoint rule over a falloff band ~12 texels
+// wide; measured 1.6e-4).
 
 #include "raster_test_scenes.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/scene.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 #include "vplkit_test/context.hpp"
 
@@ -26,7 +28,9 @@
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numbers>
 #include <vector>
 
@@ -66,6 +70,14 @@ Beam beam_hit(const vplkit::stages::ShadowFace& face, uint32_t x, uint32_t y) {
     const glm::dvec3 d = end - origin;
     const double t = -origin.y / d.y;
     return {origin + t * d, t};
+}
+
+// Solid angle of the rectangle [x0, x1] x [y0, y1] on the plane z = 1 seen from the origin, by
+// the corner formula F(x, y) = atan(x y / sqrt(1 + x^2 + y^2)) (an independent route from the
+// shader's two triangles; in double the differences of F are accurate to ~1e-13).
+double rect_solid_angle(double x0, double y0, double x1, double y1) {
+    auto F = [](double x, double y) { return std::atan(x * y / std::sqrt(1.0 + x * x + y * y)); };
+    return F(x1, y1) - F(x0, y1) - F(x1, y0) + F(x0, y0);
 }
 
 double flux_sum(const RsmRead& r, int channel) {
@@ -124,7 +136,7 @@ TEST_CASE("shadow maps: a directional light on a plane") {
         const double area = 4.0 * half * half;
         for (int c = 0; c < 3; ++c) {
             const double expected = albedo[c] * irradiance[c] * std::cos(theta) * area;
-            CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-4));
+            CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-5));
         }
     }
 }
@@ -178,13 +190,21 @@ TEST_CASE("shadow maps: a point light's cube map over a plane") {
             CHECK(glm::length(glm::dvec3(glm::vec3(r.position[i])) - beam.hit) < 1e-4);
             CHECK(glm::length(glm::dvec3(glm::vec3(r.normal[i])) - glm::dvec3(0, 1, 0)) < 1e-6);
             CHECK(std::abs(r.depth[i] - face_depth) < 1e-6);
+            // Each texel: albedo x I x its exact solid angle.
+            const double step = 2.0 / res;
+            const double x0 = (x - below.rect.offset.x) * step - 1.0, y0 = (y - below.rect.offset.y) * step - 1.0;
+            const double omega = rect_solid_angle(x0, y0, x0 + step, y0 + step);
+            for (int c = 0; c < 3; ++c) {
+                const double expected = albedo[c] * light.color[c] * light.intensity * omega;
+                CHECK(std::abs(r.flux[i][c] - expected) <= 1e-6 * expected);
+            }
         }
     }
     CHECK(covered == 48 * 48);
     const double solid_angle = 4.0 * std::atan(double(half) * half / (height * std::sqrt(2.0 * half * half + height * height)));
     for (int c = 0; c < 3; ++c) {
         const double expected = albedo[c] * light.color[c] * light.intensity * solid_angle;
-        CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-4));
+        CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-5));
     }
 }
 
@@ -220,5 +240,41 @@ TEST_CASE("shadow maps: spot lights reflect their cone's power from a plane") {
             const double expected = albedo[c] * light.color[c] * light.intensity * cone;
             CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-3));
         }
+    }
+}
+
+TEST_CASE("shadow maps: the in-repo Cornell box's point light gives a sane reflective shadow map") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
+    const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
+    REQUIRE(!scene.lights.empty());
+    const vplkit::scene::Light& light = scene.lights[0];
+    REQUIRE(light.type == vplkit::scene::LightType::point);
+    auto gpu = vplkit::GpuScene::create(ctx, scene);
+    ShadowMap map = ShadowMap::create(ctx, light, gpu.bounds(), 32);
+    const RsmRead r = render(ctx, gpu, map);
+
+    float max_albedo = 0.0f;
+    for (const auto& m : scene.materials) max_albedo = std::max({max_albedo, m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b});
+    size_t covered = 0;
+    glm::dvec3 total(0.0);
+    for (size_t i = 0; i < r.depth.size(); ++i) {
+        CAPTURE(i);
+        if (r.position[i].w == 0.0f) continue;
+        ++covered;
+        const glm::vec3 p(r.position[i]), n(r.normal[i]), flux(r.flux[i]);
+        for (int c = 0; c < 3; ++c) CHECK((std::isfinite(p[c]) && std::isfinite(flux[c])));
+        CHECK(std::abs(glm::length(n) - 1.0f) < 1e-4f);
+        CHECK(glm::dot(n, light.position - p) > 0.0f);  // lit side
+        CHECK(glm::all(glm::greaterThanEqual(flux, glm::vec3(0.0f))));
+        total += glm::dvec3(flux);
+    }
+    // Closed but for the front: most of the sphere of directions meets a wall.
+    CHECK(covered > r.depth.size() * 3 / 4);
+    // At most the light's whole power, reflected by the brightest albedo.
+    const glm::dvec3 power = 4.0 * std::numbers::pi * glm::dvec3(light.color) * double(light.intensity);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(total[c] > 0.0);
+        CHECK(total[c] <= power[c] * max_albedo);
     }
 }
