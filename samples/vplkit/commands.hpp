@@ -8,6 +8,9 @@ namespace vplkit::cli {
 int run_info(Args& args);
 extern const char* const kInfoUsage;
 
+int run_render(Args& args);
+extern const char* const kRenderUsage;
+
 int run_bench(Args& args);
 extern const char* const kBenchUsage;
 

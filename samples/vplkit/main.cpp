@@ -20,7 +20,9 @@ using vplkit::cli::UsageError;
 const Command kCommands[] = {
     {"info", "list the Vulkan devices, the one vplkit picks and why, and its features", vplkit::cli::kInfoUsage,
      vplkit::cli::run_info},
-    {"bench", "GPU timings of the kit's stages (bench sort: VPL keys + bitonic sort)", vplkit::cli::kBenchUsage,
+    {"render", "render a scene (set-up name or glTF file) to a PNG, with per-stage GPU times", vplkit::cli::kRenderUsage,
+     vplkit::cli::run_render},
+    {"bench", "GPU timings of the kit's stages (sort: VPL keys + sort; tree: keys to both light trees)", vplkit::cli::kBenchUsage,
      vplkit::cli::run_bench},
 };
 

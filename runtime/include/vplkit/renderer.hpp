@@ -1,0 +1,59 @@
+#pragma once
+// A whole frame of direct light: the G-buffer raster pass, direct light with BVH shadow rays,
+// the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH built once, at
+// construction; render() can then be called for any camera and size.
+
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/gpu_scene.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/scene.hpp"
+#include "vplkit/stages/direct_light.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <vector>
+
+namespace vplkit {
+
+class Context;
+
+struct RenderSettings {
+    uint32_t width = 640;
+    uint32_t height = 360;
+    float exposure = 1.0f;          // linear scale before the tone curve
+    glm::vec3 background{0.0f};     // radiance where no surface was drawn
+};
+
+struct RenderedImage {
+    uint32_t width = 0;
+    uint32_t height = 0;
+    std::vector<uint8_t> rgba8;      // tonemapped sRGB, rows top to bottom
+    std::vector<float> radiance;     // linear RGB, 3 floats per pixel, rows top to bottom
+    std::vector<PassTiming> timings; // GPU time per pass
+    uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
+};
+
+class DirectRenderer {
+ public:
+    // Throws vplkit::Error when the scene has no light at all (no punctual light and no emissive
+    // triangle), naming the scene: its image could only be black.
+    DirectRenderer(Context& context, const scene::Scene& scene);
+
+    // Throws vplkit::Error for a zero size or a bad exposure.
+    RenderedImage render(const scene::Camera& camera, const RenderSettings& settings);
+
+    double bvh_build_ms() const { return bvh_build_ms_; }
+    const Bvh& bvh() const { return bvh_; }
+    uint32_t light_count() const { return lights_.count; }
+
+ private:
+    Context& context_;
+    GpuScene scene_;
+    Bvh bvh_;
+    GpuBvh gpu_bvh_;
+    stages::GpuLights lights_;
+    double bvh_build_ms_ = 0.0;
+};
+
+}  // namespace vplkit
