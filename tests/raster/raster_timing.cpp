@@ -1,34 +1,52 @@
 // raster_timing: GPU time of the G-buffer pass and of one shadow map pass on a real scene (not a
 // test: timings are never asserted). Prints the median over runs of each pass's timestamp time.
 //
-//   raster_timing SCENE.gltf [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] [--runs K]
+//   raster_timing SCENE.gltf|SETUP [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] [--runs K] [--dump DIR]
+//
+// --dump writes PNGs of the G-buffer's albedo and normal and the RSM's flux (normalized to its
+// brightest texel) and normal into DIR, to look at.
+//
+// SETUP is a name from scenes/setups.txt (e.g. sponza-sun): its scene, camera and first sun.
+// A .gltf/.glb path uses the file's camera (or the generated one) and --sun (default: the
+// sponza-sun set-up's).
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gpu_scene.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/image_io.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_lights.hpp"
+#include "vplkit/scene_setups.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 
+#include <glm/gtc/packing.hpp>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 int main(int argc, char** argv) {
     try {
         if (argc < 2) {
-            std::fprintf(stderr, "usage: raster_timing SCENE.gltf [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] [--runs K]\n");
+            std::fprintf(stderr,
+                         "usage: raster_timing SCENE.gltf|SETUP [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] [--runs K] [--dump DIR]\n");
             return 2;
         }
-        std::string path = argv[1];
+        const std::string target = argv[1];
         uint32_t width = 640, height = 360, rsm = 512, runs = 5;
         std::string sun = "0.3,-1,-0.15,1,0.95,0.85,5";
+        bool sun_given = false;
+        std::string dump;
         for (int i = 2; i + 1 < argc; i += 2) {
             const std::string key = argv[i], value = argv[i + 1];
             if (key == "--size") {
@@ -37,8 +55,11 @@ int main(int argc, char** argv) {
                 rsm = uint32_t(std::stoul(value));
             } else if (key == "--sun") {
                 sun = value;
+                sun_given = true;
+            } else if (key == "--dump") {
+                dump = value;
             } else if (key == "--runs") {
-                runs = uint32_t(std::stoul(value));
+                runs = std::max(1u, uint32_t(std::stoul(value)));
             } else {
                 throw vplkit::Error("unknown option " + key);
             }
@@ -46,9 +67,26 @@ int main(int argc, char** argv) {
         vplkit::ContextOptions options;
         auto ctx = vplkit::Context::create(options);
         std::printf("device: %s\n", ctx->info().name.c_str());
+        const bool is_file = target.ends_with(".gltf") || target.ends_with(".glb");
+        std::optional<vplkit::scene::Setup> setup;
+        if (!is_file) {
+            const auto setups = vplkit::scene::load_setups(std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/setups.txt");
+            setup = setups.find(target);
+        }
         const auto t0 = std::chrono::steady_clock::now();
-        const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
+        const vplkit::scene::Scene scene =
+            vplkit::scene::load_gltf(setup ? vplkit::scene::require_scene(*setup) : std::filesystem::path(target));
         const auto t1 = std::chrono::steady_clock::now();
+        const vplkit::scene::Camera camera = setup ? vplkit::scene::setup_camera(*setup, scene.bounds) : scene.camera();
+        vplkit::scene::Light light = vplkit::scene::parse_sun(sun);
+        if (setup && !sun_given) {
+            for (const auto& l : setup->lights) {
+                if (l.type == vplkit::scene::LightType::directional) {
+                    light = l;
+                    break;
+                }
+            }
+        }
         auto gpu = vplkit::GpuScene::create(*ctx, scene);
         const auto t2 = std::chrono::steady_clock::now();
         std::printf("scene: %zu triangles, %zu materials, %zu images, %zu draws; load %.0f ms, upload %.0f ms\n",
@@ -57,8 +95,8 @@ int main(int argc, char** argv) {
                     std::chrono::duration<double, std::milli>(t2 - t1).count());
 
         auto images = vplkit::stages::GbufferImages::create(*ctx, width, height);
-        const auto view = vplkit::stages::camera_view(scene.camera(), width, height);
-        auto map = vplkit::stages::ShadowMap::create(*ctx, vplkit::scene::parse_sun(sun), gpu.bounds(), rsm);
+        const auto view = vplkit::stages::camera_view(camera, width, height);
+        auto map = vplkit::stages::ShadowMap::create(*ctx, light, gpu.bounds(), rsm);
         vplkit::PassList passes("raster timing");
         vplkit::stages::add_gbuffer_pass(*ctx, passes, gpu, view, images);
         vplkit::stages::add_shadow_map_pass(*ctx, passes, gpu, map);
@@ -75,6 +113,39 @@ int main(int argc, char** argv) {
         };
         std::printf("gbuffer %ux%u: %.2f ms median of %u\n", width, height, median(gbuffer_ms), runs);
         std::printf("shadow map (sun) %ux%u: %.2f ms median of %u\n", rsm, rsm, median(rsm_ms), runs);
+        if (!dump.empty()) {
+            std::filesystem::create_directories(dump);
+            // Unit vectors as 0.5 + 0.5 n; colours clamped; flux scaled by its maximum.
+            auto write = [&](const char* name, vplkit::Image& image, float scale, float offset) {
+                const auto texels = image.download<float>();
+                std::vector<uint8_t> rgba(size_t(image.width()) * image.height() * 4, 255);
+                for (size_t i = 0; i < rgba.size() / 4; ++i) {
+                    for (int c = 0; c < 3; ++c) {
+                        const float v = std::clamp(texels[4 * i + c] * scale + offset, 0.0f, 1.0f);
+                        rgba[4 * i + c] = uint8_t(v * 255.0f + 0.5f);
+                    }
+                }
+                vplkit::write_png(std::filesystem::path(dump) / name, image.width(), image.height(), rgba);
+            };
+            write("gbuffer_normal.png", images.normal, 0.5f, 0.5f);
+            write("rsm_normal.png", map.normal, 0.5f, 0.5f);
+            const auto flux = map.flux.download<float>();
+            float brightest = 0.0f;
+            for (float f : flux) brightest = std::max(brightest, f);
+            write("rsm_flux.png", map.flux, brightest > 0.0f ? 1.0f / brightest : 1.0f, 0.0f);
+            // Albedo (RGBA16F, linear) sRGB-encoded for viewing.
+            const auto halves = images.albedo.download<uint16_t>();
+            std::vector<uint8_t> rgba(size_t(width) * height * 4, 255);
+            for (size_t i = 0; i < rgba.size() / 4; ++i) {
+                for (int c = 0; c < 3; ++c) {
+                    const float linear = std::clamp(glm::unpackHalf1x16(halves[4 * i + c]), 0.0f, 1.0f);
+                    const float encoded = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+                    rgba[4 * i + c] = uint8_t(encoded * 255.0f + 0.5f);
+                }
+            }
+            vplkit::write_png(std::filesystem::path(dump) / "gbuffer_albedo.png", width, height, rgba);
+            std::printf("wrote %s/{gbuffer_albedo,gbuffer_normal,rsm_flux,rsm_normal}.png\n", dump.c_str());
+        }
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "raster_timing: %s\n", e.what());
