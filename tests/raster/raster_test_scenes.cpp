@@ -63,7 +63,7 @@ void finish(Scene& scene) {
 
 }  // namespace
 
-Scene gbuffer_scene() {
+Scene gbuffer_scene(float scale) {
     Scene s;
     s.source = "raster test scene";
     // Quadrant colours (sRGB) with one quadrant's alpha at 90/255 (read by the blended material).
@@ -139,6 +139,7 @@ Scene gbuffer_scene() {
     add_quad(s, {glm::vec3(0.1f, -0.2f, 0.3f), glm::vec3(0.1f, -1.2f, 0.3f), glm::vec3(1.2f, -1.2f, -0.5f),
                  glm::vec3(1.2f, -0.2f, -0.5f)},
              kUvTlBlBrTr, 4);
+    for (Vertex& v : s.vertices) v.position *= scale;
     finish(s);
     return s;
 }

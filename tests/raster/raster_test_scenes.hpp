@@ -27,8 +27,9 @@ void add_quad(Scene& scene, const std::array<glm::vec3, 4>& corners, const std::
 // texture index.
 int32_t add_texture(Scene& scene, uint32_t width, uint32_t height, std::vector<uint8_t> rgba, bool srgb, bool linear);
 
-// The G-buffer test scene (see test_gbuffer.cpp for what each quad checks).
-Scene gbuffer_scene();
+// The G-buffer test scene (see test_gbuffer.cpp for what each quad checks), its positions
+// multiplied by `scale`.
+Scene gbuffer_scene(float scale = 1.0f);
 
 // A square floor y = 0, x and z in [-half, half], front side up, one material of base colour
 // `albedo` (no texture).

@@ -5,7 +5,7 @@
 // 1e-3 pixels of a triangle edge (fixed-point snapping and tie rules), or a texture coordinate
 // within 1e-2 texels of a texel border (float interpolation of uv). Tolerances per field:
 //   coverage, triangle (via albedo)  exact
-//   position     1e-4 world units (scene ~3 units; float interpolation at 64x64)
+//   position     1e-4 x scale (scene ~3 x scale units; float interpolation at 64x64)
 //   normals      1e-4 (unit vectors: float normalization and interpolation)
 //   roughness, metallic  1e-5 (RGBA32F; UNORM texels are exact in float)
 //   albedo, emission     1e-3 relative (RGBA16F: 11-bit mantissa, ~5e-4 relative) plus
@@ -83,57 +83,61 @@ void check_colour(glm::vec3 got, glm::dvec3 expected, glm::vec3 factor, const ch
 
 }  // namespace
 
+// At scale 1, 1e-3 and 1e4 (positions, camera and planes scaled alike; position tolerance scaled).
 TEST_CASE("gbuffer: a small scene matches a CPU rasterization at pixel centres") {
     vplkit::Context& ctx = vplkit::test::context();
-    const vplkit::scene::Scene scene = raster_test::gbuffer_scene();
-    constexpr uint32_t width = 64, height = 64;
-    vplkit::scene::Camera camera =
-        vplkit::scene::look_at({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, glm::radians(60.0f));
-    camera.znear = 0.1f;
-    camera.zfar = 10.0f;
-    const auto view = vplkit::stages::camera_view(camera, width, height);
-    const GbufferRead got = render(ctx, scene, view, width, height);
-    const auto expected =
-        vplkit::reference::rasterize_gbuffer(scene, glm::dmat4(view.view_projection), glm::dvec3(view.position), width, height);
+    for (float scale : {1.0f, 1e-3f, 1e4f}) {
+        CAPTURE(scale);
+        const vplkit::scene::Scene scene = raster_test::gbuffer_scene(scale);
+        constexpr uint32_t width = 64, height = 64;
+        vplkit::scene::Camera camera = vplkit::scene::look_at({0.0f, 0.0f, 3.0f * scale}, {0.0f, 0.0f, 0.0f},
+                                                              {0.0f, 1.0f, 0.0f}, glm::radians(60.0f));
+        camera.znear = 0.1f * scale;
+        camera.zfar = 10.0f * scale;
+        const auto view = vplkit::stages::camera_view(camera, width, height);
+        const GbufferRead got = render(ctx, scene, view, width, height);
+        const auto expected =
+            vplkit::reference::rasterize_gbuffer(scene, glm::dmat4(view.view_projection), glm::dvec3(view.position), width, height);
 
-    int compared = 0, background = 0;
-    std::array<int, 5> per_material{};
-    for (uint32_t py = 0; py < height; ++py) {
-        for (uint32_t px = 0; px < width; ++px) {
-            const size_t i = size_t(py) * width + px;
-            const GbufferTexel& e = expected[i];
-            if (e.ambiguous) continue;
-            ++compared;
-            CAPTURE(px);
-            CAPTURE(py);
-            REQUIRE(got.position[i].w == (e.covered ? 1.0f : 0.0f));
-            if (!e.covered) {
-                ++background;
-                CHECK(got.depth[i] == 1.0f);
-                CHECK(got.albedo[i] == glm::vec4(0.0f));
-                CHECK(got.normal[i] == glm::vec4(0.0f));
-                continue;
+        int compared = 0, background = 0;
+        std::array<int, 5> per_material{};
+        for (uint32_t py = 0; py < height; ++py) {
+            for (uint32_t px = 0; px < width; ++px) {
+                const size_t i = size_t(py) * width + px;
+                const GbufferTexel& e = expected[i];
+                if (e.ambiguous) continue;
+                ++compared;
+                CAPTURE(px);
+                CAPTURE(py);
+                REQUIRE(got.position[i].w == (e.covered ? 1.0f : 0.0f));
+                if (!e.covered) {
+                    ++background;
+                    CHECK(got.depth[i] == 1.0f);
+                    CHECK(got.albedo[i] == glm::vec4(0.0f));
+                    CHECK(got.normal[i] == glm::vec4(0.0f));
+                    continue;
+                }
+                ++per_material[scene.triangle_materials[size_t(e.triangle)]];
+                CAPTURE(e.triangle);
+                check_close(glm::vec3(got.position[i]), e.position, 1e-4 * scale, "position");
+                check_close(glm::vec3(got.normal[i]), e.normal, 1e-4, "normal");
+                check_close(glm::vec3(got.geometric_normal[i]), e.geometric_normal, 1e-4, "geometric normal");
+                CHECK(std::abs(got.normal[i].w - e.roughness) <= 1e-5);
+                CHECK(std::abs(got.geometric_normal[i].w - e.metallic) <= 1e-5);
+                const vplkit::scene::Material& material = scene.materials[scene.triangle_materials[size_t(e.triangle)]];
+                check_colour(glm::vec3(got.albedo[i]), e.albedo, glm::vec3(material.base_color_factor), "albedo");
+                CHECK(got.albedo[i].w == 1.0f);
+                check_colour(glm::vec3(got.emission[i]), e.emission, material.emission(), "emission");
+                CHECK(got.emission[i].w == 0.0f);
+                CHECK(std::abs(got.depth[i] - e.depth) <= 1e-6);
             }
-            ++per_material[scene.triangle_materials[size_t(e.triangle)]];
-            CAPTURE(e.triangle);
-            check_close(glm::vec3(got.position[i]), e.position, 1e-4, "position");
-            check_close(glm::vec3(got.normal[i]), e.normal, 1e-4, "normal");
-            check_close(glm::vec3(got.geometric_normal[i]), e.geometric_normal, 1e-4, "geometric normal");
-            CHECK(std::abs(got.normal[i].w - e.roughness) <= 1e-5);
-            CHECK(std::abs(got.geometric_normal[i].w - e.metallic) <= 1e-5);
-            const vplkit::scene::Material& material = scene.materials[scene.triangle_materials[size_t(e.triangle)]];
-            check_colour(glm::vec3(got.albedo[i]), e.albedo, glm::vec3(material.base_color_factor), "albedo");
-            CHECK(got.albedo[i].w == 1.0f);
-            check_colour(glm::vec3(got.emission[i]), e.emission, material.emission(), "emission");
-            CHECK(got.emission[i].w == 0.0f);
-            CHECK(std::abs(got.depth[i] - e.depth) <= 1e-6);
         }
-    }
-    CHECK(compared > int(width * height) * 8 / 10);
-    CHECK(background > 50);
-    for (int m = 0; m < 5; ++m) {
-        CAPTURE(m);
-        CHECK(per_material[m] > 20);  // every material is seen somewhere
+        CHECK(compared > int(width * height) * 8 / 10);
+        CHECK(background > 50);
+        for (int m = 0; m < 5; ++m) {
+            CAPTURE(m);
+            CHECK(per_material[m] > 20);  // every material is seen somewhere
+        }
     }
 }
 

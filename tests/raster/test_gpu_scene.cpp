@@ -87,6 +87,9 @@ TEST_CASE("gpu scene: mip levels are 2x2 box averages in linear light for sRGB t
         image.linear = !srgb;
         auto texture = vplkit::TextureImage::create(ctx, image, true);
         REQUIRE(texture.mip_levels() == 3);
+        CHECK(texture.format() == (srgb ? VK_FORMAT_R8G8B8A8_SRGB : VK_FORMAT_R8G8B8A8_UNORM));
+        CHECK((texture.srgb_view() != VK_NULL_HANDLE) == srgb);
+        CHECK((texture.unorm_view() != VK_NULL_HANDLE) == !srgb);
         CHECK(texture.download(0) == image.rgba);
         const auto level1 = texture.download(1);
         const auto level2 = texture.download(2);
@@ -112,8 +115,17 @@ TEST_CASE("gpu scene: mip levels are 2x2 box averages in linear light for sRGB t
             CHECK(std::abs(level2[c] - encode(whole, c)) <= 2.0);
         }
     }
-    // Without mipmaps a texture has one level.
+    // An image used both ways: UNORM storage, both views, the same texels.
     image.srgb = true;
+    image.linear = true;
+    {
+        auto both = vplkit::TextureImage::create(ctx, image, true);
+        CHECK(both.format() == VK_FORMAT_R8G8B8A8_UNORM);
+        CHECK(both.srgb_view() != VK_NULL_HANDLE);
+        CHECK(both.unorm_view() != VK_NULL_HANDLE);
+        CHECK(both.download(0) == image.rgba);
+    }
+    // Without mipmaps a texture has one level.
     CHECK(vplkit::TextureImage::create(ctx, image, false).mip_levels() == 1);
 }
 
