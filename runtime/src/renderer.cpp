@@ -26,6 +26,7 @@ DirectRenderer::DirectRenderer(Context& context, const scene::Scene& scene) : co
     bvh_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu_bvh_ = upload_bvh(context, bvh_);
     lights_ = stages::upload_lights(context, scene.lights);
+    emitters_ = stages::upload_emitters(context, scene);
 }
 
 RenderedImage DirectRenderer::render(const scene::Camera& camera, const RenderSettings& settings) {
@@ -42,6 +43,8 @@ RenderedImage DirectRenderer::render(const scene::Camera& camera, const RenderSe
     stages::add_gbuffer_pass(context_, passes, scene_, view, gbuffer);
     stages::add_direct_light_pass(context_, passes, gbuffer, gpu_bvh_, lights_, {view.position, settings.background},
                                   radiance);
+    stages::add_direct_emissive_pass(context_, passes, gbuffer, gpu_bvh_, emitters_,
+                                     {view.position, settings.emissive_samples, settings.seed}, radiance);
     stages::add_tonemap_passes(context_, passes, radiance, display, stats, settings.exposure);
     passes.run(context_);
 

@@ -23,10 +23,10 @@ namespace vplkit::cli {
 const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
-    "                     [--out-hdr IMAGE.pfm] [--device SEL] [--validation]\n"
+    "                     [--seed S] [--emissive-samples N] [--out-hdr IMAGE.pfm] [--device SEL] [--validation]\n"
     "\n"
-    "Renders one frame with direct light (G-buffer, BVH shadow rays, tone mapping) and prints the\n"
-    "device used and the GPU time of every stage.\n"
+    "Renders one frame with direct light (G-buffer; punctual lights and emissive triangles with BVH\n"
+    "shadow rays; tone mapping) and prints the device used and the GPU time of every stage.\n"
     "  --scene S        a standard set-up from scenes/setups.txt (default: its default, 'cornell'),\n"
     "                   or a .gltf/.glb file (its own camera, or one framing the scene)\n"
     "  --out FILE       the tonemapped image, PNG (default vplkit.png)\n"
@@ -37,6 +37,8 @@ const char* const kRenderUsage =
     "  --sun ...        add a directional light travelling along (DX,DY,DZ), colour RGB, I lux\n"
     "  --point ...      add a point light at (X,Y,Z), colour RGB, I candela\n"
     "  --exposure E     linear exposure before the tone curve (default 1)\n"
+    "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
+    "  --emissive-samples N  area-light samples per pixel for emissive triangles (default 16)\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
     "  --validation     run with the Vulkan validation layer on\n";
 
@@ -90,6 +92,8 @@ int run_render(Args& args) {
     }
     RenderSettings settings;
     if (auto text = args.value("--exposure")) settings.exposure = parse_exposure(*text);
+    if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
+    if (auto text = args.value("--emissive-samples")) settings.emissive_samples = parse_whole_number("--emissive-samples", *text, 65536);
     args.finish();
     check_output("--out", out, ".png");
     if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
@@ -124,10 +128,6 @@ int run_render(Args& args) {
     std::printf("scene: %s: %zu triangles, %zu materials, %zu lights, %zu emissive triangles (loaded in %.0f ms)\n",
                 described.c_str(), scene.triangle_count(), scene.materials.size(), scene.lights.size(),
                 scene.emissive_triangles.size(), load_ms);
-    if (scene.lights.empty()) {
-        std::printf("note: no punctual light; emissive triangles show their own emission but light nothing yet "
-                    "(they become lights with the GI methods)\n");
-    }
 
     DirectRenderer renderer(*context, scene);
     std::printf("bvh: %zu nodes, depth %u, built in %.0f ms\n", renderer.bvh().nodes.size(), renderer.bvh().depth,

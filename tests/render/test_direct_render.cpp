@@ -157,3 +157,29 @@ TEST_CASE("direct render: a scene without any light is refused by name") {
     scene.lights.clear();
     CHECK_THROWS_WITH_AS(vplkit::DirectRenderer(ctx, scene), doctest::Contains("the scene has no light"), vplkit::Error);
 }
+
+TEST_CASE("direct render: an emissive quad without an emissive texture shows its emission and lights the room") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_emissive/cornell_emissive.gltf");
+    REQUIRE(scene.lights.empty());
+    REQUIRE_FALSE(scene.emissive_triangles.empty());
+    const auto& material = scene.materials[scene.triangle_materials[scene.emissive_triangles[0]]];
+    REQUIRE(material.emissive_texture == vplkit::scene::kNoTexture);
+    vplkit::DirectRenderer renderer(ctx, scene);
+    vplkit::RenderSettings settings;
+    settings.width = 64;
+    settings.height = 64;
+    settings.emissive_samples = 4;
+    const auto image = renderer.render(scene.camera(), settings);
+    CHECK(image.non_finite_pixels == 0);
+    // Some pixel sees the quad itself: its radiance is the material's emission (factor x strength;
+    // the G-buffer stores it in half floats), plus nothing else (no light reaches its front).
+    int emitter_pixels = 0, lit_pixels = 0;
+    for (size_t i = 0; i < image.radiance.size(); i += 3) {
+        const float r = image.radiance[i];
+        if (std::abs(r - material.emission().x) <= 1e-3f * material.emission().x) ++emitter_pixels;
+        else if (r > 0.0f) ++lit_pixels;
+    }
+    CHECK(emitter_pixels > 0);
+    CHECK(lit_pixels > 64 * 64 / 2);  // the walls, floor and blocks get the quad's light
+}

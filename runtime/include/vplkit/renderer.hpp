@@ -1,12 +1,13 @@
 #pragma once
-// A whole frame of direct light: the G-buffer raster pass, direct light with BVH shadow rays,
-// the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH built once, at
+// A whole frame of direct light: the G-buffer raster pass, direct light from punctual lights and
+// from emissive triangles (area-light sampling) with BVH shadow rays, the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH built once, at
 // construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
 
 #include <glm/vec3.hpp>
@@ -23,6 +24,8 @@ struct RenderSettings {
     uint32_t height = 360;
     float exposure = 1.0f;          // linear scale before the tone curve
     glm::vec3 background{0.0f};     // radiance where no surface was drawn
+    uint32_t emissive_samples = 16; // area-light samples per pixel for emissive triangles
+    uint32_t seed = 0;              // the same seed gives the same image
 };
 
 struct RenderedImage {
@@ -46,6 +49,7 @@ class DirectRenderer {
     double bvh_build_ms() const { return bvh_build_ms_; }
     const Bvh& bvh() const { return bvh_; }
     uint32_t light_count() const { return lights_.count; }
+    uint32_t emitter_count() const { return emitters_.count; }
 
  private:
     Context& context_;
@@ -53,6 +57,7 @@ class DirectRenderer {
     Bvh bvh_;
     GpuBvh gpu_bvh_;
     stages::GpuLights lights_;
+    stages::GpuEmitters emitters_;
     double bvh_build_ms_ = 0.0;
 };
 

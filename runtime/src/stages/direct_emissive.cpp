@@ -1,0 +1,90 @@
+#include "vplkit/stages/direct_emissive.hpp"
+
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/direct_emissive.hpp"
+#include "vplkit/stages/gbuffer_images.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace vplkit::stages {
+
+GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
+    std::vector<shaders::EmissiveTriangle> triangles;
+    std::vector<double> powers;
+    GpuEmitters out;
+    for (uint32_t t : scene.emissive_triangles) {
+        const glm::vec3 a = scene.vertices[scene.indices[3 * t]].position;
+        const glm::vec3 b = scene.vertices[scene.indices[3 * t + 1]].position;
+        const glm::vec3 c = scene.vertices[scene.indices[3 * t + 2]].position;
+        const glm::vec3 radiance = scene.materials[scene.triangle_materials[t]].emission();
+        const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+        // Luminance (Rec. 709) weights: the power a viewer sees, so bright emitters get the samples.
+        const double luminance = 0.2126 * radiance.x + 0.7152 * radiance.y + 0.0722 * radiance.z;
+        const double power = luminance * area * std::numbers::pi;
+        if (!(power > 0.0) || !std::isfinite(power)) continue;  // a dark or degenerate emitter lights nothing
+        shaders::EmissiveTriangle e{};
+        e.v0 = {a.x, a.y, a.z};
+        e.v1 = {b.x, b.y, b.z};
+        e.v2 = {c.x, c.y, c.z};
+        e.area = float(area);
+        e.radiance = {radiance.x, radiance.y, radiance.z};
+        triangles.push_back(e);
+        powers.push_back(power);
+        out.total_power += power;
+    }
+    double cumulative = 0.0;
+    for (size_t i = 0; i < triangles.size(); ++i) {
+        cumulative += powers[i];
+        triangles[i].pmf = float(powers[i] / out.total_power);
+        triangles[i].cdf = i + 1 == triangles.size() ? 1.0f : float(cumulative / out.total_power);
+    }
+    out.count = uint32_t(triangles.size());
+    if (triangles.empty()) triangles.push_back(shaders::EmissiveTriangle{});
+    out.triangles = Buffer::create(context, triangles.size() * sizeof(shaders::EmissiveTriangle),
+                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "emissive triangles");
+    out.triangles.upload(triangles);
+    return out;
+}
+
+void add_direct_emissive_pass(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
+                              const GpuEmitters& emitters, const DirectEmissiveParams& params, Image& radiance) {
+    if (radiance.format() != VK_FORMAT_R32G32B32A32_SFLOAT || radiance.width() != gbuffer.width() ||
+        radiance.height() != gbuffer.height()) {
+        throw Error("direct emissive: '" + radiance.name() + "' must be RGBA32F and of the G-buffer's size");
+    }
+    if (params.samples == 0) throw Error("direct emissive: samples per pixel must be at least 1");
+    if (emitters.count == 0) return;
+    const auto& pipeline = context.pipeline<shaders::direct_emissive::Pipeline>();
+    passes.add("direct emissive",
+               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
+                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(emitters.triangles),
+                Use::read_write(radiance)},
+               [&pipeline, &gbuffer, &bvh, &emitters, params, &radiance](VkCommandBuffer cmd) {
+                   shaders::direct_emissive::Bindings b;
+                   b.bvh_nodes = bvh.nodes.descriptor();
+                   b.bvh_triangles = bvh.triangles.descriptor();
+                   b.gbuffer_position = gbuffer.position.descriptor();
+                   b.gbuffer_normal = gbuffer.normal.descriptor();
+                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   b.emitters = emitters.triangles.descriptor();
+                   b.radiance = radiance.descriptor();
+                   shaders::direct_emissive::Push push{};
+                   push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
+                   push.emitter_count = emitters.count;
+                   push.samples = params.samples;
+                   push.seed = params.seed;
+                   pipeline.dispatch(cmd, b, push, radiance.width(), radiance.height());
+               });
+}
+
+}  // namespace vplkit::stages
