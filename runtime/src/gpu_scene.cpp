@@ -167,7 +167,6 @@ GpuScene GpuScene::create(Context& context, const scene::Scene& scene, const Gpu
   }
   g.defaults_[0] = TextureImage::create(context, solid_image("default white", 255, 255, 255, true, true), false);
   g.defaults_[1] = TextureImage::create(context, solid_image("default normal", 128, 128, 255, false, true), false);
-  g.defaults_[2] = TextureImage::create(context, solid_image("default black", 0, 0, 0, true, false), false);
 
   g.samplers_.push_back(create_sampler(context, {scene::Wrap::clamp_to_edge, scene::Wrap::clamp_to_edge,
                                                  scene::Filter::nearest, scene::Filter::nearest, scene::MipmapMode::none}));
@@ -209,7 +208,8 @@ GpuScene GpuScene::create(Context& context, const scene::Scene& scene, const Gpu
     out.base_color = bind(m.base_color_texture, true, g.defaults_[0], "base colour", i);
     out.metallic_roughness = bind(m.metallic_roughness_texture, false, g.defaults_[0], "metallic-roughness", i);
     out.normal = bind(m.normal_texture, false, g.defaults_[1], "normal", i);
-    out.emissive = bind(m.emissive_texture, true, g.defaults_[2], "emissive", i);
+    // glTF: emission = factor x texture, and a missing texture counts as white (the factor alone).
+    out.emissive = bind(m.emissive_texture, true, g.defaults_[0], "emissive", i);
   }
   return g;
 }

@@ -89,7 +89,7 @@ struct MaterialTextures {
   VkDescriptorImageInfo base_color{};          // sRGB view, or the white default
   VkDescriptorImageInfo metallic_roughness{};  // UNORM view, or the white default
   VkDescriptorImageInfo normal{};              // UNORM view, or the flat-normal default
-  VkDescriptorImageInfo emissive{};            // sRGB view, or the black default
+  VkDescriptorImageInfo emissive{};            // sRGB view, or the white default (glTF: factor alone)
 };
 
 struct GpuSceneOptions {
@@ -140,7 +140,7 @@ class GpuScene {
   std::vector<GpuDraw> draws_;
   std::vector<TextureImage> images_;
   // White (base colour, metallic-roughness), flat normal, black (emissive).
-  std::array<TextureImage, 3> defaults_;
+  std::array<TextureImage, 2> defaults_;  // white (colour and data), flat normal
   // One per distinct scene::Sampler, and one for the defaults (index 0).
   std::vector<VkSampler> samplers_;
   std::vector<MaterialTextures> material_textures_;
