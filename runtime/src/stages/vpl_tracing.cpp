@@ -1,0 +1,248 @@
+#include "vplkit/stages/vpl_tracing.hpp"
+
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/scene.hpp"
+#include "vplkit/shaders/trace_vpls.hpp"
+#include "vplkit/stages/direct_light.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+namespace vplkit::stages {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// Power of a punctual light, RGB (W): what its paths carry on average before the range window.
+glm::dvec3 punctual_power(const scene::Light& light, double disc_area) {
+    const glm::dvec3 intensity = glm::dvec3(light.color) * double(light.intensity);
+    switch (light.type) {
+        case scene::LightType::directional:
+            return intensity * disc_area;
+        case scene::LightType::point:
+            return intensity * (4.0 * kPi);
+        case scene::LightType::spot: {
+            // lights.glsl: a(c) = clamp(c s + o, 0, 1), squared; s, o as upload_lights computes
+            // them. Integral over the sphere: 2 pi [ (1 - c1) + (s c1 + o)^3 / (3 s) ], with
+            // c1 = min(1, cos_outer + 1 / s) where a reaches 1 (a = 0 at cos_outer).
+            const double cos_inner = std::cos(light.inner_cone_angle), cos_outer = std::cos(light.outer_cone_angle);
+            const double s = 1.0 / std::max(0.001, cos_inner - cos_outer);
+            const double o = -cos_outer * s;
+            const double c1 = std::min(1.0, cos_outer + 1.0 / s);
+            const double ramp = std::pow(s * c1 + o, 3.0) / (3.0 * s);
+            return intensity * (2.0 * kPi * ((1.0 - c1) + ramp));
+        }
+    }
+    return glm::dvec3(0.0);
+}
+
+double channel_sum(const glm::dvec3& v) { return v.x + v.y + v.z; }
+
+}  // namespace
+
+VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
+    const size_t triangle_count = scene.indices.size() / 3;
+    if (triangle_count == 0 || scene.triangle_materials.size() != triangle_count) {
+        throw Error("VPL tracing: the scene has no triangles, or not one material index per triangle");
+    }
+    VplSources out;
+    out.triangle_count = uint32_t(triangle_count);
+
+    // Bounding sphere of the indexed vertices (the box's centre and half-diagonal).
+    glm::dvec3 lo(std::numeric_limits<double>::max()), hi(-std::numeric_limits<double>::max());
+    for (uint32_t index : scene.indices) {
+        if (index >= scene.vertices.size()) {
+            throw Error("VPL tracing: vertex index " + std::to_string(index) + " out of range");
+        }
+        const glm::dvec3 p(scene.vertices[index].position);
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    out.scene_center = glm::vec3((lo + hi) * 0.5);
+    // Rounded up a little so float rounding of the disc never leaves a corner uncovered.
+    out.scene_radius = float(glm::length(hi - lo) * 0.5 * (1.0 + 1e-6)) + 1e-30f;
+    const double disc_area = kPi * double(out.scene_radius) * double(out.scene_radius);
+
+    std::vector<shaders::vec4> albedo(triangle_count);
+    for (size_t t = 0; t < triangle_count; ++t) {
+        const uint32_t m = scene.triangle_materials[t];
+        if (m >= scene.materials.size()) {
+            throw Error("VPL tracing: triangle " + std::to_string(t) + " has material " + std::to_string(m) +
+                        ", but the scene has " + std::to_string(scene.materials.size()));
+        }
+        const scene::Material& material = scene.materials[m];
+        // The diffuse part of the glTF BRDF: metals have none.
+        const glm::vec3 rho = glm::clamp(glm::vec3(material.base_color_factor) * (1.0f - material.metallic_factor),
+                                         glm::vec3(0.0f), glm::vec3(1.0f));
+        albedo[t] = {rho.x, rho.y, rho.z, 0.0f};
+    }
+
+    std::vector<double> weights;
+    glm::dvec3 total(0.0);
+    for (const scene::Light& light : scene.lights) {
+        const glm::dvec3 power = punctual_power(light, disc_area);
+        weights.push_back(channel_sum(power));
+        total += power;
+    }
+    std::vector<shaders::EmitterTriangle> emissive;
+    for (uint32_t t : scene.emissive_triangles) {
+        if (t >= triangle_count) {
+            throw Error("VPL tracing: emissive triangle " + std::to_string(t) + " out of range");
+        }
+        const scene::Material& material = scene.materials[scene.triangle_materials[t]];
+        const glm::vec3 v0 = scene.vertices[scene.indices[3 * t]].position;
+        const glm::vec3 v1 = scene.vertices[scene.indices[3 * t + 1]].position;
+        const glm::vec3 v2 = scene.vertices[scene.indices[3 * t + 2]].position;
+        const double area = 0.5 * glm::length(glm::cross(glm::dvec3(v1 - v0), glm::dvec3(v2 - v0)));
+        const glm::vec3 radiance = material.emission();
+        if (!(area > 0.0) || !material.emits()) {
+            continue;
+        }
+        shaders::EmitterTriangle e{};
+        e.v0 = {v0.x, v0.y, v0.z};
+        e.v1 = {v1.x, v1.y, v1.z};
+        e.v2 = {v2.x, v2.y, v2.z};
+        e.double_sided = material.double_sided ? 1u : 0u;
+        e.triangle = t;
+        e.area = float(area);
+        e.radiance = {radiance.x, radiance.y, radiance.z};
+        const glm::dvec3 power = glm::dvec3(radiance) * (kPi * area * (material.double_sided ? 2.0 : 1.0));
+        weights.push_back(channel_sum(power));
+        total += power;
+        emissive.push_back(e);
+    }
+    out.total_power = glm::vec3(total);
+
+    // The selection CDF, normalized in double; the last entry exactly 1 so every u < 1 finds one.
+    double sum = 0.0;
+    for (double w : weights) {
+        if (!std::isfinite(w) || w < 0.0) {
+            throw Error("VPL tracing: an emitter's power is not finite (" + std::to_string(w) + ")");
+        }
+        sum += w;
+    }
+    std::vector<float> cdf;
+    double running = 0.0;
+    for (double w : weights) {
+        running += w;
+        cdf.push_back(float(running / sum));
+    }
+    out.punctual_count = uint32_t(scene.lights.size());
+    out.emissive_count = uint32_t(emissive.size());
+    if (sum > 0.0) {
+        out.emitter_count = out.punctual_count + out.emissive_count;
+        // Trailing zero-weight emitters must keep empty intervals: set every entry from the last
+        // positive weight on to 1.
+        size_t last = weights.size();
+        while (last > 0 && weights[last - 1] == 0.0) --last;
+        for (size_t i = last - 1; i < cdf.size(); ++i) cdf[i] = 1.0f;
+    }
+    if (cdf.empty()) cdf.push_back(1.0f);
+    if (emissive.empty()) emissive.push_back(shaders::EmitterTriangle{});
+
+    // upload_lights validates every light and never returns an empty buffer.
+    GpuLights lights = upload_lights(context, scene.lights);
+    out.lights = std::move(lights.buffer);
+    out.emissive = Buffer::create(context, emissive.size() * sizeof(shaders::EmitterTriangle),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpl emissive triangles");
+    out.emissive.upload(emissive);
+    out.emitter_cdf = Buffer::create(context, cdf.size() * sizeof(float), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryUse::device, "vpl emitter cdf");
+    out.emitter_cdf.upload(cdf);
+    out.triangle_albedo = Buffer::create(context, albedo.size() * sizeof(shaders::vec4),
+                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpl triangle albedo");
+    out.triangle_albedo.upload(albedo);
+    return out;
+}
+
+uint32_t vpl_capacity(const VplTracingOptions& options) {
+    if (options.paths == 0 || options.max_bounces == 0) {
+        throw Error("VPL tracing: paths and max_bounces must be at least 1 (got " + std::to_string(options.paths) +
+                    " and " + std::to_string(options.max_bounces) + ")");
+    }
+    const uint64_t capacity = uint64_t(options.paths) * options.max_bounces;
+    if (capacity > std::numeric_limits<uint32_t>::max()) {
+        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths x " +
+                    std::to_string(options.max_bounces) + " bounces is more VPLs than a 32-bit count holds");
+    }
+    return uint32_t(capacity);
+}
+
+VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOptions& options) {
+    VplTracingOutput out;
+    out.capacity = vpl_capacity(options);
+    const uint64_t bytes = uint64_t(out.capacity) * sizeof(shaders::Vpl);
+    if (bytes > context.info().max_storage_buffer_range) {
+        throw Error("VPL tracing: " + std::to_string(out.capacity) + " VPLs need " + std::to_string(bytes) +
+                    " bytes, more than this device's maxStorageBufferRange of " +
+                    std::to_string(context.info().max_storage_buffer_range));
+    }
+    out.vpls = Buffer::create(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpls");
+    out.bounces = Buffer::create(context, uint64_t(out.capacity) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                 MemoryUse::device, "vpl bounces");
+    out.count = Buffer::create(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
+                               "vpl count");
+    return out;
+}
+
+void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, const VplSources& sources,
+                         const VplTracingOptions& options, VplTracingOutput& output) {
+    const uint32_t capacity = vpl_capacity(options);
+    if (output.vpls.size() < uint64_t(capacity) * sizeof(shaders::Vpl) ||
+        output.bounces.size() < uint64_t(capacity) * sizeof(uint32_t) || output.count.size() < sizeof(uint32_t)) {
+        throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
+                    " VPLs (paths x max_bounces)");
+    }
+    const auto& pipeline = context.pipeline<shaders::trace_vpls::Pipeline>();
+    const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * context.info().max_workgroup_count[0];
+    if (options.paths > max_paths) {
+        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths exceed one dispatch's " +
+                    std::to_string(max_paths));
+    }
+
+    Buffer& count = output.count;
+    passes.add("vpl count clear", {Use::transfer_dst(count)},
+               [&count](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, count.handle(), 0, sizeof(uint32_t), 0u); });
+
+    shaders::trace_vpls::Push push{};
+    push.scene_center = {sources.scene_center.x, sources.scene_center.y, sources.scene_center.z};
+    push.scene_radius = sources.scene_radius;
+    push.path_count = options.paths;
+    push.max_bounces = options.max_bounces;
+    push.seed = options.seed;
+    push.punctual_count = sources.punctual_count;
+    push.emitter_count = sources.emitter_count;
+    push.triangle_count = sources.triangle_count;
+    push.capacity = capacity;
+    passes.add("trace vpls",
+               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(sources.lights), Use::read(sources.emissive),
+                Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo), Use::write(output.vpls),
+                Use::write(output.bounces), Use::read_write(count)},
+               [&pipeline, &bvh, &sources, &output, push](VkCommandBuffer cmd) {
+                   shaders::trace_vpls::Bindings b;
+                   b.bvh_nodes = bvh.nodes.descriptor();
+                   b.bvh_triangles = bvh.triangles.descriptor();
+                   b.lights = sources.lights.descriptor();
+                   b.emissive = sources.emissive.descriptor();
+                   b.emitter_cdf = sources.emitter_cdf.descriptor();
+                   b.albedo = sources.triangle_albedo.descriptor();
+                   b.vpls = output.vpls.descriptor();
+                   b.vpl_count = output.count.descriptor();
+                   b.vpl_bounces = output.bounces.descriptor();
+                   pipeline.dispatch(cmd, b, push, push.path_count);
+               });
+}
+
+uint32_t download_vpl_count(const VplTracingOutput& output) { return output.count.download<uint32_t>(1)[0]; }
+
+}  // namespace vplkit::stages

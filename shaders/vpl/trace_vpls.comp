@@ -1,0 +1,205 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Instant radiosity (Keller 1997, "Instant Radiosity"; seed 004 sec. "VPL Generation"): one
+// light path per invocation. Pick an emitter by power, emit, trace through the BVH, and at every
+// surface hit append a VPL; continue with a cosine-weighted bounce and Russian roulette, up to
+// max_bounces hits.
+//
+// Estimator. A path carries beta, the flux it stands for: the emitter's power over the
+// probability of picking it, over the number of paths (then each VPL set is an unbiased estimate
+// of the flux that reaches the surfaces). At the k-th hit, beta is the flux ARRIVING there, and
+// the VPL gets the flux the surface re-emits diffusely:
+//     vpl.flux = beta * rho                                   (rho: diffuse reflectance)
+// so summed over VPLs of bounce k, E[flux] = the flux reflected after k surface interactions
+// (Phi * rho^k in a closed box of albedo rho). The path goes on with a direction drawn from the
+// cosine lobe: BRDF rho / pi times cos over pdf cos / pi is rho, so beta *= rho; Russian roulette
+// survives with q = max(rho) (Arvo and Kirk 1990) and divides by it: beta *= rho / q, which keeps
+// beta's channels at most beta's largest channel.
+//
+// Surfaces are diffuse (rho = base colour factor x (1 - metallic), textures not read) and
+// two-sided for light: a VPL's normal faces the ray that arrived. A hit whose rho is zero ends
+// the path without a VPL (it would carry nothing). The VPLs are appended in no fixed order
+// (the set is fixed by the seed; the order depends on the scheduling of atomics).
+
+#define VPLKIT_BVH_NODES_BINDING 0
+#define VPLKIT_BVH_TRIANGLES_BINDING 1
+#include "vplkit/bvh.glsl"
+#include "vplkit/lights.glsl"
+#include "vplkit/rng.glsl"
+#include "vplkit/vpl.glsl"
+#include "vpl_sampling.glsl"
+
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
+
+// An emissive triangle as an emitter: radiance over its area, from its front face (both faces
+// when double-sided), Lambertian. Power = pi * radiance * area * sides.
+struct EmitterTriangle {
+    vec3 v0;
+    uint double_sided;  // 0 or 1
+    vec3 v1;
+    uint triangle;      // scene triangle index
+    vec3 v2;
+    float area;
+    vec3 radiance;      // emissive factor x strength (texture not read)
+};
+
+layout(std430, set = 0, binding = 2) readonly buffer PunctualLightBuffer { PunctualLight items[]; } lights;
+layout(std430, set = 0, binding = 3) readonly buffer EmitterTriangleBuffer { EmitterTriangle items[]; } emissive;
+// Emitters are the punctual lights, then the emissive triangles; cdf[i] = sum of the selection
+// weights of emitters 0..i over their total, the last exactly 1.
+layout(std430, set = 0, binding = 4) readonly buffer EmitterCdfBuffer { float items[]; } emitter_cdf;
+// Diffuse reflectance per scene triangle (BvhHit.id), rgb; a = unused.
+layout(std430, set = 0, binding = 5) readonly buffer TriangleAlbedoBuffer { vec4 items[]; } albedo;
+layout(std430, set = 0, binding = 6) writeonly buffer VplBuffer { Vpl items[]; } vpls;
+layout(std430, set = 0, binding = 7) buffer VplCountBuffer { uint count; } vpl_count;
+// Beside each VPL: which surface interaction of its path made it (1 = the first surface the light
+// reached). Kept apart from Vpl, whose layout every VPL consumer shares.
+layout(std430, set = 0, binding = 8) writeonly buffer VplBounceBuffer { uint items[]; } vpl_bounces;
+
+layout(push_constant) uniform TraceVplsPush {
+    vec3 scene_center;   // of the bounding sphere directional lights cover
+    float scene_radius;
+    uint path_count;
+    uint max_bounces;
+    uint seed;
+    uint punctual_count;
+    uint emitter_count;  // punctual + emissive triangles with positive selection weight
+    uint triangle_count; // entries of `albedo`
+    uint capacity;       // entries of `vpls`
+} push;
+
+// The emitter whose CDF interval holds u (the first i with cdf[i] > u): an emitter of zero
+// weight has an empty interval and is never chosen.
+uint sample_emitter(float u) {
+    uint lo = 0u;
+    uint hi = push.emitter_count - 1u;
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (emitter_cdf.items[mid] > u) {
+            hi = mid;
+        } else {
+            lo = mid + 1u;
+        }
+    }
+    return lo;
+}
+// The probability sample_emitter picks emitter i: its interval's width.
+float emitter_pmf(uint i) {
+    return emitter_cdf.items[i] - (i == 0u ? 0.0 : emitter_cdf.items[i - 1u]);
+}
+
+struct Emission {
+    vec3 origin;
+    vec3 direction;   // unit
+    vec3 flux;        // beta: the flux the path stands for, before its first hit
+    float range;      // KHR_lights_punctual range window of a point or spot light; 0: none
+    bool valid;
+};
+
+Emission emit(inout Rng rng) {
+    Emission e;
+    e.range = 0.0;
+    e.valid = false;
+    uint i = sample_emitter(rng_next_float(rng));
+    // 1 / (N pmf): every path's share of the estimate.
+    float weight = 1.0 / (float(push.path_count) * emitter_pmf(i));
+    vec2 u = rng_next_vec2(rng);
+    if (i < push.punctual_count) {
+        PunctualLight light = lights.items[i];
+        if (light.type == kLightDirectional) {
+            // A beam of parallel rays through a disc perpendicular to the light that covers the
+            // scene's bounding sphere, started beyond it: power = irradiance x disc area.
+            float radius = push.scene_radius;
+            vec2 d = sample_uniform_disk(u) * radius;
+            e.direction = light.direction;
+            e.origin = push.scene_center - 2.0 * radius * light.direction + frame_to_world(vec3(d, 0.0), light.direction);
+            float disc_pdf = uniform_disk_pdf() / (radius * radius);
+            e.flux = light.intensity / disc_pdf * weight;
+        } else if (light.type == kLightPoint) {
+            // Isotropic: intensity over the direction's pdf, Phi = 4 pi I on average.
+            e.origin = light.position;
+            e.direction = sample_uniform_sphere(u);
+            e.flux = light.intensity / uniform_sphere_pdf() * weight;
+            e.range = light.range;
+        } else {
+            // Directions uniform in the outer cone, weighted by lights.glsl's angular attenuation.
+            float cos_outer = -light.spot_offset / light.spot_scale;
+            vec3 local = sample_uniform_cone(u, cos_outer);
+            e.origin = light.position;
+            e.direction = frame_to_world(local, light.direction);
+            float a = clamp(local.z * light.spot_scale + light.spot_offset, 0.0, 1.0);
+            e.flux = light.intensity * (a * a) / uniform_cone_pdf(cos_outer) * weight;
+            e.range = light.range;
+        }
+    } else {
+        EmitterTriangle tri = emissive.items[i - push.punctual_count];
+        vec3 b = sample_uniform_triangle(u);
+        vec3 p = b.x * tri.v0 + b.y * tri.v1 + b.z * tri.v2;
+        vec3 n = normalize(cross(tri.v1 - tri.v0, tri.v2 - tri.v0));
+        float sides = 1.0;
+        if (tri.double_sided != 0u) {
+            sides = 2.0;
+            if (rng_next_float(rng) < 0.5) {
+                n = -n;
+            }
+        }
+        // L cos / (pdf_area pdf_dir) = L cos A pi / cos = pi L A per side chosen with prob 1 / sides.
+        e.direction = frame_to_world(sample_cosine_hemisphere(rng_next_vec2(rng)), n);
+        e.origin = offset_ray_origin(p, n, bvh_scene_scale());
+        e.flux = tri.radiance * (kSamplingPi * tri.area * sides) * weight;
+    }
+    e.valid = bvh_finite(e.flux) && bvh_finite(e.direction);
+    return e;
+}
+
+void main() {
+    uint path = gl_GlobalInvocationID.x;
+    if (path >= push.path_count || push.emitter_count == 0u) {
+        return;
+    }
+    Rng rng = rng_create(push.seed, path);
+    Emission e = emit(rng);
+    if (!e.valid) {
+        return;
+    }
+    float scale = bvh_scene_scale();
+    vec3 origin = e.origin;
+    vec3 direction = e.direction;
+    vec3 beta = e.flux;
+    for (uint bounce = 1u; bounce <= push.max_bounces; ++bounce) {
+        BvhHit hit = bvh_closest_hit(origin, direction, 0.0, kBvhMaxT);
+        if (hit.id == kBvhNoHit) {
+            break;
+        }
+        if (bounce == 1u && e.range > 0.0) {
+            // lights.glsl's range window, at the distance the light's flux travelled.
+            float x = hit.t / e.range;
+            beta *= clamp(1.0 - x * x * x * x, 0.0, 1.0);
+        }
+        vec3 rho = hit.id < push.triangle_count ? albedo.items[hit.id].rgb : vec3(0.0);
+        float q = max(max(rho.r, rho.g), rho.b);
+        if (!(q > 0.0) || all(equal(beta, vec3(0.0)))) {
+            break;
+        }
+        vec3 p = bvh_hit_position(hit);
+        vec3 n = normalize(bvh_triangle_normal(hit.triangle));
+        if (dot(n, direction) > 0.0) {
+            n = -n;
+        }
+        uint slot = atomicAdd(vpl_count.count, 1u);
+        if (slot < push.capacity) {
+            Vpl vpl;
+            vpl.position = p;
+            vpl.normal = n;
+            vpl.flux = beta * rho;
+            vpls.items[slot] = vpl;
+            vpl_bounces.items[slot] = bounce;
+        }
+        if (bounce == push.max_bounces || rng_next_float(rng) >= q) {
+            break;
+        }
+        beta *= rho / q;
+        direction = frame_to_world(sample_cosine_hemisphere(rng_next_vec2(rng)), n);
+        origin = offset_ray_origin(p, n, scale);
+    }
+}

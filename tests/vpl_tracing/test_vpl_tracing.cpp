@@ -1,0 +1,447 @@
+// trace_vpls.comp (instant radiosity) against analytic answers.
+//
+// The closed-box identity: in a closed enclosure whose every surface reflects diffusely with
+// albedo rho, all the flux Phi the emitters put out lands on a surface, a fraction rho of it is
+// reflected and lands again, and so on: the flux reflected at the k-th surface interaction is
+// Phi * rho^k per channel, whatever the shape. The VPLs of bounce k carry, summed, an unbiased
+// estimate of it. Tolerance of such a check: |mean over n seeds - exact| <= 4 sigma / sqrt(n)
+// (sigma: the seeds' sample standard deviation; 4 sigma leaves a chance of ~1e-4 of a false
+// failure per check) plus 2e-4 relative for float accumulation (the first bounce of a point light
+// in a grey box has no variance at all: every path deposits exactly Phi rho / N).
+//
+// Geometry checks (every VPL finite, on a surface, unit normal facing the arriving light) use a
+// CPU point-to-triangle distance in double; a hit point from barycentrics is off by a few ulps of
+// the coordinates, so 1e-5 of the scene's size is generous.
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/bvh.hpp"
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/scene.hpp"
+#include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/vpl_tracing.hpp"
+#include "vplkit_test/context.hpp"
+
+#include <doctest/doctest.h>
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <tuple>
+#include <vector>
+
+namespace {
+
+using vplkit::scene::Scene;
+using vplkit::stages::VplTracingOptions;
+constexpr double kPi = std::numbers::pi;
+
+uint32_t add_material(Scene& scene, glm::vec3 rho, float metallic = 0.0f) {
+    vplkit::scene::Material m;
+    m.base_color_factor = glm::vec4(rho, 1.0f);
+    m.metallic_factor = metallic;
+    scene.materials.push_back(m);
+    return uint32_t(scene.materials.size() - 1);
+}
+
+void add_triangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material) {
+    for (glm::vec3 p : {a, b, c}) {
+        vplkit::scene::Vertex v;
+        v.position = p;
+        v.normal = glm::normalize(glm::cross(b - a, c - a));
+        scene.indices.push_back(uint32_t(scene.vertices.size()));
+        scene.vertices.push_back(v);
+    }
+    scene.triangle_materials.push_back(material);
+    if (scene.materials[material].emits()) scene.emissive_triangles.push_back(uint32_t(scene.triangle_materials.size() - 1));
+}
+
+void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material) {
+    add_triangle(scene, a, b, c, material);
+    add_triangle(scene, a, c, d, material);
+}
+
+// The six faces of [lo, hi], each split in two triangles (windings mixed on purpose: light is
+// two-sided for the tracer).
+void add_box(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
+    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
+                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
+    add_quad(scene, c[0], c[1], c[2], c[3], material);
+    add_quad(scene, c[4], c[5], c[6], c[7], material);
+    add_quad(scene, c[0], c[1], c[5], c[4], material);
+    add_quad(scene, c[3], c[2], c[6], c[7], material);
+    add_quad(scene, c[0], c[3], c[7], c[4], material);
+    add_quad(scene, c[1], c[2], c[6], c[5], material);
+}
+
+const glm::vec3 kBoxLo{-1.0f, -0.75f, -0.5f}, kBoxHi{1.0f, 0.75f, 0.5f};
+
+vplkit::scene::Light point_light(glm::vec3 position, glm::vec3 color, float intensity) {
+    vplkit::scene::Light l;
+    l.type = vplkit::scene::LightType::point;
+    l.position = position;
+    l.color = color;
+    l.intensity = intensity;
+    return l;
+}
+
+struct Traced {
+    std::vector<vplkit::shaders::Vpl> vpls;
+    std::vector<uint32_t> bounces;
+};
+
+// Traces `scene` with `options`; the BVH's ids are the scene's triangle indices.
+class Tracer {
+ public:
+    explicit Tracer(const Scene& scene)
+        : bvh_(vplkit::upload_bvh(vplkit::test::context(),
+                                  vplkit::build_bvh(vplkit::scene::triangle_positions(scene)))),
+          sources_(vplkit::stages::upload_vpl_sources(vplkit::test::context(), scene)) {}
+
+    Traced run(const VplTracingOptions& options) {
+        vplkit::Context& ctx = vplkit::test::context();
+        auto output = vplkit::stages::VplTracingOutput::create(ctx, options);
+        vplkit::PassList passes("vpl tracing test");
+        vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh_, sources_, options, output);
+        passes.run(ctx);
+        const uint32_t count = vplkit::stages::download_vpl_count(output);
+        REQUIRE(count <= output.capacity);
+        Traced t;
+        if (count > 0) {
+            t.vpls = output.vpls.download<vplkit::shaders::Vpl>(count);
+            t.bounces = output.bounces.download<uint32_t>(count);
+        }
+        return t;
+    }
+
+    const vplkit::stages::VplSources& sources() const { return sources_; }
+
+ private:
+    vplkit::GpuBvh bvh_;
+    vplkit::stages::VplSources sources_;
+};
+
+using Rgb = std::array<double, 3>;
+
+// Per bounce 1..max_bounces: the summed VPL flux (index 0 unused).
+std::vector<Rgb> flux_per_bounce(const Traced& t, uint32_t max_bounces) {
+    std::vector<Rgb> sums(max_bounces + 1, Rgb{0, 0, 0});
+    for (size_t i = 0; i < t.vpls.size(); ++i) {
+        REQUIRE(t.bounces[i] >= 1);
+        REQUIRE(t.bounces[i] <= max_bounces);
+        sums[t.bounces[i]][0] += t.vpls[i].flux.x;
+        sums[t.bounces[i]][1] += t.vpls[i].flux.y;
+        sums[t.bounces[i]][2] += t.vpls[i].flux.z;
+    }
+    return sums;
+}
+
+// Mean over seeds of the per-bounce flux against expected[k] (k = 1..max_bounces), per channel.
+void check_mean_flux(Tracer& tracer, VplTracingOptions options, uint32_t seeds, const std::vector<Rgb>& expected) {
+    std::vector<std::vector<Rgb>> runs;
+    for (uint32_t s = 0; s < seeds; ++s) {
+        options.seed = 1000 + 17 * s;
+        runs.push_back(flux_per_bounce(tracer.run(options), options.max_bounces));
+    }
+    for (uint32_t k = 1; k <= options.max_bounces; ++k) {
+        for (int c = 0; c < 3; ++c) {
+            double mean = 0.0;
+            for (const auto& r : runs) mean += r[k][c];
+            mean /= seeds;
+            double var = 0.0;
+            for (const auto& r : runs) var += (r[k][c] - mean) * (r[k][c] - mean);
+            const double sigma = std::sqrt(var / (seeds - 1));
+            const double bound = 4.0 * sigma / std::sqrt(double(seeds)) + 2e-4 * expected[k][c];
+            CAPTURE(k);
+            CAPTURE(c);
+            CAPTURE(mean);
+            CAPTURE(expected[k][c]);
+            CAPTURE(sigma);
+            CHECK(std::abs(mean - expected[k][c]) <= bound);
+        }
+    }
+}
+
+// Closed point-to-triangle distance (Ericson, Real-Time Collision Detection, 5.1.5), double.
+double point_triangle_distance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+    if (d1 <= 0 && d2 <= 0) return glm::length(p - a);
+    const glm::dvec3 bp = p - b;
+    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+    if (d3 >= 0 && d4 <= d3) return glm::length(p - b);
+    const double vc = d1 * d4 - d3 * d2;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(p - (a + ab * (d1 / (d1 - d3))));
+    const glm::dvec3 cp = p - c;
+    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+    if (d6 >= 0 && d5 <= d6) return glm::length(p - c);
+    const double vb = d5 * d2 - d1 * d6;
+    if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
+    const double va = d3 * d6 - d5 * d4;
+    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+        return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
+    }
+    const double denom = 1.0 / (va + vb + vc);
+    return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
+}
+
+bool finite(const vplkit::shaders::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+glm::dvec3 to_d(const vplkit::shaders::vec3& v) { return {v.x, v.y, v.z}; }
+
+// Spot power by midpoint quadrature of lights.glsl's squared angular attenuation over the sphere
+// (independent of the closed form upload_vpl_sources uses).
+double spot_power_per_intensity(float inner, float outer) {
+    const double cos_inner = std::cos(double(inner)), cos_outer = std::cos(double(outer));
+    const double s = 1.0 / std::max(0.001, cos_inner - cos_outer), o = -cos_outer * s;
+    const int steps = 200000;
+    double sum = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        const double c = -1.0 + 2.0 * (i + 0.5) / steps;
+        const double a = std::clamp(c * s + o, 0.0, 1.0);
+        sum += a * a;
+    }
+    return 2.0 * kPi * sum * 2.0 / steps;
+}
+
+}  // namespace
+
+TEST_CASE("vpl tracing: closed box with a point light reflects Phi rho^k at bounce k") {
+    for (glm::vec3 rho : {glm::vec3(0.5f), glm::vec3(0.8f, 0.5f, 0.2f)}) {
+        CAPTURE(rho.x);
+        CAPTURE(rho.z);
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, rho));
+        const glm::vec3 color{1.0f, 0.8f, 0.6f};
+        const float intensity = 3.0f;
+        scene.lights.push_back(point_light({0.3f, 0.1f, -0.2f}, color, intensity));
+        Tracer tracer(scene);
+        const uint32_t max_bounces = 4;
+        std::vector<Rgb> expected(max_bounces + 1);
+        for (uint32_t k = 1; k <= max_bounces; ++k) {
+            for (int c = 0; c < 3; ++c) {
+                expected[k][c] = 4.0 * kPi * intensity * color[c] * std::pow(double(rho[c]), double(k));
+            }
+        }
+        check_mean_flux(tracer, {4000, max_bounces, 0}, 12, expected);
+    }
+}
+
+TEST_CASE("vpl tracing: closed box with a spot light a point light and a double-sided emissive triangle") {
+    const float rho = 0.6f;
+    Scene scene;
+    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(rho)));
+    // A floating emitter that also reflects with rho: the enclosure is still all albedo rho.
+    const uint32_t glow = add_material(scene, glm::vec3(rho));
+    scene.materials[glow].emissive_factor = {1.0f, 0.5f, 0.25f};
+    scene.materials[glow].emissive_strength = 2.0f;
+    scene.materials[glow].double_sided = true;
+    const glm::vec3 ta{-0.5f, -0.2f, 0.1f}, tb{-0.1f, -0.3f, 0.2f}, tc{-0.3f, 0.2f, -0.1f};
+    add_triangle(scene, ta, tb, tc, glow);
+    vplkit::scene::Light spot;
+    spot.type = vplkit::scene::LightType::spot;
+    spot.position = {0.5f, 0.4f, 0.0f};
+    spot.direction = glm::normalize(glm::vec3(-0.5f, -1.0f, 0.3f));
+    spot.color = {0.2f, 1.0f, 0.5f};
+    spot.intensity = 6.0f;
+    spot.inner_cone_angle = 0.3f;
+    spot.outer_cone_angle = 0.7f;
+    scene.lights.push_back(spot);
+    scene.lights.push_back(point_light({0.6f, -0.3f, 0.2f}, {1.0f, 1.0f, 1.0f}, 0.5f));
+
+    const double area = 0.5 * glm::length(glm::cross(glm::dvec3(tb - ta), glm::dvec3(tc - ta)));
+    const double spot_factor = spot_power_per_intensity(spot.inner_cone_angle, spot.outer_cone_angle);
+    Rgb phi{};
+    for (int c = 0; c < 3; ++c) {
+        phi[c] = spot_factor * spot.intensity * spot.color[c] + 4.0 * kPi * 0.5 +
+                 2.0 * kPi * area * 2.0 * scene.materials[glow].emissive_factor[c];
+    }
+    Tracer tracer(scene);
+    for (int c = 0; c < 3; ++c) CHECK(tracer.sources().total_power[c] == doctest::Approx(phi[c]).epsilon(1e-4));
+    const uint32_t max_bounces = 3;
+    std::vector<Rgb> expected(max_bounces + 1);
+    for (uint32_t k = 1; k <= max_bounces; ++k) {
+        for (int c = 0; c < 3; ++c) expected[k][c] = phi[c] * std::pow(double(rho), double(k));
+    }
+    check_mean_flux(tracer, {4000, max_bounces, 0}, 16, expected);
+}
+
+TEST_CASE("vpl tracing: every VPL is finite and on a surface with a unit normal facing the light") {
+    Scene scene;
+    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.7f, 0.6f, 0.5f)));
+    scene.lights.push_back(point_light({-0.4f, 0.2f, 0.1f}, {1.0f, 1.0f, 1.0f}, 2.0f));
+    Tracer tracer(scene);
+    const Traced t = tracer.run({3000, 5, 7});
+    REQUIRE(t.vpls.size() >= 3000);
+    const auto positions = vplkit::scene::triangle_positions(scene);
+    const glm::dvec3 center = (glm::dvec3(kBoxLo) + glm::dvec3(kBoxHi)) * 0.5;
+    int failures = 0;
+    for (size_t i = 0; i < t.vpls.size() && failures < 5; ++i) {
+        const auto& v = t.vpls[i];
+        CAPTURE(i);
+        bool ok = finite(v.position) && finite(v.normal) && finite(v.flux);
+        const glm::dvec3 p = to_d(v.position), n = to_d(v.normal);
+        ok = ok && std::abs(glm::length(n) - 1.0) < 1e-5;
+        ok = ok && v.flux.x > 0 && v.flux.y > 0 && v.flux.z > 0;
+        double nearest = 1e30;
+        glm::dvec3 face{0.0};
+        for (size_t k = 0; k < positions.size(); k += 3) {
+            const glm::dvec3 a(positions[k]), b(positions[k + 1]), c(positions[k + 2]);
+            const double d = point_triangle_distance(p, a, b, c);
+            if (d < nearest) {
+                nearest = d;
+                face = glm::normalize(glm::cross(b - a, c - a));
+            }
+        }
+        CAPTURE(nearest);
+        ok = ok && nearest <= 1e-5;
+        // The face normal, turned to the inside of the box (where all the light comes from).
+        ok = ok && std::abs(std::abs(glm::dot(n, face)) - 1.0) < 1e-5 && glm::dot(n, center - p) > 0.0;
+        if (!ok) ++failures;
+        CHECK(ok);
+    }
+}
+
+TEST_CASE("vpl tracing: the same seed gives the same VPLs and another seed other ones") {
+    Scene scene;
+    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.5f)));
+    scene.lights.push_back(point_light({0.1f, 0.2f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
+    Tracer tracer(scene);
+    // Appends land in no fixed order: compare the sets, sorted.
+    auto sorted = [](const Traced& t) {
+        std::vector<std::tuple<uint32_t, float, float, float, float, float, float, float, float, float>> v;
+        for (size_t i = 0; i < t.vpls.size(); ++i) {
+            const auto& x = t.vpls[i];
+            v.emplace_back(t.bounces[i], x.position.x, x.position.y, x.position.z, x.normal.x, x.normal.y, x.normal.z,
+                           x.flux.x, x.flux.y, x.flux.z);
+        }
+        std::sort(v.begin(), v.end());
+        return v;
+    };
+    const auto a = sorted(tracer.run({2000, 3, 42}));
+    const auto b = sorted(tracer.run({2000, 3, 42}));
+    const auto c = sorted(tracer.run({2000, 3, 43}));
+    REQUIRE(!a.empty());
+    CHECK(a == b);
+    CHECK(a != c);
+    // Not merely a reordering: the first-bounce positions differ.
+    size_t same = 0;
+    for (const auto& x : c) same += std::binary_search(a.begin(), a.end(), x) ? 1 : 0;
+    CHECK(same < c.size() / 100);
+}
+
+TEST_CASE("vpl tracing: Russian roulette and the bounce limit") {
+    SUBCASE("albedo 1: every path survives to max_bounces") {
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(1.0f)));
+        scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
+        Tracer tracer(scene);
+        const uint32_t paths = 1000, max_bounces = 6;
+        const Traced t = tracer.run({paths, max_bounces, 3});
+        CHECK(t.vpls.size() == size_t(paths) * max_bounces);
+        std::vector<uint32_t> per_bounce(max_bounces + 1, 0);
+        for (uint32_t b : t.bounces) {
+            REQUIRE(b >= 1);
+            REQUIRE(b <= max_bounces);
+            ++per_bounce[b];
+        }
+        for (uint32_t k = 1; k <= max_bounces; ++k) CHECK(per_bounce[k] == paths);
+        // Lossless: every bounce re-emits all of Phi.
+        const auto sums = flux_per_bounce(t, max_bounces);
+        for (uint32_t k = 1; k <= max_bounces; ++k) CHECK(sums[k][0] == doctest::Approx(4.0 * kPi).epsilon(2e-4));
+    }
+    SUBCASE("albedo 0.4: the number of bounce-k VPLs is binomial with survival 0.4^(k-1)") {
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.4f, 0.1f, 0.3f)));
+        scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
+        Tracer tracer(scene);
+        const uint32_t paths = 4000, max_bounces = 3;
+        const Traced t = tracer.run({paths, max_bounces, 9});
+        std::vector<double> per_bounce(max_bounces + 1, 0);
+        for (uint32_t b : t.bounces) {
+            REQUIRE(b >= 1);
+            REQUIRE(b <= max_bounces);
+            ++per_bounce[b];
+        }
+        for (uint32_t k = 1; k <= max_bounces; ++k) {
+            // q = max(rho) = 0.4 decides survival, whatever the other channels.
+            const double p = std::pow(0.4, double(k - 1));
+            const double mean = paths * p, sigma = std::sqrt(paths * p * (1.0 - p));
+            CAPTURE(k);
+            CHECK(std::abs(per_bounce[k] - mean) <= 5.0 * sigma + 0.5);
+        }
+    }
+}
+
+TEST_CASE("vpl tracing: a directional light over a plane reflects E A cos rho at the first bounce") {
+    const float rho = 0.6f;
+    Scene scene;
+    const uint32_t m = add_material(scene, glm::vec3(rho));
+    const float w = 2.0f, d = 3.0f;  // plane y = 0, [0, w] x [0, d]
+    add_quad(scene, {0, 0, 0}, {0, 0, d}, {w, 0, d}, {w, 0, 0}, m);
+    vplkit::scene::Light sun;
+    sun.type = vplkit::scene::LightType::directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+    sun.color = {1.0f, 0.75f, 0.5f};
+    sun.intensity = 2.0f;
+    scene.lights.push_back(sun);
+    Tracer tracer(scene);
+    const double cos_theta = -double(sun.direction.y);
+    std::vector<Rgb> expected(3, Rgb{0, 0, 0});  // bounce 2: light leaving the plane escapes
+    for (int c = 0; c < 3; ++c) expected[1][c] = double(sun.intensity) * sun.color[c] * w * d * cos_theta * rho;
+    check_mean_flux(tracer, {3000, 2, 0}, 12, expected);
+    const Traced t = tracer.run({3000, 2, 5});
+    CHECK(std::count(t.bounces.begin(), t.bounces.end(), 2u) == 0);
+    for (const auto& v : t.vpls) {
+        REQUIRE(std::abs(v.position.y) <= 1e-5f);
+        REQUIRE(v.normal.y == doctest::Approx(1.0f));  // facing the sun, whatever the winding
+    }
+}
+
+TEST_CASE("vpl tracing: no VPLs without light or without diffuse reflectance") {
+    SUBCASE("no lights") {
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.5f)));
+        Tracer tracer(scene);
+        CHECK(tracer.sources().emitter_count == 0);
+        CHECK(tracer.run({500, 3, 1}).vpls.empty());
+    }
+    SUBCASE("black light") {
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.5f)));
+        scene.lights.push_back(point_light({0, 0, 0}, {0, 0, 0}, 1.0f));
+        Tracer tracer(scene);
+        CHECK(tracer.run({500, 3, 1}).vpls.empty());
+    }
+    SUBCASE("metal walls have no diffuse reflectance") {
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.9f), 1.0f));
+        scene.lights.push_back(point_light({0, 0, 0}, {1, 1, 1}, 1.0f));
+        Tracer tracer(scene);
+        CHECK(tracer.run({500, 3, 1}).vpls.empty());
+    }
+    SUBCASE("a zero-weight light beside a bright one is never chosen") {
+        Scene scene;
+        add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.5f)));
+        scene.lights.push_back(point_light({0.2f, 0, 0}, {1, 1, 1}, 1.0f));
+        scene.lights.push_back(point_light({-0.2f, 0, 0}, {0, 0, 0}, 1.0f));
+        Tracer tracer(scene);
+        const Traced t = tracer.run({2000, 1, 4});
+        CHECK(t.vpls.size() == 2000);
+        for (const auto& v : t.vpls) REQUIRE(v.flux.x == doctest::Approx(4.0 * kPi * 0.5 / 2000).epsilon(1e-4));
+    }
+}
+
+TEST_CASE("vpl tracing: invalid options are refused") {
+    CHECK_THROWS_AS(vplkit::stages::vpl_capacity({0, 3, 0}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::stages::vpl_capacity({10, 0, 0}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::stages::vpl_capacity({0x10000u, 0x10000u, 0}), vplkit::Error);
+    CHECK(vplkit::stages::vpl_capacity({1000, 3, 0}) == 3000);
+    Scene empty;
+    CHECK_THROWS_AS(vplkit::stages::upload_vpl_sources(vplkit::test::context(), empty), vplkit::Error);
+}
