@@ -1,0 +1,86 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Exact indirect light (the ground truth of issue 6): every VPL of the chunk [vpl_first,
+// vpl_first + vpl_count) at every G-buffer pixel, each with its own shadow ray. Accumulates into
+// `indirect` (read-modify-write of the thread's own pixel), so dispatches over consecutive
+// chunks add up to the sum over all VPLs; the host clears `indirect` and `drops` first.
+//
+// indirect.rgb: the sum of the finite contributions; indirect.a: how many contributions this
+// pixel dropped (see below), 0 for a clean pixel. Background pixels stay 0.
+
+#define VPLKIT_BVH_NODES_BINDING 0
+#define VPLKIT_BVH_TRIANGLES_BINDING 1
+#include "vplkit/bvh.glsl"
+#include "vplkit/brdf.glsl"
+#include "vplkit/gbuffer.glsl"
+#include "vplkit/vpl.glsl"
+#include "vplkit/vpl_eval.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
+layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
+layout(std430, set = 0, binding = 6) readonly buffer VplBuffer { Vpl items[]; } vpls;
+layout(set = 0, binding = 7, rgba32f) uniform image2D indirect;
+// pixels: pixels with at least one dropped contribution (counted once, when its first drop
+// happens); contributions: dropped (pixel, VPL) pairs, exact below 2^32.
+layout(std430, set = 0, binding = 8) buffer ExactGiDropCounts { uint pixels; uint contributions; } drops;
+
+layout(push_constant) uniform ExactGiPush {
+    vec3 camera_position;
+    uint vpl_first;
+    uint vpl_count;
+} push;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (any(greaterThanEqual(pixel, imageSize(indirect)))) {
+        return;
+    }
+    vec4 position = imageLoad(gbuffer_position, pixel);
+    if (position.w <= 0.5) {
+        return;
+    }
+    GbufferSample g = gbuffer_decode(position, imageLoad(gbuffer_normal, pixel),
+                                     imageLoad(gbuffer_geometric_normal, pixel), imageLoad(gbuffer_albedo, pixel),
+                                     vec4(0.0));
+    vec3 wo = normalize(push.camera_position - g.position);
+    float scale = bvh_scene_scale();
+    float min_distance = vpl_min_distance(scale);
+    vec4 previous = imageLoad(indirect, pixel);
+    // Added in VPL order onto the running total, so any chunking sums in the same order.
+    vec3 total = previous.rgb;
+    uint dropped = 0u;
+    uint end = push.vpl_first + push.vpl_count;
+    for (uint i = push.vpl_first; i < end; ++i) {
+        Vpl vpl = vpls.items[i];
+        vec3 c = vpl_contribution(g.position, g.normal, g.geometric_normal, wo, g.albedo, g.roughness, g.metallic, vpl,
+                                  min_distance);
+        // Issue 6: the per-pixel result is finite or the sample is counted as dropped. A
+        // non-finite contribution (bad VPL data), or one that would overflow the total, is left
+        // out and counted; it is never traced, whatever its visibility.
+        vec3 next = total + c;
+        if (!vpl_finite(c) || !vpl_finite(next)) {
+            ++dropped;
+            continue;
+        }
+        if (all(equal(c, vec3(0.0)))) {
+            continue;
+        }
+        // The VPL lies on a surface facing x (its normal points to x's side: cos_y > 0 above),
+        // so both ends are moved off their surfaces and neither can shadow the segment.
+        if (bvh_segment_occluded(g.position, g.geometric_normal, vpl.position, vpl.normal, scale)) {
+            continue;
+        }
+        total = next;
+    }
+    if (dropped > 0u) {
+        if (previous.a == 0.0) {
+            atomicAdd(drops.pixels, 1u);
+        }
+        atomicAdd(drops.contributions, dropped);
+    }
+    imageStore(indirect, pixel, vec4(total, previous.a + float(dropped)));
+}
