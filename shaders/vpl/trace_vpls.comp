@@ -16,7 +16,8 @@
 // survives with q = max(rho) (Arvo and Kirk 1990) and divides by it: beta *= rho / q, which keeps
 // beta's channels at most beta's largest channel.
 //
-// Surfaces are diffuse (rho = base colour factor x (1 - metallic), textures not read) and
+// Surfaces are diffuse (rho = base colour x (1 - metallic), textures as their means: see
+// upload_vpl_sources) and
 // two-sided for light: a VPL's normal faces the ray that arrived. A hit whose rho is zero ends
 // the path without a VPL (it would carry nothing). The VPLs are appended in no fixed order
 // (the set is fixed by the seed; the order depends on the scheduling of atomics).

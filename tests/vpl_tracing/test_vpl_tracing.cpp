@@ -437,6 +437,43 @@ TEST_CASE("vpl tracing: no VPLs without light or without diffuse reflectance") {
     }
 }
 
+TEST_CASE("vpl tracing: textures enter the reflectance as their means") {
+    Scene scene;
+    const uint32_t m = add_material(scene, glm::vec3(0.9f, 0.8f, 1.0f));
+    // Base colour: two texels, sRGB 255 and 128 in R, 0 and 255 in G, 64 in B.
+    vplkit::scene::Image colour;
+    colour.width = 2;
+    colour.height = 1;
+    colour.rgba = {255, 0, 64, 255, 128, 255, 64, 255};
+    colour.srgb = true;
+    // Metallic (B): 255 and 0, so the mean metallic is 0.5 x metallic_factor.
+    vplkit::scene::Image metal;
+    metal.width = 1;
+    metal.height = 2;
+    metal.rgba = {0, 200, 255, 255, 0, 100, 0, 255};
+    metal.linear = true;
+    scene.images = {colour, metal};
+    scene.textures.resize(2);
+    scene.textures[0].image = 0;
+    scene.textures[1].image = 1;
+    scene.materials[m].base_color_texture = 0;
+    scene.materials[m].metallic_roughness_texture = 1;
+    scene.materials[m].metallic_factor = 0.4f;
+    add_box(scene, kBoxLo, kBoxHi, m);
+    scene.lights.push_back(point_light({0.1f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
+    auto linear = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+    const double diffuse = 1.0 - 0.4 * 0.5;
+    const Rgb rho = {0.9 * 0.5 * (linear(1.0) + linear(128 / 255.0)) * diffuse, 0.8 * 0.5 * linear(1.0) * diffuse,
+                     1.0 * linear(64 / 255.0) * diffuse};
+    Tracer tracer(scene);
+    // One bounce of one point light: every path deposits Phi rho / N, no variance.
+    const auto sums = flux_per_bounce(tracer.run({1000, 1, 2}), 1);
+    for (int c = 0; c < 3; ++c) {
+        CAPTURE(c);
+        CHECK(sums[1][c] == doctest::Approx(4.0 * kPi * rho[c]).epsilon(2e-4));
+    }
+}
+
 TEST_CASE("vpl tracing: invalid options are refused") {
     CHECK_THROWS_AS(vplkit::stages::vpl_capacity({0, 3, 0}), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::vpl_capacity({10, 0, 0}), vplkit::Error);

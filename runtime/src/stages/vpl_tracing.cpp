@@ -11,9 +11,11 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,42 @@ glm::dvec3 punctual_power(const scene::Light& light, double disc_area) {
 
 double channel_sum(const glm::dvec3& v) { return v.x + v.y + v.z; }
 
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// Mean texel of an image: RGB decoded from sRGB (colour data), or the plain channels (A unused).
+glm::dvec3 mean_texel(const scene::Image& image, bool srgb) {
+    std::array<double, 256> table{};
+    for (int i = 0; i < 256; ++i) table[i] = srgb ? srgb_to_linear(i / 255.0) : i / 255.0;
+    glm::dvec3 sum(0.0);
+    const size_t texels = size_t(image.width) * image.height;
+    for (size_t i = 0; i < texels && 4 * i + 2 < image.rgba.size(); ++i) {
+        sum += glm::dvec3(table[image.rgba[4 * i]], table[image.rgba[4 * i + 1]], table[image.rgba[4 * i + 2]]);
+    }
+    return texels > 0 ? sum / double(texels) : glm::dvec3(1.0);
+}
+
+// The diffuse reflectance of a material: the diffuse part of the glTF BRDF, base colour x
+// (1 - metallic) (metals have none), with each texture entering as its mean (a VPL stands for
+// a whole patch, and the tracer has no UVs at a hit).
+glm::vec3 diffuse_reflectance(const scene::Scene& scene, const scene::Material& material,
+                              std::vector<std::optional<glm::dvec3>>& srgb_means,
+                              std::vector<std::optional<glm::dvec3>>& linear_means) {
+    auto mean = [&](int32_t texture, bool srgb) -> glm::dvec3 {
+        if (texture == scene::kNoTexture) return glm::dvec3(1.0);
+        if (size_t(texture) >= scene.textures.size() || scene.textures[texture].image >= scene.images.size()) {
+            throw Error("VPL tracing: material '" + material.name + "' names a texture out of range");
+        }
+        const uint32_t image = scene.textures[texture].image;
+        auto& cache = srgb ? srgb_means : linear_means;
+        if (!cache[image]) cache[image] = mean_texel(scene.images[image], srgb);
+        return *cache[image];
+    };
+    const glm::dvec3 base = glm::dvec3(material.base_color_factor) * mean(material.base_color_texture, true);
+    // glTF: metallic is the B channel of the metallic-roughness texture.
+    const double metallic = double(material.metallic_factor) * mean(material.metallic_roughness_texture, false).z;
+    return glm::clamp(glm::vec3(base * (1.0 - metallic)), glm::vec3(0.0f), glm::vec3(1.0f));
+}
+
 }  // namespace
 
 VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
@@ -73,6 +111,11 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     out.scene_radius = float(glm::length(hi - lo) * 0.5 * (1.0 + 1e-6)) + 1e-30f;
     const double disc_area = kPi * double(out.scene_radius) * double(out.scene_radius);
 
+    std::vector<std::optional<glm::dvec3>> srgb_means(scene.images.size()), linear_means(scene.images.size());
+    std::vector<glm::vec3> material_rho;
+    for (const scene::Material& material : scene.materials) {
+        material_rho.push_back(diffuse_reflectance(scene, material, srgb_means, linear_means));
+    }
     std::vector<shaders::vec4> albedo(triangle_count);
     for (size_t t = 0; t < triangle_count; ++t) {
         const uint32_t m = scene.triangle_materials[t];
@@ -80,11 +123,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
             throw Error("VPL tracing: triangle " + std::to_string(t) + " has material " + std::to_string(m) +
                         ", but the scene has " + std::to_string(scene.materials.size()));
         }
-        const scene::Material& material = scene.materials[m];
-        // The diffuse part of the glTF BRDF: metals have none.
-        const glm::vec3 rho = glm::clamp(glm::vec3(material.base_color_factor) * (1.0f - material.metallic_factor),
-                                         glm::vec3(0.0f), glm::vec3(1.0f));
-        albedo[t] = {rho.x, rho.y, rho.z, 0.0f};
+        albedo[t] = {material_rho[m].x, material_rho[m].y, material_rho[m].z, 0.0f};
     }
 
     std::vector<double> weights;

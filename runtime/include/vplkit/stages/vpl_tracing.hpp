@@ -14,8 +14,10 @@
 // What a VPL's flux means: the flux its surface re-emits diffusely, i.e. the flux arriving along
 // the path times the diffuse reflectance, divided by the number of paths; the VPLs of bounce k
 // together estimate, without bias, the flux reflected after k surface interactions (see the
-// shader's header). Surfaces reflect diffusely with rho = base colour factor x (1 - metallic):
-// textures are not read, the specular lobe is not followed, and alpha is ignored (opaque).
+// shader's header). Surfaces reflect diffusely with rho = base colour x (1 - metallic), each
+// texture entering as its mean over the image (the mean linear colour of the base colour
+// texture, the mean B channel of the metallic-roughness texture): no texture lookup at hits;
+// the specular lobe is not followed, and alpha is ignored (opaque).
 
 #include "vplkit/buffer.hpp"
 
@@ -45,7 +47,7 @@ struct VplSources {
     Buffer lights;            // PunctualLight[max(punctual_count, 1)] (lights.glsl)
     Buffer emissive;          // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
     Buffer emitter_cdf;       // float[max(emitter_count, 1)]
-    Buffer triangle_albedo;   // vec4[triangle_count]: diffuse reflectance per scene triangle
+    Buffer triangle_albedo;   // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
     uint32_t punctual_count = 0;
     uint32_t emissive_count = 0;
     // punctual_count + emissive_count, or 0 when no emitter has any power (then no path is traced).
@@ -62,7 +64,8 @@ struct VplSources {
 // Uploads scene.lights (validated like upload_lights: a bad light throws Error naming it), the
 // emissive triangles (scene.emissive_triangles, radiance = Material::emission(), front face,
 // both when the material is double-sided), the selection CDF (weight = an emitter's power summed
-// over RGB) and the per-triangle diffuse reflectance. Reads vertices, indices,
+// over RGB) and the per-triangle diffuse reflectance (see above; textures read from
+// scene.textures and scene.images). Reads vertices, indices,
 // triangle_materials, materials, emissive_triangles and lights. The BVH must be built from
 // scene::triangle_positions(scene) (ids = scene triangle indices). Throws Error for a scene
 // without triangles or with a material index out of range.
