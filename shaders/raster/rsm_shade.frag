@@ -7,11 +7,8 @@
 
 #define VPLKIT_SCENE_MATERIALS_BINDING 2
 #define VPLKIT_SCENE_TEXTURES_BINDING 3
+#include "vplkit/lights.glsl"
 #include "vplkit/raster_material.glsl"
-
-const uint kRsmDirectional = 0u;  // scene::LightType order
-const uint kRsmPoint = 1u;
-const uint kRsmSpot = 2u;
 
 layout(push_constant) uniform RsmPush {
     mat4 view_projection;
@@ -21,14 +18,14 @@ layout(push_constant) uniform RsmPush {
 
 layout(std140, set = 0, binding = 7) uniform RsmLight {
     vec3 intensity;  // colour x intensity: irradiance W/m^2 (directional) or intensity W/sr
-    uint type;       // kRsm*
+    uint type;       // kLight* (vplkit/lights.glsl; scene::LightType order)
     vec3 position;   // point and spot
     float range;     // point and spot; 0 = unlimited
     vec3 direction;  // unit, the direction the light travels (directional and spot)
     float texel_area;      // directional: cross-section of one texel's beam, m^2
     float tan_half_fov;    // point and spot: a face spans [-tan_half_fov, tan_half_fov]^2 at distance 1
     float face_texels;     // point and spot: texels along a face's side
-    float spot_scale;      // KHR_lights_punctual spot falloff: clamp(cd * scale + offset, 0, 1)^2
+    float spot_scale;      // spot falloff, as PunctualLight's
     float spot_offset;
 } light;
 
@@ -82,14 +79,15 @@ float rect_solid_angle(vec2 lo, vec2 hi) {
 //   directional: irradiance E on a plane facing the light times the beam's cross-section A; the
 //     patch has area A / cos(theta) and receives E cos(theta), so the cosines cancel: E A.
 //   point, spot: intensity I (W/sr) times the texel's solid angle omega, times the spot falloff
-//     and the range window at the patch (both taken at the texel centre's surface point).
+//     and the range window of KHR_lights_punctual at the patch (taken at the surface point of
+//     the texel's centre), exactly as vplkit/lights.glsl applies them to direct light.
 // The reflected flux is albedo x that (seed 000 section 4.1: Phi_p = Phi_light(texel) x rho):
 // summed over the texels it is the light's power reflected by the surfaces it reaches, which
 // the tests check on planes against the analytic value. `albedo` is the base colour for metals
 // and dielectrics alike: a dielectric reflects about its base colour diffusely, a metal its base
 // colour specularly.
 vec3 texel_incident_power() {
-    if (light.type == kRsmDirectional) {
+    if (light.type == kLightDirectional) {
         return light.intensity * light.texel_area;
     }
     // The texel's square on the face's plane at distance 1 (the sign convention of the axes does
@@ -99,26 +97,16 @@ vec3 texel_incident_power() {
     vec2 lo = texel * step - light.tan_half_fov;
     float omega = rect_solid_angle(lo, lo + step);
 
-    vec3 to_point = world_position - light.position;
-    float distance = length(to_point);
-    float falloff = 1.0;
-    if (light.range > 0.0) {
-        // KHR_lights_punctual range window (the inverse-square law is in omega already):
-        // clamp(1 - (d / range)^4, 0, 1).
-        float r = distance / light.range;
-        falloff = clamp(1.0 - r * r * r * r, 0.0, 1.0);
-    }
-    if (light.type == kRsmSpot && distance > 0.0) {
-        // KHR_lights_punctual spot falloff, cd = cosine between the spot axis and the ray.
-        float cd = dot(light.direction, to_point / distance);
-        float a = clamp(cd * light.spot_scale + light.spot_offset, 0.0, 1.0);
-        falloff *= a * a;
-    }
-    return light.intensity * (omega * falloff);
+    // The light's falloff (range window, spot cone) as the direct-light stage applies it
+    // (vplkit/lights.glsl): its irradiance at the patch is I x falloff / d^2.
+    PunctualLight l = PunctualLight(light.position, light.type, light.direction, light.range, light.intensity,
+                                    light.spot_scale, light.spot_offset);
+    LightIncidence incidence = light_incidence(l, world_position);
+    return incidence.irradiance * (incidence.distance * incidence.distance * omega);
 }
 
 void main() {
-    vec3 to_light = light.type == kRsmDirectional ? -light.direction : light.position - world_position;
+    vec3 to_light = light.type == kLightDirectional ? -light.direction : light.position - world_position;
     RasterSurface s = raster_surface(scene_materials.items[push.material], world_normal, world_tangent, uv0, face_normal,
                                      to_light);
     out_position = vec4(world_position, 1.0);

@@ -208,6 +208,46 @@ TEST_CASE("shadow maps: a point light's cube map over a plane") {
     }
 }
 
+TEST_CASE("shadow maps: a point light's range window scales each texel's flux") {
+    vplkit::Context& ctx = vplkit::test::context();
+    // Distances from the light to the plane run from 1 to 1.25: the window
+    // clamp(1 - (d / range)^4, 0, 1) of KHR_lights_punctual falls to 0 at 1.2, inside the plane.
+    constexpr float half = 0.75f, height = 1.0f, range = 1.2f;
+    const glm::vec3 albedo(0.5f, 0.5f, 0.5f);
+    const auto scene = raster_test::floor_scene(half, albedo);
+    auto gpu = vplkit::GpuScene::create(ctx, scene);
+    constexpr uint32_t res = 64;
+    vplkit::scene::Light light;
+    light.type = vplkit::scene::LightType::point;
+    light.name = "ranged bulb";
+    light.position = {0.0f, height, 0.0f};
+    light.intensity = 2.0f;
+    light.range = range;
+    ShadowMap map = ShadowMap::create(ctx, light, gpu.bounds(), res);
+    const RsmRead r = render(ctx, gpu, map);
+    const auto& below = map.faces[3];  // -Y
+    int cut_off = 0, lit = 0;
+    for (uint32_t y = uint32_t(below.rect.offset.y); y < below.rect.offset.y + res; ++y) {
+        for (uint32_t x = uint32_t(below.rect.offset.x); x < below.rect.offset.x + res; ++x) {
+            const size_t i = size_t(y) * map.width() + x;
+            if (r.position[i].w == 0.0f) continue;
+            CAPTURE(x);
+            CAPTURE(y);
+            const Beam beam = beam_hit(below, x, y);
+            const double d = glm::length(beam.hit - glm::dvec3(light.position)) / range;
+            const double window = std::clamp(1.0 - d * d * d * d, 0.0, 1.0);
+            const double step = 2.0 / res;
+            const double x0 = (x - below.rect.offset.x) * step - 1.0, y0 = (y - below.rect.offset.y) * step - 1.0;
+            const double unwindowed = 0.5 * light.intensity * rect_solid_angle(x0, y0, x0 + step, y0 + step);
+            // The window is taken at the interpolated position (error ~1e-5: slope 3.3 per unit).
+            CHECK(std::abs(r.flux[i].r - unwindowed * window) <= 1e-4 * unwindowed);
+            (window == 0.0 ? cut_off : lit) += 1;
+        }
+    }
+    CHECK(cut_off > 100);
+    CHECK(lit > 1000);
+}
+
 TEST_CASE("shadow maps: spot lights reflect their cone's power from a plane") {
     vplkit::Context& ctx = vplkit::test::context();
     const glm::vec3 albedo(0.4f, 0.7f, 0.2f);
