@@ -1,0 +1,29 @@
+#include "vplkit/stages/compose.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/compose.hpp"
+
+namespace vplkit::stages {
+
+void add_compose_pass(Context& context, PassList& passes, Image& direct, Image& indirect, Image& composed) {
+    for (const Image* image : {&direct, &indirect, &composed}) {
+        if (image->format() != VK_FORMAT_R32G32B32A32_SFLOAT || image->width() != composed.width() ||
+            image->height() != composed.height()) {
+            throw Error("compose: '" + image->name() + "' must be RGBA32F and of the frame's size");
+        }
+    }
+    const auto& pipeline = context.pipeline<shaders::compose::Pipeline>();
+    passes.add("compose", {Use::read(direct), Use::read(indirect), Use::write(composed)},
+               [&pipeline, &direct, &indirect, &composed](VkCommandBuffer cmd) {
+                   shaders::compose::Bindings b;
+                   b.direct = direct.descriptor();
+                   b.indirect = indirect.descriptor();
+                   b.composed = composed.descriptor();
+                   pipeline.dispatch(cmd, b, composed.width(), composed.height());
+               });
+}
+
+}  // namespace vplkit::stages
