@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Shadow map + reflective shadow map pass, fragment stage. One texel of a reflective shadow map
-// (seed 000 section 4.1; Dachsbacher and Stamminger 2005) is a small surface patch lit by the
-// light: its world position, its normal, and the flux it reflects. The depth attachment of the
+// (Dachsbacher and Stamminger 2005, "Reflective Shadow Maps"; seed 000 section 2.2 and 4.1
+// generate VPLs from these texels) is a small surface patch lit by the light: its world
+// position, its normal, and the flux it reflects. The depth attachment of the
 // same pass is the light's shadow map. Images: runtime/include/vplkit/stages/shadow_maps.hpp.
 
 #define VPLKIT_SCENE_MATERIALS_BINDING 2
@@ -81,7 +82,8 @@ float rect_solid_angle(vec2 lo, vec2 hi) {
 //   point, spot: intensity I (W/sr) times the texel's solid angle omega, times the spot falloff
 //     and the range window of KHR_lights_punctual at the patch (taken at the surface point of
 //     the texel's centre), exactly as vplkit/lights.glsl applies them to direct light.
-// The reflected flux is albedo x that (seed 000 section 4.1: Phi_p = Phi_light(texel) x rho):
+// The reflected flux is albedo x that (Dachsbacher and Stamminger 2005: a texel's flux is the
+// light's flux through it times the surface's reflectivity):
 // summed over the texels it is the light's power reflected by the surfaces it reaches, which
 // the tests check on planes against the analytic value. `albedo` is the base colour for metals
 // and dielectrics alike: a dielectric reflects about its base colour diffusely, a metal its base
