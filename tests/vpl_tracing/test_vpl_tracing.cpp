@@ -437,6 +437,30 @@ TEST_CASE("vpl tracing: no VPLs without light or without diffuse reflectance") {
     }
 }
 
+TEST_CASE("vpl tracing: boxes at 1e-3 and 1e4 scale neither leak nor lose flux") {
+    for (float scale : {1e-3f, 1e4f}) {
+        CAPTURE(scale);
+        Scene scene;
+        add_box(scene, kBoxLo * scale, kBoxHi * scale, add_material(scene, glm::vec3(0.5f)));
+        // A corner of the box is where offsets matter most: light near it.
+        scene.lights.push_back(point_light(glm::vec3(0.95f, 0.7f, 0.45f) * scale, {1.0f, 1.0f, 1.0f}, 1.0f));
+        Tracer tracer(scene);
+        const Traced t = tracer.run({3000, 3, 11});
+        const auto sums = flux_per_bounce(t, 3);
+        // Every path reaches a wall: bounce 1 is exactly Phi rho (see the file's header).
+        CHECK(sums[1][0] == doctest::Approx(4.0 * kPi * 0.5).epsilon(2e-4));
+        size_t second = std::count(t.bounces.begin(), t.bounces.end(), 2u);
+        // Binomial(3000, 0.5): 5 sigma.
+        CHECK(std::abs(double(second) - 1500.0) <= 5.0 * std::sqrt(750.0));
+        for (const auto& v : t.vpls) {
+            const glm::dvec3 p = to_d(v.position) / double(scale);
+            const glm::dvec3 lo(kBoxLo), hi(kBoxHi);
+            const double inside = std::min({p.x - lo.x, hi.x - p.x, p.y - lo.y, hi.y - p.y, p.z - lo.z, hi.z - p.z});
+            REQUIRE(std::abs(inside) <= 1e-5);  // on a wall, relative to the box's size
+        }
+    }
+}
+
 TEST_CASE("vpl tracing: textures enter the reflectance as their means") {
     Scene scene;
     const uint32_t m = add_material(scene, glm::vec3(0.9f, 0.8f, 1.0f));
