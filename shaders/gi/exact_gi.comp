@@ -3,7 +3,7 @@
 // Exact indirect light (the ground truth of issue 6): every VPL of the chunk [vpl_first,
 // vpl_first + vpl_count) at every G-buffer pixel, each with its own shadow ray. Accumulates into
 // `indirect` (read-modify-write of the thread's own pixel), so dispatches over consecutive
-// chunks add up to the sum over all VPLs; the host clears `indirect` and `drops` first.
+// chunks add up to the sum over all VPLs; the host clears `indirect` and `counters` first.
 //
 // indirect.rgb: the sum of the finite contributions; indirect.a: how many contributions this
 // pixel dropped (see below), 0 for a clean pixel. Background pixels stay 0.
@@ -24,9 +24,14 @@ layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric
 layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
 layout(std430, set = 0, binding = 6) readonly buffer VplBuffer { Vpl items[]; } vpls;
 layout(set = 0, binding = 7, rgba32f) uniform image2D indirect;
-// pixels: pixels with at least one dropped contribution (counted once, when its first drop
-// happens); contributions: dropped (pixel, VPL) pairs, exact below 2^32.
-layout(std430, set = 0, binding = 8) buffer ExactGiDropCounts { uint pixels; uint contributions; } drops;
+// dropped_pixels: pixels with at least one dropped contribution (counted once, when its first
+// drop happens); dropped_contributions: dropped (pixel, VPL) pairs, exact below 2^32;
+// cut_short: invocations whose loops the driver ended early (see the sentinel below).
+layout(std430, set = 0, binding = 8) buffer ExactGiCounters {
+    uint dropped_pixels;
+    uint dropped_contributions;
+    uint cut_short;
+} counters;
 
 layout(push_constant) uniform ExactGiPush {
     vec3 camera_position;
@@ -54,7 +59,18 @@ void main() {
     vec3 total = previous.rgb;
     uint dropped = 0u;
     uint end = push.vpl_first + push.vpl_count;
-    for (uint i = push.vpl_first; i < end; ++i) {
+    // lavapipe (llvmpipe) ends every loop of a SIMD batch of invocations once its loops together have run
+    // 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS, shared between every loop of a shader), with
+    // no error: VPLs x BVH traversal steps exceed that in one long dispatch. So the loop runs
+    // one sentinel iteration past the last VPL; if the driver cut it short, that iteration never
+    // ran and the pixel is counted in cut_short (the host refuses such a result). The limiter
+    // fires at a loop's end, so a cut inside the last VPL's shadow ray still skips the sentinel.
+    bool completed = false;
+    for (uint i = push.vpl_first; i <= end; ++i) {
+        if (i == end) {
+            completed = true;
+            break;
+        }
         Vpl vpl = vpls.items[i];
         vec3 c = vpl_contribution(g.position, g.normal, g.geometric_normal, wo, g.albedo, g.roughness, g.metallic, vpl,
                                   min_distance);
@@ -76,11 +92,14 @@ void main() {
         }
         total = next;
     }
+    if (!completed) {
+        atomicAdd(counters.cut_short, 1u);
+    }
     if (dropped > 0u) {
         if (previous.a == 0.0) {
-            atomicAdd(drops.pixels, 1u);
+            atomicAdd(counters.dropped_pixels, 1u);
         }
-        atomicAdd(drops.contributions, dropped);
+        atomicAdd(counters.dropped_contributions, dropped);
     }
     imageStore(indirect, pixel, vec4(total, previous.a + float(dropped)));
 }

@@ -1,7 +1,7 @@
 // exact_gi_timing: GPU time of the exact indirect light (every VPL at every pixel, one shadow
 // ray each) on a real scene's G-buffer (not a test: timings are never asserted).
 //
-//   exact_gi_timing [SETUP] [--size WxH] [--vpls N] [--budget PAIRS]
+//   exact_gi_timing [SETUP] [--size WxH] [--vpls N] [--budget PAIRS] [--chunk VPLS]
 //
 // SETUP is a name from scenes/setups.txt (default: cornell). The VPLs are N points drawn
 // uniformly by area on the scene's triangles (fixed seed), facing the side of their triangle
@@ -51,6 +51,8 @@ int main(int argc, char** argv) {
                 if (std::sscanf(value.c_str(), "%ux%u", &width, &height) != 2) throw vplkit::Error("bad --size " + value);
             } else if (key == "--vpls") {
                 vpl_count = uint32_t(std::stoul(value));
+            } else if (key == "--chunk") {
+                gi_options.max_vpls_per_dispatch = uint32_t(std::stoul(value));
             } else if (key == "--budget") {
                 gi_options.max_pairs_per_dispatch = std::stoull(value);
             } else {
@@ -129,7 +131,7 @@ int main(int argc, char** argv) {
                     scene.triangle_count(), width, height, vpl_count, result.dispatches, chunk);
         std::printf("exact gi: %.1f ms GPU, %.1f ms wall; %.1f ns per (pixel, VPL) pair; mean indirect %.4g; dropped %u pixels, %u contributions\n",
                     result.gpu_ms, wall_ms, result.gpu_ms * 1e6 / (double(width) * height * vpl_count), mean,
-                    result.drops.pixels, result.drops.contributions);
+                    result.counts.dropped_pixels, result.counts.dropped_contributions);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "exact_gi_timing: %s\n", e.what());

@@ -15,6 +15,7 @@
 #include "vplkit/bvh.hpp"
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
+#include "vplkit/device_info.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
@@ -34,6 +35,7 @@
 #include <cmath>
 #include <limits>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -126,7 +128,7 @@ std::vector<Vpl> floor_vpls(float s, float flux_scale) {
 
 struct GpuResult {
     std::vector<Texel> image;
-    vplkit::stages::ExactGiDrops drops;
+    vplkit::stages::ExactGiCounts counts;
     std::vector<std::array<uint32_t, 2>> progress;
     uint32_t dispatches = 0;
 };
@@ -170,14 +172,15 @@ GpuResult run_gpu(const Setup& setup, const vplkit::stages::ExactGiOptions& opti
         auto opts = options;
         opts.progress = [&out](uint32_t done, uint32_t total) { out.progress.push_back({done, total}); };
         const auto r = vplkit::stages::render_exact_gi(ctx, gbuffer, bvh, vpls, count, setup.camera, indirect, opts);
-        out.drops = r.drops;
+        out.counts = r.counts;
         out.dispatches = r.dispatches;
     } else {
-        auto drops = vplkit::stages::create_exact_gi_drop_counts(ctx);
+        auto counters = vplkit::stages::create_exact_gi_counters(ctx);
         vplkit::PassList passes("exact gi test");
-        vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, count, setup.camera, indirect, drops, options);
+        vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, count, setup.camera, indirect, counters,
+                                            options);
         passes.run(ctx);
-        out.drops = vplkit::stages::read_exact_gi_drop_counts(drops);
+        out.counts = vplkit::stages::read_exact_gi_counters(counters);
         out.dispatches = uint32_t(passes.size() - 1);
     }
     out.image = indirect.download<Texel>();
@@ -259,20 +262,25 @@ TEST_CASE("exact gi: 50 VPLs with BVH shadows match the double reference") {
     const auto gpu = run_gpu(setup, {}, false);
     const auto expected = run_reference(setup);
     const Comparison c = compare(setup, gpu, expected);
-    CHECK(gpu.dispatches == 1);
-    CHECK(gpu.drops.pixels == 0);
-    CHECK(gpu.drops.contributions == 0);
+    CHECK(gpu.dispatches == 2);  // 32 VPLs per dispatch at most by default
+    CHECK(gpu.counts.dropped_pixels == 0);
+    CHECK(gpu.counts.dropped_contributions == 0);
+    CHECK(gpu.counts.cut_short == 0);
     CHECK(c.lit > c.compared * 9 / 10);  // the VPLs light the floor...
     CHECK(c.occluded > 50);              // ...and the quad shadows some of them
 }
 
 TEST_CASE("exact gi: chunk sizes 1 and 7 and all give the same sums") {
     const Setup setup = standard_setup();
-    const auto all = run_gpu(setup, {}, false);
+    vplkit::stages::ExactGiOptions one_dispatch;
+    one_dispatch.chunk_size = uint32_t(setup.vpls.size());
+    const auto all = run_gpu(setup, one_dispatch, false);
+    REQUIRE(all.dispatches == 1);
     for (uint32_t chunk : {1u, 7u}) {
         CAPTURE(chunk);
         vplkit::stages::ExactGiOptions options;
         options.chunk_size = chunk;
+        options.max_vpls_per_dispatch = 1;  // chunk_size overrides it
         for (bool via_render : {false, true}) {
             CAPTURE(via_render);
             const auto chunked = run_gpu(setup, options, via_render);
@@ -298,6 +306,7 @@ TEST_CASE("exact gi: chunk sizes 1 and 7 and all give the same sums") {
     vplkit::stages::ExactGiOptions budget;
     budget.max_pairs_per_dispatch = 1u << 12;
     CHECK(vplkit::stages::exact_gi_chunk_size(32, 24, budget) == 5);
+    CHECK(vplkit::stages::exact_gi_chunk_size(32, 24, {}) == 32);  // max_vpls_per_dispatch
     CHECK(vplkit::stages::exact_gi_chunk_size(4096, 4096, budget) == 1);
     const auto budgeted = run_gpu(setup, budget, false);
     CHECK(budgeted.dispatches == 10);
@@ -438,8 +447,9 @@ TEST_CASE("exact gi: non-finite VPLs are dropped and counted") {
         // dropped (alpha); the counters count each pixel once however many chunks dropped.
         const auto gpu = run_gpu(setup, options, chunk == 1);
         compare(setup, gpu, expected);
-        CHECK(gpu.drops.pixels == pixels);
-        CHECK(gpu.drops.contributions == contributions);
+        CHECK(gpu.counts.dropped_pixels == pixels);
+        CHECK(gpu.counts.dropped_contributions == contributions);
+        CHECK(gpu.counts.cut_short == 0);
         CHECK(pixels > 500);
     }
 }
@@ -449,18 +459,52 @@ TEST_CASE("exact gi: no VPLs leave the image cleared and bad targets are refused
     Setup setup = floor_setup(1.0f, 8, 4);
     const auto gpu = run_gpu(setup, {}, true);
     for (const Texel& t : gpu.image) CHECK(t == Texel{0, 0, 0, 0});
+    CHECK(gpu.progress.empty());
     CHECK(gpu.dispatches == 0);
 
     auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 8, 4);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(setup.triangles));
     auto vpls = vplkit::Buffer::create(ctx, 4 * sizeof(vplkit::shaders::Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                        vplkit::MemoryUse::device, "vpls");
-    auto drops = vplkit::stages::create_exact_gi_drop_counts(ctx);
+    auto counters = vplkit::stages::create_exact_gi_counters(ctx);
     auto wrong_size = vplkit::Image::create(ctx, 8, 5, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
     auto right = vplkit::Image::create(ctx, 8, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "right");
     vplkit::PassList passes;
-    CHECK_THROWS_WITH_AS(vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 4, {}, wrong_size, drops),
+    CHECK_THROWS_WITH_AS(vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 4, {}, wrong_size, counters),
                          doctest::Contains("'small'"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 5, {}, right, drops),
+    CHECK_THROWS_WITH_AS(vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 5, {}, right, counters),
                          doctest::Contains("fewer than 5 VPLs"), vplkit::Error);
+}
+
+TEST_CASE("exact gi: a dispatch the driver cuts short is counted and refused") {
+    // 16384 VPLs facing the floor from the ceiling, so every one is traced: 16384 loop
+    // iterations plus several traversal steps each, past lavapipe's 65535 shared iterations.
+    vplkit::Context& ctx = vplkit::test::context();
+    Setup setup = floor_setup(1.0f, 8, 8);
+    for (Pixel& p : setup.pixels) p.covered = true;
+    // The quad moved above the VPLs: still in the BVH (more traversal steps), shadowing nothing,
+    // so no pixel is left out as near its edge.
+    for (size_t i = 6; i < 12; ++i) setup.triangles[i].y = 2.5f;
+    std::mt19937 rng(13);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int i = 0; i < 16384; ++i) {
+        setup.vpls.push_back({{-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)}, {0.0f, -1.0f, 0.0f}, {1e-3f, 1e-3f, 1e-3f}});
+    }
+    const bool lavapipe = ctx.info().name.find("llvmpipe") != std::string::npos;
+    vplkit::stages::ExactGiOptions one_dispatch;
+    one_dispatch.chunk_size = uint32_t(setup.vpls.size());
+    const auto long_run = run_gpu(setup, one_dispatch, false);
+    CAPTURE(long_run.counts.cut_short);
+    if (lavapipe) {
+        CHECK(long_run.counts.cut_short == 64);
+        CHECK_THROWS_WITH_AS(run_gpu(setup, one_dispatch, true), doctest::Contains("smaller chunk_size"), vplkit::Error);
+    } else {
+        CHECK(long_run.counts.cut_short == 0);
+    }
+    // The default chunking stays inside the limit and sums 16384 terms to the reference
+    // (1e-3: float summation of 16384 positive terms).
+    const auto chunked = run_gpu(setup, {}, true);
+    CHECK(chunked.counts.cut_short == 0);
+    CHECK(chunked.dispatches == 512);
+    compare(setup, chunked, run_reference(setup), 1e-3);
 }
