@@ -263,6 +263,15 @@ TEST_CASE("vpl tracing: closed box with a spot light a point light and a double-
     }
     Tracer tracer(scene);
     for (int c = 0; c < 3; ++c) CHECK(tracer.sources().total_power[c] == doctest::Approx(phi[c]).epsilon(1e-4));
+    // The selection CDF: emitters in order spot, point, triangle, each picked in proportion to
+    // its power summed over RGB; the last entry exactly 1.
+    REQUIRE(tracer.sources().emitter_count == 3);
+    const auto cdf = tracer.sources().emitter_cdf.download<float>(3);
+    const double spot_w = spot_factor * spot.intensity * (0.2 + 1.0 + 0.5), point_w = 3.0 * 4.0 * kPi * 0.5,
+                 glow_w = 2.0 * kPi * area * 2.0 * (1.0 + 0.5 + 0.25), total_w = spot_w + point_w + glow_w;
+    CHECK(cdf[0] == doctest::Approx(spot_w / total_w).epsilon(1e-4));
+    CHECK(cdf[1] - cdf[0] == doctest::Approx(point_w / total_w).epsilon(1e-4));
+    CHECK(cdf[2] == 1.0f);
     const uint32_t max_bounces = 3;
     std::vector<Rgb> expected(max_bounces + 1);
     for (uint32_t k = 1; k <= max_bounces; ++k) {
