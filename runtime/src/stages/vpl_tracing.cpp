@@ -282,6 +282,10 @@ void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, 
                });
 }
 
-uint32_t download_vpl_count(const VplTracingOutput& output) { return output.count.download<uint32_t>(1)[0]; }
+uint32_t download_vpl_count(const VplTracingOutput& output) {
+    // A path appends at most max_bounces VPLs, so the counter never passes the capacity; the clamp
+    // only guards a caller that traced with options other than the buffers were made for.
+    return std::min(output.count.download<uint32_t>(1)[0], output.capacity);
+}
 
 }  // namespace vplkit::stages
