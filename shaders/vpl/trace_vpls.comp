@@ -52,7 +52,8 @@ layout(std430, set = 0, binding = 4) readonly buffer EmitterCdfBuffer { float it
 // Diffuse reflectance per scene triangle (BvhHit.id), rgb; a = unused.
 layout(std430, set = 0, binding = 5) readonly buffer TriangleAlbedoBuffer { vec4 items[]; } albedo;
 layout(std430, set = 0, binding = 6) writeonly buffer VplBuffer { Vpl items[]; } vpls;
-layout(std430, set = 0, binding = 7) buffer VplCountBuffer { uint count; } vpl_count;
+// count: VPLs appended; cut_short: paths whose loops the driver ended early (see main).
+layout(std430, set = 0, binding = 7) buffer VplCountBuffer { uint count; uint cut_short; } vpl_count;
 // Beside each VPL: which surface interaction of its path made it (1 = the first surface the light
 // reached). Kept apart from Vpl, whose layout every VPL consumer shares.
 layout(std430, set = 0, binding = 8) writeonly buffer VplBounceBuffer { uint items[]; } vpl_bounces;
@@ -67,6 +68,7 @@ layout(push_constant) uniform TraceVplsPush {
     uint emitter_count;  // punctual + emissive triangles with positive selection weight
     uint triangle_count; // entries of `albedo`
     uint capacity;       // entries of `vpls`
+    uint step_limit;     // max_bounces + 1: the bounce loop's bound (see main)
 } push;
 
 // The emitter whose CDF interval holds u (the first i with cdf[i] > u): an emitter of zero
@@ -168,10 +170,26 @@ void main() {
     vec3 origin = e.origin;
     vec3 direction = e.direction;
     vec3 beta = e.flux;
-    for (uint bounce = 1u; bounce <= push.max_bounces; ++bounce) {
+    // lavapipe (llvmpipe) ends every loop of a SIMD batch of invocations, silently, once its loops
+    // together have run 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS; found by the exact-GI
+    // stage): bounces x BVH traversal steps can pass that on long paths, which would lose their
+    // flux without a trace. So the bounce loop ends only through one sentinel iteration, which
+    // a cut loop never reaches (the limiter fires at loop ends, the traversal's included), and a
+    // path without it is counted in cut_short for the host to refuse. The loop's own bound comes
+    // from the host: with none (or one derived from max_bounces) the compiler proves the sentinel
+    // is the only way out and folds `completed` to true.
+    bool done = false;
+    bool completed = false;
+    for (uint step = 0u; step < push.step_limit; ++step) {
+        if (done || step == push.max_bounces) {
+            completed = true;
+            break;
+        }
+        uint bounce = step + 1u;
         BvhHit hit = bvh_closest_hit(origin, direction, 0.0, kBvhMaxT);
         if (hit.id == kBvhNoHit) {
-            break;
+            done = true;
+            continue;
         }
         if (bounce == 1u && e.range > 0.0) {
             // lights.glsl's range window, at the distance the light's flux travelled.
@@ -181,7 +199,8 @@ void main() {
         vec3 rho = hit.id < push.triangle_count ? albedo.items[hit.id].rgb : vec3(0.0);
         float q = max(max(rho.r, rho.g), rho.b);
         if (!(q > 0.0) || all(equal(beta, vec3(0.0)))) {
-            break;
+            done = true;
+            continue;
         }
         vec3 p = bvh_hit_position(hit);
         vec3 n = normalize(bvh_triangle_normal(hit.triangle));
@@ -198,10 +217,14 @@ void main() {
             vpl_bounces.items[slot] = bounce;
         }
         if (bounce == push.max_bounces || rng_next_float(rng) >= q) {
-            break;
+            done = true;
+            continue;
         }
         beta *= rho / q;
         direction = frame_to_world(sample_cosine_hemisphere(rng_next_vec2(rng)), n);
         origin = offset_ray_origin(p, n, scale);
+    }
+    if (!completed) {
+        atomicAdd(vpl_count.cut_short, 1u);
     }
 }

@@ -109,7 +109,11 @@ class Tracer {
         vplkit::PassList passes("vpl tracing test");
         vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh_, sources_, options, output);
         passes.run(ctx);
+        const auto counts = vplkit::stages::download_vpl_counts(output);
+        // Short paths stay far below lavapipe's loop limit: none may be reported cut.
+        REQUIRE(counts.cut_short == 0);
         const uint32_t count = vplkit::stages::download_vpl_count(output);
+        REQUIRE(count == counts.vpls);
         REQUIRE(count <= output.capacity);
         Traced t;
         if (count > 0) {
@@ -120,6 +124,7 @@ class Tracer {
     }
 
     const vplkit::stages::VplSources& sources() const { return sources_; }
+    const vplkit::GpuBvh& bvh() const { return bvh_; }
 
  private:
     vplkit::GpuBvh bvh_;
@@ -507,10 +512,35 @@ TEST_CASE("vpl tracing: textures enter the reflectance as their means") {
     }
 }
 
+TEST_CASE("vpl tracing: paths a driver cuts short are counted and refused never silently lost") {
+    // Albedo 1: no path ends before max_bounces, and 20000 bounces x several traversal steps pass
+    // lavapipe's 65535 loop iterations; a driver without that limit traces them all.
+    Scene scene;
+    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(1.0f)));
+    scene.lights.push_back(point_light({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
+    Tracer tracer(scene);
+    vplkit::Context& ctx = vplkit::test::context();
+    const VplTracingOptions options{16, 20000, 1};
+    auto output = vplkit::stages::VplTracingOutput::create(ctx, options);
+    vplkit::PassList passes("vpl tracing cut short");
+    vplkit::stages::add_trace_vpls_pass(ctx, passes, tracer.bvh(), tracer.sources(), options, output);
+    passes.run(ctx);
+    const auto counts = vplkit::stages::download_vpl_counts(output);
+    MESSAGE("cut short: " << counts.cut_short << " of 16 paths, " << counts.vpls << " VPLs");
+    if (counts.cut_short == 0) {
+        CHECK(counts.vpls == 16u * 20000u);
+        CHECK(vplkit::stages::download_vpl_count(output) == counts.vpls);
+    } else {
+        CHECK(counts.vpls < 16u * 20000u);
+        CHECK_THROWS_AS(vplkit::stages::download_vpl_count(output), vplkit::Error);
+    }
+}
+
 TEST_CASE("vpl tracing: invalid options are refused") {
     CHECK_THROWS_AS(vplkit::stages::vpl_capacity({0, 3, 0}), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::vpl_capacity({10, 0, 0}), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::vpl_capacity({0x10000u, 0x10000u, 0}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::stages::vpl_capacity({1, 0xffffffffu, 0}), vplkit::Error);
     CHECK(vplkit::stages::vpl_capacity({1000, 3, 0}) == 3000);
     Scene empty;
     CHECK_THROWS_AS(vplkit::stages::upload_vpl_sources(vplkit::test::context(), empty), vplkit::Error);

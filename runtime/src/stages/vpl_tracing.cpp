@@ -205,8 +205,8 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
 }
 
 uint32_t vpl_capacity(const VplTracingOptions& options) {
-    if (options.paths == 0 || options.max_bounces == 0) {
-        throw Error("VPL tracing: paths and max_bounces must be at least 1 (got " + std::to_string(options.paths) +
+    if (options.paths == 0 || options.max_bounces == 0 || options.max_bounces == std::numeric_limits<uint32_t>::max()) {
+        throw Error("VPL tracing: paths and max_bounces must be at least 1, max_bounces below 2^32 - 1 (got " + std::to_string(options.paths) +
                     " and " + std::to_string(options.max_bounces) + ")");
     }
     const uint64_t capacity = uint64_t(options.paths) * options.max_bounces;
@@ -229,8 +229,8 @@ VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOpti
     out.vpls = Buffer::create(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpls");
     out.bounces = Buffer::create(context, uint64_t(out.capacity) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                  MemoryUse::device, "vpl bounces");
-    out.count = Buffer::create(context, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
-                               "vpl count");
+    out.count = Buffer::create(context, sizeof(shaders::VplCountBuffer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryUse::device, "vpl count");
     return out;
 }
 
@@ -238,7 +238,8 @@ void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, 
                          const VplTracingOptions& options, VplTracingOutput& output) {
     const uint32_t capacity = vpl_capacity(options);
     if (output.vpls.size() < uint64_t(capacity) * sizeof(shaders::Vpl) ||
-        output.bounces.size() < uint64_t(capacity) * sizeof(uint32_t) || output.count.size() < sizeof(uint32_t)) {
+        output.bounces.size() < uint64_t(capacity) * sizeof(uint32_t) ||
+        output.count.size() < sizeof(shaders::VplCountBuffer)) {
         throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
                     " VPLs (paths x max_bounces)");
     }
@@ -251,7 +252,9 @@ void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, 
 
     Buffer& count = output.count;
     passes.add("vpl count clear", {Use::transfer_dst(count)},
-               [&count](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, count.handle(), 0, sizeof(uint32_t), 0u); });
+               [&count](VkCommandBuffer cmd) {
+                   vkCmdFillBuffer(cmd, count.handle(), 0, sizeof(shaders::VplCountBuffer), 0u);
+               });
 
     shaders::trace_vpls::Push push{};
     push.scene_center = {sources.scene_center.x, sources.scene_center.y, sources.scene_center.z};
@@ -263,6 +266,8 @@ void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, 
     push.emitter_count = sources.emitter_count;
     push.triangle_count = sources.triangle_count;
     push.capacity = capacity;
+    // vpl_capacity refused max_bounces = 2^32 - 1: this does not wrap.
+    push.step_limit = options.max_bounces + 1;
     passes.add("trace vpls",
                {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(sources.lights), Use::read(sources.emissive),
                 Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo), Use::write(output.vpls),
@@ -282,10 +287,21 @@ void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, 
                });
 }
 
-uint32_t download_vpl_count(const VplTracingOutput& output) {
+VplCounts download_vpl_counts(const VplTracingOutput& output) {
+    const auto c = output.count.download<shaders::VplCountBuffer>(1)[0];
     // A path appends at most max_bounces VPLs, so the counter never passes the capacity; the clamp
     // only guards a caller that traced with options other than the buffers were made for.
-    return std::min(output.count.download<uint32_t>(1)[0], output.capacity);
+    return {std::min(c.count, output.capacity), c.cut_short};
+}
+
+uint32_t download_vpl_count(const VplTracingOutput& output) {
+    const VplCounts counts = download_vpl_counts(output);
+    if (counts.cut_short > 0) {
+        throw Error("VPL tracing: the driver cut " + std::to_string(counts.cut_short) +
+                    " light paths short (lavapipe ends a shader's loops after 65535 iterations): their flux is "
+                    "missing; trace with fewer max_bounces");
+    }
+    return counts.vpls;
 }
 
 }  // namespace vplkit::stages

@@ -75,7 +75,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene);
 struct VplTracingOutput {
     Buffer vpls;     // Vpl[capacity]: the first `count` are valid after the pass
     Buffer bounces;  // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
-    Buffer count;    // uint32_t: the number of VPLs appended
+    Buffer count;    // VplCountBuffer: the number of VPLs appended, and of paths cut short
     uint32_t capacity = 0;
 
     // Throws Error when the options are invalid or the VPL buffer would exceed the device's
@@ -83,7 +83,7 @@ struct VplTracingOutput {
     static VplTracingOutput create(Context& context, const VplTracingOptions& options);
 };
 
-// Throws Error for paths or max_bounces 0, or paths x max_bounces above 2^32 - 1.
+// Throws Error for paths or max_bounces 0, max_bounces 2^32 - 1, or paths x max_bounces above 2^32 - 1.
 uint32_t vpl_capacity(const VplTracingOptions& options);
 
 // Adds the passes "vpl count clear" and "trace vpls". `output` must hold at least
@@ -91,7 +91,16 @@ uint32_t vpl_capacity(const VplTracingOptions& options);
 void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, const VplSources& sources,
                          const VplTracingOptions& options, VplTracingOutput& output);
 
-// The number of VPLs the last run appended (blocking read of output.count).
+struct VplCounts {
+    uint32_t vpls = 0;       // appended (at most the capacity)
+    // Paths the driver ended early: lavapipe silently stops an invocation's loops after 65535
+    // iterations of all of them together (bounces x BVH traversal steps); such a path's later
+    // bounces are missing, so the VPL set underestimates the light. 0 on other drivers.
+    uint32_t cut_short = 0;
+};
+// Blocking read of output.count after a run.
+VplCounts download_vpl_counts(const VplTracingOutput& output);
+// The number of VPLs the last run appended; throws Error when any path was cut short.
 uint32_t download_vpl_count(const VplTracingOutput& output);
 
 }  // namespace vplkit::stages
