@@ -4,9 +4,12 @@
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
+#include "vplkit/stages/compose.hpp"
+#include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
 #include "vplkit/stages/tonemap.hpp"
+#include "vplkit/stages/vpl_tracing.hpp"
 
 #include <array>
 #include <chrono>
@@ -14,7 +17,7 @@
 
 namespace vplkit {
 
-DirectRenderer::DirectRenderer(Context& context, const scene::Scene& scene) : context_(context) {
+Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(context), scene_source_(scene) {
     if (scene.lights.empty() && scene.emissive_triangles.empty()) {
         throw Error(scene.source.string() +
                     ": the scene has no light (no punctual light, no emissive triangle): its image would be black; "
@@ -29,35 +32,78 @@ DirectRenderer::DirectRenderer(Context& context, const scene::Scene& scene) : co
     emitters_ = stages::upload_emitters(context, scene);
 }
 
-RenderedImage DirectRenderer::render(const scene::Camera& camera, const RenderSettings& settings) {
-    auto gbuffer = stages::GbufferImages::create(context_, settings.width, settings.height);
-    auto radiance = Image::create(context_, settings.width, settings.height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                  VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
-    auto display = Image::create(context_, settings.width, settings.height, VK_FORMAT_R8G8B8A8_UNORM,
-                                 VK_IMAGE_USAGE_STORAGE_BIT, "display");
+namespace {
+
+std::vector<float> rgb_of(Image& image) {
+    const auto texels = image.download<std::array<float, 4>>();
+    std::vector<float> rgb;
+    rgb.reserve(texels.size() * 3);
+    for (const auto& t : texels) rgb.insert(rgb.end(), {t[0], t[1], t[2]});
+    return rgb;
+}
+
+void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) { all.insert(all.end(), more.begin(), more.end()); }
+
+}  // namespace
+
+RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& settings) {
+    constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
+    const uint32_t w = settings.width, h = settings.height;
+    auto gbuffer = stages::GbufferImages::create(context_, w, h);
+    auto direct = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance");
+    auto indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "indirect radiance");
+    auto composed = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "radiance");
+    auto display = Image::create(context_, w, h, VK_FORMAT_R8G8B8A8_UNORM, storage, "display");
     auto stats = Buffer::create(context_, stages::kTonemapStatsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                 MemoryUse::device, "tonemap stats");
-    const stages::CameraView view = stages::camera_view(camera, settings.width, settings.height);
-
-    PassList passes("direct frame");
-    stages::add_gbuffer_pass(context_, passes, scene_, view, gbuffer);
-    stages::add_direct_light_pass(context_, passes, gbuffer, gpu_bvh_, lights_, {view.position, settings.background},
-                                  radiance);
-    stages::add_direct_emissive_pass(context_, passes, gbuffer, gpu_bvh_, emitters_,
-                                     {view.position, settings.emissive_samples, settings.seed}, radiance);
-    stages::add_tonemap_passes(context_, passes, radiance, display, stats, settings.exposure);
-    passes.run(context_);
-
+    const stages::CameraView view = stages::camera_view(camera, w, h);
     RenderedImage out;
-    out.width = settings.width;
-    out.height = settings.height;
-    out.timings = passes.timings();
-    out.rgba8 = display.download<uint8_t>();
-    const auto texels = radiance.download<std::array<float, 4>>();
-    out.radiance.reserve(texels.size() * 3);
-    for (const auto& t : texels) {
-        out.radiance.insert(out.radiance.end(), {t[0], t[1], t[2]});
+    out.width = w;
+    out.height = h;
+
+    PassList direct_passes("direct light");
+    stages::add_gbuffer_pass(context_, direct_passes, scene_, view, gbuffer);
+    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_, lights_,
+                                  {view.position, settings.background}, direct);
+    stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
+                                     {view.position, settings.emissive_samples, settings.seed}, direct);
+    direct_passes.add("indirect clear", {Use::transfer_dst(indirect)}, [&indirect](VkCommandBuffer cmd) {
+        const VkClearColorValue zero{};
+        const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, indirect.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
+    });
+    direct_passes.run(context_);
+    append(out.timings, direct_passes.timings());
+
+    if (settings.method == GiMethod::exact) {
+        // VPLs by instant radiosity from the scene's lights, then every VPL at every pixel.
+        const stages::VplSources sources = stages::upload_vpl_sources(context_, scene_source_);
+        const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
+        auto vpls = stages::VplTracingOutput::create(context_, tracing);
+        PassList vpl_passes("vpls");
+        stages::add_trace_vpls_pass(context_, vpl_passes, gpu_bvh_, sources, tracing, vpls);
+        vpl_passes.run(context_);
+        append(out.timings, vpl_passes.timings());
+        out.vpl_count = stages::download_vpl_count(vpls);
+
+        stages::ExactGiOptions options;
+        options.progress = settings.progress;
+        const auto result = stages::render_exact_gi(context_, gbuffer, gpu_bvh_, vpls.vpls, out.vpl_count, view.position,
+                                                    indirect, options);
+        out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
+        out.dropped_pixels = result.counts.dropped_pixels;
     }
+
+    PassList output_passes("output");
+    stages::add_compose_pass(context_, output_passes, direct, indirect, composed);
+    stages::add_tonemap_passes(context_, output_passes, composed, display, stats, settings.exposure);
+    output_passes.run(context_);
+    append(out.timings, output_passes.timings());
+
+    out.rgba8 = display.download<uint8_t>();
+    out.radiance = rgb_of(composed);
+    out.direct = rgb_of(direct);
+    out.indirect = rgb_of(indirect);
     out.non_finite_pixels = stats.download<uint32_t>(1)[0];
     return out;
 }

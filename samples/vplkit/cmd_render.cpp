@@ -18,19 +18,29 @@
 #include <optional>
 #include <string>
 
+#include <unistd.h>
+
 namespace vplkit::cli {
 
 const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
-    "                     [--seed S] [--emissive-samples N] [--out-hdr IMAGE.pfm] [--device SEL] [--validation]\n"
+    "                     [--method direct|exact] [--vpls N] [--bounces B] [--seed S] [--emissive-samples N]\n"
+    "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
+    "                     [--device SEL] [--validation]\n"
     "\n"
-    "Renders one frame with direct light (G-buffer; punctual lights and emissive triangles with BVH\n"
-    "shadow rays; tone mapping) and prints the device used and the GPU time of every stage.\n"
+    "Renders one frame (G-buffer; direct light from punctual lights and emissive triangles with BVH\n"
+    "shadow rays; indirect light by the chosen method; tone mapping) and prints the device used\n"
+    "and the GPU time of every stage.\n"
     "  --scene S        a standard set-up from scenes/setups.txt (default: its default, 'cornell'),\n"
     "                   or a .gltf/.glb file (its own camera, or one framing the scene)\n"
     "  --out FILE       the tonemapped image, PNG (default vplkit.png)\n"
     "  --out-hdr FILE   also the linear radiance, PFM\n"
+    "  --out-direct FILE, --out-indirect FILE   the linear direct / indirect parts, PFM\n"
+    "  --method M       direct (default): direct light only; exact: plus indirect light from\n"
+    "                   instant-radiosity VPLs, every VPL at every pixel with a shadow ray (ground truth)\n"
+    "  --vpls N         light paths traced for VPLs (default 4096; each leaves up to --bounces VPLs)\n"
+    "  --bounces B      surface hits per light path (default 2)\n"
     "  --width W        image width (default: the set-up's, else 640)\n"
     "  --height H       image height (default: the set-up's, else 360)\n"
     "  --camera N       use the file's camera N instead of the set-up's\n"
@@ -78,6 +88,8 @@ int run_render(Args& args) {
     const std::string scene_arg = args.value("--scene").value_or("");
     const std::filesystem::path out = args.value("--out").value_or("vplkit.png");
     const auto out_hdr = args.value("--out-hdr");
+    const auto out_direct = args.value("--out-direct");
+    const auto out_indirect = args.value("--out-indirect");
     std::optional<uint32_t> width, height, camera;
     if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
     if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
@@ -94,9 +106,18 @@ int run_render(Args& args) {
     if (auto text = args.value("--exposure")) settings.exposure = parse_exposure(*text);
     if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
     if (auto text = args.value("--emissive-samples")) settings.emissive_samples = parse_whole_number("--emissive-samples", *text, 65536);
+    if (auto text = args.value("--method")) {
+        if (*text == "direct") settings.method = GiMethod::none;
+        else if (*text == "exact") settings.method = GiMethod::exact;
+        else throw UsageError("--method expects direct or exact (sst, rtslc and hybrid are not built yet), got '" + *text + "'");
+    }
+    if (auto text = args.value("--vpls")) settings.vpl_paths = parse_whole_number("--vpls", *text, 1u << 24);
+    if (auto text = args.value("--bounces")) settings.vpl_bounces = parse_whole_number("--bounces", *text, 16);
     args.finish();
     check_output("--out", out, ".png");
     if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
+    if (out_direct) check_output("--out-direct", *out_direct, ".pfm");
+    if (out_indirect) check_output("--out-indirect", *out_indirect, ".pfm");
 
     // The scene: a set-up name, or a file.
     const auto load_start = std::chrono::steady_clock::now();
@@ -129,10 +150,27 @@ int run_render(Args& args) {
                 described.c_str(), scene.triangle_count(), scene.materials.size(), scene.lights.size(),
                 scene.emissive_triangles.size(), load_ms);
 
-    DirectRenderer renderer(*context, scene);
+    Renderer renderer(*context, scene);
     std::printf("bvh: %zu nodes, depth %u, built in %.0f ms\n", renderer.bvh().nodes.size(), renderer.bvh().depth,
                 renderer.bvh_build_ms());
+    const bool terminal = isatty(fileno(stderr));
+    settings.progress = [terminal](uint32_t done, uint32_t total) {
+        if (terminal) {
+            std::fprintf(stderr, "\r[exact gi] %u/%u VPLs", done, total);
+            if (done == total) std::fprintf(stderr, "\r%40s\r", "");
+        } else if (done == total || done % 1024 < 32) {
+            std::fprintf(stderr, "[exact gi] %u/%u VPLs\n", done, total);
+        }
+        std::fflush(stderr);
+    };
     const RenderedImage image = renderer.render(scene.camera(), settings);
+    if (settings.method == GiMethod::exact) {
+        std::printf("indirect: %u VPLs from %u light paths x %u bounces\n", image.vpl_count, settings.vpl_paths,
+                    settings.vpl_bounces);
+        if (image.dropped_pixels > 0) {
+            std::printf("warning: %u pixels had a non-finite VPL contribution left out\n", image.dropped_pixels);
+        }
+    }
     if (image.non_finite_pixels > 0) {
         throw Error("render: " + std::to_string(image.non_finite_pixels) +
                     " pixels came out NaN or infinite; no image written (this is a bug: please report it)");
@@ -151,6 +189,14 @@ int run_render(Args& args) {
     if (out_hdr) {
         write_pfm(*out_hdr, image.width, image.height, image.radiance);
         std::printf("wrote %s\n", out_hdr->c_str());
+    }
+    if (out_direct) {
+        write_pfm(*out_direct, image.width, image.height, image.direct);
+        std::printf("wrote %s\n", out_direct->c_str());
+    }
+    if (out_indirect) {
+        write_pfm(*out_indirect, image.width, image.height, image.indirect);
+        std::printf("wrote %s\n", out_indirect->c_str());
     }
     return 0;
 }

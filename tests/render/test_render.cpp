@@ -1,4 +1,4 @@
-// The whole direct-light frame (G-buffer raster, direct light, tonemap) on the in-repo Cornell
+// The whole frame. Direct light (G-buffer raster, direct light, tonemap) on the in-repo Cornell
 // box, checked pixel by pixel against a CPU path through the same scene written independently:
 // a camera ray through the pixel centre (double precision, brute force over all triangles), the
 // material at the hit, the glTF BRDF and a brute-force shadow ray.
@@ -63,7 +63,7 @@ TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path
     const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
     REQUIRE(scene.lights.size() == 1);
     const uint32_t width = 48, height = 40;
-    vplkit::DirectRenderer renderer(ctx, scene);
+    vplkit::Renderer renderer(ctx, scene);
     const auto& camera = scene.camera();
     vplkit::RenderSettings settings;
     settings.width = width;
@@ -155,7 +155,7 @@ TEST_CASE("direct render: a scene without any light is refused by name") {
     vplkit::Context& ctx = vplkit::test::context();
     auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
     scene.lights.clear();
-    CHECK_THROWS_WITH_AS(vplkit::DirectRenderer(ctx, scene), doctest::Contains("the scene has no light"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::Renderer(ctx, scene), doctest::Contains("the scene has no light"), vplkit::Error);
 }
 
 TEST_CASE("direct render: an emissive quad without an emissive texture shows its emission and lights the room") {
@@ -165,7 +165,7 @@ TEST_CASE("direct render: an emissive quad without an emissive texture shows its
     REQUIRE_FALSE(scene.emissive_triangles.empty());
     const auto& material = scene.materials[scene.triangle_materials[scene.emissive_triangles[0]]];
     REQUIRE(material.emissive_texture == vplkit::scene::kNoTexture);
-    vplkit::DirectRenderer renderer(ctx, scene);
+    vplkit::Renderer renderer(ctx, scene);
     vplkit::RenderSettings settings;
     settings.width = 64;
     settings.height = 64;
@@ -182,4 +182,42 @@ TEST_CASE("direct render: an emissive quad without an emissive texture shows its
     }
     CHECK(emitter_pixels > 0);
     CHECK(lit_pixels > 64 * 64 / 2);  // the walls, floor and blocks get the quad's light
+}
+
+TEST_CASE("render with exact indirect light: the parts add up and the seed fixes the image") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    vplkit::Renderer renderer(ctx, scene);
+    vplkit::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 20;
+    settings.method = vplkit::GiMethod::exact;
+    settings.vpl_paths = 64;
+    settings.vpl_bounces = 2;
+    settings.seed = 3;
+    uint32_t progress_calls = 0;
+    settings.progress = [&](uint32_t done, uint32_t total) {
+        ++progress_calls;
+        CHECK(done <= total);
+    };
+    const auto a = renderer.render(scene.camera(), settings);
+    CHECK(a.non_finite_pixels == 0);
+    CHECK(a.dropped_pixels == 0);
+    CHECK(a.vpl_count > 0);
+    CHECK(progress_calls > 0);
+    // The composed radiance is direct + indirect, exactly (one float addition).
+    size_t indirect_only = 0;
+    for (size_t i = 0; i < a.radiance.size(); ++i) {
+        CHECK(a.radiance[i] == a.direct[i] + a.indirect[i]);
+        CHECK(a.indirect[i] >= 0.0f);
+        if (a.direct[i] == 0.0f && a.indirect[i] > 0.0f) ++indirect_only;
+    }
+    CHECK(indirect_only > 0);  // the blocks' shadows get light from the walls
+    // Same seed, same image; another seed, other VPLs.
+    const auto b = renderer.render(scene.camera(), settings);
+    CHECK(b.radiance == a.radiance);
+    settings.seed = 4;
+    const auto c = renderer.render(scene.camera(), settings);
+    CHECK(c.indirect != a.indirect);
+    CHECK(c.direct == a.direct);
 }
