@@ -13,12 +13,12 @@
 // so summed over VPLs of bounce k, E[flux] = the flux reflected after k surface interactions
 // (Phi * rho^k in a closed box of albedo rho). The path goes on with a direction drawn from the
 // cosine lobe: BRDF rho / pi times cos over pdf cos / pi is rho, so beta *= rho; Russian roulette
-// survives with q = max(rho) (Arvo and Kirk 1990) and divides by it: beta *= rho / q, which keeps
-// beta's channels at most beta's largest channel.
+// survives with q = max(rho) (Arvo and Kirk 1990, "Particle Transport and Image Synthesis") and
+// divides by it: beta *= rho / q, a factor of at most 1 per channel, so beta never grows.
 //
 // Surfaces are diffuse (rho = base colour x (1 - metallic), textures as their means: see
-// upload_vpl_sources) and
-// two-sided for light: a VPL's normal faces the ray that arrived. A hit whose rho is zero ends
+// upload_vpl_sources) and two-sided for light: a VPL's normal faces the ray that arrived.
+// Direct light is not a VPL: the first VPLs are at the first surface hit. A hit whose rho is zero ends
 // the path without a VPL (it would carry nothing). The VPLs are appended in no fixed order
 // (the set is fixed by the seed; the order depends on the scheduling of atomics).
 
