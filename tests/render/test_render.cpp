@@ -213,9 +213,12 @@ TEST_CASE("render with exact indirect light: the parts add up and the seed fixes
         if (a.direct[i] == 0.0f && a.indirect[i] > 0.0f) ++indirect_only;
     }
     CHECK(indirect_only > 0);  // the blocks' shadows get light from the walls
-    // Same seed, same image; another seed, other VPLs.
+    // Same seed, same VPL set and so the same image, up to float rounding: the tracer appends
+    // VPLs with an atomic counter, so their order (and the gather's summation order) may change.
     const auto b = renderer.render(scene.camera(), settings);
-    CHECK(b.radiance == a.radiance);
+    for (size_t i = 0; i < a.radiance.size(); ++i) {
+        CHECK(b.radiance[i] == doctest::Approx(a.radiance[i]).epsilon(1e-5).scale(1e-9));
+    }
     settings.seed = 4;
     const auto c = renderer.render(scene.camera(), settings);
     CHECK(c.indirect != a.indirect);
