@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "vpl_sources.hpp"
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
@@ -59,20 +60,6 @@ const char* const kBenchUsage =
 namespace {
 
 
-std::vector<shaders::Vpl> random_vpls(uint32_t count, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    std::normal_distribution<float> gauss;
-    std::vector<shaders::Vpl> vpls(count);
-    for (shaders::Vpl& vpl : vpls) {
-        vpl.position = {unit(rng), unit(rng), unit(rng)};
-        float x = gauss(rng), y = gauss(rng), z = gauss(rng);
-        float length = std::max(std::sqrt(x * x + y * y + z * z), 1e-20f);
-        vpl.normal = {x / length, y / length, z / length};
-        vpl.flux = {1.0f, 1.0f, 1.0f};
-    }
-    return vpls;
-}
 
 struct Stats {
     double median = 0, min = 0, max = 0;

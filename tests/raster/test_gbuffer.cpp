@@ -1,5 +1,6 @@
-// The G-buffer pass on lavapipe against a CPU rasterization at pixel centres
-// (tests/reference/raster_reference.cpp), and a sanity check on the in-repo Cornell box.
+// The G-buffer pass (shaders/raster/gbuffer_raster.vert + gbuffer_shade.frag) on lavapipe against
+// a CPU rasterization at pixel centres (tests/reference/raster_reference.cpp), and a sanity check
+// on the in-repo Cornell box.
 //
 // Pixels are skipped where the GPU's answer is not determined by our code: the centre within
 // 1e-3 pixels of a triangle edge (fixed-point snapping and tie rules), or a texture coordinate

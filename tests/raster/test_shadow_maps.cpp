@@ -1,4 +1,5 @@
-// Shadow maps and reflective shadow maps on lavapipe, against analytic values on a floor plane
+// Shadow maps and reflective shadow maps (shaders/raster/rsm_raster.vert + rsm_shade.frag) on
+// lavapipe, against analytic values on a floor plane
 // (y = 0, front side up) under a directional, a point and two spot lights.
 //
 // What is analytic here: where each texel's beam meets the plane (position, normal), the depth

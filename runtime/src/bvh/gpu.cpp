@@ -36,8 +36,8 @@ GpuBvh upload_bvh(Context& context, const Bvh& bvh) {
     const uint64_t node_bytes = uint64_t(bvh.nodes.size()) * sizeof(shaders::BvhNode);
     // An empty scene's leaf references no triangle; the buffer holds one zeroed triangle only
     // because a binding needs a buffer.
-    std::vector<shaders::BvhTriangle> placeholder(bvh.triangles.empty() ? 1 : 0, shaders::BvhTriangle{});
-    const auto& triangles = bvh.triangles.empty() ? placeholder : bvh.triangles;
+    std::vector<shaders::BvhTriangle> empty_scene_triangle(bvh.triangles.empty() ? 1 : 0, shaders::BvhTriangle{});
+    const auto& triangles = bvh.triangles.empty() ? empty_scene_triangle : bvh.triangles;
     const uint64_t triangle_bytes = uint64_t(triangles.size()) * sizeof(shaders::BvhTriangle);
     check_range(context, node_bytes, "nodes");
     check_range(context, triangle_bytes, "triangles");
