@@ -210,6 +210,16 @@ TEST_CASE("a single hot texel takes every sample with pmf 1") {
     }
 }
 
+TEST_CASE("a 1x1 map has one level and pmf 1") {
+    const auto r = run_warp({2.0f}, 1, 64, 3);
+    REQUIRE(r.count == 64);
+    CHECK(r.mips.size() == 1);
+    for (const auto& s : r.samples) {
+        CHECK(s.texel == 0);
+        CHECK(s.pmf == 1.0f);
+    }
+}
+
 TEST_CASE("an all-zero pdf gives no samples") {
     std::vector<float> map(kSize * kSize, 0.0f);
     const auto r = run_warp(map, kSize, kSamples, 5);

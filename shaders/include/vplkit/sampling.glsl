@@ -51,7 +51,7 @@ vec2 hammersley_rotation(uint seed) {
 // A part of zero sum is never picked. Returns true for the second part.
 bool warp_select(inout float u, float first, float second) {
     float p_first = first / (first + second);
-    bool pick_second = !(u < p_first) && second > 0.0 || first <= 0.0;
+    bool pick_second = (!(u < p_first) && second > 0.0) || first <= 0.0;
     if (pick_second) {
         u = (u - p_first) / (1.0 - p_first);
     } else {
