@@ -43,8 +43,8 @@ struct RadixSortOptions {
     // with the key but take no part in the order. Fewer bits, fewer passes:
     // ceil(key_bits / digit_bits) of them.
     uint32_t key_bits = 64;
-    // Bits per pass, 4 or 8. 8 is faster on lavapipe: 2^20 pairs in about 150 ms against 280 ms
-    // with 4 (the best workgroup shape of each; `vplkit bench sort`), half the passes.
+    // Bits per pass, 4 or 8. 8 is faster on lavapipe: 2^20 random pairs in 149 ms against 248 ms
+    // with 4 (the best workgroup shape of each, 32 x 128), as it makes half the passes.
     uint32_t digit_bits = 8;
     // Threads per workgroup, any size up to the device limit. Each thread ranks a run of
     // items_per_thread consecutive pairs with a 16-bit counter per digit value in shared memory:
