@@ -9,6 +9,7 @@
 // Samples (shaders::WarpedSample[sample_count]): texel = y * size + x, pmf = importance / total.
 // Count (shaders::WarpCountBuffer): sample_count, or 0 when the total importance is not positive
 // (an all-zero map), in which case no sample is written.
+// The map must be finite and non-negative (it is an importance): a negative texel breaks the ratios.
 
 #include <cstdint>
 
