@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "bench_timing.hpp"
 #include "vpl_sources.hpp"
 
 #include "vplkit/buffer.hpp"
@@ -60,20 +61,6 @@ const char* const kBenchUsage =
 namespace {
 
 
-
-struct Stats {
-    double median = 0, min = 0, max = 0;
-};
-
-Stats stats_of(std::vector<double> samples) {
-    std::sort(samples.begin(), samples.end());
-    const size_t n = samples.size();
-    Stats s;
-    s.min = samples.front();
-    s.max = samples.back();
-    s.median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
-    return s;
-}
 
 // The last run's keys must be ascending and its values a permutation of 0..count-1: a benchmark
 // of a wrong result is worth nothing.
@@ -164,54 +151,21 @@ int run_bench(Args& args) {
         stages::add_vpl_key_passes(*context, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
         sorter.add_pass(passes, keys, values, count);
 
-        std::map<std::string, std::vector<double>> samples;  // stage -> ms per run
-        std::vector<std::string> order;
-        const bool terminal = isatty(fileno(stderr));
-        if (!terminal) {
-            std::fprintf(stderr, "[%u VPLs, %s] 1 warm-up + %u timed runs\n", count, algorithm_name, runs);
-        }
-        for (uint32_t run = 0; run <= runs; ++run) {
-            if (terminal) {  // a progress line that rewrites itself; logs get the one line above
-                std::fprintf(stderr, "\r[%u VPLs, %s] run %u/%u", count, algorithm_name, run, runs);
-                std::fflush(stderr);
-            }
-            passes.run(*context);  // the key passes rewrite the keys, so every run sorts unsorted input
-            if (run == 0) {
-                continue;  // warm-up: lavapipe compiles shaders at their first dispatch
-            }
-            double total = 0.0;
-            for (const PassTiming& t : passes.timings()) {
-                if (samples.find(t.name) == samples.end()) {
-                    order.push_back(t.name);
-                }
-                samples[t.name].push_back(t.gpu_ms);
-                total += t.gpu_ms;
-            }
-            samples["total"].push_back(total);
-        }
-        if (terminal) {
-            std::fprintf(stderr, "\r%40s\r", "");
-        }
+        // The key passes rewrite the keys, so every run sorts unsorted input.
+        const auto stats = time_passes(*context, passes, runs, std::to_string(count) + " VPLs, " + algorithm_name);
         check_sorted(keys, values, count);
 
-        order.push_back("total");
         const uint32_t dispatches = sorter.dispatch_count(count);
-        for (const std::string& stage : order) {
-            Stats s = stats_of(samples[stage]);
-            std::printf("%10u  %-18s %-9s %10.3f %10.3f %10.3f\n", count, stage.c_str(), algorithm_name, s.median,
-                        s.min, s.max);
-            csv << '"' << device.name << "\"," << count << ',' << algorithm_name << ',' << stage << ',' << runs << ','
-                << s.median << ',' << s.min << ',' << s.max << ',' << dispatches << '\n';
+        for (const StageStats& s : stats) {
+            std::printf("%10u  %-18s %-9s %10.3f %10.3f %10.3f\n", count, s.stage.c_str(), algorithm_name, s.median_ms,
+                        s.min_ms, s.max_ms);
+            csv << '"' << device.name << "\"," << count << ',' << algorithm_name << ',' << s.stage << ',' << runs << ','
+                << s.median_ms << ',' << s.min_ms << ',' << s.max_ms << ',' << dispatches << '\n';
         }
     }
 
     if (csv_path) {
-        // Written whole at the end: a failed run leaves no partial file.
-        std::ofstream file(*csv_path, std::ios::binary | std::ios::trunc);
-        file << csv.str();
-        if (!file.flush()) {
-            throw Error("bench sort: could not write " + *csv_path);
-        }
+        write_csv(*csv_path, csv.str());  // at the end: a failed run leaves no file
         std::printf("wrote %s\n", csv_path->c_str());
     }
     return 0;

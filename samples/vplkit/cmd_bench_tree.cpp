@@ -4,6 +4,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "bench_timing.hpp"
 #include "vpl_sources.hpp"
 
 #include "vplkit/buffer.hpp"
@@ -37,16 +38,6 @@ namespace vplkit::cli {
 
 
 namespace {
-
-struct Stats {
-    double median = 0, min = 0, max = 0;
-};
-
-Stats stats_of(std::vector<double> samples) {
-    std::sort(samples.begin(), samples.end());
-    const size_t n = samples.size();
-    return {n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]), samples.front(), samples.back()};
-}
 
 // Both roots must hold all the flux (within float summation error): a benchmark of a wrong
 // tree is worth nothing.
@@ -101,7 +92,6 @@ int run_bench_tree(Args& args) {
 
     std::ostringstream csv;
     csv << "device,source,sort,vpls,stage,runs,median_ms,min_ms,max_ms\n";
-    const bool terminal = isatty(fileno(stderr));
     for (uint32_t count : counts) {
         const auto vpls = surfaces ? surface_vpls(*surfaces, count, count) : random_vpls(count, count);
         const uint32_t leaves = stages::leaf_count(count);
@@ -127,41 +117,17 @@ int run_bench_tree(Args& args) {
         stages::add_light_tree_passes(*context, passes, leaf_buffer, light_tree, count, tree_options);
         stages::add_sst_passes(*context, passes, leaf_buffer, sst, counters, count);
 
-        std::map<std::string, std::vector<double>> samples;
-        std::vector<std::string> order;
-        if (!terminal) std::fprintf(stderr, "[%u VPLs] 1 warm-up + %u timed runs\n", count, runs);
-        for (uint32_t run = 0; run <= runs; ++run) {
-            if (terminal) {
-                std::fprintf(stderr, "\r[%u VPLs] run %u/%u", count, run, runs);
-                std::fflush(stderr);
-            }
-            passes.run(*context);
-            if (run == 0) continue;  // warm-up: lavapipe compiles shaders at their first dispatch
-            double total = 0.0;
-            for (const PassTiming& t : passes.timings()) {
-                if (samples.find(t.name) == samples.end()) order.push_back(t.name);
-                samples[t.name].push_back(t.gpu_ms);
-                total += t.gpu_ms;
-            }
-            samples["total"].push_back(total);
-        }
-        if (terminal) std::fprintf(stderr, "\r%40s\r", "");
+        const auto stats = time_passes(*context, passes, runs, std::to_string(count) + " VPLs");
         check_roots(vpls, light_tree, sst);
 
-        order.push_back("total");
-        for (const std::string& stage : order) {
-            const Stats s = stats_of(samples[stage]);
-            std::printf("%10u  %-22s %10.3f %10.3f %10.3f\n", count, stage.c_str(), s.median, s.min, s.max);
+        for (const StageStats& s : stats) {
+            std::printf("%10u  %-22s %10.3f %10.3f %10.3f\n", count, s.stage.c_str(), s.median_ms, s.min_ms, s.max_ms);
             csv << '"' << device.name << "\"," << source << ',' << stages::sort_algorithm_name(sort_options.algorithm) << ','
-                << count << ',' << stage << ',' << runs << ',' << s.median << ',' << s.min << ',' << s.max << '\n';
+                << count << ',' << s.stage << ',' << runs << ',' << s.median_ms << ',' << s.min_ms << ',' << s.max_ms << '\n';
         }
     }
     if (csv_path) {
-        std::ofstream file(*csv_path + ".tmp", std::ios::binary | std::ios::trunc);
-        file << csv.str();
-        if (!file.flush()) throw Error("bench tree: could not write " + *csv_path);
-        file.close();
-        std::rename((*csv_path + ".tmp").c_str(), csv_path->c_str());
+        write_csv(*csv_path, csv.str());
         std::printf("wrote %s\n", csv_path->c_str());
     }
     return 0;
