@@ -12,6 +12,7 @@
 #include "vplkit/brdf.glsl"
 #include "vplkit/emitters.glsl"
 #include "vplkit/gbuffer.glsl"
+#include "vplkit/rng.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -28,19 +29,6 @@ layout(push_constant) uniform DirectEmissivePush {
     uint samples;  // per pixel
     uint seed;
 } push;
-
-// PCG hash (Jarzynski and Olano 2020, "Hash Functions for GPU Rendering"): a good 32-bit mix.
-uint pcg_hash(uint v) {
-    uint state = v * 747796405u + 2891336453u;
-    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
-
-// A uniform float in [0, 1) from 24 random bits.
-float next_uniform(inout uint state) {
-    state = pcg_hash(state);
-    return float(state >> 8) * (1.0 / 16777216.0);
-}
 
 // The emitter whose cdf interval holds u (binary search: the first cdf > u).
 uint choose_emitter(float u) {
@@ -69,13 +57,13 @@ void main() {
     }
     vec3 wo = normalize(push.camera_position - g.position);
     float scale = bvh_scene_scale();
-    uint state = pcg_hash(uint(pixel.x) ^ pcg_hash(uint(pixel.y) ^ pcg_hash(push.seed)));
+    Rng rng = rng_create(push.seed, uint(pixel.y) * uint(imageSize(radiance).x) + uint(pixel.x));  // a stream per pixel
     vec3 sum = vec3(0.0);
     for (uint s = 0u; s < push.samples; ++s) {
-        EmissiveTriangle e = emitters.items[choose_emitter(next_uniform(state))];
+        EmissiveTriangle e = emitters.items[choose_emitter(rng_next_float(rng))];
         // Uniform point on the triangle: the square-root warp (pbrt-v4 SampleUniformTriangle).
-        float su = sqrt(next_uniform(state));
-        float v = next_uniform(state);
+        float su = sqrt(rng_next_float(rng));
+        float v = rng_next_float(rng);
         vec3 y = e.v0 * (1.0 - su) + e.v1 * (su * (1.0 - v)) + e.v2 * (su * v);
         vec3 n_y = normalize(cross(e.v1 - e.v0, e.v2 - e.v0));
         vec3 to_y = y - g.position;
