@@ -8,6 +8,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/light_tree_leaves.hpp"
 #include "vplkit/shaders/light_tree_levels.hpp"
+#include "vplkit/stages/leaves.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -75,7 +76,7 @@ uint32_t light_tree_default_group_levels(const DeviceInfo& device) {
     return device.type == DeviceType::cpu ? 1u : 4u;
 }
 
-uint32_t light_tree_leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_ceil(count); }
+uint32_t light_tree_leaf_count(uint32_t count) { return leaf_count(count); }  // the leaves gather_leaves pads to
 
 uint32_t light_tree_node_count(uint32_t count) { return 2 * light_tree_leaf_count(count) - 1; }
 

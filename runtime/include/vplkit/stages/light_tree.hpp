@@ -45,7 +45,7 @@ struct LightTreeOptions {
 // the re-reads of a source level mostly hit the cache; seed 003 sec. 4 builds in groups.
 uint32_t light_tree_default_group_levels(const DeviceInfo& device);
 
-// Leaves of the tree over `count` VPLs (count rounded up to a power of two; 1 for count 1).
+// Leaves of the tree over `count` VPLs: stages::leaf_count (leaves.hpp), the gather's padding.
 uint32_t light_tree_leaf_count(uint32_t count);
 // Nodes of the tree over `count` VPLs: 2 * light_tree_leaf_count(count) - 1.
 uint32_t light_tree_node_count(uint32_t count);
