@@ -23,6 +23,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
 #include "vplkit_test/context.hpp"
+#include "geometry_reference.hpp"
 
 #include <doctest/doctest.h>
 
@@ -172,29 +173,6 @@ void check_mean_flux(Tracer& tracer, VplTracingOptions options, uint32_t seeds, 
     }
 }
 
-// Closed point-to-triangle distance (Ericson, Real-Time Collision Detection, 5.1.5), double.
-double point_triangle_distance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
-    const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-    const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-    if (d1 <= 0 && d2 <= 0) return glm::length(p - a);
-    const glm::dvec3 bp = p - b;
-    const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-    if (d3 >= 0 && d4 <= d3) return glm::length(p - b);
-    const double vc = d1 * d4 - d3 * d2;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) return glm::length(p - (a + ab * (d1 / (d1 - d3))));
-    const glm::dvec3 cp = p - c;
-    const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-    if (d6 >= 0 && d5 <= d6) return glm::length(p - c);
-    const double vb = d5 * d2 - d1 * d6;
-    if (vb <= 0 && d2 >= 0 && d6 <= 0) return glm::length(p - (a + ac * (d2 / (d2 - d6))));
-    const double va = d3 * d6 - d5 * d4;
-    if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-        return glm::length(p - (b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)))));
-    }
-    const double denom = 1.0 / (va + vb + vc);
-    return glm::length(p - (a + ab * (vb * denom) + ac * (vc * denom)));
-}
-
 bool finite(const vplkit::shaders::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 glm::dvec3 to_d(const vplkit::shaders::vec3& v) { return {v.x, v.y, v.z}; }
@@ -306,7 +284,7 @@ TEST_CASE("vpl tracing: every VPL is finite and on a surface with a unit normal 
         glm::dvec3 face{0.0};
         for (size_t k = 0; k < positions.size(); k += 3) {
             const glm::dvec3 a(positions[k]), b(positions[k + 1]), c(positions[k + 2]);
-            const double d = point_triangle_distance(p, a, b, c);
+            const double d = vplkit::reference::point_triangle_distance(p, a, b, c);
             if (d < nearest) {
                 nearest = d;
                 face = glm::normalize(glm::cross(b - a, c - a));

@@ -57,6 +57,11 @@ void add_importance_mips_pass(Context& context, PassList& passes, const Buffer& 
                    vkCmdCopyBuffer(cmd, importance.handle(), mips.handle(), 1, &region);
                });
 
+    add_importance_mip_levels_pass(context, passes, mips, size);
+}
+
+void add_importance_mip_levels_pass(Context& context, PassList& passes, Buffer& mips, uint32_t size) {
+    check_bytes(mips, importance_mip_floats(size) * sizeof(float), "mip");
     const auto& pipeline = context.pipeline<shaders::importance_mips::Pipeline>();
     uint32_t src_offset = 0;
     for (uint32_t src_size = size; src_size > 1; src_size /= 2) {

@@ -3,6 +3,7 @@
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/light_power.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/trace_vpls.hpp"
@@ -24,29 +25,6 @@ namespace vplkit::stages {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-// Power of a punctual light, RGB (W): what its paths carry on average before the range window.
-glm::dvec3 punctual_power(const scene::Light& light, double disc_area) {
-    const glm::dvec3 intensity = glm::dvec3(light.color) * double(light.intensity);
-    switch (light.type) {
-        case scene::LightType::directional:
-            return intensity * disc_area;
-        case scene::LightType::point:
-            return intensity * (4.0 * kPi);
-        case scene::LightType::spot: {
-            // lights.glsl: a(c) = clamp(c s + o, 0, 1), squared; s, o as upload_lights computes
-            // them. Integral over the sphere: 2 pi [ (1 - c1) + (s c1 + o)^3 / (3 s) ], with
-            // c1 = min(1, cos_outer + 1 / s) where a reaches 1 (a = 0 at cos_outer).
-            const double cos_inner = std::cos(light.inner_cone_angle), cos_outer = std::cos(light.outer_cone_angle);
-            const double s = 1.0 / std::max(0.001, cos_inner - cos_outer);
-            const double o = -cos_outer * s;
-            const double c1 = std::min(1.0, cos_outer + 1.0 / s);
-            const double ramp = std::pow(s * c1 + o, 3.0) / (3.0 * s);
-            return intensity * (2.0 * kPi * ((1.0 - c1) + ramp));
-        }
-    }
-    return glm::dvec3(0.0);
-}
 
 double channel_sum(const glm::dvec3& v) { return v.x + v.y + v.z; }
 
@@ -129,7 +107,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     std::vector<double> weights;
     glm::dvec3 total(0.0);
     for (const scene::Light& light : scene.lights) {
-        const glm::dvec3 power = punctual_power(light, disc_area);
+        const glm::dvec3 power = punctual_light_power(light, disc_area);
         weights.push_back(channel_sum(power));
         total += power;
     }

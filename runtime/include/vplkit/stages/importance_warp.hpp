@@ -31,6 +31,10 @@ uint64_t importance_top_offset(uint32_t size);
 void add_importance_mips_pass(Context& context, PassList& passes, const Buffer& importance, Buffer& mips,
                               uint32_t size);
 
+// The same chain for a map already in level 0 of `mips` (a stage wrote it there): one pass
+// "importance mips" per coarser level, none for size 1.
+void add_importance_mip_levels_pass(Context& context, PassList& passes, Buffer& mips, uint32_t size);
+
 // Adds "warp samples": sample_count points of the Hammersley set rotated by `seed`, warped down
 // `mips` (built by add_importance_mips_pass for the same size). Throws vplkit::Error for a bad
 // size, sample_count 0 or buffers too small.

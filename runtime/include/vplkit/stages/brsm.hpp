@@ -1,0 +1,122 @@
+#pragma once
+// VPL generation from bidirectional reflective shadow maps (BRSM; Ritschel et al. 2011, as seed
+// 000 sec. 4.1 and ch. 6 use it): one-bounce VPLs placed where their light matters to the camera.
+// Per light, on its RSM (stages/shadow_maps.hpp), with the camera's G-buffer:
+//   "brsm contribution"  every texel's expected contribution to the image, from G-buffer surfaces
+//                        around it (shaders/vpl/brsm_contribution.comp), and its flux luminance
+//   "brsm filter"        edge-aware Gaussian of the contributions (brsm_filter.comp, eq. 5.3)
+//   "importance mips"    mip chains of the filtered contribution and of the flux (the sums)
+//   "brsm importance"    their defensive mixture, normalized (brsm_importance.comp), and its chain
+//   "warp samples"       hierarchical warping of a randomized Hammersley set (importance_warp.hpp)
+//   "brsm vpls"          a VPL per sample: texel position and normal, flux / (N x pmf)
+//   "brsm vpl count"     the running count moves past this light's VPLs
+// Several lights: each gets a share of the VPLs proportional to its power (seed 000 ch. 6,
+// "Multiple Lights"; brsm_vpl_shares), its VPLs after the previous light's.
+//
+// What the VPL set means: for each light, the mean over seeds of its VPLs' total flux is the
+// flux its RSM's texels of positive importance reflect, which with defensive_fraction > 0 is
+// all of its RSM's reflected flux (brsm_importance.comp). VPL flux is what the surface
+// re-emits, as for instant radiosity (stages/vpl_tracing.hpp): RSM flux = albedo x the light's
+// power into the texel.
+//
+//   std::vector<ShadowMap> maps = ...;            // one per light, rendered (add_shadow_map_passes)
+//   auto out = vplkit::stages::BrsmOutput::create(context, maps, options);
+//   vplkit::PassList passes;
+//   vplkit::stages::add_brsm_passes(context, passes, gbuffer, view, maps, bvh.scene_scale, options, out);
+//   passes.run(context);
+//   uint32_t count = vplkit::stages::download_brsm_vpl_count(out);   // VPLs 0..count-1 of out.vpls
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/scene.hpp"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace vplkit {
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+struct CameraView;
+struct GbufferImages;
+struct ShadowMap;
+
+struct BrsmOptions {
+    uint32_t vpl_count = 4096;       // over all lights, >= the number of lights with power
+    uint32_t seed = 0;               // the same seed gives the same VPLs
+    uint32_t samples_per_texel = 8;  // G-buffer surfaces per pVPL, 1..1024
+    // The density of distances at which G-buffer surfaces are looked for around a pVPL: flat up
+    // to core_radius, 1/r^2 beyond, up to max_radius (vplkit/brsm.glsl); fractions of the scene
+    // scale (Bvh::scene_scale), 0 < core_radius < max_radius.
+    float core_radius = 0.02f;
+    float max_radius = 0.5f;
+    // The edge-aware Gaussian: sigma in texels (> 0) over a (2 filter_radius + 1)^2 window
+    // (filter_radius 0..8); neighbours count when their normals' dot product is above
+    // similarity_min_cos (in [-1, 1)) and they lie within similarity_max_distance (fraction of
+    // the scene scale, > 0): seed 000 eq. 5.3. The thesis gives no values; these keep a
+    // 512^2 map's texels on one wall together and split walls at creases of ~25 degrees.
+    float filter_sigma = 1.5f;
+    uint32_t filter_radius = 4;
+    float similarity_min_cos = 0.9f;
+    float similarity_max_distance = 0.02f;
+    // The share of the pdf proportional to flux alone, in [0, 1] (brsm_importance.comp): 0 is
+    // pure BRSM (texels the camera sees no light from get no VPL); above 0 every lit texel can
+    // be chosen, which makes the set unbiased for the whole reflected flux and bounds VPL flux.
+    float defensive_fraction = 0.1f;
+};
+
+// Throws vplkit::Error naming the first option out of range.
+void validate(const BrsmOptions& options);
+
+// Each light's share of `vpl_count`, in proportion to its power (punctual_light_power, summed
+// over RGB; directional lights over the disc of the scene's bounding sphere), rounded by largest
+// remainder so the shares add up to vpl_count; every light with power gets at least one, a light
+// without power none. Throws Error when no light has power or vpl_count is smaller than the
+// number of lights with power.
+std::vector<uint32_t> brsm_vpl_shares(std::span<const scene::Light> lights, const scene::Bounds& bounds,
+                                      uint32_t vpl_count);
+
+// One light's working buffers.
+struct BrsmLightBuffers {
+    uint32_t map_size = 0;     // side of the square importance map: the RSM's larger side, rounded up to 2^k
+    uint32_t vpl_share = 0;    // N, the VPLs this light places (0: no pass is recorded for it)
+    Buffer contribution;       // float[map_size^2]: the raw estimates
+    Buffer contribution_mips;  // the filtered estimates' mip chain (importance_warp.hpp layout)
+    Buffer flux_mips;          // flux luminance per texel, mip chain
+    Buffer importance_mips;    // the mixture (sums to 1), mip chain
+    Buffer samples;            // WarpedSample[vpl_share]
+    Buffer warp_count;         // WarpCountBuffer: vpl_share, or 0 when the importance is all zero
+};
+
+struct BrsmOutput {
+    Buffer vpls;   // Vpl[capacity]: the first `count` are valid after the passes
+    Buffer count;  // VplCountBuffer (count; cut_short stays 0)
+    uint32_t capacity = 0;
+    std::vector<BrsmLightBuffers> lights;  // one per map
+
+    // Buffers for these maps (each map's light gives its share). Throws Error for bad options
+    // (validate), no maps, or buffers beyond the device's maxStorageBufferRange.
+    static BrsmOutput create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
+                             const BrsmOptions& options);
+};
+
+// Adds "brsm count clear" and, per light with a share, the passes listed at the top. `maps` must
+// be rendered before (add_shadow_map_passes, in this or an earlier PassList) and be the maps
+// `output` was created for; `gbuffer` is the camera's, seen through `view`. `scene_scale` is the
+// BVH's (GpuBvh::scene_scale), which the VPL falloff clamp is relative to. Everything referenced
+// must outlive passes.run().
+void add_brsm_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
+                     std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options, BrsmOutput& output);
+
+// Blocking read of output.count after a run: the VPLs placed (lights whose importance was all
+// zero placed none).
+uint32_t download_brsm_vpl_count(const BrsmOutput& output);
+
+// Blocking read of the VPLs each light placed: its share, or 0 when its importance was all zero
+// (its light reaches no surface, or no surface it reaches reflects), or when it had no share.
+std::vector<uint32_t> download_brsm_light_vpl_counts(const BrsmOutput& output);
+
+}  // namespace vplkit::stages

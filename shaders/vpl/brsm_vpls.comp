@@ -1,0 +1,45 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// BRSM, step 5 (seed 000 sec. 4.1.2): every warped sample becomes a VPL at its RSM texel, with
+// the texel's flux over (N x pmf): over the samples' random rotation, the N VPLs together
+// estimate, without bias, the flux of the texels of positive importance. Appended after the VPLs
+// already in the buffer (earlier lights): VPL i of this light goes to vpl_count.count + i;
+// brsm_vpl_count.comp then advances the count. When the warp found no importance (count 0),
+// nothing is written.
+
+#include "vplkit/sampling.glsl"
+#include "vplkit/vpl.glsl"
+
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
+
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D rsm_position;
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D rsm_normal;
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D rsm_flux;
+layout(std430, set = 0, binding = 3) readonly buffer WarpedSampleBuffer { WarpedSample items[]; } samples;
+layout(std430, set = 0, binding = 4) readonly buffer WarpCountBuffer { uint count; } warp;
+layout(std430, set = 0, binding = 5) readonly buffer VplCountBuffer { uint count; uint cut_short; } vpl_count;
+layout(std430, set = 0, binding = 6) writeonly buffer VplBuffer { Vpl items[]; } vpls;
+
+layout(push_constant) uniform BrsmVplsPush {
+    uint sample_count;  // N, this light's share of the VPLs
+    uint map_size;      // side of the importance map the texels index
+    uint capacity;      // entries of `vpls`
+} push;
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (i >= warp.count || i >= push.sample_count) {
+        return;
+    }
+    uint slot = vpl_count.count + i;
+    if (slot >= push.capacity) {
+        return;  // the host sizes the buffer for every light's share; never reached
+    }
+    WarpedSample s = samples.items[i];
+    ivec2 texel = ivec2(s.texel % push.map_size, s.texel / push.map_size);
+    Vpl vpl;
+    vpl.position = imageLoad(rsm_position, texel).xyz;
+    vpl.normal = imageLoad(rsm_normal, texel).xyz;
+    vpl.flux = imageLoad(rsm_flux, texel).rgb / (float(push.sample_count) * s.pmf);
+    vpls.items[slot] = vpl;
+}
