@@ -8,6 +8,7 @@
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/shadow_maps.hpp"
 #include "vplkit/stages/tonemap.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
 
@@ -46,6 +47,57 @@ void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
 
 }  // namespace
 
+Renderer::GeneratedVpls Renderer::generate_vpls(const stages::CameraView& view, stages::GbufferImages& gbuffer,
+                                                const RenderSettings& settings, RenderedImage& out) {
+    GeneratedVpls generated;
+    if (settings.vpl_source == VplSource::ir) {
+        // Light paths from every emitter through the BVH.
+        const stages::VplSources sources = stages::upload_vpl_sources(context_, scene_source_);
+        const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
+        auto output = stages::VplTracingOutput::create(context_, tracing);
+        PassList passes("vpls");
+        stages::add_trace_vpls_pass(context_, passes, gpu_bvh_, sources, tracing, output);
+        passes.run(context_);
+        append(out.timings, passes.timings());
+        generated.count = stages::download_vpl_count(output);
+        generated.vpls = std::move(output.vpls);
+        return generated;
+    }
+
+    // BRSM: a reflective shadow map per punctual light, then the VPLs where the camera sees their light.
+    if (scene_source_.lights.empty()) {
+        throw Error(scene_source_.source.string() +
+                    ": BRSM places VPLs from punctual lights' shadow maps, and the scene has none (its light "
+                    "is emissive triangles): use --vpl-source ir");
+    }
+    if (!scene_source_.emissive_triangles.empty()) {
+        out.notes.push_back("BRSM VPLs come from punctual lights only: the emissive triangles' light has no VPLs");
+    }
+    stages::BrsmOptions options = settings.brsm;
+    options.seed = settings.seed;
+    std::vector<stages::ShadowMap> maps;
+    for (const scene::Light& light : scene_source_.lights) {
+        maps.push_back(stages::ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution));
+    }
+    auto output = stages::BrsmOutput::create(context_, maps, scene_.bounds(), options);
+    PassList passes("brsm vpls");
+    stages::add_shadow_map_passes(context_, passes, scene_, maps);
+    stages::add_brsm_passes(context_, passes, gbuffer, view, maps, gpu_bvh_.scene_scale, options, output);
+    passes.run(context_);
+    append(out.timings, passes.timings());
+    const std::vector<uint32_t> per_light = stages::download_brsm_light_vpl_counts(output);
+    for (size_t i = 0; i < per_light.size(); ++i) {
+        if (per_light[i] == 0 && output.lights[i].vpl_share > 0) {
+            const scene::Light& light = scene_source_.lights[i];
+            out.notes.push_back("light " + std::to_string(i) + (light.name.empty() ? "" : " '" + light.name + "'") +
+                                ": its shadow map holds no surface that reflects light, so it has no VPLs");
+        }
+    }
+    generated.count = stages::download_brsm_vpl_count(output);
+    generated.vpls = std::move(output.vpls);
+    return generated;
+}
+
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& settings) {
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const uint32_t w = settings.width, h = settings.height;
@@ -75,21 +127,24 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     direct_passes.run(context_);
     append(out.timings, direct_passes.timings());
 
-    if (settings.method == GiMethod::exact) {
-        // VPLs by instant radiosity from the scene's lights, then every VPL at every pixel.
-        const stages::VplSources sources = stages::upload_vpl_sources(context_, scene_source_);
-        const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
-        auto vpls = stages::VplTracingOutput::create(context_, tracing);
-        PassList vpl_passes("vpls");
-        stages::add_trace_vpls_pass(context_, vpl_passes, gpu_bvh_, sources, tracing, vpls);
-        vpl_passes.run(context_);
-        append(out.timings, vpl_passes.timings());
-        out.vpl_count = stages::download_vpl_count(vpls);
-
+    if (settings.vpls_only) {
+        GeneratedVpls generated = generate_vpls(view, gbuffer, settings, out);
+        out.vpl_count = generated.count;
+        if (generated.count > 0) {
+            for (const auto& v : generated.vpls.download<shaders::Vpl>(generated.count)) {
+                out.vpls.push_back({{v.position.x, v.position.y, v.position.z},
+                                    {v.normal.x, v.normal.y, v.normal.z},
+                                    {v.flux.x, v.flux.y, v.flux.z}});
+            }
+        }
+        out.gbuffer_position = gbuffer.position.download<float>();
+    } else if (settings.method == GiMethod::exact) {
+        GeneratedVpls generated = generate_vpls(view, gbuffer, settings, out);
+        out.vpl_count = generated.count;
         stages::ExactGiOptions options;
         options.progress = settings.progress;
-        const auto result = stages::render_exact_gi(context_, gbuffer, gpu_bvh_, vpls.vpls, out.vpl_count, view.position,
-                                                    indirect, options);
+        const auto result = stages::render_exact_gi(context_, gbuffer, gpu_bvh_, generated.vpls, out.vpl_count,
+                                                    view.position, indirect, options);
         out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
         out.dropped_pixels = result.counts.dropped_pixels;
     }

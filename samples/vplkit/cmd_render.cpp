@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "vpl_view.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -10,13 +11,16 @@
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_setups.hpp"
+#include "vplkit/stages/gbuffer.hpp"
 
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
@@ -25,7 +29,9 @@ namespace vplkit::cli {
 const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
-    "                     [--method direct|exact] [--vpls N] [--bounces B] [--seed S] [--emissive-samples N]\n"
+    "                     [--method direct|exact] [--vpl-source ir|brsm] [--vpls N] [--bounces B]\n"
+    "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
+    "                     [--seed S] [--emissive-samples N]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation]\n"
     "\n"
@@ -38,9 +44,18 @@ const char* const kRenderUsage =
     "  --out-hdr FILE   also the linear radiance, PFM\n"
     "  --out-direct FILE, --out-indirect FILE   the linear direct / indirect parts, PFM\n"
     "  --method M       direct (default): direct light only; exact: plus indirect light from\n"
-    "                   instant-radiosity VPLs, every VPL at every pixel with a shadow ray (ground truth)\n"
-    "  --vpls N         light paths traced for VPLs (default 4096; each leaves up to --bounces VPLs)\n"
-    "  --bounces B      surface hits per light path (default 2)\n"
+    "                   VPLs, every VPL at every pixel with a shadow ray (ground truth)\n"
+    "  --vpl-source S   where the VPLs come from: ir (default): instant radiosity, light paths through\n"
+    "                   the scene, multi-bounce; brsm: bidirectional reflective shadow maps, one bounce,\n"
+    "                   placed where the camera sees their light (punctual lights only)\n"
+    "  --vpls N         ir: light paths traced (default 4096; each leaves up to --bounces VPLs);\n"
+    "                   brsm: VPLs over all lights, shared by power (default 4096)\n"
+    "  --bounces B      ir: surface hits per light path (default 2)\n"
+    "  --rsm-resolution R   brsm: texels along a shadow map face's side (default 512)\n"
+    "  --brsm-samples S     brsm: G-buffer samples per shadow-map texel (default 8)\n"
+    "  --brsm-defensive A   brsm: share of the VPL pdf that follows flux alone, 0..1 (default 0.1;\n"
+    "                   0 = pure BRSM, biased: light off screen gets no VPLs)\n"
+    "  --vpls-only      write the VPLs over the dimmed direct image to --out instead of a frame\n"
     "  --width W        image width (default: the set-up's, else 640)\n"
     "  --height H       image height (default: the set-up's, else 360)\n"
     "  --camera N       use the file's camera N instead of the set-up's\n"
@@ -79,6 +94,37 @@ float parse_exposure(const std::string& text) {
     return value;
 }
 
+float parse_fraction(const std::string& option, const std::string& text) {
+    size_t used = 0;
+    float value = NAN;
+    try {
+        value = std::stof(text, &used);
+    } catch (const std::exception&) {
+        used = 0;
+    }
+    if (used != text.size() || !(value >= 0.0f && value <= 1.0f)) {
+        throw UsageError(option + " expects a number from 0 to 1, got '" + text + "'");
+    }
+    return value;
+}
+
+// Passes of one name (e.g. the importance mip levels) summed into one line, in first-seen order.
+std::vector<std::pair<std::string, double>> by_stage(const std::vector<PassTiming>& timings) {
+    std::vector<std::pair<std::string, double>> stages;
+    std::map<std::string, size_t> index;
+    std::map<std::string, int> passes;
+    for (const PassTiming& t : timings) {
+        auto [it, added] = index.try_emplace(t.name, stages.size());
+        if (added) stages.push_back({t.name, 0.0});
+        stages[it->second].second += t.gpu_ms;
+        ++passes[t.name];
+    }
+    for (auto& [name, ms] : stages) {
+        if (passes[name] > 1) name += " (" + std::to_string(passes[name]) + " passes)";
+    }
+    return stages;
+}
+
 }  // namespace
 
 int run_render(Args& args) {
@@ -111,8 +157,33 @@ int run_render(Args& args) {
         else if (*text == "exact") settings.method = GiMethod::exact;
         else throw UsageError("--method expects direct or exact (sst, rtslc and hybrid are not built yet), got '" + *text + "'");
     }
-    if (auto text = args.value("--vpls")) settings.vpl_paths = parse_whole_number("--vpls", *text, 1u << 24);
-    if (auto text = args.value("--bounces")) settings.vpl_bounces = parse_whole_number("--bounces", *text, 16);
+    if (auto text = args.value("--vpl-source")) {
+        if (*text == "ir") settings.vpl_source = VplSource::ir;
+        else if (*text == "brsm") settings.vpl_source = VplSource::brsm;
+        else throw UsageError("--vpl-source expects ir or brsm, got '" + *text + "'");
+    }
+    const bool brsm = settings.vpl_source == VplSource::brsm;
+    if (auto text = args.value("--vpls")) {
+        settings.vpl_paths = parse_whole_number("--vpls", *text, 1u << 24);
+        settings.brsm.vpl_count = settings.vpl_paths;
+    }
+    if (auto text = args.value("--bounces")) {
+        if (brsm) throw UsageError("--bounces is for --vpl-source ir: BRSM VPLs are the first bounce only");
+        settings.vpl_bounces = parse_whole_number("--bounces", *text, 16);
+    }
+    const auto rsm_resolution = args.value("--rsm-resolution");
+    const auto brsm_samples = args.value("--brsm-samples");
+    const auto brsm_defensive = args.value("--brsm-defensive");
+    if ((rsm_resolution || brsm_samples || brsm_defensive) && !brsm) {
+        throw UsageError("--rsm-resolution, --brsm-samples and --brsm-defensive need --vpl-source brsm");
+    }
+    if (rsm_resolution) settings.rsm_resolution = parse_whole_number("--rsm-resolution", *rsm_resolution, 4096);
+    if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
+    if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
+    settings.vpls_only = args.flag("--vpls-only");
+    if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
+        throw UsageError("--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
+    }
     args.finish();
     check_output("--out", out, ".png");
     if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
@@ -164,9 +235,17 @@ int run_render(Args& args) {
         std::fflush(stderr);
     };
     const RenderedImage image = renderer.render(scene.camera(), settings);
+    for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
+    const bool made_vpls = settings.method == GiMethod::exact || settings.vpls_only;
+    if (made_vpls && brsm) {
+        std::printf("%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
+                    settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
+                    settings.brsm.samples_per_texel, settings.brsm.defensive_fraction);
+    } else if (made_vpls) {
+        std::printf("%s: %u VPLs from %u light paths x %u bounces\n", settings.vpls_only ? "vpls" : "indirect",
+                    image.vpl_count, settings.vpl_paths, settings.vpl_bounces);
+    }
     if (settings.method == GiMethod::exact) {
-        std::printf("indirect: %u VPLs from %u light paths x %u bounces\n", image.vpl_count, settings.vpl_paths,
-                    settings.vpl_bounces);
         if (image.dropped_pixels > 0) {
             std::printf("warning: %u pixels had a non-finite VPL contribution left out\n", image.dropped_pixels);
         }
@@ -178,12 +257,24 @@ int run_render(Args& args) {
 
     std::printf("%ux%u, GPU time per stage:\n", image.width, image.height);
     double total = 0.0;
-    for (const PassTiming& t : image.timings) {
-        std::printf("  %-22s %9.3f ms\n", t.name.c_str(), t.gpu_ms);
-        total += t.gpu_ms;
+    for (const auto& [name, ms] : by_stage(image.timings)) {
+        std::printf("  %-30s %9.3f ms\n", name.c_str(), ms);
+        total += ms;
     }
-    std::printf("  %-22s %9.3f ms\n", "total", total);
+    std::printf("  %-30s %9.3f ms\n", "total", total);
 
+    if (settings.vpls_only) {
+        if (image.vpl_count == 0) {
+            throw Error("render: no VPLs were placed (no light reaches a reflecting surface); no image written");
+        }
+        const stages::CameraView view = stages::camera_view(scene.camera(), image.width, image.height);
+        const VplView drawn = draw_vpl_view(image, view.view_projection, view.position);
+        std::printf("vpl view: %u VPLs seen by the camera, %u hidden behind nearer surfaces, %u off screen\n",
+                    drawn.visible, drawn.hidden, drawn.off_screen);
+        write_png(out, image.width, image.height, drawn.rgba8);
+        std::printf("wrote %s\n", out.string().c_str());
+        return 0;
+    }
     write_png(out, image.width, image.height, image.rgba8);
     std::printf("wrote %s\n", out.string().c_str());
     if (out_hdr) {

@@ -58,7 +58,11 @@ void main() {
             vec3 y = position.xyz;
             vec3 n_y = imageLoad(rsm_normal, ivec2(texel)).xyz;
             vec2 gbuffer_size = vec2(imageSize(gbuffer_position));
-            float min_distance = vpl_min_distance(push.scene_scale);
+            // The falloff is clamped at the core radius, not at the VPLs' much smaller d_min: an
+            // importance is a coarse average over a neighbourhood, and a clamp at d_min would
+            // let the few samples that land next to a crease outweigh everything the pVPL
+            // lights farther away (BRSM's VPLs then crowd into the room's corners).
+            float min_distance = max(vpl_min_distance(push.scene_scale), push.core_radius);
             Rng rng = rng_create(push.seed, index);
             for (uint s = 0u; s < push.sample_count; ++s) {
                 vec3 direction = sample_uniform_sphere(rng_next_vec2(rng));

@@ -7,6 +7,7 @@
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
 
@@ -14,6 +15,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace vplkit {
@@ -26,6 +28,19 @@ enum class GiMethod {
     exact,  // every VPL at every pixel with a shadow ray each: the ground truth
 };
 
+// Where the VPLs come from.
+enum class VplSource {
+    ir,    // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
+    brsm,  // bidirectional reflective shadow maps: one-bounce VPLs where the camera sees their light
+};
+
+// One VPL as the host sees it (RenderedImage::vpls).
+struct VplPoint {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};
+    glm::vec3 flux{0.0f};
+};
+
 struct RenderSettings {
     uint32_t width = 640;
     uint32_t height = 360;
@@ -34,8 +49,16 @@ struct RenderSettings {
     uint32_t emissive_samples = 16; // area-light samples per pixel for emissive triangles
     uint32_t seed = 0;              // the same seed gives the same image
     GiMethod method = GiMethod::none;
-    uint32_t vpl_paths = 4096;      // light paths traced for VPLs (instant radiosity)
-    uint32_t vpl_bounces = 2;       // surface hits per path at most
+    VplSource vpl_source = VplSource::ir;
+    uint32_t vpl_paths = 4096;      // ir: light paths traced for VPLs
+    uint32_t vpl_bounces = 2;       // ir: surface hits per path at most
+    // brsm: its options (vpl_count is the VPL budget over all punctual lights; the seed is
+    // replaced by `seed`), and the side of each light's RSM face.
+    stages::BrsmOptions brsm;
+    uint32_t rsm_resolution = 512;
+    // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
+    // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
+    bool vpls_only = false;
     // Called during long indirect-light work with (done, total) units of work.
     std::function<void(uint32_t done, uint32_t total)> progress;
 };
@@ -48,6 +71,9 @@ struct RenderedImage {
     std::vector<float> direct;       // the direct part alone (same layout)
     std::vector<float> indirect;     // the indirect part alone (zero with GiMethod::none)
     uint32_t vpl_count = 0;          // VPLs the indirect light came from
+    std::vector<VplPoint> vpls;      // with vpls_only: the VPLs
+    std::vector<float> gbuffer_position;  // with vpls_only: xyz + covered (1/0), 4 floats per pixel
+    std::vector<std::string> notes;  // what a user should know about this frame (e.g. a light without VPLs)
     uint32_t dropped_pixels = 0;     // pixels where a non-finite VPL contribution was left out
     std::vector<PassTiming> timings; // GPU time per pass
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
@@ -60,7 +86,8 @@ class Renderer {
     // triangle), naming the scene: its image could only be black.
     Renderer(Context& context, const scene::Scene& scene);
 
-    // Throws vplkit::Error for a zero size or a bad exposure.
+    // Throws vplkit::Error for a zero size, a bad exposure, bad BRSM options, or BRSM asked of a
+    // scene without a punctual light.
     RenderedImage render(const scene::Camera& camera, const RenderSettings& settings);
 
     double bvh_build_ms() const { return bvh_build_ms_; }
@@ -69,6 +96,14 @@ class Renderer {
     uint32_t emitter_count() const { return emitters_.count; }
 
  private:
+    struct GeneratedVpls {
+        Buffer vpls;
+        uint32_t count = 0;
+    };
+    // VPLs by settings.vpl_source for the frame whose G-buffer is `gbuffer`; timings and notes into `out`.
+    GeneratedVpls generate_vpls(const stages::CameraView& view, stages::GbufferImages& gbuffer,
+                                const RenderSettings& settings, RenderedImage& out);
+
     Context& context_;
     GpuScene scene_;
     Bvh bvh_;

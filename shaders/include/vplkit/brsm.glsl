@@ -34,8 +34,8 @@ float capped_inverse_square_radius_pdf(float r, float core, float max_radius) {
 // Luminance of the light a pVPL at y (unit normal n_y, the side it emits into; flux luminance
 // `flux`) reflects diffusely at G-buffer surface g, occlusion ignored (seed 000 sec. 4.1.1):
 // the diffuse part of the glTF BRDF, rho / pi with rho = base colour x (1 - metallic), times
-// the VPL's intensity flux cos_y / pi, cos_x and the falloff 1 / max(d^2, min_distance^2) that
-// every VPL evaluation uses (vplkit/vpl_eval.glsl). 0 when either side faces away.
+// the VPL's intensity flux cos_y / pi, cos_x and the falloff 1 / max(d^2, min_distance^2), the
+// form every VPL evaluation uses (vplkit/vpl_eval.glsl). 0 when either side faces away.
 float pvpl_diffuse_contribution(vec3 y, vec3 n_y, float flux, GbufferSample g, float min_distance) {
     vec3 to_vpl = y - g.position;
     float d2 = dot(to_vpl, to_vpl);

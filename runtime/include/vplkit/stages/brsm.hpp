@@ -51,8 +51,8 @@ struct BrsmOptions {
     // The density of distances at which G-buffer surfaces are looked for around a pVPL: flat up
     // to core_radius, 1/r^2 beyond, up to max_radius (vplkit/brsm.glsl); fractions of the scene
     // scale (Bvh::scene_scale), 0 < core_radius < max_radius.
-    float core_radius = 0.02f;
-    float max_radius = 0.5f;
+    float core_radius = 0.1f;
+    float max_radius = 1.0f;
     // The edge-aware Gaussian: sigma in texels (> 0) over a (2 filter_radius + 1)^2 window
     // (filter_radius 0..8); neighbours count when their normals' dot product is above
     // similarity_min_cos (in [-1, 1)) and they lie within similarity_max_distance (fraction of
