@@ -28,7 +28,7 @@ VplView draw_vpl_view(const RenderedImage& image, const glm::mat4& view_projecti
     view.rgba8.resize(size_t(w) * h * 4);
     for (size_t i = 0; i < size_t(w) * h; ++i) {
         const uint8_t* p = &image.rgba8[i * 4];
-        const auto grey = uint8_t(std::lround(0.35f * (0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2])));
+        const auto grey = uint8_t(std::lround(0.6f * (0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2])));
         view.rgba8[i * 4 + 0] = view.rgba8[i * 4 + 1] = view.rgba8[i * 4 + 2] = grey;
         view.rgba8[i * 4 + 3] = 255;
     }
