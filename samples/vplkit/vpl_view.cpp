@@ -26,11 +26,28 @@ VplView draw_vpl_view(const RenderedImage& image, const glm::mat4& view_projecti
     const uint32_t w = image.width, h = image.height;
     VplView view;
     view.rgba8.resize(size_t(w) * h * 4);
-    for (size_t i = 0; i < size_t(w) * h; ++i) {
-        const uint8_t* p = &image.rgba8[i * 4];
-        const auto grey = uint8_t(std::lround(0.6f * (0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2])));
-        view.rgba8[i * 4 + 0] = view.rgba8[i * 4 + 1] = view.rgba8[i * 4 + 2] = grey;
-        view.rgba8[i * 4 + 3] = 255;
+    auto position = [&](uint32_t x, uint32_t y) {
+        const float* g = &image.gbuffer_position[(size_t(y) * w + x) * 4];
+        return glm::vec3(g[0], g[1], g[2]);
+    };
+    auto covered = [&](uint32_t x, uint32_t y) { return image.gbuffer_position[(size_t(y) * w + x) * 4 + 3] > 0.5f; };
+    for (uint32_t y = 0; y < h; ++y) {
+        for (uint32_t x = 0; x < w; ++x) {
+            const size_t i = size_t(y) * w + x;
+            const uint8_t* p = &image.rgba8[i * 4];
+            float grey = 0.6f * (0.2126f * p[0] + 0.7152f * p[1] + 0.0722f * p[2]);
+            // Surfaces in shadow would be black: a faint shading by their facing (normal from the
+            // G-buffer positions' differences) keeps the geometry readable there.
+            if (x + 1 < w && y + 1 < h && covered(x, y) && covered(x + 1, y) && covered(x, y + 1)) {
+                const glm::vec3 n = glm::cross(position(x + 1, y) - position(x, y), position(x, y + 1) - position(x, y));
+                const glm::vec3 to_eye = eye - position(x, y);
+                const float facing = std::abs(glm::dot(n, to_eye)) / std::max(1e-30f, glm::length(n) * glm::length(to_eye));
+                if (std::isfinite(facing)) grey = std::max(grey, 16.0f + 40.0f * facing);
+            }
+            const auto g8 = uint8_t(std::lround(std::min(grey, 255.0f)));
+            view.rgba8[i * 4 + 0] = view.rgba8[i * 4 + 1] = view.rgba8[i * 4 + 2] = g8;
+            view.rgba8[i * 4 + 3] = 255;
+        }
     }
     // Dots a few pixels wide at 640 pixels across, one pixel in small images.
     const int radius = int(std::max(0.0f, std::floor(float(std::max(w, h)) / 400.0f)));

@@ -1,6 +1,7 @@
 #pragma once
 // `vplkit render --vpls-only`: the VPLs of a frame drawn over it, for a person to check where
-// they are. The frame's tonemapped direct light is the grey background at 60%; every VPL the
+// they are. The frame's tonemapped direct light is the grey background at 60% (surfaces in
+// shadow faintly shaded by their facing); every VPL the
 // camera sees is a dot in its flux's colour (hue only: brightness would hide the dim ones), one
 // hidden behind a nearer surface a faint single pixel.
 
