@@ -275,3 +275,49 @@ TEST_CASE("render with BRSM: a scene lit only by emissive triangles is refused b
     CHECK_THROWS_WITH_AS(renderer.render(scene.camera(), settings), doctest::Contains("use --vpl-source ir"),
                          vplkit::Error);
 }
+
+TEST_CASE("render: BRSM and one-bounce instant radiosity estimate the same indirect light") {
+    // Both VPL sets estimate, without bias, the light the surfaces reflect once (BRSM with its
+    // defensive term covers every lit texel): over seeds, the image's total indirect radiance must
+    // agree. Tolerance: 4 sigma of the difference of the two means, plus 3% for what differs by
+    // construction: BRSM places a VPL at a texel's centre for the whole texel's flux (64^2 faces),
+    // and the 1/d^2 clamp near creases weighs that placement.
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    vplkit::Renderer renderer(ctx, scene);
+    vplkit::RenderSettings settings;
+    settings.width = 24;
+    settings.height = 20;
+    settings.method = vplkit::GiMethod::exact;
+    settings.rsm_resolution = 64;
+    settings.brsm.vpl_count = 600;
+    settings.vpl_paths = 600;
+    settings.vpl_bounces = 1;
+    auto image_total = [](const vplkit::RenderedImage& image) {
+        double sum = 0;
+        for (float v : image.indirect) sum += v;
+        return sum;
+    };
+    const int seeds = 8;
+    std::vector<double> totals[2];
+    for (int source = 0; source < 2; ++source) {
+        settings.vpl_source = source == 0 ? vplkit::VplSource::ir : vplkit::VplSource::brsm;
+        for (int seed = 0; seed < seeds; ++seed) {
+            settings.seed = uint32_t(seed);
+            totals[source].push_back(image_total(renderer.render(scene.camera(), settings)));
+        }
+    }
+    double mean[2], variance_of_mean[2];
+    for (int s = 0; s < 2; ++s) {
+        mean[s] = 0;
+        for (double t : totals[s]) mean[s] += t / seeds;
+        double var = 0;
+        for (double t : totals[s]) var += (t - mean[s]) * (t - mean[s]) / (seeds - 1);
+        variance_of_mean[s] = var / seeds;
+    }
+    const double bound = 4.0 * std::sqrt(variance_of_mean[0] + variance_of_mean[1]) + 0.03 * mean[0];
+    MESSAGE("indirect total: ir " << mean[0] << " +- " << std::sqrt(variance_of_mean[0]) << ", brsm " << mean[1]
+                                  << " +- " << std::sqrt(variance_of_mean[1]));
+    CHECK(mean[0] > 0);
+    CHECK(std::abs(mean[1] - mean[0]) <= bound);
+}
