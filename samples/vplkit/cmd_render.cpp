@@ -51,7 +51,8 @@ const char* const kRenderUsage =
     "  --vpls N         ir: light paths traced (default 4096; each leaves up to --bounces VPLs);\n"
     "                   brsm: VPLs over all lights, shared by power (default 4096)\n"
     "  --bounces B      ir: surface hits per light path (default 2)\n"
-    "  --rsm-resolution R   brsm: texels along a shadow map face's side (default 512)\n"
+    "  --rsm-resolution R   brsm: texels along a shadow map face's side (default 512, at most 2048;\n"
+    "                   1365 for point lights, whose cube map is 3 x 2 faces)\n"
     "  --brsm-samples S     brsm: G-buffer samples per shadow-map texel (default 8)\n"
     "  --brsm-defensive A   brsm: share of the VPL pdf that follows flux alone, 0..1 (default 0.1;\n"
     "                   0 = pure BRSM, biased: light off screen gets no VPLs)\n"
@@ -177,7 +178,7 @@ int run_render(Args& args) {
     if ((rsm_resolution || brsm_samples || brsm_defensive) && !brsm) {
         throw UsageError("--rsm-resolution, --brsm-samples and --brsm-defensive need --vpl-source brsm");
     }
-    if (rsm_resolution) settings.rsm_resolution = parse_whole_number("--rsm-resolution", *rsm_resolution, 4096);
+    if (rsm_resolution) settings.rsm_resolution = parse_whole_number("--rsm-resolution", *rsm_resolution, 2048);
     if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");

@@ -31,6 +31,8 @@ namespace {
 
 constexpr uint32_t kMaxSamplesPerTexel = 1024;
 constexpr uint32_t kMaxFilterRadius = 8;
+// The largest importance map the warp takes (importance_warp.hpp).
+constexpr uint32_t kMaxMapSize = 4096;
 
 [[noreturn]] void bad_option(const std::string& what) { throw Error("BRSM: " + what); }
 
@@ -127,6 +129,11 @@ BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps,
     for (size_t i = 0; i < maps.size(); ++i) {
         BrsmLightBuffers light;
         light.map_size = std::bit_ceil(std::max(maps[i].width(), maps[i].height()));
+        if (light.map_size > kMaxMapSize) {
+            throw Error("BRSM: light " + std::to_string(i) + "'s shadow map is " + std::to_string(maps[i].width()) + "x" +
+                        std::to_string(maps[i].height()) + " texels; importance maps go up to " +
+                        std::to_string(kMaxMapSize) + "^2 (a point light's cube map is 3 x 2 faces): use smaller faces");
+        }
         light.vpl_share = shares[i];
         if (light.vpl_share == 0) {
             out.lights.push_back(std::move(light));
