@@ -82,12 +82,12 @@ float rect_solid_angle(vec2 lo, vec2 hi) {
 //   point, spot: intensity I (W/sr) times the texel's solid angle omega, times the spot falloff
 //     and the range window of KHR_lights_punctual at the patch (taken at the surface point of
 //     the texel's centre), exactly as vplkit/lights.glsl applies them to direct light.
-// The reflected flux is albedo x that (Dachsbacher and Stamminger 2005: a texel's flux is the
-// light's flux through it times the surface's reflectivity):
-// summed over the texels it is the light's power reflected by the surfaces it reaches, which
-// the tests check on planes against the analytic value. `albedo` is the base colour for metals
-// and dielectrics alike: a dielectric reflects about its base colour diffusely, a metal its base
-// colour specularly.
+// The reflected flux is the diffuse reflectance x that (Dachsbacher and Stamminger 2005: a
+// texel's flux is the light's flux through it times the surface's reflectivity): summed over the
+// texels it is the power the surfaces the light reaches reflect diffusely, which the tests check
+// on planes against the analytic value. Diffuse reflectance = base colour x (1 - metallic), as
+// instant radiosity's VPLs use it (stages/vpl_tracing.hpp): a VPL re-emits diffusely, and a
+// metal reflects its light specularly, which no VPL carries.
 vec3 texel_incident_power() {
     if (light.type == kLightDirectional) {
         return light.intensity * light.texel_area;
@@ -113,5 +113,5 @@ void main() {
                                      to_light);
     out_position = vec4(world_position, 1.0);
     out_normal = vec4(s.normal, 0.0);
-    out_flux = vec4(s.albedo * texel_incident_power(), 0.0);
+    out_flux = vec4(s.albedo * (1.0 - s.metallic) * texel_incident_power(), 0.0);
 }

@@ -142,6 +142,24 @@ TEST_CASE("shadow maps: a directional light on a plane") {
     }
 }
 
+TEST_CASE("shadow maps: a metallic surface reflects only its diffuse share into the RSM") {
+    // Flux is what the surface re-emits diffusely (a VPL's light): base colour x (1 - metallic).
+    vplkit::Context& ctx = vplkit::test::context();
+    const glm::vec3 albedo(0.5f, 0.25f, 0.75f);
+    auto scene = raster_test::floor_scene(1.0f, albedo);
+    scene.materials[0].metallic_factor = 0.75f;
+    auto gpu = vplkit::GpuScene::create(ctx, scene);
+    vplkit::scene::Light light;
+    light.type = vplkit::scene::LightType::directional;
+    light.direction = {0.0f, -1.0f, 0.0f};
+    light.intensity = 2.0f;
+    ShadowMap map = ShadowMap::create(ctx, light, gpu.bounds(), 32);
+    const RsmRead r = render(ctx, gpu, map);
+    for (int c = 0; c < 3; ++c) {
+        CHECK(flux_sum(r, c) == doctest::Approx(0.25 * albedo[c] * 2.0 * 4.0).epsilon(1e-5));
+    }
+}
+
 TEST_CASE("shadow maps: a point light's cube map over a plane") {
     vplkit::Context& ctx = vplkit::test::context();
     // At res 64 the -Y face's texel borders fall at tan = k / 32: a plane of half size 0.75 at

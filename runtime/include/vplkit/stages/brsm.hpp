@@ -16,8 +16,8 @@
 // What the VPL set means: for each light, the mean over seeds of its VPLs' total flux is the
 // flux its RSM's texels of positive importance reflect, which with defensive_fraction > 0 is
 // all of its RSM's reflected flux (brsm_importance.comp). VPL flux is what the surface
-// re-emits, as for instant radiosity (stages/vpl_tracing.hpp): RSM flux = albedo x the light's
-// power into the texel.
+// re-emits, as for instant radiosity (stages/vpl_tracing.hpp): RSM flux = base colour x
+// (1 - metallic) x the light's power into the texel.
 //
 //   std::vector<ShadowMap> maps = ...;            // one per light, rendered (add_shadow_map_passes)
 //   auto out = vplkit::stages::BrsmOutput::create(context, maps, options);

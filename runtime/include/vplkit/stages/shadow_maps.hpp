@@ -5,9 +5,10 @@
 // these texels):
 //   position  RGBA32F  xyz world position; w = 1 where a surface was drawn, 0 elsewhere
 //   normal    RGBA32F  xyz unit shading normal (normal map applied) on the light's side; w = 0
-//   flux      RGBA32F  rgb flux the patch reflects, W (the light's units x m^2 or x sr): albedo x
-//                      the light's power through the texel (see rsm_shade.frag for the derivation);
-//                      summed over all texels: the power the surfaces the light reaches reflect
+//   flux      RGBA32F  rgb flux the patch reflects diffusely, W (the light's units x m^2 or x sr):
+//                      base colour x (1 - metallic) x the light's power through the texel (see
+//                      rsm_shade.frag for the derivation); summed over all texels: the power the
+//                      surfaces the light reaches reflect diffusely
 //   depth     D32      the shadow map: standard depth of the face's projection (0 near .. 1 far,
 //                      cleared to 1). No depth bias is baked in: a lookup adds its own.
 // Projections, per light type:
