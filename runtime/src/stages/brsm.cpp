@@ -285,11 +285,11 @@ void add_brsm_passes(Context& context, PassList& passes, GbufferImages& gbuffer,
     });
     for (size_t i = 0; i < maps.size(); ++i) {
         if (output.lights[i].vpl_share == 0) continue;
-        // Each light its own streams: the seed's hash of the light index (the Hammersley rotation
-        // and the contribution samples would otherwise repeat from light to light).
-        const uint32_t light_seed = options.seed ^ (0x9e3779b9u * uint32_t(i + 1));
-        add_light_passes(context, passes, gbuffer, view, maps[i], scene_scale, options, i == 0 ? options.seed : light_seed,
-                         output.lights[i], output);
+        // Each light its own streams (the Hammersley rotation and the contribution samples would
+        // otherwise repeat from light to light); light 0 keeps the seed itself.
+        const uint32_t light_seed = options.seed ^ (0x9e3779b9u * uint32_t(i));
+        add_light_passes(context, passes, gbuffer, view, maps[i], scene_scale, options, light_seed, output.lights[i],
+                         output);
     }
 }
 

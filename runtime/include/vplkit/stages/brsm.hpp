@@ -50,7 +50,11 @@ struct BrsmOptions {
     uint32_t samples_per_texel = 8;  // G-buffer surfaces per pVPL, 1..1024
     // The density of distances at which G-buffer surfaces are looked for around a pVPL: flat up
     // to core_radius, 1/r^2 beyond, up to max_radius (vplkit/brsm.glsl); fractions of the scene
-    // scale (Bvh::scene_scale), 0 < core_radius < max_radius.
+    // scale (Bvh::scene_scale), 0 < core_radius < max_radius. The contribution's 1/d^2 is clamped
+    // at core_radius too (brsm_contribution.comp). The thesis caps the density "to 1" without a
+    // unit; a core of 2% and the VPLs' own 1% clamp put Cornell-box VPLs in its creases (each
+    // pVPL's few samples mostly land beside it on its own plane, where they see nothing, and
+    // the rest next to the nearest crease), a 10% core spreads them over the walls near the light.
     float core_radius = 0.1f;
     float max_radius = 1.0f;
     // The edge-aware Gaussian: sigma in texels (> 0) over a (2 filter_radius + 1)^2 window
