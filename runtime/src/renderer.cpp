@@ -146,6 +146,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         const auto result = stages::render_exact_gi(context_, gbuffer, gpu_bvh_, generated.vpls, out.vpl_count,
                                                     view.position, indirect, options);
         out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
+        out.exact_gi_wall_ms = result.wall_ms;
         out.dropped_pixels = result.counts.dropped_pixels;
     }
 

@@ -263,6 +263,9 @@ int run_render(Args& args) {
         total += ms;
     }
     std::printf("  %-30s %9.3f ms\n", "total", total);
+    if (settings.method == GiMethod::exact && !settings.vpls_only) {
+        std::printf("exact gi by the host's wall clock: %.3f ms\n", image.exact_gi_wall_ms);
+    }
 
     if (settings.vpls_only) {
         if (image.vpl_count == 0) {

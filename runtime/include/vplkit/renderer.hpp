@@ -76,6 +76,7 @@ struct RenderedImage {
     std::vector<std::string> notes;  // what a user should know about this frame (e.g. a light without VPLs)
     uint32_t dropped_pixels = 0;     // pixels where a non-finite VPL contribution was left out
     std::vector<PassTiming> timings; // GPU time per pass
+    double exact_gi_wall_ms = 0.0;   // GiMethod::exact: the gather's host wall clock (ExactGiResult::wall_ms)
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
 };
 

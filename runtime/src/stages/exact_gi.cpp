@@ -10,6 +10,7 @@
 #include "vplkit/stages/gbuffer_images.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <string>
 
 namespace vplkit::stages {
@@ -115,6 +116,7 @@ ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const Gp
         result.gpu_ms += clear.total_gpu_ms();
     }
     const uint32_t chunk = exact_gi_chunk_size(gbuffer.width(), gbuffer.height(), options);
+    const auto start = std::chrono::steady_clock::now();
     // One submission per chunk: a device that kills long submissions sees short ones, and the
     // caller hears of progress between them.
     for (uint32_t first = 0; first < vpl_count;) {
@@ -136,6 +138,7 @@ ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const Gp
         }
     }
     result.counts = read_exact_gi_counters(counters);
+    result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
 

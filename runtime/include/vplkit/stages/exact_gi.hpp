@@ -72,6 +72,10 @@ struct ExactGiResult {
     ExactGiCounts counts;
     uint32_t dispatches = 0;
     double gpu_ms = 0.0;  // summed over the submissions
+    // Host time from the first chunk's submission to the last one's end, counter reads included.
+    // A check on gpu_ms: lavapipe was seen to stamp most chunks of a gather that followed the
+    // BRSM passes at ~0.01 ms while each took ~77 ms (brsm_timing's passes stamp correctly).
+    double wall_ms = 0.0;
 };
 
 // The same work as add_exact_gi_passes, one submission per chunk, calling options.progress
