@@ -158,23 +158,28 @@ int run_render(Args& args) {
         else if (*text == "exact") settings.method = GiMethod::exact;
         else throw UsageError("--method expects direct or exact (sst, rtslc and hybrid are not built yet), got '" + *text + "'");
     }
+    bool vpl_options_given = false;
     if (auto text = args.value("--vpl-source")) {
+        vpl_options_given = true;
         if (*text == "ir") settings.vpl_source = VplSource::ir;
         else if (*text == "brsm") settings.vpl_source = VplSource::brsm;
         else throw UsageError("--vpl-source expects ir or brsm, got '" + *text + "'");
     }
     const bool brsm = settings.vpl_source == VplSource::brsm;
     if (auto text = args.value("--vpls")) {
+        vpl_options_given = true;
         settings.vpl_paths = parse_whole_number("--vpls", *text, 1u << 24);
         settings.brsm.vpl_count = settings.vpl_paths;
     }
     if (auto text = args.value("--bounces")) {
+        vpl_options_given = true;
         if (brsm) throw UsageError("--bounces is for --vpl-source ir: BRSM VPLs are the first bounce only");
         settings.vpl_bounces = parse_whole_number("--bounces", *text, 16);
     }
     const auto rsm_resolution = args.value("--rsm-resolution");
     const auto brsm_samples = args.value("--brsm-samples");
     const auto brsm_defensive = args.value("--brsm-defensive");
+    vpl_options_given = vpl_options_given || rsm_resolution || brsm_samples || brsm_defensive;
     if ((rsm_resolution || brsm_samples || brsm_defensive) && !brsm) {
         throw UsageError("--rsm-resolution, --brsm-samples and --brsm-defensive need --vpl-source brsm");
     }
@@ -182,6 +187,10 @@ int run_render(Args& args) {
     if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");
+    if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
+        throw UsageError("--vpl-source, --vpls, --bounces and the --brsm options need --method exact or --vpls-only "
+                         "(direct light uses no VPLs)");
+    }
     if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
         throw UsageError("--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
     }
