@@ -75,23 +75,27 @@ Renderer::GeneratedVpls Renderer::generate_vpls(const stages::CameraView& view, 
     }
     stages::BrsmOptions options = settings.brsm;
     options.seed = settings.seed;
-    std::vector<stages::ShadowMap> maps;
-    for (const scene::Light& light : scene_source_.lights) {
-        maps.push_back(stages::ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution));
-    }
-    auto output = stages::BrsmOutput::create(context_, maps, scene_.bounds(), options);
-    PassList passes("brsm vpls");
-    stages::add_shadow_map_passes(context_, passes, scene_, maps);
-    stages::add_brsm_passes(context_, passes, gbuffer, view, maps, gpu_bvh_.scene_scale, options, output);
-    passes.run(context_);
-    append(out.timings, passes.timings());
-    const std::vector<uint32_t> per_light = stages::download_brsm_light_vpl_counts(output);
-    for (size_t i = 0; i < per_light.size(); ++i) {
-        if (per_light[i] == 0 && output.lights[i].vpl_share > 0) {
-            const scene::Light& light = scene_source_.lights[i];
+    // One light at a time: its shadow map and working buffers live only while it is placed, so a
+    // scene with many lights needs the memory of one (seed 000 ch. 6, "Multiple Lights").
+    auto output = stages::BrsmOutput::create_for_lights(context_, scene_source_.lights, scene_.bounds(), options);
+    bool cleared = false;
+    for (size_t i = 0; i < scene_source_.lights.size(); ++i) {
+        const scene::Light& light = scene_source_.lights[i];
+        if (output.lights[i].vpl_share == 0) continue;  // no power
+        auto map = stages::ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution);
+        stages::allocate_brsm_light_buffers(context_, map, output.lights[i]);
+        PassList passes("brsm vpls");
+        if (!cleared) stages::add_brsm_count_clear_pass(passes, output);
+        cleared = true;
+        stages::add_shadow_map_pass(context_, passes, scene_, map, uint32_t(i));
+        stages::add_brsm_light_passes(context_, passes, gbuffer, view, map, i, gpu_bvh_.scene_scale, options, output);
+        passes.run(context_);
+        append(out.timings, passes.timings());
+        if (stages::download_brsm_light_vpl_count(output, i) == 0) {
             out.notes.push_back("light " + std::to_string(i) + (light.name.empty() ? "" : " '" + light.name + "'") +
                                 ": its shadow map holds no surface that reflects light, so it has no VPLs");
         }
+        output.lights[i] = stages::BrsmLightBuffers{0, output.lights[i].vpl_share};  // frees them
     }
     generated.count = stages::download_brsm_vpl_count(output);
     generated.vpls = std::move(output.vpls);

@@ -255,6 +255,23 @@ TEST_CASE("render with BRSM indirect light: one bounce, finite, the same seed gi
     settings.seed = 4;
     CHECK(renderer.render(scene.camera(), settings).indirect != a.indirect);
 
+    // A spot light aimed out of the box's open front, from in front of it, reaches no surface:
+    // it gets its share of VPLs, places none, and the frame says so.
+    auto with_spot = scene;
+    vplkit::scene::Light spot;
+    spot.type = vplkit::scene::LightType::spot;
+    spot.name = "away";
+    spot.position = {0.0f, 1.0f, 3.0f};
+    spot.direction = {0.0f, 0.0f, 1.0f};
+    spot.outer_cone_angle = 0.3f;
+    with_spot.lights.push_back(spot);
+    vplkit::Renderer spot_renderer(ctx, with_spot);
+    const auto s = spot_renderer.render(with_spot.camera(), settings);
+    REQUIRE(s.notes.size() == 1);
+    CHECK(s.notes[0].find("'away': its shadow map holds no surface") != std::string::npos);
+    CHECK(s.vpl_count < 64);
+    CHECK(s.vpl_count > 0);
+
     // --vpls-only: the VPLs and the G-buffer's positions, no indirect light.
     settings.vpls_only = true;
     const auto v = renderer.render(scene.camera(), settings);
@@ -281,9 +298,16 @@ TEST_CASE("render: BRSM and one-bounce instant radiosity estimate the same indir
     // defensive term covers every lit texel): over seeds, the image's total indirect radiance must
     // agree. Tolerance: 4 sigma of the difference of the two means, plus 3% for what differs by
     // construction: BRSM places a VPL at a texel's centre for the whole texel's flux (64^2 faces),
-    // and the 1/d^2 clamp near creases weighs that placement.
+    // and the 1/d^2 clamp near creases weighs that placement. A second, bluer point light makes
+    // BRSM share its VPLs and place them light by light.
     vplkit::Context& ctx = vplkit::test::context();
-    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    vplkit::scene::Light blue;
+    blue.name = "blue";
+    blue.position = {0.5f, 1.0f, 0.4f};  // above the short block
+    blue.color = {0.5f, 0.7f, 1.0f};
+    blue.intensity = 3.0f;
+    scene.lights.push_back(blue);
     vplkit::Renderer renderer(ctx, scene);
     vplkit::RenderSettings settings;
     settings.width = 24;

@@ -114,41 +114,49 @@ std::vector<uint32_t> brsm_vpl_shares(std::span<const scene::Light> lights, cons
     return shares;
 }
 
-BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
-                              const BrsmOptions& options) {
+BrsmOutput BrsmOutput::create_for_lights(Context& context, std::span<const scene::Light> lights,
+                                         const scene::Bounds& bounds, const BrsmOptions& options) {
     validate(options);
-    if (maps.empty()) throw Error("BRSM: no reflective shadow map (the scene has no punctual light)");
-    std::vector<scene::Light> lights;
-    for (const ShadowMap& map : maps) lights.push_back(map.light);
+    if (lights.empty()) throw Error("BRSM: no punctual light to place VPLs for");
     const std::vector<uint32_t> shares = brsm_vpl_shares(lights, bounds, options.vpl_count);
-
     BrsmOutput out;
     out.capacity = options.vpl_count;
     out.vpls = storage_buffer(context, uint64_t(out.capacity) * sizeof(shaders::Vpl), "brsm vpls");
     out.count = storage_buffer(context, sizeof(shaders::VplCountBuffer), "brsm vpl count");
-    for (size_t i = 0; i < maps.size(); ++i) {
+    for (uint32_t share : shares) {
         BrsmLightBuffers light;
-        light.map_size = std::bit_ceil(std::max(maps[i].width(), maps[i].height()));
-        if (light.map_size > kMaxMapSize) {
-            throw Error("BRSM: light " + std::to_string(i) + "'s shadow map is " + std::to_string(maps[i].width()) + "x" +
-                        std::to_string(maps[i].height()) + " texels; importance maps go up to " +
-                        std::to_string(kMaxMapSize) + "^2 (a point light's cube map is 3 x 2 faces): use smaller faces");
-        }
-        light.vpl_share = shares[i];
-        if (light.vpl_share == 0) {
-            out.lights.push_back(std::move(light));
-            continue;
-        }
-        const uint64_t texels = uint64_t(light.map_size) * light.map_size;
-        const uint64_t chain = importance_mip_floats(light.map_size) * sizeof(float);
-        light.contribution = storage_buffer(context, texels * sizeof(float), "brsm contribution");
-        light.contribution_mips = storage_buffer(context, chain, "brsm contribution mips");
-        light.flux_mips = storage_buffer(context, chain, "brsm flux mips");
-        light.importance_mips = storage_buffer(context, chain, "brsm importance mips");
-        light.samples = storage_buffer(context, uint64_t(light.vpl_share) * sizeof(shaders::WarpedSample), "brsm samples");
-        light.warp_count = storage_buffer(context, sizeof(shaders::WarpCountBuffer), "brsm warp count");
+        light.vpl_share = share;
         out.lights.push_back(std::move(light));
     }
+    return out;
+}
+
+void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLightBuffers& light) {
+    const uint32_t size = std::bit_ceil(std::max(map.width(), map.height()));
+    if (size > kMaxMapSize) {
+        throw Error("BRSM: light '" + map.light.name + "''s shadow map is " + std::to_string(map.width()) + "x" +
+                    std::to_string(map.height()) + " texels; importance maps go up to " + std::to_string(kMaxMapSize) +
+                    "^2 (a point light's cube map is 3 x 2 faces): use smaller faces");
+    }
+    light.map_size = size;
+    if (light.vpl_share == 0) return;
+    const uint64_t texels = uint64_t(size) * size;
+    const uint64_t chain = importance_mip_floats(size) * sizeof(float);
+    light.contribution = storage_buffer(context, texels * sizeof(float), "brsm contribution");
+    light.contribution_mips = storage_buffer(context, chain, "brsm contribution mips");
+    light.flux_mips = storage_buffer(context, chain, "brsm flux mips");
+    light.importance_mips = storage_buffer(context, chain, "brsm importance mips");
+    light.samples = storage_buffer(context, uint64_t(light.vpl_share) * sizeof(shaders::WarpedSample), "brsm samples");
+    light.warp_count = storage_buffer(context, sizeof(shaders::WarpCountBuffer), "brsm warp count");
+}
+
+BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
+                              const BrsmOptions& options) {
+    if (maps.empty()) throw Error("BRSM: no reflective shadow map (the scene has no punctual light)");
+    std::vector<scene::Light> lights;
+    for (const ShadowMap& map : maps) lights.push_back(map.light);
+    BrsmOutput out = create_for_lights(context, lights, bounds, options);
+    for (size_t i = 0; i < maps.size(); ++i) allocate_brsm_light_buffers(context, maps[i], out.lights[i]);
     return out;
 }
 
@@ -266,30 +274,43 @@ void add_light_passes(Context& context, PassList& passes, GbufferImages& gbuffer
 
 }  // namespace
 
-void add_brsm_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
-                     std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options, BrsmOutput& output) {
-    validate(options);
-    if (maps.size() != output.lights.size()) {
-        throw Error("BRSM: " + std::to_string(maps.size()) + " maps, but the output was created for " +
-                    std::to_string(output.lights.size()));
-    }
-    if (!(scene_scale > 0.0f) || !std::isfinite(scene_scale)) throw Error("BRSM: scene_scale must be positive");
-    for (size_t i = 0; i < maps.size(); ++i) {
-        if (std::bit_ceil(std::max(maps[i].width(), maps[i].height())) != output.lights[i].map_size) {
-            throw Error("BRSM: map " + std::to_string(i) + " is not the size the output was created for");
-        }
-    }
+void add_brsm_count_clear_pass(PassList& passes, BrsmOutput& output) {
     Buffer& count = output.count;
     passes.add("brsm count clear", {Use::transfer_dst(count)}, [&count](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, count.handle(), 0, sizeof(shaders::VplCountBuffer), 0u);
     });
+}
+
+void add_brsm_light_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
+                           ShadowMap& map, size_t light_index, float scene_scale, const BrsmOptions& options,
+                           BrsmOutput& output) {
+    validate(options);
+    if (light_index >= output.lights.size()) {
+        throw Error("BRSM: light " + std::to_string(light_index) + ", but the output was created for " +
+                    std::to_string(output.lights.size()));
+    }
+    if (!(scene_scale > 0.0f) || !std::isfinite(scene_scale)) throw Error("BRSM: scene_scale must be positive");
+    BrsmLightBuffers& light = output.lights[light_index];
+    if (light.vpl_share == 0) return;
+    if (std::bit_ceil(std::max(map.width(), map.height())) != light.map_size) {
+        throw Error("BRSM: light " + std::to_string(light_index) +
+                    "'s buffers were not allocated for this map (allocate_brsm_light_buffers)");
+    }
+    // Each light its own streams (the Hammersley rotation and the contribution samples would
+    // otherwise repeat from light to light); light 0 keeps the seed itself.
+    const uint32_t light_seed = options.seed ^ (0x9e3779b9u * uint32_t(light_index));
+    add_light_passes(context, passes, gbuffer, view, map, scene_scale, options, light_seed, light, output);
+}
+
+void add_brsm_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
+                     std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options, BrsmOutput& output) {
+    if (maps.size() != output.lights.size()) {
+        throw Error("BRSM: " + std::to_string(maps.size()) + " maps, but the output was created for " +
+                    std::to_string(output.lights.size()));
+    }
+    add_brsm_count_clear_pass(passes, output);
     for (size_t i = 0; i < maps.size(); ++i) {
-        if (output.lights[i].vpl_share == 0) continue;
-        // Each light its own streams (the Hammersley rotation and the contribution samples would
-        // otherwise repeat from light to light); light 0 keeps the seed itself.
-        const uint32_t light_seed = options.seed ^ (0x9e3779b9u * uint32_t(i));
-        add_light_passes(context, passes, gbuffer, view, maps[i], scene_scale, options, light_seed, output.lights[i],
-                         output);
+        add_brsm_light_passes(context, passes, gbuffer, view, maps[i], i, scene_scale, options, output);
     }
 }
 
@@ -298,11 +319,18 @@ uint32_t download_brsm_vpl_count(const BrsmOutput& output) {
     return std::min(counts[0], output.capacity);
 }
 
+uint32_t download_brsm_light_vpl_count(const BrsmOutput& output, size_t light_index) {
+    const BrsmLightBuffers& light = output.lights.at(light_index);
+    if (light.vpl_share == 0) return 0;
+    if (light.warp_count.handle() == VK_NULL_HANDLE) {
+        throw Error("BRSM: light " + std::to_string(light_index) + " has no buffers (never allocated, or released)");
+    }
+    return std::min(light.warp_count.download<uint32_t>(1)[0], light.vpl_share);
+}
+
 std::vector<uint32_t> download_brsm_light_vpl_counts(const BrsmOutput& output) {
     std::vector<uint32_t> counts;
-    for (const BrsmLightBuffers& light : output.lights) {
-        counts.push_back(light.vpl_share == 0 ? 0 : std::min(light.warp_count.download<uint32_t>(1)[0], light.vpl_share));
-    }
+    for (size_t i = 0; i < output.lights.size(); ++i) counts.push_back(download_brsm_light_vpl_count(output, i));
     return counts;
 }
 

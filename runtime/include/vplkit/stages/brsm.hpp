@@ -19,12 +19,20 @@
 // re-emits, as for instant radiosity (stages/vpl_tracing.hpp): RSM flux = base colour x
 // (1 - metallic) x the light's power into the texel.
 //
+// All lights at once (every light's map and buffers alive together):
 //   std::vector<ShadowMap> maps = ...;            // one per light, rendered (add_shadow_map_passes)
-//   auto out = vplkit::stages::BrsmOutput::create(context, maps, options);
+//   auto out = vplkit::stages::BrsmOutput::create(context, maps, bounds, options);
 //   vplkit::PassList passes;
 //   vplkit::stages::add_brsm_passes(context, passes, gbuffer, view, maps, bvh.scene_scale, options, out);
 //   passes.run(context);
 //   uint32_t count = vplkit::stages::download_brsm_vpl_count(out);   // VPLs 0..count-1 of out.vpls
+// One light at a time (memory for one map and its buffers, however many lights; the renderer's way):
+//   auto out = BrsmOutput::create_for_lights(context, scene.lights, bounds, options);
+//   for each light i:  ShadowMap map = ShadowMap::create(...);
+//                      allocate_brsm_light_buffers(context, map, out.lights[i]);
+//                      PassList passes; (i == 0: add_brsm_count_clear_pass(passes, out))
+//                      add_shadow_map_pass(...); add_brsm_light_passes(..., map, i, ...); passes.run(context);
+//                      download_brsm_light_vpl_count(out, i); out.lights[i] = {vpl_share} (frees them)
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/scene.hpp"
@@ -102,12 +110,31 @@ struct BrsmOutput {
     std::vector<BrsmLightBuffers> lights;  // one per map
 
     // Buffers for these maps (each map's light gives its share). Throws Error for bad options
-    // (validate), no maps, or buffers beyond the device's maxStorageBufferRange.
+    // (validate), no maps, a map too large for an importance map (4096^2), or buffers beyond the
+    // device's maxStorageBufferRange.
     static BrsmOutput create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
                              const BrsmOptions& options);
+    // The VPL buffer, the count and each light's share, but no light's buffers yet
+    // (allocate_brsm_light_buffers). Errors as create, and no lights.
+    static BrsmOutput create_for_lights(Context& context, std::span<const scene::Light> lights,
+                                        const scene::Bounds& bounds, const BrsmOptions& options);
 };
 
-// Adds "brsm count clear" and, per light with a share, the passes listed at the top. `maps` must
+// A light's working buffers for its map (nothing when its share is 0). Throws Error for a map
+// too large (4096^2 importance map at most) or buffers beyond maxStorageBufferRange.
+void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLightBuffers& light);
+
+// "brsm count clear": the running VPL count to 0, before the first light's passes.
+void add_brsm_count_clear_pass(PassList& passes, BrsmOutput& output);
+
+// The passes of light `light_index` (none when its share is 0), appending its VPLs after those
+// already counted. Its buffers must be allocated for `map`. Throws Error otherwise, for bad
+// options or a scene_scale that is not positive.
+void add_brsm_light_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
+                           ShadowMap& map, size_t light_index, float scene_scale, const BrsmOptions& options,
+                           BrsmOutput& output);
+
+// add_brsm_count_clear_pass, then add_brsm_light_passes for every map in order. `maps` must
 // be rendered before (add_shadow_map_passes, in this or an earlier PassList) and be the maps
 // `output` was created for; `gbuffer` is the camera's, seen through `view`. `scene_scale` is the
 // BVH's (GpuBvh::scene_scale), which the VPL falloff clamp is relative to. Everything referenced
@@ -119,8 +146,10 @@ void add_brsm_passes(Context& context, PassList& passes, GbufferImages& gbuffer,
 // zero placed none).
 uint32_t download_brsm_vpl_count(const BrsmOutput& output);
 
-// Blocking read of the VPLs each light placed: its share, or 0 when its importance was all zero
+// Blocking read of the VPLs a light placed: its share, or 0 when its importance was all zero
 // (its light reaches no surface, or no surface it reaches reflects), or when it had no share.
+// Throws Error when the light has a share but no buffers.
+uint32_t download_brsm_light_vpl_count(const BrsmOutput& output, size_t light_index);
 std::vector<uint32_t> download_brsm_light_vpl_counts(const BrsmOutput& output);
 
 }  // namespace vplkit::stages
