@@ -183,6 +183,7 @@ class Setup {
 
     const Scene& scene() const { return scene_; }
     const vplkit::stages::CameraView& view() const { return view_; }
+    vplkit::stages::GbufferImages& gbuffer_images() { return gbuffer_; }
     float scene_scale() const { return scene_scale_; }
     std::vector<ShadowMap>& maps() { return maps_; }
 
@@ -506,6 +507,37 @@ TEST_CASE("brsm: the same seed gives the same VPLs and another seed other ones")
     };
     CHECK(same(a, b));
     CHECK(!same(a, c));
+}
+
+TEST_CASE("brsm: light by light gives the same VPLs as all lights at once") {
+    Setup setup(box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f), spot_light({-0.5f, 1.5f, 0.5f}, {0.3f, -1.0f, -0.4f}, 5.0f)}),
+                box_camera(), 16);
+    BrsmOptions options = small_options(300);
+    options.seed = 5;
+    const auto together = setup.vpls(setup.run(options));
+
+    vplkit::Context& ctx = Setup::ctx();
+    auto out = BrsmOutput::create_for_lights(ctx, setup.scene().lights, setup.scene().bounds, options);
+    REQUIRE(out.lights.size() == 2);
+    for (size_t i = 0; i < 2; ++i) {
+        ShadowMap& map = setup.maps()[i];
+        vplkit::stages::allocate_brsm_light_buffers(ctx, map, out.lights[i]);
+        vplkit::PassList passes("brsm light by light");
+        if (i == 0) vplkit::stages::add_brsm_count_clear_pass(passes, out);
+        vplkit::stages::add_brsm_light_passes(ctx, passes, setup.gbuffer_images(), setup.view(), map, i,
+                                              setup.scene_scale(), options, out);
+        passes.run(ctx);
+        CHECK(vplkit::stages::download_brsm_light_vpl_count(out, i) == out.lights[i].vpl_share);
+        out.lights[i] = vplkit::stages::BrsmLightBuffers{0, out.lights[i].vpl_share};
+        CHECK_THROWS_AS(vplkit::stages::download_brsm_light_vpl_count(out, i), vplkit::Error);  // released
+    }
+    const auto apart = setup.vpls(out);
+    REQUIRE(apart.size() == together.size());
+    for (size_t i = 0; i < apart.size(); ++i) {
+        CAPTURE(i);
+        CHECK(apart[i].position.x == together[i].position.x);
+        CHECK(apart[i].flux.y == together[i].flux.y);
+    }
 }
 
 TEST_CASE("brsm: the VPL budget follows light power") {
