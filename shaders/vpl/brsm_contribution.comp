@@ -11,10 +11,6 @@
 // Also writes each texel's flux luminance (the RSM-style importance the defensive mixture of
 // brsm_importance.comp needs), into level 0 of its mip chain.
 
-#include "vplkit/brdf.glsl"
-#include "vplkit/gbuffer.glsl"
-#include "vplkit/vpl.glsl"
-#include "vplkit/vpl_eval.glsl"
 #include "vplkit/brsm.glsl"
 #include "vplkit/rng.glsl"
 #include "vpl_sampling.glsl"
@@ -88,8 +84,9 @@ void main() {
             sum /= float(push.sample_count);
         }
     }
-    // An importance must be finite: an overflowing estimate (HDR beyond float range) is dropped
-    // to 0 rather than poisoning the pdf; the defensive flux term still covers the texel.
+    // An importance must be finite: an overflowing or non-finite estimate (HDR beyond float
+    // range, NaN geometry) is dropped to 0 rather than poisoning the pdf; the defensive flux term
+    // still covers the texel.
     contribution.values[index] = isinf(sum) || isnan(sum) ? 0.0 : sum;
     flux_luminance.values[index] = isinf(flux) || isnan(flux) ? 0.0 : flux;
 }

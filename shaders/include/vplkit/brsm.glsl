@@ -5,7 +5,11 @@
 // the expected contribution of a potential VPL (pVPL, one RSM texel) to the camera's image,
 // estimated from G-buffer surfaces found around it. Host side: runtime/include/vplkit/stages/brsm.hpp.
 //
-// Needs vplkit/brdf.glsl (kPi) and vplkit/gbuffer.glsl included first.
+
+#include "vplkit/brdf.glsl"
+#include "vplkit/gbuffer.glsl"
+#include "vplkit/vpl.glsl"
+#include "vplkit/vpl_eval.glsl"
 
 // Rec. 709 luminance: the one number an importance is built from.
 float luminance(vec3 rgb) {
@@ -33,24 +37,14 @@ float capped_inverse_square_radius_pdf(float r, float core, float max_radius) {
 
 // Luminance of the light a pVPL at y (unit normal n_y, the side it emits into; flux luminance
 // `flux`) reflects diffusely at G-buffer surface g, occlusion ignored (seed 000 sec. 4.1.1):
-// the diffuse part of the glTF BRDF, rho / pi with rho = base colour x (1 - metallic), times
-// the VPL's intensity flux cos_y / pi, cos_x and the falloff 1 / max(d^2, min_distance^2), the
-// form every VPL evaluation uses (vplkit/vpl_eval.glsl). 0 when either side faces away.
+// the diffuse part of the glTF BRDF, rho / pi with rho = base colour x (1 - metallic), times the
+// VPL's intensity flux / pi and the geometry every VPL evaluation uses (vpl_geometry, with the
+// caller's falloff clamp). 0 when either side faces away; non-finite when an input is.
 float pvpl_diffuse_contribution(vec3 y, vec3 n_y, float flux, GbufferSample g, float min_distance) {
-    vec3 to_vpl = y - g.position;
-    float d2 = dot(to_vpl, to_vpl);
-    if (d2 == 0.0) {
-        return 0.0;
-    }
-    vec3 wi = to_vpl * inversesqrt(d2);
-    float cos_x = dot(g.normal, wi);
-    float cos_y = -dot(n_y, wi);
-    if (!(cos_x > 0.0) || !(dot(g.geometric_normal, wi) > 0.0) || !(cos_y > 0.0)) {
-        return 0.0;
-    }
+    vec3 wi;
+    float geometry = vpl_geometry(g.position, g.normal, g.geometric_normal, y, n_y, min_distance, wi);
     float rho = luminance(g.albedo) * (1.0 - g.metallic);
-    float falloff = 1.0 / max(d2, min_distance * min_distance);
-    return rho / kPi * flux * cos_y / kPi * cos_x * falloff;
+    return rho / kPi * flux / kPi * geometry;
 }
 
 #endif

@@ -27,31 +27,45 @@ float vpl_min_distance(float scene_scale) {
     return kVplMinDistanceFraction * scene_scale;
 }
 
-// Unoccluded reflected radiance from `vpl` at shading point x (shading normal n, geometric
-// normal ng, both unit, on the viewer's side; wo unit, towards the viewer), glTF material.
-// Returns 0 when the VPL is behind the surface (shading or geometric normal), faces away from x,
-// or sits exactly on x (d = 0: no direction exists; a VPL on x's own surface gives 0 in every
-// limit along that surface, both cosines vanishing). A non-finite VPL (NaN or infinite flux or
-// position) gives a non-finite result: the caller counts it as dropped, never adds it.
-vec3 vpl_contribution(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 base_color, float roughness, float metallic, Vpl vpl,
-                      float min_distance) {
-    vec3 to_vpl = vpl.position - x;
+// The geometry of a Lambertian emitter at y (unit normal n_y, the side it emits into) lighting a
+// receiver at x (shading normal n, geometric normal ng, unit): cos_y cos_x / max(d^2, d_min^2),
+// with wi the unit direction from x to y. 0 when the emitter is behind the surface (shading or
+// geometric normal), faces away from x, or sits exactly on x (d = 0: no direction exists, wi is
+// 0; an emitter on x's own surface gives 0 in every limit along it, both cosines vanishing).
+// Non-finite inputs give a non-finite result, never 0, so callers can count them.
+float vpl_geometry(vec3 x, vec3 n, vec3 ng, vec3 y, vec3 n_y, float min_distance, out vec3 wi) {
+    vec3 to_vpl = y - x;
     float d2 = dot(to_vpl, to_vpl);
+    wi = vec3(0.0);
     // Only an exact 0: a NaN distance must fall through and poison the result, not vanish here.
     if (d2 == 0.0) {
-        return vec3(0.0);
+        return 0.0;
     }
-    vec3 wi = to_vpl * inversesqrt(d2);
+    wi = to_vpl * inversesqrt(d2);
     float cos_x = dot(n, wi);
-    float cos_y = -dot(vpl.normal, wi);
+    float cos_y = -dot(n_y, wi);
     // Light from behind the geometric surface never reaches it, whatever a normal map says
     // (as in direct_light.comp). Written as negations so a NaN cosine does not return 0.
     if (cos_x <= 0.0 || dot(ng, wi) <= 0.0 || cos_y <= 0.0) {
-        return vec3(0.0);
+        return 0.0;
     }
     // The clamp of the 1/d^2 singularity (see kVplMinDistanceFraction); wi keeps the true direction.
     float falloff = 1.0 / max(d2, min_distance * min_distance);
-    return brdf_evaluate(n, wo, wi, base_color, roughness, metallic) * vpl.flux * (cos_y * cos_x * falloff / kPi);
+    return cos_y * cos_x * falloff;
+}
+
+// Unoccluded reflected radiance from `vpl` at shading point x (shading normal n, geometric
+// normal ng, both unit, on the viewer's side; wo unit, towards the viewer), glTF material; 0
+// where vpl_geometry is 0. A non-finite VPL (NaN or infinite flux or position) gives a
+// non-finite result: the caller counts it as dropped, never adds it.
+vec3 vpl_contribution(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 base_color, float roughness, float metallic, Vpl vpl,
+                      float min_distance) {
+    vec3 wi;
+    float geometry = vpl_geometry(x, n, ng, vpl.position, vpl.normal, min_distance, wi);
+    if (geometry == 0.0) {
+        return vec3(0.0);
+    }
+    return brdf_evaluate(n, wo, wi, base_color, roughness, metallic) * vpl.flux * (geometry / kPi);
 }
 
 bool vpl_finite(vec3 v) {

@@ -3,8 +3,6 @@
 // Test-only: the capped 1/r^2 radius sampler of vplkit/brsm.glsl and its pdf, on a regular grid
 // of u (the sampler) and of r (the pdf), so the host can check that they are a pair.
 
-#include "vplkit/brdf.glsl"
-#include "vplkit/gbuffer.glsl"
 #include "vplkit/brsm.glsl"
 
 layout(local_size_x = 64) in;
