@@ -81,32 +81,31 @@ void check_output(const std::string& option, const std::filesystem::path& path, 
     }
 }
 
-float parse_exposure(const std::string& text) {
-    size_t used = 0;
-    float value = 0.0f;
-    try {
-        value = std::stof(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (used != text.size() || !std::isfinite(value) || value <= 0.0f) {
-        throw UsageError("--exposure expects a positive number, got '" + text + "'");
-    }
-    return value;
-}
-
-float parse_fraction(const std::string& option, const std::string& text) {
+// The whole text as a finite number, or nothing.
+std::optional<float> finite_number(const std::string& text) {
     size_t used = 0;
     float value = NAN;
     try {
         value = std::stof(text, &used);
     } catch (const std::exception&) {
-        used = 0;
+        return std::nullopt;
     }
-    if (used != text.size() || !(value >= 0.0f && value <= 1.0f)) {
+    if (used != text.size() || !std::isfinite(value)) return std::nullopt;
+    return value;
+}
+
+float parse_exposure(const std::string& text) {
+    const auto value = finite_number(text);
+    if (!value || *value <= 0.0f) throw UsageError("--exposure expects a positive number, got '" + text + "'");
+    return *value;
+}
+
+float parse_fraction(const std::string& option, const std::string& text) {
+    const auto value = finite_number(text);
+    if (!value || *value < 0.0f || *value > 1.0f) {
         throw UsageError(option + " expects a number from 0 to 1, got '" + text + "'");
     }
-    return value;
+    return *value;
 }
 
 // Passes of one name (e.g. the importance mip levels) summed into one line, in first-seen order.

@@ -56,11 +56,34 @@ double edge_margin(const std::vector<vplkit::reference::Triangle>& triangles, co
     return margin;
 }
 
+constexpr const char* kCornellPoint = VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf";
+
+// A tiny frame with exact indirect light: what the indirect-light cases render.
+vplkit::RenderSettings small_exact_settings(uint32_t width = 24, uint32_t height = 20) {
+    vplkit::RenderSettings settings;
+    settings.width = width;
+    settings.height = height;
+    settings.method = vplkit::GiMethod::exact;
+    return settings;
+}
+
+// Checks that the composed radiance is direct + indirect, exactly (one float addition), with
+// non-negative indirect light; returns how many channels have indirect light and no direct light.
+size_t check_parts_add_up(const vplkit::RenderedImage& image) {
+    size_t indirect_only = 0;
+    for (size_t i = 0; i < image.radiance.size(); ++i) {
+        CHECK(image.radiance[i] == image.direct[i] + image.indirect[i]);
+        CHECK(image.indirect[i] >= 0.0f);
+        if (image.direct[i] == 0.0f && image.indirect[i] > 0.0f) ++indirect_only;
+    }
+    return indirect_only;
+}
+
 }  // namespace
 
 TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path at pixel centres") {
     vplkit::Context& ctx = vplkit::test::context();
-    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
     REQUIRE(scene.lights.size() == 1);
     const uint32_t width = 48, height = 40;
     vplkit::Renderer renderer(ctx, scene);
@@ -153,7 +176,7 @@ TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path
 
 TEST_CASE("direct render: a scene without any light is refused by name") {
     vplkit::Context& ctx = vplkit::test::context();
-    auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    auto scene = vplkit::scene::load_gltf(kCornellPoint);
     scene.lights.clear();
     CHECK_THROWS_WITH_AS(vplkit::Renderer(ctx, scene), doctest::Contains("the scene has no light"), vplkit::Error);
 }
@@ -186,12 +209,9 @@ TEST_CASE("direct render: an emissive quad without an emissive texture shows its
 
 TEST_CASE("render with exact indirect light: the parts add up and the seed fixes the image") {
     vplkit::Context& ctx = vplkit::test::context();
-    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
     vplkit::Renderer renderer(ctx, scene);
-    vplkit::RenderSettings settings;
-    settings.width = 24;
-    settings.height = 20;
-    settings.method = vplkit::GiMethod::exact;
+    auto settings = small_exact_settings();
     settings.vpl_paths = 64;
     settings.vpl_bounces = 2;
     settings.seed = 3;
@@ -205,14 +225,7 @@ TEST_CASE("render with exact indirect light: the parts add up and the seed fixes
     CHECK(a.dropped_pixels == 0);
     CHECK(a.vpl_count > 0);
     CHECK(progress_calls > 0);
-    // The composed radiance is direct + indirect, exactly (one float addition).
-    size_t indirect_only = 0;
-    for (size_t i = 0; i < a.radiance.size(); ++i) {
-        CHECK(a.radiance[i] == a.direct[i] + a.indirect[i]);
-        CHECK(a.indirect[i] >= 0.0f);
-        if (a.direct[i] == 0.0f && a.indirect[i] > 0.0f) ++indirect_only;
-    }
-    CHECK(indirect_only > 0);  // the blocks' shadows get light from the walls
+    CHECK(check_parts_add_up(a) > 0);  // the blocks' shadows get light from the walls
     // Same seed, same VPL set and so the same image, up to float rounding: the tracer appends
     // VPLs with an atomic counter, so their order (and the gather's summation order) may change.
     const auto b = renderer.render(scene.camera(), settings);
@@ -227,12 +240,9 @@ TEST_CASE("render with exact indirect light: the parts add up and the seed fixes
 
 TEST_CASE("render with BRSM indirect light: one bounce, finite, the same seed gives the same image") {
     vplkit::Context& ctx = vplkit::test::context();
-    const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
     vplkit::Renderer renderer(ctx, scene);
-    vplkit::RenderSettings settings;
-    settings.width = 24;
-    settings.height = 20;
-    settings.method = vplkit::GiMethod::exact;
+    auto settings = small_exact_settings();
     settings.vpl_source = vplkit::VplSource::brsm;
     settings.brsm.vpl_count = 64;
     settings.rsm_resolution = 16;
@@ -242,13 +252,7 @@ TEST_CASE("render with BRSM indirect light: one bounce, finite, the same seed gi
     CHECK(a.dropped_pixels == 0);
     CHECK(a.vpl_count == 64);
     CHECK(a.notes.empty());
-    size_t indirect_only = 0;
-    for (size_t i = 0; i < a.radiance.size(); ++i) {
-        CHECK(a.radiance[i] == a.direct[i] + a.indirect[i]);
-        CHECK(a.indirect[i] >= 0.0f);
-        if (a.direct[i] == 0.0f && a.indirect[i] > 0.0f) ++indirect_only;
-    }
-    CHECK(indirect_only > 0);
+    CHECK(check_parts_add_up(a) > 0);
     // BRSM writes its VPLs in a fixed order: the same seed gives the same image exactly.
     const auto b = renderer.render(scene.camera(), settings);
     CHECK(b.radiance == a.radiance);
@@ -284,10 +288,7 @@ TEST_CASE("render with BRSM: a scene lit only by emissive triangles is refused b
     vplkit::Context& ctx = vplkit::test::context();
     const auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_emissive/cornell_emissive.gltf");
     vplkit::Renderer renderer(ctx, scene);
-    vplkit::RenderSettings settings;
-    settings.width = 16;
-    settings.height = 16;
-    settings.method = vplkit::GiMethod::exact;
+    auto settings = small_exact_settings(16, 16);
     settings.vpl_source = vplkit::VplSource::brsm;
     CHECK_THROWS_WITH_AS(renderer.render(scene.camera(), settings), doctest::Contains("use --vpl-source ir"),
                          vplkit::Error);
@@ -301,7 +302,7 @@ TEST_CASE("render: BRSM and one-bounce instant radiosity estimate the same indir
     // and the 1/d^2 clamp near creases weighs that placement. A second, bluer point light makes
     // BRSM share its VPLs and place them light by light.
     vplkit::Context& ctx = vplkit::test::context();
-    auto scene = vplkit::scene::load_gltf(VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf");
+    auto scene = vplkit::scene::load_gltf(kCornellPoint);
     vplkit::scene::Light blue;
     blue.name = "blue";
     blue.position = {0.5f, 1.0f, 0.4f};  // above the short block
@@ -309,10 +310,7 @@ TEST_CASE("render: BRSM and one-bounce instant radiosity estimate the same indir
     blue.intensity = 3.0f;
     scene.lights.push_back(blue);
     vplkit::Renderer renderer(ctx, scene);
-    vplkit::RenderSettings settings;
-    settings.width = 24;
-    settings.height = 20;
-    settings.method = vplkit::GiMethod::exact;
+    auto settings = small_exact_settings();
     settings.rsm_resolution = 64;
     settings.brsm.vpl_count = 600;
     settings.vpl_paths = 600;

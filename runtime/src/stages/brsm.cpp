@@ -152,7 +152,6 @@ void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLig
 
 BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
                               const BrsmOptions& options) {
-    if (maps.empty()) throw Error("BRSM: no reflective shadow map (the scene has no punctual light)");
     std::vector<scene::Light> lights;
     for (const ShadowMap& map : maps) lights.push_back(map.light);
     BrsmOutput out = create_for_lights(context, lights, bounds, options);
