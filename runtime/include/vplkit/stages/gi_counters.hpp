@@ -1,0 +1,36 @@
+#pragma once
+// The counters every sampling method (rtslc, sst, hybrid) increments while it renders indirect
+// light (shaders/include/vplkit/gi_counters.glsl): dropped samples, traversals and the tree
+// levels they descended, dead branches, mock cuts, and invocations a driver cut short.
+
+#include "vplkit/buffer.hpp"
+
+#include <cstdint>
+
+namespace vplkit {
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+struct GiCounts {
+    uint32_t dropped_pixels = 0;   // pixels with at least one dropped (non-finite) sample
+    uint32_t dropped_samples = 0;  // samples left out of their pixel because they were not finite
+    uint32_t traversals = 0;       // tree traversals (one per sample)
+    uint32_t levels = 0;           // tree levels descended, summed over the traversals
+    uint32_t dead_branches = 0;    // traversals that ended where both children weigh 0
+    uint32_t mock_cut_pixels = 0;  // hybrid: pixels that fell back to the mock cut
+    uint32_t cut_short = 0;        // invocations the driver ended early: the image is wrong if > 0
+
+    // Levels per traversal (seed 000 Fig. 7.2); 0 without traversals.
+    double levels_per_traversal() const { return traversals == 0 ? 0.0 : double(levels) / traversals; }
+};
+
+// A device buffer for the counters.
+Buffer create_gi_counters(Context& context, const char* name = "gi counters");
+// Adds "<name> clear": zeroes the counters.
+void add_gi_counters_clear(PassList& passes, Buffer& counters, const char* pass_name);
+GiCounts read_gi_counters(const Buffer& counters);
+
+}  // namespace vplkit::stages

@@ -1,0 +1,48 @@
+#pragma once
+// From a VPL buffer to both trees the samplers read, in one pass list: keys (Morton + normal
+// octant + id), sort, leaves gathered in sorted order with bogus padding, the RTSLC light tree
+// and the stochastic substitute tree. The buffers stay alive with the VplTrees object.
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/stages/light_tree.hpp"
+#include "vplkit/stages/sort.hpp"
+#include "vplkit/stages/sst.hpp"
+
+#include <cstdint>
+#include <memory>
+
+namespace vplkit {
+class Context;
+class PassList;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+struct VplTreeOptions {
+    SortOptions sort;
+    LightTreeOptions light_tree;
+    SstOptions sst;
+};
+
+struct VplTrees {
+    uint32_t count = 0;       // real VPLs
+    uint32_t leaf_count = 0;  // leaf_count(count): a power of two
+    Buffer leaves;            // Vpl[leaf_count], sorted; index >= count is bogus padding
+    Buffer light_tree;        // LightTreeNode[2 leaf_count - 1] (light_tree.hpp)
+    Buffer sst;               // SstNode[sst_node_count(count)] (sst.hpp)
+
+    // The buffers for `count` VPLs (1..kMaxKeyedVpls); throws vplkit::Error otherwise.
+    static VplTrees create(Context& context, uint32_t count, const VplTreeOptions& options = {});
+
+    // Adds the passes that fill leaves, light_tree and sst from `vpls` (Vpl[count]): "vpl keys",
+    // the sort's passes, "gather leaves", "light tree leaves/levels", "build sst".
+    void add_build_passes(PassList& passes, const Buffer& vpls);
+
+ private:
+    struct Scratch;
+    std::shared_ptr<Scratch> scratch_;  // keys, values, bounds, sorter, SST counters
+    Context* context_ = nullptr;
+    VplTreeOptions options_;
+};
+
+}  // namespace vplkit::stages

@@ -1,0 +1,55 @@
+#include "vplkit/stages/vpl_trees.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/leaves.hpp"
+#include "vplkit/stages/vpl_keys.hpp"
+
+#include <string>
+
+namespace vplkit::stages {
+
+struct VplTrees::Scratch {
+    Buffer bounds;
+    Buffer keys;
+    Buffer values;
+    Buffer sst_counters;
+    KeyValueSorter sorter;
+};
+
+VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions& options) {
+    if (count == 0 || count > kMaxKeyedVpls) {
+        throw Error("vpl trees: " + std::to_string(count) + " VPLs; 1.." + std::to_string(kMaxKeyedVpls) + " can be sorted");
+    }
+    constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    VplTrees trees;
+    trees.count = count;
+    trees.leaf_count = stages::leaf_count(count);
+    trees.context_ = &context;
+    trees.options_ = options;
+    trees.leaves = Buffer::create(context, uint64_t(trees.leaf_count) * sizeof(shaders::Vpl), storage, MemoryUse::device, "leaves");
+    trees.light_tree = Buffer::create(context, uint64_t(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
+                                      storage, MemoryUse::device, "light tree");
+    trees.sst = Buffer::create(context, uint64_t(sst_node_count(count)) * sizeof(shaders::SstNode), storage,
+                               MemoryUse::device, "sst");
+    trees.scratch_ = std::make_shared<Scratch>(Scratch{
+        Buffer::create(context, kVplBoundsBytes, storage, MemoryUse::device, "vpl bounds"),
+        Buffer::create(context, uint64_t(count) * 8, storage, MemoryUse::device, "vpl keys"),
+        Buffer::create(context, uint64_t(count) * 4, storage, MemoryUse::device, "vpl key values"),
+        Buffer::create(context, uint64_t(sst_counter_count(count)) * 4, storage, MemoryUse::device, "sst counters"),
+        KeyValueSorter(context, count, options.sort)});
+    return trees;
+}
+
+void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls) {
+    Scratch& s = *scratch_;
+    add_vpl_key_passes(*context_, passes, {&vpls, &s.bounds, &s.keys, &s.values}, count);
+    s.sorter.add_pass(passes, s.keys, s.values, count);
+    add_gather_leaves_pass(*context_, passes, vpls, s.values, leaves, count);
+    add_light_tree_passes(*context_, passes, leaves, light_tree, count, options_.light_tree);
+    add_sst_passes(*context_, passes, leaves, sst, s.sst_counters, count, options_.sst);
+}
+
+}  // namespace vplkit::stages

@@ -1,0 +1,90 @@
+#ifndef VPLKIT_GI_BOUNDS_GLSL
+#define VPLKIT_GI_BOUNDS_GLSL
+
+// What every tree sampler (rtslc, sst, hybrid) knows about a cluster of VPLs before it picks
+// one: its box's distance and cosine bounds at a shading point, and the material term. They
+// weigh tree children with these; the evaluation itself is vpl_eval.glsl's, for every method.
+//
+// Needs vplkit/brdf.glsl included first.
+
+const float kGiBigFloat = 3.402823466e+38;  // FLT_MAX: finite, unlike an Inf sentinel (light_tree.glsl)
+
+// Smallest squared distance from x to the box [lo, hi]: 0 inside (seed 003 eq. 1, d_min).
+float gi_box_distance2_min(vec3 x, vec3 lo, vec3 hi) {
+    vec3 d = max(max(lo - x, x - hi), vec3(0.0));
+    return dot(d, d);
+}
+
+// Largest squared distance from x to the box: to its farthest corner (seed 003 eq. 1, d_max).
+float gi_box_distance2_max(vec3 x, vec3 lo, vec3 hi) {
+    vec3 d = max(abs(lo - x), abs(hi - x));
+    return dot(d, d);
+}
+
+// An upper bound of max(<n, (p - x) / |p - x|>, 0) over the points p of the box (the lightcuts
+// cosine bound, Walter et al. 2005 sec. 4.1): the box's corners in a frame whose z is n give a
+// box [a, b] around it there, and z / sqrt(x^2 + y^2 + z^2) grows with z and shrinks with x^2 + y^2,
+// so b.z over the smallest x^2 + y^2 of [a, b] bounds it. 0 when the whole box lies behind the
+// surface (b.z <= 0): no VPL in it can light x. x inside [a, b] (and b.z > 0) gives 1.
+float gi_box_cosine_bound(vec3 x, vec3 n, vec3 lo, vec3 hi) {
+    // Any orthonormal frame with z = n will do (the bound holds in all of them).
+    vec3 helper = abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0);
+    vec3 t = normalize(cross(helper, n));
+    vec3 b = cross(n, t);
+    vec3 a_lo = vec3(kGiBigFloat), a_hi = vec3(-kGiBigFloat);
+    for (int corner = 0; corner < 8; ++corner) {
+        vec3 c = vec3((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y, (corner & 4) != 0 ? hi.z : lo.z) - x;
+        vec3 local = vec3(dot(c, t), dot(c, b), dot(c, n));
+        a_lo = min(a_lo, local);
+        a_hi = max(a_hi, local);
+    }
+    if (a_hi.z <= 0.0) {
+        return 0.0;
+    }
+    vec2 closest = max(max(a_lo.xy, -a_hi.xy), vec2(0.0));  // 0 on an axis the box straddles
+    float r2 = dot(closest, closest);
+    return r2 == 0.0 ? 1.0 : a_hi.z * inversesqrt(r2 + a_hi.z * a_hi.z);
+}
+
+// seed 000 eq. 5.2: the clamped cosine between n and the directions from x to the box's eight
+// corners, averaged: the expected-contribution cosine of shallow cuts and hybrid traversal. 0 when
+// every corner lies behind the surface ("children whose box lies fully behind the surface left
+// out"). A corner at x itself (no direction) counts 0.
+float gi_average_corner_cosine(vec3 x, vec3 n, vec3 lo, vec3 hi) {
+    float sum = 0.0;
+    for (int corner = 0; corner < 8; ++corner) {
+        vec3 c = vec3((corner & 1) != 0 ? hi.x : lo.x, (corner & 2) != 0 ? hi.y : lo.y, (corner & 4) != 0 ? hi.z : lo.z) - x;
+        float len2 = dot(c, c);
+        if (len2 > 0.0) {
+            sum += max(dot(n, c) * inversesqrt(len2), 0.0);
+        }
+    }
+    return sum * 0.125;
+}
+
+// The material term of a cluster seen from x in direction wi (unit): the BRDF's luminance
+// there (seed 004 sec. 4.1: the BRDF at the cluster; the cosine is the geometric term's). For
+// the diffuse lobe it is the same for every child and cancels; for a glossy lobe it favours
+// clusters near the reflection direction. Never 0 for a non-black base colour with wi above
+// the surface (GGX's D > 0 everywhere), so a child it weighs is never wrongly excluded.
+float gi_material_weight(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, float metallic) {
+    vec3 f = brdf_evaluate(n, wo, wi, base_color, roughness, metallic);
+    return dot(f, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// The probability of the left child when the weights are w = a / d2 (a: material x cosine x
+// intensity, d2: a squared distance clamped away from 0), in the cross-multiplied form
+// a_l d2_r / (a_l d2_r + a_r d2_l): no 1/d2 is formed, so no inf/inf. Returns a negative value
+// for a dead branch (both a are 0): the caller stops there and returns no light. A child with
+// a = 0 gets probability exactly 0 and is never chosen.
+float gi_left_probability(float a_left, float d2_left, float a_right, float d2_right) {
+    float left = a_left * d2_right;
+    float right = a_right * d2_left;
+    float sum = left + right;
+    if (!(sum > 0.0)) {
+        return -1.0;
+    }
+    return left / sum;
+}
+
+#endif
