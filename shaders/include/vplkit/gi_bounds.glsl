@@ -65,10 +65,13 @@ float gi_average_corner_cosine(vec3 x, vec3 n, vec3 lo, vec3 hi) {
 // The material term of a cluster seen from x in direction wi (unit): the BRDF's luminance
 // there (seed 004 sec. 4.1: the BRDF at the cluster; the cosine is the geometric term's). For
 // the diffuse lobe it is the same for every child and cancels; for a glossy lobe it favours
-// clusters near the reflection direction. Never 0 for a non-black base colour with wi above
-// the surface (GGX's D > 0 everywhere), so a child it weighs is never wrongly excluded.
+// clusters near the reflection direction. A direction at or below the surface (a box centre
+// or mean behind it while part of the box is in front) is lifted just above it first: the BRDF
+// is 0 below the surface, and a 0 here would exclude a child that can still light x. So the
+// term is never 0 for a non-black base colour (GGX's D > 0 everywhere).
 float gi_material_weight(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, float metallic) {
-    vec3 f = brdf_evaluate(n, wo, wi, base_color, roughness, metallic);
+    vec3 above = normalize(wi - n * (min(dot(n, wi), 0.0) - 1e-2));
+    vec3 f = brdf_evaluate(n, wo, above, base_color, roughness, metallic);
     return dot(f, vec3(0.2126, 0.7152, 0.0722));
 }
 

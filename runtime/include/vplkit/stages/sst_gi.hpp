@@ -1,0 +1,45 @@
+#pragma once
+// Indirect light by stochastic substitute tree sampling, the `sst` method (shaders/gi/sst_gi.comp;
+// traversal and cluster evaluation in shaders/include/vplkit/sst_sampling.glsl): per pixel,
+// samples_per_pixel traversals from the SST root, each ending at a suitable node or a leaf.
+// Biased by design (a substitute position stands for a cluster), so it is measured against
+// `exact`, not tested for unbiasedness.
+//
+// Output: `indirect` (RGBA32F, the G-buffer's size): rgb = the estimate, a = the pixel's dropped
+// samples; counts in `counters` (gi_counters.hpp).
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+namespace vplkit {
+class Buffer;
+class Context;
+class Image;
+class PassList;
+struct GpuBvh;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+struct GbufferImages;
+struct VplTrees;
+
+inline constexpr uint32_t kMaxGiSamplesPerPixel = 64;
+
+struct SstGiOptions {
+    uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (seed 004 uses 1)
+    uint32_t seed = 0;
+    bool visibility = true;          // false: no shadow rays (tests)
+};
+
+// Throws vplkit::Error naming the bad option.
+void validate(const SstGiOptions& options);
+
+// Adds "gi counters clear" and "sst gi". The referenced objects must outlive passes.run().
+// Throws vplkit::Error for bad options or an `indirect` of the wrong format or size.
+void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
+                       const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
+                       const SstGiOptions& options);
+
+}  // namespace vplkit::stages

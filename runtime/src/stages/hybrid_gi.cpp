@@ -1,0 +1,131 @@
+#include "vplkit/stages/hybrid_gi.hpp"
+
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/hybrid_cut.hpp"
+#include "vplkit/shaders/hybrid_gi.hpp"
+#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/sst_gi.hpp"
+#include "vplkit/stages/vpl_trees.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace vplkit::stages {
+
+void validate(const HybridOptions& options) {
+    if (options.samples_per_pixel < 1 || options.samples_per_pixel > kMaxGiSamplesPerPixel) {
+        throw Error("hybrid gi: samples per pixel (the cut size) must be 1.." + std::to_string(kMaxGiSamplesPerPixel) +
+                    ", got " + std::to_string(options.samples_per_pixel));
+    }
+    if (options.block_size < 1 || options.block_size > kMaxHybridBlockSize) {
+        throw Error("hybrid gi: block size must be 1.." + std::to_string(kMaxHybridBlockSize) + ", got " +
+                    std::to_string(options.block_size));
+    }
+    if (!std::isfinite(options.similarity_min_cos) || options.similarity_min_cos < -1.0f ||
+        options.similarity_min_cos > 1.0f) {
+        throw Error("hybrid gi: similarity min cos must be in [-1, 1]");
+    }
+    if (!std::isfinite(options.similarity_max_distance) || !(options.similarity_max_distance > 0.0f)) {
+        throw Error("hybrid gi: similarity max distance must be finite and > 0 (world units)");
+    }
+}
+
+HybridCuts HybridCuts::create(Context& context, uint32_t width, uint32_t height, const HybridOptions& options) {
+    validate(options);
+    if (width == 0 || height == 0) {
+        throw Error("hybrid gi: the image size must not be 0");
+    }
+    HybridCuts c;
+    c.blocks_x = (width + options.block_size - 1) / options.block_size;
+    c.blocks_y = (height + options.block_size - 1) / options.block_size;
+    c.cut_size = options.samples_per_pixel;
+    const uint64_t blocks = uint64_t(c.blocks_x) * c.blocks_y;
+    constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    c.blocks = Buffer::create(context, blocks * sizeof(shaders::HybridBlock), storage, MemoryUse::device, "hybrid blocks");
+    c.cuts = Buffer::create(context, blocks * c.cut_size * sizeof(uint32_t), storage, MemoryUse::device, "hybrid cuts");
+    return c;
+}
+
+void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
+                          const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
+                          HybridCuts& cuts, const HybridOptions& options) {
+    validate(options);
+    if (indirect.format() != VK_FORMAT_R32G32B32A32_SFLOAT || indirect.width() != gbuffer.width() ||
+        indirect.height() != gbuffer.height()) {
+        throw Error("hybrid gi: '" + indirect.name() + "' must be RGBA32F and of the G-buffer's size");
+    }
+    const uint32_t k = options.block_size;
+    if (cuts.cut_size != options.samples_per_pixel || cuts.blocks_x != (gbuffer.width() + k - 1) / k ||
+        cuts.blocks_y != (gbuffer.height() + k - 1) / k) {
+        throw Error("hybrid gi: the cut buffers were made for another image size, block size or sample budget");
+    }
+    add_gi_counters_clear(passes, counters, "gi counters clear");
+    const glm::vec3 camera = camera_position;
+    const auto& cut_pipeline = context.pipeline<shaders::hybrid_cut::Pipeline>();
+    passes.add("hybrid cuts",
+               {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal),
+                Use::read(gbuffer.albedo), Use::read(trees.sst), Use::read(trees.leaves), Use::write(cuts.blocks),
+                Use::write(cuts.cuts)},
+               [&cut_pipeline, &gbuffer, &bvh, &trees, &cuts, camera, options](VkCommandBuffer cmd) {
+                   shaders::hybrid_cut::Bindings b;
+                   b.sst_nodes = trees.sst.descriptor();
+                   b.sst_leaves = trees.leaves.descriptor();
+                   b.gbuffer_position = gbuffer.position.descriptor();
+                   b.gbuffer_normal = gbuffer.normal.descriptor();
+                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   b.blocks = cuts.blocks.descriptor();
+                   b.cuts = cuts.cuts.descriptor();
+                   shaders::hybrid_cut::Push push{};
+                   push.camera_position = {camera.x, camera.y, camera.z};
+                   push.block_size = options.block_size;
+                   push.blocks_x = cuts.blocks_x;
+                   push.blocks_y = cuts.blocks_y;
+                   push.cut_size = cuts.cut_size;
+                   push.leaf_count = trees.leaf_count;
+                   push.vpl_count = trees.count;
+                   push.scene_scale = bvh.scene_scale;
+                   cut_pipeline.dispatch(cmd, b, push, cuts.blocks_x * cuts.blocks_y);
+               });
+    const auto& gi_pipeline = context.pipeline<shaders::hybrid_gi::Pipeline>();
+    passes.add("hybrid gi",
+               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
+                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(trees.sst),
+                Use::read(trees.leaves), Use::read(cuts.blocks), Use::read(cuts.cuts), Use::write(indirect),
+                Use::read_write(counters)},
+               [&gi_pipeline, &gbuffer, &bvh, &trees, &cuts, camera, &indirect, &counters, options](VkCommandBuffer cmd) {
+                   shaders::hybrid_gi::Bindings b;
+                   b.bvh_nodes = bvh.nodes.descriptor();
+                   b.bvh_triangles = bvh.triangles.descriptor();
+                   b.gbuffer_position = gbuffer.position.descriptor();
+                   b.gbuffer_normal = gbuffer.normal.descriptor();
+                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   b.sst_nodes = trees.sst.descriptor();
+                   b.sst_leaves = trees.leaves.descriptor();
+                   b.blocks = cuts.blocks.descriptor();
+                   b.cuts = cuts.cuts.descriptor();
+                   b.indirect = indirect.descriptor();
+                   b.gi_counters = counters.descriptor();
+                   shaders::hybrid_gi::Push push{};
+                   push.camera_position = {camera.x, camera.y, camera.z};
+                   push.block_size = options.block_size;
+                   push.blocks_x = cuts.blocks_x;
+                   push.blocks_y = cuts.blocks_y;
+                   push.cut_size = cuts.cut_size;
+                   push.leaf_count = trees.leaf_count;
+                   push.vpl_count = trees.count;
+                   push.seed = options.seed;
+                   push.visibility = options.visibility ? 1u : 0u;
+                   push.min_cos = options.similarity_min_cos;
+                   push.max_distance = options.similarity_max_distance;
+                   gi_pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
+               });
+}
+
+}  // namespace vplkit::stages

@@ -1,0 +1,62 @@
+#include "vplkit/stages/sst_gi.hpp"
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/sst_gi.hpp"
+#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/vpl_trees.hpp"
+
+#include <string>
+
+namespace vplkit::stages {
+
+void validate(const SstGiOptions& options) {
+    if (options.samples_per_pixel < 1 || options.samples_per_pixel > kMaxGiSamplesPerPixel) {
+        throw Error("sst gi: samples per pixel must be 1.." + std::to_string(kMaxGiSamplesPerPixel) + ", got " +
+                    std::to_string(options.samples_per_pixel));
+    }
+}
+
+void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
+                       const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
+                       const SstGiOptions& options) {
+    validate(options);
+    if (indirect.format() != VK_FORMAT_R32G32B32A32_SFLOAT || indirect.width() != gbuffer.width() ||
+        indirect.height() != gbuffer.height()) {
+        throw Error("sst gi: '" + indirect.name() + "' must be RGBA32F and of the G-buffer's size");
+    }
+    add_gi_counters_clear(passes, counters, "gi counters clear");
+    const auto& pipeline = context.pipeline<shaders::sst_gi::Pipeline>();
+    passes.add("sst gi",
+               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
+                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(trees.sst),
+                Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)},
+               [&pipeline, &gbuffer, &bvh, &trees, camera_position, &indirect, &counters, options](VkCommandBuffer cmd) {
+                   shaders::sst_gi::Bindings b;
+                   b.bvh_nodes = bvh.nodes.descriptor();
+                   b.bvh_triangles = bvh.triangles.descriptor();
+                   b.gbuffer_position = gbuffer.position.descriptor();
+                   b.gbuffer_normal = gbuffer.normal.descriptor();
+                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   b.sst_nodes = trees.sst.descriptor();
+                   b.sst_leaves = trees.leaves.descriptor();
+                   b.indirect = indirect.descriptor();
+                   b.gi_counters = counters.descriptor();
+                   shaders::sst_gi::Push push{};
+                   push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
+                   push.samples_per_pixel = options.samples_per_pixel;
+                   push.leaf_count = trees.leaf_count;
+                   push.vpl_count = trees.count;
+                   push.seed = options.seed;
+                   push.visibility = options.visibility ? 1u : 0u;
+                   pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
+               });
+}
+
+}  // namespace vplkit::stages

@@ -1,0 +1,140 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Indirect light by the `hybrid` method (seed 000 ch. 5): each pixel blends the shallow cuts of
+// the four blocks around it (Alg. 1: bilinear x geometric-similarity weights, one cut chosen at
+// random per slot), or takes the mock cut when none of the four is similar; from every node of
+// its cut it traverses the SST with the expected-contribution weights (eqs. 5.2, 5.4), stopping
+// early at suitable nodes (eq. 5.6), and evaluates the node reached as a point light (sec. 5.3)
+// with one shadow ray. The pixel's estimate is the sum over its cut's nodes.
+//
+// indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
+
+#define VPLKIT_BVH_NODES_BINDING 0
+#define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_SST_NODES_BINDING 6
+#define VPLKIT_SST_LEAVES_BINDING 7
+#define VPLKIT_GI_COUNTERS_BINDING 11
+#include "vplkit/bvh.glsl"
+#include "vplkit/brdf.glsl"
+#include "vplkit/gbuffer.glsl"
+#include "vplkit/geometric_similarity.glsl"
+#include "vplkit/rng.glsl"
+#include "vplkit/vpl.glsl"
+#include "vplkit/vpl_eval.glsl"
+#include "vplkit/gi_bounds.glsl"
+#include "vplkit/gi_counters.glsl"
+#include "vplkit/gi_evaluate.glsl"
+#include "vplkit/sst.glsl"
+#include "vplkit/sst_sampling.glsl"
+#include "vplkit/cut_blending.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
+layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
+layout(std430, set = 0, binding = 8) readonly buffer HybridBlockBuffer { HybridBlock items[]; } blocks;
+layout(std430, set = 0, binding = 9) readonly buffer HybridCutBuffer { uint items[]; } cuts;
+layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D indirect;
+
+layout(push_constant) uniform HybridGiPush {
+    vec3 camera_position;
+    uint block_size;
+    uint blocks_x;
+    uint blocks_y;
+    uint cut_size;
+    uint leaf_count;
+    uint vpl_count;
+    uint seed;
+    uint visibility;       // 0: no shadow rays (tests)
+    float min_cos;         // eq. 5.3 thresholds for blending
+    float max_distance;
+} push;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(indirect);
+    if (any(greaterThanEqual(pixel, size))) {
+        return;
+    }
+    vec4 position = imageLoad(gbuffer_position, pixel);
+    if (position.w <= 0.5) {
+        imageStore(indirect, pixel, vec4(0.0));
+        return;
+    }
+    GbufferSample g = gbuffer_decode(position, imageLoad(gbuffer_normal, pixel),
+                                     imageLoad(gbuffer_geometric_normal, pixel), imageLoad(gbuffer_albedo, pixel),
+                                     vec4(0.0));
+    GiPoint p = GiPoint(g.position, g.normal, g.geometric_normal, normalize(push.camera_position - g.position),
+                        g.albedo, g.roughness, g.metallic);
+    float scale = bvh_scene_scale();
+    float min_distance = vpl_min_distance(scale);
+    Rng rng = rng_create(push.seed, uint(pixel.y * size.x + pixel.x));
+
+    ivec2 neighbour_block[4];
+    float bilinear[4];
+    cut_blend_neighbours(pixel, push.block_size, ivec2(push.blocks_x, push.blocks_y), neighbour_block, bilinear);
+    HybridBlock neighbour[4];
+    uint neighbour_index[4];
+    for (int k = 0; k < 4; ++k) {
+        neighbour_index[k] = uint(neighbour_block[k].y) * push.blocks_x + uint(neighbour_block[k].x);
+        neighbour[k] = blocks.items[neighbour_index[k]];
+    }
+    float weight[4];
+    bool blended = cut_blend_weights(p.position, p.normal, neighbour, bilinear, push.min_cos, push.max_distance, weight);
+    uint mock_level = mock_cut_level(push.cut_size, push.leaf_count);
+    uint slots = blended ? push.cut_size : (1u << mock_level);
+
+    vec3 total = vec3(0.0);
+    uint dropped = 0u, traversals = 0u, levels = 0u, dead = 0u;
+    bool completed = false;  // the sentinel of exact_gi.comp: lavapipe's silent loop limit
+    for (uint i = 0u; i <= slots; ++i) {
+        if (i == slots) {
+            completed = true;
+            break;
+        }
+        uint start;
+        if (blended) {
+            // Alg. 1 line 8: slot i from one of the four cuts, chosen by weight among those whose
+            // cut has a node in slot i (a cut can be shorter than cut_size: its left-out children).
+            float filled = 0.0;
+            for (int k = 0; k < 4; ++k) {
+                filled += i < neighbour[k].cut_size ? weight[k] : 0.0;
+            }
+            if (!(filled > 0.0)) {
+                continue;
+            }
+            float u = rng_next_float(rng) * filled;
+            int chosen = -1;
+            for (int k = 0; k < 4; ++k) {
+                if (i < neighbour[k].cut_size && weight[k] > 0.0) {
+                    chosen = k;  // the last filled one also takes u's rounding at the top
+                    if (u < weight[k]) {
+                        break;
+                    }
+                    u -= weight[k];
+                }
+            }
+            start = cuts.items[neighbour_index[chosen] * push.cut_size + i];
+        } else {
+            // Alg. 1 lines 11-14: the mock cut.
+            start = (1u << mock_level) - 1u + i;
+        }
+        if (!blended && sst_fetch(start, push.leaf_count, push.vpl_count).leaf_count == 0u) {
+            continue;  // a padding node of the mock cut (a blended cut holds none)
+        }
+        SstSample s = sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected, min_distance, rng);
+        ++traversals;
+        levels += s.levels;
+        if (s.dead) {
+            ++dead;
+            continue;
+        }
+        Vpl light = sst_sample_light(s, push.leaf_count, rng);
+        gi_add_sample(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness, p.metallic, light,
+                      min_distance, scale, push.visibility != 0u, total, dropped);
+    }
+    gi_counters_add(dropped, traversals, levels, dead, !blended, completed);
+    imageStore(indirect, pixel, vec4(total, float(dropped)));
+}

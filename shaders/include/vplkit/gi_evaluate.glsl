@@ -1,0 +1,30 @@
+#ifndef VPLKIT_GI_EVALUATE_GLSL
+#define VPLKIT_GI_EVALUATE_GLSL
+
+// One sample of a sampling method: the light a chosen (or substitute) VPL sends to the shading
+// point, with one shadow ray, added to the pixel's total or counted as dropped. Include
+// vplkit/bvh.glsl, vplkit/brdf.glsl, vplkit/vpl.glsl, vplkit/vpl_eval.glsl first.
+
+// Adds `light`'s contribution at x to `total`. Issue 6's rule: a sample whose contribution is
+// not finite (a path probability that underflowed, bad VPL data), or that would overflow the
+// total, is left out and counted in `dropped`, never added and never traced. `visibility`
+// false skips the shadow ray (the unbiasedness tests compare with an unshadowed sum).
+void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
+                   float min_distance, float scale, bool visibility, inout vec3 total, inout uint dropped) {
+    vec3 c = vpl_contribution(x, n, ng, wo, albedo, roughness, metallic, light, min_distance);
+    vec3 next = total + c;
+    if (!vpl_finite(c) || !vpl_finite(next)) {
+        ++dropped;
+        return;
+    }
+    if (all(equal(c, vec3(0.0)))) {
+        return;
+    }
+    // As in exact_gi.comp: the light faces x (cos_y > 0), so both ends move off their surfaces.
+    if (visibility && bvh_segment_occluded(x, ng, light.position, light.normal, scale)) {
+        return;
+    }
+    total = next;
+}
+
+#endif

@@ -1,0 +1,151 @@
+#ifndef VPLKIT_SST_SAMPLING_GLSL
+#define VPLKIT_SST_SAMPLING_GLSL
+
+// Sampling the stochastic substitute tree at a shading point: the traversal of seed 004 sec. 4.1
+// (`sst`, from the root) and of seed 000 sec. 5.2 (`hybrid`, from a cut node), both stopping at
+// the first node suitable for sampling (eq. 5.6, flagged at build time) or at a leaf, and the
+// cluster evaluation of seed 000 sec. 5.3 / seed 004 sec. 4.2.
+//
+// Define VPLKIT_SST_NODES_BINDING and VPLKIT_SST_LEAVES_BINDING, and include vplkit/brdf.glsl,
+// vplkit/vpl.glsl, vplkit/vpl_eval.glsl, vplkit/gi_bounds.glsl, vplkit/sst.glsl and
+// vplkit/rng.glsl first. Node indices are sst.glsl's: inner nodes 0 .. L - 2, leaf c - (L - 1).
+
+layout(std430, set = 0, binding = VPLKIT_SST_NODES_BINDING) readonly buffer SstNodeBuffer { SstNode items[]; } sst_nodes;
+layout(std430, set = 0, binding = VPLKIT_SST_LEAVES_BINDING) readonly buffer SstLeafBuffer { Vpl items[]; } sst_leaves;
+
+// The shading point every weight and evaluation needs (from the G-buffer).
+struct GiPoint {
+    vec3 position;
+    vec3 normal;            // shading normal, unit
+    vec3 geometric_normal;  // unit, same side
+    vec3 wo;                // unit, towards the viewer
+    vec3 albedo;
+    float roughness;
+    float metallic;
+};
+
+// Which weight the traversal uses.
+const uint kSstWeightUpperBound = 0u;  // sst: cosine upper bound over the box (seed 004 sec. 4.1)
+const uint kSstWeightExpected = 1u;    // hybrid: average clamped corner cosine (seed 000 eq. 5.2)
+
+// Node `node` of a tree with `leaf_count` leaves over `count` real VPLs. A leaf index past the
+// real VPLs is bogus padding, told apart by index: an empty node (leaf_count 0, weight 0).
+SstNode sst_fetch(uint node, uint leaf_count, uint count) {
+    if (leaf_count == 1u) {
+        return sst_nodes.items[0];  // one VPL: node 0 is its leaf record
+    }
+    if (!sst_is_leaf(node, leaf_count)) {
+        return sst_nodes.items[node];
+    }
+    uint leaf = sst_leaf_index(node, leaf_count);
+    if (leaf >= count) {
+        return sst_empty_node();
+    }
+    // Thresholds do not matter: a leaf always ends a traversal.
+    return sst_leaf_node(sst_leaves.items[leaf], 0.0, 0.0);
+}
+
+// A child's weight w = a / d2 (seed 004 eq. 5 with V = 1): a = material x cosine x intensity,
+// d2 = the squared distance to the node's mean, clamped below by the evaluation's own d_min^2
+// (vpl_eval.glsl): "distance to a VPL -> 0" is clamped with the same scene-relative epsilon in
+// every method, and the shading point inside the node's box needs no special case (seed 004
+// sec. 4.1 bounds the distance from below by an epsilon rather than dropping it as stochastic
+// lightcuts do, which loses colour bleeding). An empty node weighs 0 and is never measured.
+float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_distance, out float d2) {
+    vec3 to_mean = node.mean - p.position;
+    d2 = max(dot(to_mean, to_mean), min_distance * min_distance);
+    if (node.leaf_count == 0u || !(node.intensity > 0.0)) {
+        return 0.0;
+    }
+    float cosine = weight_kind == kSstWeightExpected
+                       ? gi_average_corner_cosine(p.position, p.normal, node.box_lo, node.box_hi)
+                       : gi_box_cosine_bound(p.position, p.normal, node.box_lo, node.box_hi);
+    if (cosine == 0.0) {
+        return 0.0;  // the whole box lies behind the surface
+    }
+    float len2 = dot(to_mean, to_mean);
+    vec3 wi = len2 > 0.0 ? to_mean * inversesqrt(len2) : p.normal;
+    return gi_material_weight(p.normal, p.wo, wi, p.albedo, p.roughness, p.metallic) * cosine * node.intensity;
+}
+
+// The end of one traversal: the node reached and the probability of the path to it.
+struct SstSample {
+    uint node;
+    SstNode data;
+    float probability;  // product of the child probabilities from the start node (1 at the start)
+    uint levels;        // levels descended from the start node
+    bool dead;          // ended where both children weigh 0: no light (seed 004 sec. 4.1)
+};
+
+// Kept below 32 so that a tree of up to 2^31 leaves always reaches a leaf.
+const uint kSstMaxLevels = 32u;
+
+// Descends from `start` until a leaf or a suitable node (eq. 5.6), picking a child with
+// probability w / (w_left + w_right) (seed 000 eq. 5.4) and a fresh random number per level.
+SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, float min_distance,
+                       inout Rng rng) {
+    SstSample s;
+    s.node = start;
+    s.data = sst_fetch(start, leaf_count, count);
+    s.probability = 1.0;
+    s.levels = 0u;
+    s.dead = false;
+    for (uint level = 0u; level < kSstMaxLevels; ++level) {
+        if (sst_is_leaf(s.node, leaf_count) || (s.data.flags & kSstFlagSuitable) != 0u) {
+            break;
+        }
+        uint left = sst_left_child(s.node), right = sst_right_child(s.node);
+        SstNode l = sst_fetch(left, leaf_count, count), r = sst_fetch(right, leaf_count, count);
+        float d2_left, d2_right;
+        float a_left = sst_weight_numerator(p, l, weight_kind, min_distance, d2_left);
+        float a_right = sst_weight_numerator(p, r, weight_kind, min_distance, d2_right);
+        // Cross-multiplied (gi_left_probability): no 1/d2, no inf/inf; < 0 marks a dead branch,
+        // where the sample ends with no light (backtracking would cost a shader loop per level).
+        float p_left = gi_left_probability(a_left, d2_left, a_right, d2_right);
+        if (p_left < 0.0) {
+            s.dead = true;
+            break;
+        }
+        // u < p_left is never true for p_left = 0 and always for p_left = 1 (u in [0, 1)): a child
+        // of zero weight is never chosen.
+        bool go_left = rng_next_float(rng) < p_left;
+        s.node = go_left ? left : right;
+        s.data = go_left ? l : r;
+        s.probability *= go_left ? p_left : 1.0 - p_left;
+        ++s.levels;
+    }
+    return s;
+}
+
+// Two independent standard normal numbers (Box-Muller); 1 - u keeps the logarithm finite.
+vec2 sst_normal_pair(inout Rng rng) {
+    float radius = sqrt(-2.0 * log(1.0 - rng_next_float(rng)));
+    float angle = 2.0 * kPi * rng_next_float(rng);
+    return radius * vec2(cos(angle), sin(angle));
+}
+
+// The point light a traversal's end stands for (seed 000 sec. 5.3): a leaf is its VPL; a
+// suitable inner node draws a position from its substitute distribution (normal in its plane
+// frame, seed 004 sec. 4.2), clamped to its box, with the node's normal and summed colour.
+// The flux is divided by the path probability, so the estimate of the start node's subtree is
+// unbiased over the choice of child (the substitute position itself is the method's bias).
+Vpl sst_sample_light(SstSample s, uint leaf_count, inout Rng rng) {
+    Vpl light;
+    if (sst_is_leaf(s.node, leaf_count)) {
+        light = sst_leaves.items[leaf_count == 1u ? 0u : sst_leaf_index(s.node, leaf_count)];
+    } else {
+        vec3 t, b;
+        sst_frame(s.data.normal, t, b);
+        vec3 sigma = sqrt(s.data.variance);
+        vec2 g01 = sst_normal_pair(rng);
+        float g2 = sst_normal_pair(rng).x;
+        vec3 offset = t * (sigma.x * g01.x) + b * (sigma.y * g01.y) + s.data.normal * (sigma.z * g2);
+        light.position = clamp(s.data.mean + offset, s.data.box_lo, s.data.box_hi);
+        light.normal = s.data.normal;
+        light.flux = s.data.colour;
+    }
+    light.flux /= s.probability;
+    return light;
+}
+
+#endif
