@@ -1,0 +1,100 @@
+#pragma once
+// Real-time stochastic lightcuts (seed 003 sec. 3.2-3.4, 4): indirect light from the VPLs of a
+// perfect light tree (VplTrees::light_tree), a few light samples per pixel.
+//
+//   "gi counters clear"  zeroes `counters` (GiCounters, gi_counters.hpp)
+//   "rtslc cuts"         shaders/gi/rtslc_cut.comp: one cut of samples_per_pixel nodes per
+//                        block_size x block_size block, chosen at a random covered pixel of the
+//                        block by the largest-bound split; the cut partitions the real VPLs
+//   "rtslc gi"           shaders/gi/rtslc_gi.comp: per pixel, one traversal from every cut node
+//                        (or the pixel's interleaved share of them) to a leaf with the eq. 1-2
+//                        probabilities, the VPL evaluated (vpl_eval.glsl) over the path
+//                        probability, one shadow ray; one dispatch per slots_per_dispatch slots
+//   "rtslc interleave"   shaders/gi/rtslc_interleave.comp, interleave > 1 only: each pixel gets
+//                        the rescaled sum of its similar sub-block neighbours' estimates
+//
+// Output: `indirect` (RGBA32F, the G-buffer's size): rgb = reflected indirect radiance towards
+// the camera (0 on background pixels), a = the samples the pixel dropped because they were not
+// finite (interleaved: those of the estimates it summed). Without interleaving the estimate is
+// unbiased for the sum over every VPL (with visibility); with it, an approximation (biased at
+// edges: rtslc_interleave.comp says why).
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/image.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+namespace vplkit {
+class Context;
+class PassList;
+struct GpuBvh;
+}  // namespace vplkit
+
+namespace vplkit::stages {
+
+struct GbufferImages;
+struct VplTrees;
+
+// Bounds of the options (validate() refuses others).
+inline constexpr uint32_t kRtslcMaxSamplesPerPixel = 64;  // kRtslcMaxCutSize in rtslc.glsl
+inline constexpr uint32_t kRtslcMaxBlockSize = 32;
+// An empty cut slot in RtslcScratch::cuts and an empty block's representative.
+inline constexpr uint32_t kRtslcNoNode = 0xFFFFFFFFu;
+
+struct RtslcOptions {
+    uint32_t samples_per_pixel = 8;  // n: nodes per cut, one traversal each; 1..64
+    uint32_t block_size = 8;         // k: pixels share a cut per k x k block (seed 003 sec. 4: 8); 1..32
+    uint32_t interleave = 1;         // m: sub-block side for interleaved sampling; 1 = off; divides k, m^2 <= n
+    uint32_t frame = 0;              // rotates the interleaved shares and reseeds every draw
+    uint32_t seed = 0;               // the same seed and frame give the same image
+    bool visibility = true;          // false: no shadow rays (every VPL visible), for tests and comparisons
+    // Reconstruction after interleaving (seed 000 eq. 5.3): a neighbour's estimate is used when
+    // the normals' cosine exceeds min_cos and the positions lie closer than max_distance. The
+    // distance is absolute (world units): the caller scales it to the scene (e.g. 5% of
+    // Bvh::scene_scale); it must be > 0 when interleave > 1.
+    float similarity_min_cos = 0.9f;
+    float similarity_max_distance = 0.0f;
+    // Cut slots per "rtslc gi" dispatch, >= 1: lavapipe ends an invocation's loops after 65535
+    // iterations of all of them together (exact_gi.comp), and a sample costs a traversal (up to
+    // log2(leaf count) levels, each with two 8-corner cosine bounds) plus a shadow ray (tens to
+    // hundreds of BVH steps in the kit's scenes). 16 slots stay well below; a dispatch cut short
+    // anyway is counted (GiCounts::cut_short) and its image must not be trusted.
+    uint32_t slots_per_dispatch = 16;
+};
+
+// Throws vplkit::Error naming the first bad option.
+void validate(const RtslcOptions& options);
+
+// What the passes hand each other: the cuts and their representative pixels, and with
+// interleaving the per-pixel estimates before reconstruction. Sized for one image size and
+// (samples_per_pixel, block_size, interleave); reusable across frames.
+struct RtslcScratch {
+    uint32_t width = 0, height = 0;
+    uint32_t block_size = 0;
+    uint32_t cut_size = 0;   // samples_per_pixel: slots per block in `cuts`
+    uint32_t interleave = 1;
+    Buffer cuts;             // uint32[block_count() * cut_size]: light tree node indices, the cut's
+                             // nodes first (in no particular order), then kRtslcNoNode
+    Buffer representatives;  // uint32[block_count()]: the pixel y * width + x that chose the cut;
+                             // kRtslcNoNode for a block without covered pixels (its cut is empty)
+    Image estimates;         // RGBA32F, interleave > 1 only: each pixel's sum over its own share
+
+    uint32_t blocks_x() const { return (width + block_size - 1) / block_size; }
+    uint32_t blocks_y() const { return (height + block_size - 1) / block_size; }
+    uint32_t block_count() const { return blocks_x() * blocks_y(); }
+
+    // Validates the options; throws vplkit::Error for a zero size too.
+    static RtslcScratch create(Context& context, uint32_t width, uint32_t height, const RtslcOptions& options);
+};
+
+// Adds the passes above. The referenced objects must outlive passes.run(); read `counters`
+// (read_gi_counters) after it and distrust the image when cut_short > 0. Throws vplkit::Error
+// for bad options, an `indirect` of the wrong format or size, a scratch made for another size
+// or other options, trees with no VPLs, or a counters buffer too small.
+void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
+                      const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
+                      const RtslcOptions& options, RtslcScratch& scratch);
+
+}  // namespace vplkit::stages

@@ -1,0 +1,175 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Real-time stochastic lightcuts, cut selection (seed 003 sec. 3.2-3.3): one invocation per
+// k x k pixel block. A representative pixel is drawn uniformly among the block's covered pixels;
+// starting from the root, the cut node with the largest bound F I / max(d_min^2, eps^2) at that
+// pixel (rtslc_node_bound) is split into its children until the cut holds cut_size nodes or only
+// leaves. Every real child enters the cut, even one of zero weight at the representative pixel:
+// the other pixels of the block see other weights, and leaving its VPLs out of the cut would
+// lose their light there (bias). Bogus children are dropped: they hold no VPL. So the cut always
+// partitions the real VPLs.
+//
+// cuts[block * cut_size + i]: the cut's nodes first, then kRtslcNoNode; a block without covered
+// pixels has an empty cut. representatives[block]: the pixel y * width + x whose bounds chose
+// the cut, kRtslcNoNode for an empty block. Ties between bounds go to the smaller node index, so
+// the cut is a function of the tree and the pixel alone.
+
+#define VPLKIT_BVH_NODES_BINDING 0
+#define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_GI_COUNTERS_BINDING 8
+#include "vplkit/bvh.glsl"
+#include "vplkit/brdf.glsl"
+#include "vplkit/gbuffer.glsl"
+#include "vplkit/light_tree.glsl"
+#include "vplkit/gi_bounds.glsl"
+#include "vplkit/gi_counters.glsl"
+#include "vplkit/rng.glsl"
+#include "vplkit/vpl.glsl"
+#include "vplkit/vpl_eval.glsl"
+#include "vplkit/rtslc.glsl"
+
+layout(local_size_x = 64) in;
+
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
+layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
+layout(std430, set = 0, binding = 6) readonly buffer LightTreeBuffer { LightTreeNode items[]; } light_tree;
+layout(std430, set = 0, binding = 7) writeonly buffer RtslcCutBuffer { uint items[]; } cuts;
+layout(std430, set = 0, binding = 9) writeonly buffer RtslcRepresentativeBuffer { uint items[]; } representatives;
+
+layout(push_constant) uniform RtslcCutPush {
+    vec3 camera_position;
+    uint seed;
+    uint frame;
+    uint block_size;  // k
+    uint cut_size;    // n = samples per pixel, 1..kRtslcMaxCutSize
+    uint blocks_x;
+    uint blocks_y;
+    uint leaf_count;  // a power of two; the tree has 2 leaf_count - 1 nodes
+} push;
+
+// The stream of the block's representative draw: its own salt, so it never replays a pixel's
+// traversal stream (rtslc_gi.comp) for the same seed and frame.
+const uint kRtslcCutSalt = 0x9E3779B9u;
+
+void main() {
+    uint block = gl_GlobalInvocationID.x;
+    if (block >= push.blocks_x * push.blocks_y) {
+        return;
+    }
+    ivec2 size = imageSize(gbuffer_position);
+    uvec2 block_xy = uvec2(block % push.blocks_x, block / push.blocks_x);
+    ivec2 lo = ivec2(block_xy * push.block_size);
+    ivec2 hi = min(lo + ivec2(push.block_size), size);
+    uint out_base = block * push.cut_size;
+    // lavapipe ends every loop of an invocation once its loops together have run 65535
+    // iterations (see exact_gi.comp). The three loops below run at most 2 k^2 + 2 n + 31 + n
+    // iterations (k <= 32, n <= 64) plus the cosine bounds' 8-corner loops, far below the limit;
+    // each still ends through a sentinel that sets `completed`, so a cut-short cut is counted.
+    bool completed = true;
+
+    // The representative: the r-th covered pixel of the block, r uniform (modulo bias < 2^-22).
+    uint covered = 0u;
+    bool counted = false;
+    for (int y = lo.y; y <= hi.y; ++y) {
+        if (y == hi.y) {
+            counted = true;
+            break;
+        }
+        for (int x = lo.x; x < hi.x; ++x) {
+            covered += imageLoad(gbuffer_position, ivec2(x, y)).w > 0.5 ? 1u : 0u;
+        }
+    }
+    completed = completed && counted;
+    if (covered == 0u || !counted) {
+        for (uint i = 0u; i < push.cut_size; ++i) {
+            cuts.items[out_base + i] = kRtslcNoNode;
+        }
+        representatives.items[block] = kRtslcNoNode;
+        gi_counters_add(0u, 0u, 0u, 0u, false, completed);
+        return;
+    }
+    Rng rng = rng_create(pcg_hash(push.seed ^ pcg_hash(push.frame)) ^ kRtslcCutSalt, block);
+    uint chosen = rng_next_uint(rng) % covered;
+    ivec2 representative = lo;
+    uint seen = 0u;
+    bool found = false;
+    for (int y = lo.y; y < hi.y && !found; ++y) {
+        for (int x = lo.x; x < hi.x; ++x) {
+            if (imageLoad(gbuffer_position, ivec2(x, y)).w > 0.5) {
+                if (seen == chosen) {
+                    representative = ivec2(x, y);
+                    found = true;
+                    break;
+                }
+                ++seen;
+            }
+        }
+    }
+    completed = completed && found;
+
+    GbufferSample g = gbuffer_decode(imageLoad(gbuffer_position, representative), imageLoad(gbuffer_normal, representative),
+                                     imageLoad(gbuffer_geometric_normal, representative),
+                                     imageLoad(gbuffer_albedo, representative), vec4(0.0));
+    RtslcShading s = RtslcShading(g.position, g.normal, normalize(push.camera_position - g.position), g.albedo,
+                                  g.roughness, g.metallic);
+    float min_distance = vpl_min_distance(bvh_scene_scale());
+    float min_distance2 = min_distance * min_distance;
+
+    uint cut[kRtslcMaxCutSize];
+    float bound[kRtslcMaxCutSize];
+    uint cut_nodes = 1u;
+    cut[0] = 0u;  // the root: real, VPLs exist (VplTrees has at least one)
+    bound[0] = rtslc_node_bound(s, light_tree.items[0], min_distance2);
+    uint first_leaf = push.leaf_count - 1u;
+    uint target = min(push.cut_size, kRtslcMaxCutSize);
+    // A split adds a node (at most n - 1 times) or, where a node has one real child, replaces it
+    // by that child: only nodes on the path to the last real leaf have a bogus child, one per
+    // level, so at most 31 such splits. 128 passes cannot run out before the cut is done.
+    bool selected = false;
+    for (uint pass = 0u; pass < 128u; ++pass) {
+        if (cut_nodes >= target) {
+            selected = true;
+            break;
+        }
+        uint best = kRtslcNoNode;
+        for (uint i = 0u; i < cut_nodes; ++i) {
+            if (cut[i] >= first_leaf) {
+                continue;  // a leaf cannot be split
+            }
+            if (best == kRtslcNoNode || bound[i] > bound[best] || (bound[i] == bound[best] && cut[i] < cut[best])) {
+                best = i;
+            }
+        }
+        if (best == kRtslcNoNode) {
+            selected = true;  // only leaves left
+            break;
+        }
+        uint left = light_tree_left_child(cut[best]);
+        uint right = light_tree_right_child(cut[best]);
+        LightTreeNode left_node = light_tree.items[left];
+        LightTreeNode right_node = light_tree.items[right];
+        // A real node's left child is real (the real leaves come first); written for either.
+        bool left_real = !light_tree_is_bogus(left_node);
+        bool right_real = !light_tree_is_bogus(right_node);
+        if (left_real) {
+            cut[best] = left;
+            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
+            if (right_real) {
+                cut[cut_nodes] = right;
+                bound[cut_nodes] = rtslc_node_bound(s, right_node, min_distance2);
+                ++cut_nodes;
+            }
+        } else {
+            cut[best] = right;
+            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
+        }
+    }
+    completed = completed && selected;
+    for (uint i = 0u; i < push.cut_size; ++i) {
+        cuts.items[out_base + i] = i < cut_nodes ? cut[i] : kRtslcNoNode;
+    }
+    representatives.items[block] = uint(representative.y) * uint(size.x) + uint(representative.x);
+    gi_counters_add(0u, 0u, 0u, 0u, false, completed);
+}

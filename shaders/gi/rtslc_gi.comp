@@ -1,0 +1,170 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// Real-time stochastic lightcuts, light sampling (seed 003 sec. 3.2-3.4): one invocation per
+// pixel. For each node of its block's cut (rtslc_cut.comp) that the pixel samples, a traversal
+// from that node to a leaf picks a child per level with the eq. 1-2 probabilities at the pixel
+// (rtslc_child_probability, a fresh random number per level), and the leaf's VPL is evaluated
+// with vpl_contribution (the evaluation every method shares) divided by the path's probability,
+// with one shadow ray. The cut partitions the real VPLs, so the sum over the cut's nodes is an
+// unbiased estimate of the sum over every VPL.
+//
+// The slots sampled: the whole cut, or with interleave m > 1 the pixel's share (eq. 3,
+// rtslc_interleave_slots), and of those only the ones in [slot_first, slot_end): the host
+// splits the cut over several dispatches to bound each invocation's loop iterations (lavapipe's
+// limit, see below). The first dispatch (slot_first 0) writes `radiance`, later ones add to it.
+//
+// radiance.rgb: the sum of the finite samples (interleaved: of the pixel's own share, before
+// reconstruction); radiance.a: samples dropped because they were not finite. Background: 0.
+
+#define VPLKIT_BVH_NODES_BINDING 0
+#define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_GI_COUNTERS_BINDING 9
+#include "vplkit/bvh.glsl"
+#include "vplkit/brdf.glsl"
+#include "vplkit/gbuffer.glsl"
+#include "vplkit/light_tree.glsl"
+#include "vplkit/gi_bounds.glsl"
+#include "vplkit/gi_counters.glsl"
+#include "vplkit/rng.glsl"
+#include "vplkit/vpl.glsl"
+#include "vplkit/vpl_eval.glsl"
+#include "vplkit/rtslc.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+// 0 turns the shadow rays off (every VPL visible): the estimator then has the unshadowed sum
+// over all VPLs as its mean, which the unbiasedness test checks.
+layout(constant_id = 0) const uint kShadowRays = 1u;
+
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
+layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
+layout(std430, set = 0, binding = 6) readonly buffer LightTreeBuffer { LightTreeNode items[]; } light_tree;
+layout(std430, set = 0, binding = 7) readonly buffer LeafBuffer { Vpl items[]; } leaves;
+layout(std430, set = 0, binding = 8) readonly buffer RtslcCutBuffer { uint items[]; } cuts;
+layout(set = 0, binding = 10, rgba32f) uniform image2D radiance;
+
+layout(push_constant) uniform RtslcGiPush {
+    vec3 camera_position;
+    uint seed;
+    uint frame;
+    uint block_size;  // k
+    uint cut_size;    // n: slots per block in `cuts`
+    uint blocks_x;
+    uint leaf_count;  // a power of two
+    uint interleave;  // m: 1 = off
+    uint slot_first;  // this dispatch samples the slots [slot_first, slot_end) of the pixel's share
+    uint slot_end;
+} push;
+
+// The tree has at most 2^31 leaves: a traversal descends at most 31 levels.
+const uint kRtslcMaxLevels = 31u;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(radiance);
+    if (any(greaterThanEqual(pixel, size))) {
+        return;
+    }
+    vec4 position = imageLoad(gbuffer_position, pixel);
+    if (position.w <= 0.5) {
+        imageStore(radiance, pixel, vec4(0.0));
+        return;
+    }
+    GbufferSample g = gbuffer_decode(position, imageLoad(gbuffer_normal, pixel),
+                                     imageLoad(gbuffer_geometric_normal, pixel), imageLoad(gbuffer_albedo, pixel),
+                                     vec4(0.0));
+    RtslcShading s = RtslcShading(g.position, g.normal, normalize(push.camera_position - g.position), g.albedo,
+                                  g.roughness, g.metallic);
+    float scale = bvh_scene_scale();
+    float min_distance = vpl_min_distance(scale);
+    float min_distance2 = min_distance * min_distance;
+    vec4 previous = push.slot_first == 0u ? vec4(0.0) : imageLoad(radiance, pixel);
+    vec3 total = previous.rgb;
+
+    uvec2 block_xy = uvec2(pixel) / push.block_size;
+    uint base = (block_xy.y * push.blocks_x + block_xy.x) * push.cut_size;
+    // The cut's nodes come first: their count is the index of the first empty slot.
+    uint cut_nodes = 0u;
+    while (cut_nodes < push.cut_size && cuts.items[base + cut_nodes] != kRtslcNoNode) {
+        ++cut_nodes;
+    }
+    uvec2 share = rtslc_interleave_slots(uvec2(pixel), push.interleave, push.frame, cut_nodes);
+    uint first = max(share.x, push.slot_first);
+    uint end = max(min(share.y, push.slot_end), first);
+
+    // One stream per (pixel, slot, frame, seed): independent of how the slots are split over
+    // dispatches, and never the cut shader's stream (that one is salted).
+    uint frame_seed = pcg_hash(push.seed ^ pcg_hash(push.frame));
+    uint pixel_index = uint(pixel.y) * uint(size.x) + uint(pixel.x);
+    uint first_leaf = push.leaf_count - 1u;
+    uint dropped = 0u, traversals = 0u, levels = 0u, dead = 0u;
+    // lavapipe (llvmpipe) ends every loop of an invocation, silently, once its loops together
+    // have run 65535 iterations (exact_gi.comp). The slot loop runs one sentinel iteration past
+    // its last slot; a traversal that stops before a leaf without a dead branch was cut short
+    // too. Either leaves `completed` false and the invocation is counted in cut_short. The host
+    // keeps a dispatch's share of slots small (RtslcOptions::slots_per_dispatch).
+    bool completed = false;
+    for (uint slot = first; slot <= end; ++slot) {
+        if (slot == end) {
+            completed = true;
+            break;
+        }
+        uint node = cuts.items[base + slot];
+        Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
+        ++traversals;
+        float path_probability = 1.0;
+        bool dead_branch = false;
+        bool at_leaf = false;
+        for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
+            if (node >= first_leaf) {
+                at_leaf = true;
+                break;
+            }
+            uint left = light_tree_left_child(node);
+            RtslcChildProbability choice =
+                rtslc_child_probability(s, light_tree.items[left], light_tree.items[left + 1u], min_distance2);
+            // seed 003 sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly
+            // 0 then: every VPL below has zero weight, so none of them could light this pixel.
+            if (choice.dead) {
+                dead_branch = true;
+                break;
+            }
+            bool go_left = rtslc_choose_left(choice.left, rng_next_float(rng));
+            path_probability *= rtslc_choice_probability(choice.left, go_left);
+            node = go_left ? left : left + 1u;
+            ++levels;
+        }
+        if (dead_branch) {
+            ++dead;
+            continue;
+        }
+        if (!at_leaf) {
+            break;  // cut short inside the traversal: `completed` stays false
+        }
+        Vpl vpl = leaves.items[light_tree_node_leaf(push.leaf_count, node)];
+        vec3 c = vpl_contribution(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness, g.metallic,
+                                  vpl, min_distance);
+        // Issue 6: the per-pixel result is finite or the sample is counted as dropped. The
+        // division comes first, so a NaN path probability (from a NaN intensity in the tree) or
+        // one that underflowed to 0 drops the sample even where the VPL gives 0; a dropped
+        // sample is never traced.
+        vec3 estimate = c / path_probability;
+        vec3 next = total + estimate;
+        if (!vpl_finite(estimate) || !vpl_finite(next)) {
+            ++dropped;
+            continue;
+        }
+        if (all(equal(c, vec3(0.0)))) {
+            continue;
+        }
+        if (kShadowRays != 0u &&
+            bvh_segment_occluded(g.position, g.geometric_normal, vpl.position, vpl.normal, scale)) {
+            continue;
+        }
+        total = next;
+    }
+    gi_counters_add(dropped, traversals, levels, dead, false, completed);
+    imageStore(radiance, pixel, vec4(total, previous.a + float(dropped)));
+}
