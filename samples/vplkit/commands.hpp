@@ -14,6 +14,9 @@ extern const char* const kRenderUsage;
 int run_bench(Args& args);
 extern const char* const kBenchUsage;
 
+int run_compare(Args& args);
+extern const char* const kCompareUsage;
+
 // `vplkit bench tree` (reached through run_bench; its usage is part of kBenchUsage).
 int run_bench_tree(Args& args);
 

@@ -24,6 +24,8 @@ const Command kCommands[] = {
      vplkit::cli::run_render},
     {"bench", "GPU timings of the kit's stages (sort: VPL keys + sort; tree: keys to both light trees)", vplkit::cli::kBenchUsage,
      vplkit::cli::run_bench},
+    {"compare", "error of a PFM image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
+     vplkit::cli::kCompareUsage, vplkit::cli::run_compare},
 };
 
 void print_usage(std::FILE* out) {
