@@ -64,9 +64,10 @@ void main() {
     ivec2 hi = min(lo + ivec2(push.block_size), size);
     uint out_base = block * push.cut_size;
     // lavapipe ends every loop of an invocation once its loops together have run 65535
-    // iterations (see exact_gi.comp). The three loops below run at most 2 k^2 + 2 n + 31 + n
-    // iterations (k <= 32, n <= 64) plus the cosine bounds' 8-corner loops, far below the limit;
-    // each still ends through a sentinel that sets `completed`, so a cut-short cut is counted.
+    // iterations (see exact_gi.comp). Here: 2 k^2 for the representative (k <= 32), at most
+    // n - 1 + 31 splits each scanning <= 64 cut nodes and measuring two children (8-corner
+    // cosine loops), and n writes: ~8000 at most, far below the limit. Each loop still ends
+    // through a flag that sets `completed`, so a cut-short cut is counted, not used silently.
     bool completed = true;
 
     // The representative: the r-th covered pixel of the block, r uniform (modulo bias < 2^-22).
