@@ -1,0 +1,198 @@
+#include "sampling_setup.hpp"
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/bvh.hpp"
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/vpl_trees.hpp"
+#include "vplkit_test/context.hpp"
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include <cmath>
+#include <random>
+
+namespace vplkit::sampling_test {
+
+namespace {
+
+using HalfTexel = std::array<uint16_t, 4>;
+
+HalfTexel to_half(float r, float g, float b, float a) {
+    return {glm::packHalf1x16(r), glm::packHalf1x16(g), glm::packHalf1x16(b), glm::packHalf1x16(a)};
+}
+float half_round(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
+reference::Vec3 d3(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+}  // namespace
+
+Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s, float flux_scale) {
+    Scene scene;
+    scene.width = width;
+    scene.height = height;
+    scene.scale = s;
+    const float f = 3.0f * s;
+    // Floor, and a double-sided occluding quad at y = s over part of it.
+    scene.triangles = {{-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {-f, 0, -f}, {f, 0, f}, {f, 0, -f},
+                       {-0.5f * s, s, -0.5f * s}, {-0.5f * s, s, 0.7f * s}, {0.6f * s, s, 0.7f * s},
+                       {-0.5f * s, s, -0.5f * s}, {0.6f * s, s, 0.7f * s}, {0.6f * s, s, -0.5f * s}};
+    scene.camera = glm::vec3(0.0f, 3.0f, 4.0f) * s;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (uint32_t y = 0; y < height; ++y) {
+        for (uint32_t x = 0; x < width; ++x) {
+            Pixel p;
+            p.covered = (x * 7 + y * 3) % 23 != 0;
+            p.position = glm::vec3(-2.8f + 5.6f * (x + 0.5f) / width, 0.0f, -2.8f + 5.6f * (y + 0.5f) / height) * s;
+            p.normal = glm::normalize(glm::vec3(0.2f * (unit(rng) - 0.5f), 1.0f, 0.2f * (unit(rng) - 0.5f)));
+            p.roughness = 0.4f + 0.6f * unit(rng);
+            p.metallic = unit(rng) < 0.2f ? 1.0f : 0.0f;
+            p.albedo = {half_round(0.2f + 0.8f * unit(rng)), half_round(0.2f + 0.8f * unit(rng)),
+                        half_round(0.2f + 0.8f * unit(rng))};
+            scene.pixels.push_back(p);
+        }
+    }
+    auto colour = [&] {
+        return glm::vec3(0.5f + unit(rng), 0.5f + unit(rng), 0.5f + unit(rng)) * flux_scale / float(vpl_count);
+    };
+    for (uint32_t i = 0; i < vpl_count; ++i) {
+        const uint32_t kind = i % 10;
+        TestVpl v;
+        if (kind < 5) {  // ceiling, facing down: coplanar clusters the SST can substitute
+            v = {glm::vec3(-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)) * s, {0, -1, 0}, colour()};
+        } else if (kind < 8) {  // wall at x = -2.9 facing +x
+            v = {glm::vec3(-2.9f, 0.05f + 1.8f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, {1, 0, 0}, colour()};
+        } else if (kind == 8) {  // free, facing somewhere downwards
+            const glm::vec3 n = glm::normalize(glm::vec3(unit(rng) - 0.5f, -0.2f - unit(rng), unit(rng) - 0.5f));
+            v = {glm::vec3(-2.5f + 5.0f * unit(rng), 0.2f + 0.6f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n, colour()};
+        } else {  // below the floor facing up: behind every shading point
+            v = {glm::vec3(-2.5f + 5.0f * unit(rng), -0.5f, -2.5f + 5.0f * unit(rng)) * s, {0, 1, 0}, colour()};
+        }
+        scene.vpls.push_back(v);
+    }
+    return scene;
+}
+
+Rendered render(const Scene& scene, const RunOptions& options) {
+    Context& ctx = test::context();
+    auto gbuffer = stages::GbufferImages::create(ctx, scene.width, scene.height);
+    std::vector<Texel> position, normal, geometric;
+    std::vector<HalfTexel> albedo, emission;
+    for (const Pixel& p : scene.pixels) {
+        position.push_back({p.position.x, p.position.y, p.position.z, p.covered ? 1.0f : 0.0f});
+        normal.push_back({p.normal.x, p.normal.y, p.normal.z, p.roughness});
+        geometric.push_back({p.geometric.x, p.geometric.y, p.geometric.z, p.metallic});
+        albedo.push_back(to_half(p.albedo.x, p.albedo.y, p.albedo.z, 1.0f));
+        emission.push_back(to_half(0, 0, 0, 0));
+    }
+    gbuffer.position.upload(position);
+    gbuffer.normal.upload(normal);
+    gbuffer.geometric_normal.upload(geometric);
+    gbuffer.albedo.upload(albedo);
+    gbuffer.emission.upload(emission);
+    const auto bvh = upload_bvh(ctx, build_bvh(scene.triangles));
+
+    std::vector<shaders::Vpl> gpu_vpls;
+    for (const TestVpl& v : scene.vpls) {
+        shaders::Vpl g{};
+        g.position = {v.position.x, v.position.y, v.position.z};
+        g.normal = {v.normal.x, v.normal.y, v.normal.z};
+        g.flux = {v.flux.x, v.flux.y, v.flux.z};
+        gpu_vpls.push_back(g);
+    }
+    auto vpls = Buffer::create(ctx, gpu_vpls.size() * sizeof(shaders::Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryUse::device, "vpls");
+    vpls.upload(gpu_vpls);
+    stages::VplTreeOptions tree_options;
+    tree_options.sst = options.sst;
+    auto trees = stages::VplTrees::create(ctx, uint32_t(gpu_vpls.size()), tree_options);
+    auto indirect = Image::create(ctx, scene.width, scene.height, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                  VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
+    auto counters = stages::create_gi_counters(ctx);
+
+    PassList passes("sampling test");
+    trees.add_build_passes(passes, vpls);
+    Rendered out;
+    if (options.method == Method::sst) {
+        stages::SstGiOptions o;
+        o.samples_per_pixel = options.samples_per_pixel;
+        o.seed = options.seed;
+        o.visibility = options.visibility;
+        stages::add_sst_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o);
+        passes.run(ctx);
+    } else {
+        stages::HybridOptions o;
+        o.samples_per_pixel = options.samples_per_pixel;
+        o.block_size = options.block_size;
+        o.seed = options.seed;
+        o.visibility = options.visibility;
+        o.similarity_max_distance = options.similarity_max_distance * scene.scale;
+        auto cuts = stages::HybridCuts::create(ctx, scene.width, scene.height, o);
+        stages::add_hybrid_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, cuts, o);
+        passes.run(ctx);
+        out.cuts = cuts.cuts.download<uint32_t>(cuts.cuts.size() / sizeof(uint32_t));
+        out.blocks = cuts.blocks.download<shaders::HybridBlock>(cuts.blocks.size() / sizeof(shaders::HybridBlock));
+    }
+    out.image = indirect.download<Texel>();
+    out.counts = stages::read_gi_counters(counters);
+    out.sst = trees.sst.download<shaders::SstNode>(stages::sst_node_count(trees.count));
+    out.leaves = trees.leaves.download<shaders::Vpl>(trees.leaf_count);
+    out.leaf_count = trees.leaf_count;
+    return out;
+}
+
+reference::ShadingPoint shading_point(const Pixel& p) {
+    return {d3(p.position), d3(p.normal), d3(p.geometric), d3(p.albedo), p.roughness, p.metallic};
+}
+
+std::vector<reference::VplDesc> reference_vpls(const Scene& scene) {
+    std::vector<reference::VplDesc> out;
+    for (const TestVpl& v : scene.vpls) out.push_back({d3(v.position), d3(v.normal), d3(v.flux)});
+    return out;
+}
+
+std::vector<reference::Triangle> reference_triangles(const Scene& scene) {
+    std::vector<reference::Triangle> out;
+    for (size_t i = 0; i + 2 < scene.triangles.size(); i += 3) {
+        out.push_back({d3(scene.triangles[i]), d3(scene.triangles[i + 1]), d3(scene.triangles[i + 2])});
+    }
+    return out;
+}
+
+std::vector<reference::Vec3> exact(const Scene& scene, bool visibility) {
+    const auto triangles = reference_triangles(scene);
+    const auto vpls = reference_vpls(scene);
+    const double scale = reference::scene_scale(triangles);
+    std::vector<reference::Vec3> out;
+    for (const Pixel& p : scene.pixels) {
+        if (!p.covered) {
+            out.push_back({0, 0, 0});
+            continue;
+        }
+        const auto sum = reference::exact_indirect(shading_point(p), d3(scene.camera), vpls,
+                                                   visibility ? std::span<const reference::Triangle>(triangles)
+                                                              : std::span<const reference::Triangle>(),
+                                                   scale);
+        out.push_back(sum.radiance);
+    }
+    return out;
+}
+
+double relative_rmse(const Scene& scene, const std::vector<Texel>& image, const std::vector<reference::Vec3>& truth) {
+    double err = 0.0, norm = 0.0;
+    for (size_t i = 0; i < scene.pixels.size(); ++i) {
+        if (!scene.pixels[i].covered) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double d = image[i][c] - truth[i][c];
+            err += d * d;
+            norm += truth[i][c] * truth[i][c];
+        }
+    }
+    return std::sqrt(err / norm);
+}
+
+}  // namespace vplkit::sampling_test

@@ -1,0 +1,81 @@
+#pragma once
+// A small synthetic scene for the sampling tests: a G-buffer of floor points (y = 0) with varied
+// materials and tilted shading normals, some background, an occluding quad above part of the
+// floor, and VPLs on a ceiling (facing down), on a wall (facing the floor), free ones, and ones
+// that cannot light the floor (below it, facing away). Runs sst / hybrid on it, and the double
+// exact sum (tests/reference/vpl_reference.cpp) with or without shadows.
+
+#include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/hybrid_gi.hpp"
+#include "vplkit/stages/sst.hpp"
+#include "vplkit/stages/sst_gi.hpp"
+#include "vpl_reference.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace vplkit::sampling_test {
+
+struct Pixel {
+    bool covered = false;
+    glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f}, geometric{0.0f, 1.0f, 0.0f}, albedo{0.5f};
+    float roughness = 0.6f, metallic = 0.0f;
+};
+
+struct TestVpl {
+    glm::vec3 position, normal, flux;
+};
+
+struct Scene {
+    uint32_t width = 0, height = 0;
+    std::vector<Pixel> pixels;
+    std::vector<glm::vec3> triangles;  // three vertices each
+    std::vector<TestVpl> vpls;
+    glm::vec3 camera{0.0f, 3.0f, 4.0f};
+    float scale = 1.0f;                // the length unit the scene was built in
+};
+
+// `vpl_count` VPLs (at least 1) at scale s with flux ~ flux_scale.
+Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s = 1.0f, float flux_scale = 1.0f);
+
+using Texel = std::array<float, 4>;
+
+struct Rendered {
+    std::vector<Texel> image;
+    stages::GiCounts counts;
+    std::vector<uint32_t> cuts;                  // hybrid: blocks x cut_size
+    std::vector<shaders::HybridBlock> blocks;    // hybrid
+    std::vector<shaders::SstNode> sst;           // the tree the method sampled
+    std::vector<shaders::Vpl> leaves;            // its leaves (sorted, padded)
+    uint32_t leaf_count = 0;
+};
+
+enum class Method { sst, hybrid };
+
+struct RunOptions {
+    Method method = Method::sst;
+    uint32_t samples_per_pixel = 4;
+    uint32_t block_size = 8;
+    uint32_t seed = 0;
+    bool visibility = true;
+    stages::SstOptions sst;  // thresholds (nu_min > 1: never suitable, traversals go to leaves)
+    float similarity_max_distance = 2.0f;  // x scene.scale (the room is 6 x 6; a pixel 0.1-0.7 wide)
+};
+
+Rendered render(const Scene& scene, const RunOptions& options);
+
+reference::ShadingPoint shading_point(const Pixel& p);
+std::vector<reference::VplDesc> reference_vpls(const Scene& scene);
+std::vector<reference::Triangle> reference_triangles(const Scene& scene);
+
+// The exact sum at every pixel (0 on background), with or without shadow rays.
+std::vector<reference::Vec3> exact(const Scene& scene, bool visibility);
+
+// sqrt(sum (a - b)^2 / sum b^2) over the covered pixels' channels.
+double relative_rmse(const Scene& scene, const std::vector<Texel>& image, const std::vector<reference::Vec3>& truth);
+
+}  // namespace vplkit::sampling_test

@@ -1,0 +1,125 @@
+// sst and hybrid indirect light against the double exact sum (sampling_setup.hpp's room).
+//
+// Unbiasedness: with no early stop (nu_min > 1: no node is suitable, every traversal ends at a
+// leaf) and no shadow rays, sst is hierarchical importance sampling of the VPLs and must be
+// unbiased; so must hybrid with 1 x 1 blocks (each pixel's own cut: children left out of it lie
+// wholly behind the pixel's surface or hold no light, so the cut still covers every VPL that can
+// light the pixel). The mean over seeds is checked against the exact unshadowed sum within
+// 4.5 sigma / sqrt(n) per pixel and channel, sigma estimated from the seeds. Hybrid needs many
+// seeds: its expected-contribution weights (eq. 5.2) are not bounds, so a child whose corners
+// look grazing can hold a VPL facing the pixel; it is then drawn rarely with a large weight.
+// Over 96 seeds one pixel of this scene read 20% low at z = 9 (the rare path never drawn); over
+// 1000 seeds the worst z was 2.9.
+// Biased by design (thesis thresholds, shadows): the relative RMSE against the exact sum with
+// shadows falls as the sample budget grows and stays under a bound at 16 samples.
+
+#include "sampling_setup.hpp"
+
+#include "vplkit/error.hpp"
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace vplkit::sampling_test;
+namespace ref = vplkit::reference;
+
+struct MeanCheck {
+    uint32_t checked = 0;
+    uint32_t outside = 0;
+    double worst_z = 0.0;
+};
+
+// Mean and spread over `seeds` renders at every covered pixel against `truth`.
+MeanCheck check_mean(const Scene& scene, RunOptions options, uint32_t seeds, const std::vector<ref::Vec3>& truth) {
+    const size_t n = scene.pixels.size();
+    std::vector<std::array<double, 3>> sum(n), sum2(n);
+    for (uint32_t s = 0; s < seeds; ++s) {
+        options.seed = 1000 + s;
+        const Rendered r = render(scene, options);
+        REQUIRE(r.counts.dropped_samples == 0);
+        REQUIRE(r.counts.cut_short == 0);
+        for (size_t i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c) {
+                sum[i][c] += r.image[i][c];
+                sum2[i][c] += double(r.image[i][c]) * r.image[i][c];
+            }
+        }
+    }
+    MeanCheck check;
+    for (size_t i = 0; i < n; ++i) {
+        if (!scene.pixels[i].covered) continue;
+        for (int c = 0; c < 3; ++c) {
+            const double mean = sum[i][c] / seeds;
+            const double var = std::max(sum2[i][c] / seeds - mean * mean, 0.0) * seeds / (seeds - 1);
+            // The float evaluation's own error (~1e-5 relative) bounds how small sigma may be.
+            const double sigma = std::sqrt(var / seeds) + 1e-5 * std::abs(truth[i][c]) + 1e-12;
+            const double z = std::abs(mean - truth[i][c]) / sigma;
+            ++check.checked;
+            check.worst_z = std::max(check.worst_z, z);
+            if (z > 4.5) {
+                ++check.outside;
+                MESSAGE("pixel " << i << " channel " << c << ": mean " << mean << " exact " << truth[i][c] << " sigma " << sigma);
+            }
+        }
+    }
+    return check;
+}
+
+}  // namespace
+
+TEST_CASE("sst: without early stop or shadows the mean over seeds is the exact sum") {
+    const Scene scene = room(8, 6, 200);
+    RunOptions options;
+    options.method = Method::sst;
+    options.samples_per_pixel = 2;
+    options.visibility = false;
+    options.sst.nu_min = 2.0f;  // never suitable: every traversal reaches a leaf
+    const MeanCheck check = check_mean(scene, options, 256, exact(scene, false));
+    MESSAGE("sst unbiased: " << check.checked << " values, worst z " << check.worst_z);
+    CHECK(check.checked > 100);
+    CHECK(check.outside == 0);
+}
+
+TEST_CASE("hybrid: 1x1 blocks without early stop or shadows give the exact sum on average") {
+    const Scene scene = room(8, 6, 200);
+    RunOptions options;
+    options.method = Method::hybrid;
+    options.samples_per_pixel = 4;
+    options.block_size = 1;
+    options.visibility = false;
+    options.sst.nu_min = 2.0f;
+    const MeanCheck check = check_mean(scene, options, 1000, exact(scene, false));
+    MESSAGE("hybrid unbiased: " << check.checked << " values, worst z " << check.worst_z);
+    CHECK(check.checked > 100);
+    CHECK(check.outside == 0);
+}
+
+TEST_CASE("sst and hybrid: the error against exact falls with the sample budget and is bounded") {
+    const Scene scene = room(32, 24, 256);
+    const auto truth = exact(scene, true);
+    for (Method method : {Method::sst, Method::hybrid}) {
+        std::vector<double> errors;
+        for (uint32_t spp : {1u, 4u, 16u, 64u}) {
+            RunOptions options;
+            options.method = method;
+            options.samples_per_pixel = spp;
+            options.seed = 3;
+            const Rendered r = render(scene, options);
+            CHECK(r.counts.dropped_samples == 0);
+            CHECK(r.counts.cut_short == 0);
+            errors.push_back(relative_rmse(scene, r.image, truth));
+        }
+        const std::string name = method == Method::sst ? "sst" : "hybrid";
+        MESSAGE(name << " relative RMSE at 1/4/16/64 spp: " << errors[0] << " " << errors[1] << " " << errors[2] << " "
+                     << errors[3]);
+        for (size_t i = 1; i < errors.size(); ++i) CHECK(errors[i] < errors[i - 1]);
+        // Measured on this scene: sst 1.43 / 0.62 / 0.38 / 0.26, hybrid 1.53 / 0.72 / 0.39 / 0.21; the
+        // substitutes' bias keeps sst from falling as 1 / sqrt(spp) at high budgets.
+        CHECK(errors[3] < 0.35);
+    }
+}
