@@ -5,7 +5,6 @@
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/stages/compose.hpp"
-#include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
@@ -142,16 +141,10 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
             }
         }
         out.gbuffer_position = gbuffer.position.download<float>();
-    } else if (settings.method == GiMethod::exact) {
+    } else if (settings.method != GiMethod::none) {
         GeneratedVpls generated = generate_vpls(view, gbuffer, settings, out);
         out.vpl_count = generated.count;
-        stages::ExactGiOptions options;
-        options.progress = settings.progress;
-        const auto result = stages::render_exact_gi(context_, gbuffer, gpu_bvh_, generated.vpls, out.vpl_count,
-                                                    view.position, indirect, options);
-        out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
-        out.exact_gi_wall_ms = result.wall_ms;
-        out.dropped_pixels = result.counts.dropped_pixels;
+        render_indirect(view, gbuffer, generated, settings, indirect, out);
     }
 
     PassList output_passes("output");

@@ -29,7 +29,9 @@ namespace vplkit::cli {
 const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
-    "                     [--method direct|exact] [--vpl-source ir|brsm] [--vpls N] [--bounces B]\n"
+    "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
+    "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
+    "                     [--vpl-source ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
     "                     [--seed S] [--emissive-samples N]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
@@ -43,8 +45,21 @@ const char* const kRenderUsage =
     "  --out FILE       the tonemapped image, PNG (default vplkit.png)\n"
     "  --out-hdr FILE   also the linear radiance, PFM\n"
     "  --out-direct FILE, --out-indirect FILE   the linear direct / indirect parts, PFM\n"
-    "  --method M       direct (default): direct light only; exact: plus indirect light from\n"
-    "                   VPLs, every VPL at every pixel with a shadow ray (ground truth)\n"
+    "  --method M       direct (default): direct light only; or indirect light from VPLs by\n"
+    "                   exact: every VPL at every pixel with a shadow ray (the ground truth);\n"
+    "                   sst: stochastic substitute tree traversals from the root;\n"
+    "                   rtslc: real-time stochastic lightcuts (a cut per block, traversals to leaves);\n"
+    "                   hybrid: the thesis method (shallow SST cuts per block, blended between\n"
+    "                   blocks, traversals that stop at flat clusters)\n"
+    "  --spp N          sst: traversals per pixel; rtslc, hybrid: the cut size, one traversal per cut\n"
+    "                   node (default 8, at most 64); each is one shadow ray\n"
+    "  --block K        rtslc, hybrid: pixels share a cut per K x K block (default 8, at most 32)\n"
+    "  --interleave M   rtslc: interleaved sampling over M x M sub-blocks (default 1: off)\n"
+    "  --gi-resolution R   full (default) or half: indirect light at half resolution, joint\n"
+    "                   bilateral upsampling to full\n"
+    "  --nu-min V, --sigma-max S   sst, hybrid: a tree node is sampled as a whole when its normal\n"
+    "                   similarity is >= V and its spread along its normal <= S scene units\n"
+    "                   (defaults 0.7 and 0.3, the thesis')\n"
     "  --vpl-source S   where the VPLs come from: ir (default): instant radiosity, light paths through\n"
     "                   the scene, multi-bounce; brsm: bidirectional reflective shadow maps, one bounce,\n"
     "                   placed where the camera sees their light (punctual lights only)\n"
@@ -153,9 +168,47 @@ int run_render(Args& args) {
     if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
     if (auto text = args.value("--emissive-samples")) settings.emissive_samples = parse_whole_number("--emissive-samples", *text, 65536);
     if (auto text = args.value("--method")) {
-        if (*text == "direct") settings.method = GiMethod::none;
-        else if (*text == "exact") settings.method = GiMethod::exact;
-        else throw UsageError("--method expects direct or exact (sst, rtslc and hybrid are not built yet), got '" + *text + "'");
+        bool known = false;
+        for (GiMethod m : {GiMethod::none, GiMethod::exact, GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid}) {
+            if (*text == gi_method_name(m)) {
+                settings.method = m;
+                known = true;
+            }
+        }
+        if (!known) throw UsageError("--method expects direct, exact, sst, rtslc or hybrid, got '" + *text + "'");
+    }
+    const bool sampled = settings.method == GiMethod::sst || settings.method == GiMethod::rtslc ||
+                         settings.method == GiMethod::hybrid;
+    const bool blocked = settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
+    const bool substitutes = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
+    if (auto text = args.value("--spp")) {
+        if (!sampled) throw UsageError("--spp is for --method sst, rtslc or hybrid");
+        settings.samples_per_pixel = parse_whole_number("--spp", *text, 64);
+    }
+    if (auto text = args.value("--block")) {
+        if (!blocked) throw UsageError("--block is for --method rtslc or hybrid");
+        settings.block_size = parse_whole_number("--block", *text, 32);
+    }
+    if (auto text = args.value("--interleave")) {
+        if (settings.method != GiMethod::rtslc) throw UsageError("--interleave is for --method rtslc");
+        settings.interleave = parse_whole_number("--interleave", *text, 32);
+    }
+    if (auto text = args.value("--nu-min")) {
+        if (!substitutes) throw UsageError("--nu-min is for --method sst or hybrid");
+        const auto value = finite_number(*text);
+        if (!value) throw UsageError("--nu-min expects a number, got '" + *text + "'");
+        settings.sst.nu_min = *value;
+    }
+    if (auto text = args.value("--sigma-max")) {
+        if (!substitutes) throw UsageError("--sigma-max is for --method sst or hybrid");
+        const auto value = finite_number(*text);
+        if (!value || *value < 0.0f) throw UsageError("--sigma-max expects a number >= 0, got '" + *text + "'");
+        settings.sst.sigma_max = *value;
+    }
+    if (auto text = args.value("--gi-resolution")) {
+        if (settings.method == GiMethod::none) throw UsageError("--gi-resolution needs an indirect-light --method");
+        if (*text == "half") settings.half_resolution_gi = true;
+        else if (*text != "full") throw UsageError("--gi-resolution expects full or half, got '" + *text + "'");
     }
     bool vpl_options_given = false;
     if (auto text = args.value("--vpl-source")) {
@@ -187,8 +240,8 @@ int run_render(Args& args) {
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");
     if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
-        throw UsageError("--vpl-source, --vpls, --bounces and the --brsm options need --method exact or --vpls-only "
-                         "(direct light uses no VPLs)");
+        throw UsageError("--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
+                         "or --vpls-only (direct light uses no VPLs)");
     }
     if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
         throw UsageError("--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
@@ -245,7 +298,7 @@ int run_render(Args& args) {
     };
     const RenderedImage image = renderer.render(scene.camera(), settings);
     for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
-    const bool made_vpls = settings.method == GiMethod::exact || settings.vpls_only;
+    const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
     if (made_vpls && brsm) {
         std::printf("%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
                     settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
@@ -254,10 +307,23 @@ int run_render(Args& args) {
         std::printf("%s: %u VPLs from %u light paths x %u bounces\n", settings.vpls_only ? "vpls" : "indirect",
                     image.vpl_count, settings.vpl_paths, settings.vpl_bounces);
     }
-    if (settings.method == GiMethod::exact) {
-        if (image.dropped_pixels > 0) {
-            std::printf("warning: %u pixels had a non-finite VPL contribution left out\n", image.dropped_pixels);
-        }
+    if (settings.method == GiMethod::exact && image.dropped_pixels > 0) {
+        std::printf("warning: %u pixels had a non-finite VPL contribution left out\n", image.dropped_pixels);
+    }
+    if (sampled && !settings.vpls_only && image.vpl_count > 0) {
+        const stages::GiCounts& c = image.gi_counts;
+        std::printf("%s: %u spp", gi_method_name(settings.method), settings.samples_per_pixel);
+        if (blocked) std::printf(", %ux%u blocks", settings.block_size, settings.block_size);
+        if (settings.interleave > 1) std::printf(", %ux%u interleaved", settings.interleave, settings.interleave);
+        std::printf("; %.2f tree levels per traversal (%u traversals), %u dead branches", c.levels_per_traversal(),
+                    c.traversals, c.dead_branches);
+        if (settings.method == GiMethod::hybrid) std::printf(", %u mock-cut pixels", c.mock_cut_pixels);
+        std::printf("\n");
+    }
+    if (settings.half_resolution_gi && !settings.vpls_only) {
+        std::printf("gi at %ux%u, upsampled: %u pixels took the nearest sample (no similar one), %u got none\n",
+                    image.gi_width, image.gi_height, image.upsample_counts.fallback_pixels,
+                    image.upsample_counts.empty_pixels);
     }
     if (image.non_finite_pixels > 0) {
         throw Error("render: " + std::to_string(image.non_finite_pixels) +

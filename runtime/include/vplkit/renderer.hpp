@@ -1,6 +1,7 @@
 #pragma once
-// A whole frame of direct light: the G-buffer raster pass, direct light from punctual lights and
-// from emissive triangles (area-light sampling) with BVH shadow rays, the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH built once, at
+// A whole frame: the G-buffer raster pass, direct light from punctual lights and from emissive
+// triangles (area-light sampling) with BVH shadow rays, VPLs and indirect light by the chosen
+// method (optionally at half resolution), the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH built once, at
 // construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
@@ -10,6 +11,9 @@
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
+#include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/sst.hpp"
+#include "vplkit/stages/upsample.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -24,9 +28,15 @@ class Context;
 
 // How indirect light is computed.
 enum class GiMethod {
-    none,   // direct light only
-    exact,  // every VPL at every pixel with a shadow ray each: the ground truth
+    none,    // direct light only
+    exact,   // every VPL at every pixel with a shadow ray each: the ground truth
+    sst,     // stochastic substitute tree traversals from the root (seed 004)
+    rtslc,   // real-time stochastic lightcuts: a cut per block, traversals to leaves (seed 003)
+    hybrid,  // the thesis method: shallow SST cuts per block, blended, early-stop traversals (seed 000)
 };
+
+// "direct", "exact", "sst", "rtslc", "hybrid".
+const char* gi_method_name(GiMethod method);
 
 // Where the VPLs come from.
 enum class VplSource {
@@ -56,6 +66,16 @@ struct RenderSettings {
     // replaced by `seed`), and the side of each light's RSM face.
     stages::BrsmOptions brsm;
     uint32_t rsm_resolution = 512;
+    // sst, rtslc, hybrid: samples per pixel (sst: traversals from the root, averaged; rtslc and
+    // hybrid: the cut size, one traversal per cut node, summed), 1..64.
+    uint32_t samples_per_pixel = 8;
+    uint32_t block_size = 8;  // rtslc, hybrid: pixels along a cut block's side, 1..32
+    uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
+    uint32_t frame = 0;       // rtslc: rotates the interleaved shares
+    stages::SstOptions sst;   // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
+    // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
+    // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.
+    bool half_resolution_gi = false;
     // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
     // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
     bool vpls_only = false;
@@ -77,6 +97,10 @@ struct RenderedImage {
     uint32_t dropped_pixels = 0;     // pixels where a non-finite VPL contribution was left out
     std::vector<PassTiming> timings; // GPU time per pass
     double exact_gi_wall_ms = 0.0;   // GiMethod::exact: the gather's host wall clock (ExactGiResult::wall_ms)
+    stages::GiCounts gi_counts;      // sst, rtslc, hybrid: traversals, levels, dropped samples, mock cuts
+    stages::UpsampleCounts upsample_counts;  // half_resolution_gi: pixels no similar sample reached
+    uint32_t gi_width = 0;           // the size indirect light was computed at
+    uint32_t gi_height = 0;
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
 };
 
@@ -87,8 +111,8 @@ class Renderer {
     // triangle), naming the scene: its image could only be black.
     Renderer(Context& context, const scene::Scene& scene);
 
-    // Throws vplkit::Error for a zero size, a bad exposure, bad BRSM options, or BRSM asked of a
-    // scene without a punctual light.
+    // Throws vplkit::Error for a zero size, a bad exposure, bad BRSM or sampling options, BRSM
+    // asked of a scene without a punctual light, or a sampling dispatch the driver cut short.
     RenderedImage render(const scene::Camera& camera, const RenderSettings& settings);
 
     double bvh_build_ms() const { return bvh_build_ms_; }
@@ -104,6 +128,10 @@ class Renderer {
     // VPLs by settings.vpl_source for the frame whose G-buffer is `gbuffer`; timings and notes into `out`.
     GeneratedVpls generate_vpls(const stages::CameraView& view, stages::GbufferImages& gbuffer,
                                 const RenderSettings& settings, RenderedImage& out);
+    // Indirect light from `vpls` by settings.method into `indirect` (full size), at full or half
+    // resolution (renderer_gi.cpp).
+    void render_indirect(const stages::CameraView& view, stages::GbufferImages& gbuffer, const GeneratedVpls& vpls,
+                         const RenderSettings& settings, Image& indirect, RenderedImage& out);
 
     Context& context_;
     GpuScene scene_;

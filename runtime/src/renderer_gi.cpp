@@ -1,0 +1,151 @@
+// Renderer::render_indirect: from the frame's VPLs to its indirect light by the chosen method,
+// at full resolution or on a half-resolution G-buffer with joint bilateral upsampling.
+
+#include "vplkit/renderer.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/stages/exact_gi.hpp"
+#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/hybrid_gi.hpp"
+#include "vplkit/stages/rtslc.hpp"
+#include "vplkit/stages/sst_gi.hpp"
+#include "vplkit/stages/vpl_trees.hpp"
+
+#include <optional>
+#include <string>
+
+namespace vplkit {
+
+// Geometric similarity's distance for cut blending and interleaved reconstruction (seed 000
+// eq. 5.3 gives no value), as a share of the scene scale: blending compares a pixel with block
+// representatives up to ~1.5 blocks away, 10-20 pixels at 8 x 8 blocks, which on a wall seen at a
+// 320-pixel width in Sponza is ~1 unit of its ~30; the normal test catches creases either way.
+constexpr float kGiSimilarityDistanceFraction = 0.1f;
+
+const char* gi_method_name(GiMethod method) {
+    switch (method) {
+        case GiMethod::none: return "direct";
+        case GiMethod::exact: return "exact";
+        case GiMethod::sst: return "sst";
+        case GiMethod::rtslc: return "rtslc";
+        case GiMethod::hybrid: return "hybrid";
+    }
+    return "?";
+}
+
+namespace {
+
+void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) { all.insert(all.end(), more.begin(), more.end()); }
+
+}  // namespace
+
+void Renderer::render_indirect(const stages::CameraView& view, stages::GbufferImages& gbuffer, const GeneratedVpls& vpls,
+                               const RenderSettings& settings, Image& indirect, RenderedImage& out) {
+    const bool half = settings.half_resolution_gi;
+    const uint32_t w = half ? stages::half_resolution(gbuffer.width()) : gbuffer.width();
+    const uint32_t h = half ? stages::half_resolution(gbuffer.height()) : gbuffer.height();
+    out.gi_width = w;
+    out.gi_height = h;
+    if (vpls.count == 0) {
+        out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
+        return;
+    }
+    const float similarity_distance = kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale;
+    // Validate before any work, so a bad option costs no tree build.
+    stages::SstGiOptions sst_options{settings.samples_per_pixel, settings.seed, true};
+    stages::RtslcOptions rtslc_options;
+    rtslc_options.samples_per_pixel = settings.samples_per_pixel;
+    rtslc_options.block_size = settings.block_size;
+    rtslc_options.interleave = settings.interleave;
+    rtslc_options.frame = settings.frame;
+    rtslc_options.seed = settings.seed;
+    rtslc_options.similarity_max_distance = similarity_distance;
+    stages::HybridOptions hybrid_options;
+    hybrid_options.samples_per_pixel = settings.samples_per_pixel;
+    hybrid_options.block_size = settings.block_size;
+    hybrid_options.seed = settings.seed;
+    hybrid_options.similarity_max_distance = similarity_distance;
+    if (settings.method == GiMethod::sst) stages::validate(sst_options);
+    if (settings.method == GiMethod::rtslc) stages::validate(rtslc_options);
+    if (settings.method == GiMethod::hybrid) stages::validate(hybrid_options);
+
+    // The G-buffer and target the method works on.
+    std::optional<stages::GbufferImages> half_gbuffer;
+    std::optional<Image> half_indirect;
+    if (half) {
+        half_gbuffer = stages::GbufferImages::create(context_, w, h);
+        half_indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
+                                      "half indirect radiance");
+        PassList passes("gi downsample");
+        stages::add_gbuffer_downsample_pass(context_, passes, gbuffer, *half_gbuffer);
+        passes.run(context_);
+        append(out.timings, passes.timings());
+    }
+    stages::GbufferImages& gi_gbuffer = half ? *half_gbuffer : gbuffer;
+    Image& gi_target = half ? *half_indirect : indirect;
+
+    if (settings.method == GiMethod::exact) {
+        stages::ExactGiOptions options;
+        options.progress = settings.progress;
+        const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh_, vpls.vpls, vpls.count, view.position,
+                                                    gi_target, options);
+        out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
+        out.exact_gi_wall_ms = result.wall_ms;
+        out.dropped_pixels = result.counts.dropped_pixels;
+    } else {
+        stages::VplTreeOptions tree_options;
+        tree_options.sst = settings.sst;
+        auto trees = stages::VplTrees::create(context_, vpls.count, tree_options);
+        auto counters = stages::create_gi_counters(context_);
+        std::optional<stages::RtslcScratch> rtslc_scratch;
+        std::optional<stages::HybridCuts> hybrid_cuts;
+        PassList passes(gi_method_name(settings.method));
+        trees.add_build_passes(passes, vpls.vpls);
+        switch (settings.method) {
+            case GiMethod::sst:
+                stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
+                                          counters, sst_options);
+                break;
+            case GiMethod::rtslc:
+                rtslc_scratch = stages::RtslcScratch::create(context_, w, h, rtslc_options);
+                stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target, counters,
+                                         rtslc_options, *rtslc_scratch);
+                break;
+            case GiMethod::hybrid:
+                hybrid_cuts = stages::HybridCuts::create(context_, w, h, hybrid_options);
+                stages::add_hybrid_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
+                                             counters, *hybrid_cuts, hybrid_options);
+                break;
+            default: throw Error("render: no indirect-light method to run");
+        }
+        passes.run(context_);
+        append(out.timings, passes.timings());
+        out.gi_counts = stages::read_gi_counters(counters);
+        out.dropped_pixels = out.gi_counts.dropped_pixels;
+        if (out.gi_counts.cut_short > 0) {
+            throw Error(std::string(gi_method_name(settings.method)) + ": the driver ended " +
+                        std::to_string(out.gi_counts.cut_short) +
+                        " invocations early (a loop iteration limit): the image would be wrong; use fewer samples per pixel");
+        }
+        if (out.gi_counts.dropped_samples > 0) {
+            out.notes.push_back(std::to_string(out.gi_counts.dropped_samples) + " samples in " +
+                                std::to_string(out.gi_counts.dropped_pixels) +
+                                " pixels were not finite and were left out of the indirect light");
+        }
+    }
+
+    if (half) {
+        auto counters = stages::create_upsample_counters(context_);
+        PassList passes("gi upsample");
+        stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, *half_indirect, indirect, counters,
+                                  stages::upsample_options_for_scene(gpu_bvh_.scene_scale));
+        passes.run(context_);
+        append(out.timings, passes.timings());
+        out.upsample_counts = stages::read_upsample_counters(counters);
+    }
+}
+
+}  // namespace vplkit
