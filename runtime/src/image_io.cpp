@@ -6,11 +6,24 @@
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
 
+// The runtime's one copy of the decoder, private for the same reason, and PNG only: read_png
+// promises to refuse anything else, and the other formats' decoders would be dead code.
+#define STB_IMAGE_STATIC
+#define STBI_ONLY_PNG
+#define STBI_NO_STDIO  // read_png opens the file itself, to name the failure
+#define STB_IMAGE_IMPLEMENTATION
+#include <stb/stb_image.h>
+
+#include <algorithm>
+#include <array>
 #include <bit>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
+#include <memory>
 #include <string>
 #include <unistd.h>
 
@@ -101,6 +114,40 @@ PfmImage read_pfm(const std::filesystem::path& path) {
             }
         }
     }
+    return image;
+}
+
+PngImage read_png(const std::filesystem::path& path) {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(path, ignored)) {
+        throw Error("cannot open " + path.string() + ": it is a folder");
+    }
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        throw Error("cannot open " + path.string());
+    }
+    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) {
+        throw Error("cannot read " + path.string());
+    }
+    static constexpr std::array<unsigned char, 8> kSignature = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (bytes.size() < kSignature.size() || !std::equal(kSignature.begin(), kSignature.end(), bytes.begin())) {
+        throw Error(path.string() + " is not a PNG file (no PNG signature)");
+    }
+    if (bytes.size() > size_t(INT32_MAX)) {
+        throw Error(path.string() + " is too large to read (" + std::to_string(bytes.size()) + " bytes)");
+    }
+    int width = 0, height = 0, channels_in_file = 0;
+    const std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+        stbi_load_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels_in_file, 4), stbi_image_free);
+    if (!pixels || width <= 0 || height <= 0) {
+        const char* reason = stbi_failure_reason();
+        throw Error(path.string() + " is not a readable PNG file (" + (reason ? reason : "decoder failed") + ")");
+    }
+    PngImage image;
+    image.width = uint32_t(width);
+    image.height = uint32_t(height);
+    image.rgba.assign(pixels.get(), pixels.get() + size_t(image.width) * image.height * 4);
     return image;
 }
 

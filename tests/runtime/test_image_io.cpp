@@ -5,15 +5,13 @@
 
 #include <doctest/doctest.h>
 
-#define STB_IMAGE_STATIC
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb/stb_image.h>
-
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <unistd.h>
@@ -78,21 +76,47 @@ TEST_CASE("PFM: truncated and non-PFM files are refused by name") {
     CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "text.pfm"), doctest::Contains("text.pfm is not a PFM file"), vplkit::Error);
 }
 
-TEST_CASE("PNG round trip is exact") {
+TEST_CASE("PNG round trip is exact: read_png gives back the bytes write_png was given") {
     const uint32_t width = 7, height = 4;
     std::vector<uint8_t> rgba(width * height * 4);
     for (size_t i = 0; i < rgba.size(); ++i) {
-        rgba[i] = uint8_t(i * 37 + 11);
+        rgba[i] = uint8_t(i * 37 + 11);  // every channel, alpha included, takes many values
     }
     const fs::path path = temp_dir() / "roundtrip.png";
     vplkit::write_png(path, width, height, rgba);
-    int w = 0, h = 0, channels = 0;
-    stbi_uc* pixels = stbi_load(path.c_str(), &w, &h, &channels, 4);
-    REQUIRE(pixels != nullptr);
-    CHECK(w == int(width));
-    CHECK(h == int(height));
-    CHECK(std::vector<uint8_t>(pixels, pixels + rgba.size()) == rgba);
-    stbi_image_free(pixels);
+    const vplkit::PngImage back = vplkit::read_png(path);
+    CHECK(back.width == width);
+    CHECK(back.height == height);
+    CHECK(back.rgba == rgba);  // top row first, alpha as written
+}
+
+TEST_CASE("PNG: missing, non-PNG and truncated files are refused by name") {
+    const fs::path dir = temp_dir();
+    const std::string missing = "cannot open " + (dir / "nosuch.png").string();
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "nosuch.png"), doctest::Contains(missing.c_str()), vplkit::Error);
+    {
+        std::ofstream out(dir / "text.png");
+        out << "hello";
+    }
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "text.png"), doctest::Contains("text.png is not a PNG file"), vplkit::Error);
+    const std::vector<float> rgb(2 * 2 * 3, 0.5f);
+    vplkit::write_pfm(dir / "image.pfm", 2, 2, rgb);  // a real image, just not a PNG
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "image.pfm"), doctest::Contains("image.pfm is not a PNG file"), vplkit::Error);
+    const std::string folder = "cannot open " + dir.string() + ": it is a folder";
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir), doctest::Contains(folder.c_str()), vplkit::Error);
+
+    // The right signature, then the file stops half way: the decoder's failure, named.
+    const std::vector<uint8_t> rgba(16 * 16 * 4, 200);
+    vplkit::write_png(dir / "whole.png", 16, 16, rgba);
+    std::ifstream in(dir / "whole.png", std::ios::binary);
+    std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    REQUIRE(bytes.size() > 40);
+    {
+        std::ofstream out(dir / "short.png", std::ios::binary);
+        out.write(bytes.data(), std::streamsize(bytes.size() / 2));
+    }
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "short.png"), doctest::Contains("short.png is not a readable PNG file"),
+                         vplkit::Error);
 }
 
 TEST_CASE("image files: a folder that does not exist gives an error and no file") {
