@@ -1,10 +1,15 @@
 #!/usr/bin/env bash
 # Quick start (a): install what is missing, build, run the main job: render the default in-repo
-# scene, write out/vplkit.png, print the device used and the GPU time of every stage.
+# scene with the flagship pipeline (BRSM VPLs, hybrid sampling), write out/vplkit.png, print the
+# device used and the GPU time of every stage. Arguments replace the flagship options and go to
+# `vplkit render` as they are (e.g. scripts/run.sh --scene sponza-sun --method rtslc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
 cmake --preset release
 cmake --build --preset release -j2
 mkdir -p out
+if [[ $# -eq 0 ]]; then
+  set -- --method hybrid --vpl-source brsm
+fi
 ./build/release/samples/vplkit render --out out/vplkit.png "$@"

@@ -1,0 +1,46 @@
+#!/usr/bin/env bash
+# The sampling methods against the exact ground truth on one standard set-up, at a few sample
+# budgets: RMSE and SSIM of the tonemapped frame (sRGB / 255, as the thesis compares images) and
+# the relative RMSE of the linear indirect light, GI time (GPU timestamps of the sampling passes;
+# tree build separately) and tree levels per traversal. Writes OUT/SCENE.csv and the frames.
+#   scripts/gi_methods.sh SCENE [OUT] [WIDTHxHEIGHT] [SPP list] [extra render options...]
+# e.g. scripts/gi_methods.sh sponza-sun out/gi 320x180 "4 8 16 32" --vpl-source brsm --vpls 4096
+# The exact frame is rendered once per scene and size (the slow part) and reused if present.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scene=$1
+out=${2:-out/gi}
+size=${3:-320x180}
+spps=${4:-"4 8 16 32"}
+shift $(( $# < 4 ? $# : 4 ))
+extra=("$@")
+width=${size%x*}
+height=${size#*x}
+vplkit=build/release/samples/vplkit
+mkdir -p "$out"
+base="$out/$scene-${width}x$height"
+if [[ ! -f "$base-exact.png" ]]; then
+  echo "[$scene] exact ground truth (every VPL at every pixel; minutes on lavapipe)" >&2
+  "$vplkit" render --scene "$scene" --method exact --width "$width" --height "$height" "${extra[@]}" \
+    --out "$base-exact.png" --out-indirect "$base-exact.pfm" > "$base-exact.log"
+fi
+csv="$out/$scene-${width}x$height.csv"
+echo "scene,method,spp,gi_ms,tree_ms,levels_per_traversal,mock_cut_pixels,rmse,ssim,indirect_relative_rmse" > "$csv"
+for method in sst rtslc hybrid; do
+  for spp in $spps; do
+    name="$base-$method-$spp"
+    echo "[$scene] $method, $spp spp" >&2
+    "$vplkit" render --scene "$scene" --method "$method" --spp "$spp" --width "$width" --height "$height" "${extra[@]}" \
+      --out "$name.png" --out-indirect "$name.pfm" > "$name.log"
+    gi_ms=$(awk '/^  (sst gi|rtslc cuts|rtslc gi|hybrid cuts|hybrid gi)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
+    tree_ms=$(awk '/^  (vpl bounds|morton keys|sort|gather leaves|light tree|sst clear|build sst)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
+    levels=$(sed -n 's/.* \([0-9.]*\) tree levels per traversal.*/\1/p' "$name.log")
+    mock=$(sed -n 's/.* \([0-9]*\) mock-cut pixels.*/\1/p' "$name.log")
+    "$vplkit" compare "$name.png" "$base-exact.png" --diff "$name-diff.png" > "$name-compare.txt"
+    rmse=$(awk '/^rmse:/ { print $2 }' "$name-compare.txt")
+    ssim=$(awk '/^ssim:/ { print $2 }' "$name-compare.txt")
+    rel=$("$vplkit" compare "$name.pfm" "$base-exact.pfm" | awk '/^relative rmse:/ { print $3 }')
+    echo "$scene,$method,$spp,$gi_ms,$tree_ms,$levels,${mock:-},$rmse,$ssim,$rel" >> "$csv"
+  done
+done
+column -s, -t "$csv"
