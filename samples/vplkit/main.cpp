@@ -24,7 +24,7 @@ const Command kCommands[] = {
      vplkit::cli::run_render},
     {"bench", "GPU timings of the kit's stages (sort: VPL keys + sort; tree: keys to both light trees)", vplkit::cli::kBenchUsage,
      vplkit::cli::run_bench},
-    {"compare", "error of a PFM image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
+    {"compare", "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
      vplkit::cli::kCompareUsage, vplkit::cli::run_compare},
 };
 
