@@ -102,6 +102,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(const stages::CameraView& view, 
 }
 
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& settings) {
+    validate_gi_settings(settings);
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const uint32_t w = settings.width, h = settings.height;
     auto gbuffer = stages::GbufferImages::create(context_, w, h);

@@ -14,6 +14,7 @@
 #include "vplkit/stages/sst_gi.hpp"
 #include "vplkit/stages/vpl_trees.hpp"
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -38,9 +39,43 @@ const char* gi_method_name(GiMethod method) {
 
 namespace {
 
+struct GiStageOptions {
+    stages::SstGiOptions sst;
+    stages::RtslcOptions rtslc;
+    stages::HybridOptions hybrid;
+};
+
+// The sampling stages' options from the frame's settings; similarity_distance in world units.
+GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity_distance) {
+    GiStageOptions o;
+    o.sst = {settings.samples_per_pixel, settings.seed, true};
+    o.rtslc.samples_per_pixel = settings.samples_per_pixel;
+    o.rtslc.block_size = settings.block_size;
+    o.rtslc.interleave = settings.interleave;
+    o.rtslc.frame = settings.frame;
+    o.rtslc.seed = settings.seed;
+    o.rtslc.similarity_max_distance = similarity_distance;
+    o.hybrid.samples_per_pixel = settings.samples_per_pixel;
+    o.hybrid.block_size = settings.block_size;
+    o.hybrid.seed = settings.seed;
+    o.hybrid.similarity_max_distance = similarity_distance;
+    return o;
+}
+
 void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) { all.insert(all.end(), more.begin(), more.end()); }
 
 }  // namespace
+
+void validate_gi_settings(const RenderSettings& settings) {
+    // Any positive distance: the real one depends on the scene, and every positive one is valid.
+    const GiStageOptions o = gi_stage_options(settings, 1.0f);
+    if (settings.method == GiMethod::sst) stages::validate(o.sst);
+    if (settings.method == GiMethod::rtslc) stages::validate(o.rtslc);
+    if (settings.method == GiMethod::hybrid) stages::validate(o.hybrid);
+    if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) || settings.sst.sigma_max < 0.0f) {
+        throw Error("render: nu_min must be finite and sigma_max finite and >= 0");
+    }
+}
 
 void Renderer::render_indirect(const stages::CameraView& view, stages::GbufferImages& gbuffer, const GeneratedVpls& vpls,
                                const RenderSettings& settings, Image& indirect, RenderedImage& out) {
@@ -53,24 +88,10 @@ void Renderer::render_indirect(const stages::CameraView& view, stages::GbufferIm
         out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
         return;
     }
-    const float similarity_distance = kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale;
-    // Validate before any work, so a bad option costs no tree build.
-    stages::SstGiOptions sst_options{settings.samples_per_pixel, settings.seed, true};
-    stages::RtslcOptions rtslc_options;
-    rtslc_options.samples_per_pixel = settings.samples_per_pixel;
-    rtslc_options.block_size = settings.block_size;
-    rtslc_options.interleave = settings.interleave;
-    rtslc_options.frame = settings.frame;
-    rtslc_options.seed = settings.seed;
-    rtslc_options.similarity_max_distance = similarity_distance;
-    stages::HybridOptions hybrid_options;
-    hybrid_options.samples_per_pixel = settings.samples_per_pixel;
-    hybrid_options.block_size = settings.block_size;
-    hybrid_options.seed = settings.seed;
-    hybrid_options.similarity_max_distance = similarity_distance;
-    if (settings.method == GiMethod::sst) stages::validate(sst_options);
-    if (settings.method == GiMethod::rtslc) stages::validate(rtslc_options);
-    if (settings.method == GiMethod::hybrid) stages::validate(hybrid_options);
+    const GiStageOptions options = gi_stage_options(settings, kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
+    const stages::SstGiOptions& sst_options = options.sst;
+    const stages::RtslcOptions& rtslc_options = options.rtslc;
+    const stages::HybridOptions& hybrid_options = options.hybrid;
 
     // The G-buffer and target the method works on.
     std::optional<stages::GbufferImages> half_gbuffer;

@@ -13,6 +13,7 @@
 #include "vplkit/scene_setups.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -33,7 +34,7 @@ const char* const kRenderUsage =
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
-    "                     [--seed S] [--emissive-samples N]\n"
+    "                     [--seed S] [--emissive-samples N] [--frames F]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation]\n"
     "\n"
@@ -80,6 +81,8 @@ const char* const kRenderUsage =
     "  --exposure E     linear exposure before the tone curve (default 1)\n"
     "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
     "  --emissive-samples N  area-light samples per pixel for emissive triangles (default 16)\n"
+    "  --frames F       render the frame F times and print each stage's median time over frames\n"
+    "                   2..F (the first pays for shader compiles); the image is the same each time\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
     "  --validation     run with the Vulkan validation layer on\n";
 
@@ -138,6 +141,23 @@ std::vector<std::pair<std::string, double>> by_stage(const std::vector<PassTimin
         if (passes[name] > 1) name += " (" + std::to_string(passes[name]) + " passes)";
     }
     return stages;
+}
+
+// Each stage's median over frames (the stages of the first frame, in its order).
+std::vector<std::pair<std::string, double>> median_stages(const std::vector<std::vector<std::pair<std::string, double>>>& frames) {
+    std::vector<std::pair<std::string, double>> out;
+    for (const auto& [name, ms] : frames.front()) {
+        std::vector<double> values;
+        for (const auto& frame : frames) {
+            for (const auto& [n, v] : frame) {
+                if (n == name) values.push_back(v);
+            }
+        }
+        std::sort(values.begin(), values.end());
+        const size_t n = values.size();
+        out.push_back({name, n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2])});
+    }
+    return out;
 }
 
 }  // namespace
@@ -239,6 +259,8 @@ int run_render(Args& args) {
     if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");
+    uint32_t frames = 1;
+    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
     if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
         throw UsageError("--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
                          "or --vpls-only (direct light uses no VPLs)");
@@ -247,6 +269,13 @@ int run_render(Args& args) {
         throw UsageError("--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
     }
     args.finish();
+    // A sampling option the method refuses (e.g. an interleave that does not divide the block)
+    // is a command-line mistake, found before any work.
+    try {
+        validate_gi_settings(settings);
+    } catch (const Error& e) {
+        throw UsageError(e.what());
+    }
     check_output("--out", out, ".png");
     if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
     if (out_direct) check_output("--out-direct", *out_direct, ".pfm");
@@ -296,7 +325,15 @@ int run_render(Args& args) {
         }
         std::fflush(stderr);
     };
-    const RenderedImage image = renderer.render(scene.camera(), settings);
+    // Several frames: the first pays for lavapipe's shader compiles at first dispatch (and a
+    // GPU's warm-up); the times printed are each stage's median over the frames after it.
+    std::vector<std::vector<std::pair<std::string, double>>> frame_stages;
+    RenderedImage image;
+    for (uint32_t frame = 0; frame < frames; ++frame) {
+        if (frames > 1) std::fprintf(stderr, "[render] frame %u/%u\n", frame + 1, frames);
+        image = renderer.render(scene.camera(), settings);
+        if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
+    }
     for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
     const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
     if (made_vpls && brsm) {
@@ -330,9 +367,13 @@ int run_render(Args& args) {
                     " pixels came out NaN or infinite; no image written (this is a bug: please report it)");
     }
 
-    std::printf("%ux%u, GPU time per stage:\n", image.width, image.height);
+    if (frames > 1) {
+        std::printf("%ux%u, GPU time per stage (median of frames 2..%u):\n", image.width, image.height, frames);
+    } else {
+        std::printf("%ux%u, GPU time per stage:\n", image.width, image.height);
+    }
     double total = 0.0;
-    for (const auto& [name, ms] : by_stage(image.timings)) {
+    for (const auto& [name, ms] : median_stages(frame_stages)) {
         std::printf("  %-30s %9.3f ms\n", name.c_str(), ms);
         total += ms;
     }

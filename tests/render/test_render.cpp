@@ -673,4 +673,8 @@ TEST_CASE("render with sampled indirect light when no VPL is placed: a note and 
     CHECK(image.notes[1].find("no VPLs were placed") != std::string::npos);
     CHECK(image.non_finite_pixels == 0);
     CHECK(std::count_if(image.indirect.begin(), image.indirect.end(), [](float v) { return v != 0.0f; }) == 0);
+    // A bad sampling option is refused although no VPL would ever reach the stage that checks it.
+    auto bad = sampled_settings(vplkit::GiMethod::rtslc);
+    bad.interleave = 3;
+    CHECK_THROWS_WITH_AS(renderer.render(scene.camera(), bad), doctest::Contains("interleave 3"), vplkit::Error);
 }

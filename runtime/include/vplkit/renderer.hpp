@@ -104,6 +104,11 @@ struct RenderedImage {
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
 };
 
+// Throws vplkit::Error naming the first bad sampling option of `settings` (samples per pixel,
+// block size, interleave, SST thresholds) for its method; render() checks them first too, so a
+// bad option fails before any work, whether or not the frame gets VPLs.
+void validate_gi_settings(const RenderSettings& settings);
+
 class Renderer {
  public:
     // `scene` must outlive the renderer (the VPL tracer reads its lights and materials).
