@@ -23,12 +23,12 @@
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
 #include "vplkit_test/context.hpp"
+#include "synthetic_scene.hpp"
 #include "vpl_reference.hpp"
 
 #include <doctest/doctest.h>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <array>
@@ -41,33 +41,19 @@
 namespace {
 
 namespace ref = vplkit::reference;
+using vplkit::test::d3;
+using vplkit::test::half_round;
+using vplkit::test::Pixel;
+using vplkit::test::TestVpl;
 using Texel = std::array<float, 4>;
-using HalfTexel = std::array<uint16_t, 4>;
-
-HalfTexel to_half(const Texel& t) {
-    return {glm::packHalf1x16(t[0]), glm::packHalf1x16(t[1]), glm::packHalf1x16(t[2]), glm::packHalf1x16(t[3])};
-}
-float half_round(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
-
-struct Pixel {
-    bool covered = false;
-    glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f}, geometric{0.0f, 1.0f, 0.0f}, albedo{0.0f};
-    float roughness = 0.5f, metallic = 0.0f;
-};
-
-struct Vpl {
-    glm::vec3 position, normal, flux;
-};
 
 struct Setup {
     uint32_t width = 0, height = 0;
     std::vector<Pixel> pixels;
     std::vector<glm::vec3> triangles;  // three vertices each
-    std::vector<Vpl> vpls;
+    std::vector<TestVpl> vpls;
     glm::vec3 camera{0.0f, 3.0f, 4.0f};
 };
-
-ref::Vec3 d3(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
 // Floor [-3s, 3s]^2 at y = 0, a double-sided quad at y = s over part of it; pixels on the floor.
 Setup floor_setup(float s, uint32_t width = 32, uint32_t height = 24) {
@@ -100,11 +86,11 @@ Setup floor_setup(float s, uint32_t width = 32, uint32_t height = 24) {
 }
 
 // ~50 VPLs at scale s with flux ~ flux_scale (radiance is scale-invariant for flux ~ s^2).
-std::vector<Vpl> floor_vpls(float s, float flux_scale) {
+std::vector<TestVpl> floor_vpls(float s, float flux_scale) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     auto colour = [&] { return glm::vec3(0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng)) * flux_scale; };
-    std::vector<Vpl> vpls;
+    std::vector<TestVpl> vpls;
     for (int i = 0; i < 20; ++i) {  // ceiling, facing down (slightly tilted)
         vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)) * s,
                         glm::normalize(glm::vec3(0.3f * (unit(rng) - 0.5f), -1.0f, 0.3f * (unit(rng) - 0.5f))), colour()});
@@ -136,34 +122,8 @@ struct GpuResult {
 // via_render: render_exact_gi (one submission per chunk); otherwise add_exact_gi_passes.
 GpuResult run_gpu(const Setup& setup, const vplkit::stages::ExactGiOptions& options, bool via_render) {
     vplkit::Context& ctx = vplkit::test::context();
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, setup.width, setup.height);
-    std::vector<Texel> position, normal, geometric;
-    std::vector<HalfTexel> albedo, emission;
-    for (const Pixel& p : setup.pixels) {
-        position.push_back({p.position.x, p.position.y, p.position.z, p.covered ? 1.0f : 0.0f});
-        normal.push_back({p.normal.x, p.normal.y, p.normal.z, p.roughness});
-        geometric.push_back({p.geometric.x, p.geometric.y, p.geometric.z, p.metallic});
-        albedo.push_back(to_half({p.albedo.x, p.albedo.y, p.albedo.z, 1.0f}));
-        emission.push_back(to_half({0, 0, 0, 0}));
-    }
-    gbuffer.position.upload(position);
-    gbuffer.normal.upload(normal);
-    gbuffer.geometric_normal.upload(geometric);
-    gbuffer.albedo.upload(albedo);
-    gbuffer.emission.upload(emission);
-    const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(setup.triangles));
-    std::vector<vplkit::shaders::Vpl> gpu_vpls;
-    for (const Vpl& v : setup.vpls) {
-        vplkit::shaders::Vpl g{};
-        g.position = {v.position.x, v.position.y, v.position.z};
-        g.normal = {v.normal.x, v.normal.y, v.normal.z};
-        g.flux = {v.flux.x, v.flux.y, v.flux.z};
-        gpu_vpls.push_back(g);
-    }
-    if (gpu_vpls.empty()) gpu_vpls.push_back({});
-    auto vpls = vplkit::Buffer::create(ctx, gpu_vpls.size() * sizeof(vplkit::shaders::Vpl),
-                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "vpls");
-    vpls.upload(gpu_vpls);
+    auto [gbuffer, bvh, vpls] =
+        vplkit::test::upload(ctx, setup.width, setup.height, setup.pixels, setup.triangles, setup.vpls);
     auto indirect = vplkit::Image::create(ctx, setup.width, setup.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                           VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
     GpuResult out;
@@ -187,27 +147,17 @@ GpuResult run_gpu(const Setup& setup, const vplkit::stages::ExactGiOptions& opti
     return out;
 }
 
-std::vector<ref::Triangle> ref_triangles(const Setup& setup) {
-    std::vector<ref::Triangle> out;
-    for (size_t i = 0; i + 2 < setup.triangles.size(); i += 3) {
-        out.push_back({d3(setup.triangles[i]), d3(setup.triangles[i + 1]), d3(setup.triangles[i + 2])});
-    }
-    return out;
-}
-
 std::vector<ref::ExactSum> run_reference(const Setup& setup) {
-    const auto triangles = ref_triangles(setup);
+    const auto triangles = vplkit::test::reference_triangles(setup.triangles);
     const double scale = ref::scene_scale(triangles);
-    std::vector<ref::VplDesc> vpls;
-    for (const Vpl& v : setup.vpls) vpls.push_back({d3(v.position), d3(v.normal), d3(v.flux)});
+    const auto vpls = vplkit::test::reference_vpls(setup.vpls);
     std::vector<ref::ExactSum> out;
     for (const Pixel& p : setup.pixels) {
         if (!p.covered) {
             out.push_back({});
             continue;
         }
-        ref::ShadingPoint x{d3(p.position), d3(p.normal), d3(p.geometric), d3(p.albedo), p.roughness, p.metallic};
-        out.push_back(ref::exact_indirect(x, d3(setup.camera), vpls, triangles, scale));
+        out.push_back(ref::exact_indirect(vplkit::test::shading_point(p), d3(setup.camera), vpls, triangles, scale));
     }
     return out;
 }
@@ -399,7 +349,7 @@ TEST_CASE("exact gi: HDR flux from 1e-6 to 1e6") {
     Setup setup = standard_setup();
     std::mt19937 rng(9);
     std::uniform_real_distribution<float> decades(-6.0f, 6.0f);
-    for (Vpl& v : setup.vpls) v.flux *= std::pow(10.0f, decades(rng));
+    for (TestVpl& v : setup.vpls) v.flux *= std::pow(10.0f, decades(rng));
     compare(setup, run_gpu(setup, {}, false), run_reference(setup));
 }
 

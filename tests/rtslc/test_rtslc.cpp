@@ -16,7 +16,6 @@
 // - dispatch splitting and seeds: any slots_per_dispatch gives the same image; bad options.
 
 #include "vplkit/buffer.hpp"
-#include "vplkit/bvh.hpp"
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -29,11 +28,11 @@
 #include "vplkit/stages/vpl_trees.hpp"
 #include "vplkit_test/context.hpp"
 #include "rtslc_reference.hpp"
+#include "synthetic_scene.hpp"
 
 #include <doctest/doctest.h>
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/packing.hpp>
 
 #include <algorithm>
 #include <array>
@@ -44,34 +43,26 @@
 #include <random>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace {
 
 namespace ref = vplkit::reference;
 namespace stages = vplkit::stages;
+using vplkit::test::d3;
+using vplkit::test::half_round;
+using vplkit::test::Pixel;
+using vplkit::test::shading_point;
+using vplkit::test::TestVpl;
 using Texel = std::array<float, 4>;
-using HalfTexel = std::array<uint16_t, 4>;
-
-float half_round(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
-ref::Vec3 d3(glm::vec3 v) { return {v.x, v.y, v.z}; }
-
-struct Pixel {
-    bool covered = false;
-    glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f}, geometric{0.0f, 1.0f, 0.0f}, albedo{0.0f};
-    float roughness = 0.5f, metallic = 0.0f;
-};
-
-struct Vpl {
-    glm::vec3 position, normal, flux;
-};
 
 struct Setup {
     uint32_t width = 16, height = 16;
     float scale = 1.0f;
     std::vector<Pixel> pixels;
     std::vector<glm::vec3> triangles;  // three vertices each
-    std::vector<Vpl> vpls;
+    std::vector<TestVpl> vpls;
     glm::vec3 camera{0.0f, 3.0f, 4.0f};
 };
 
@@ -104,13 +95,13 @@ Setup floor_setup(float s = 1.0f, uint32_t width = 16, uint32_t height = 16) {
 // `count` VPLs at scale s with flux ~ flux_scale (radiance is scale-invariant for flux ~ s^2):
 // cycling through ceiling, wall (the first ones grazing), below the floor, facing away, free,
 // and black (zero flux).
-std::vector<Vpl> floor_vpls(uint32_t count, float s, float flux_scale, uint32_t seed = 11) {
+std::vector<TestVpl> floor_vpls(uint32_t count, float s, float flux_scale, uint32_t seed = 11) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     auto colour = [&] {
         return glm::vec3(0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng)) * flux_scale;
     };
-    std::vector<Vpl> vpls;
+    std::vector<TestVpl> vpls;
     for (uint32_t i = 0; i < count; ++i) {
         switch (i % 10) {
         case 0: case 1: case 2: case 3:  // ceiling, facing down
@@ -163,34 +154,10 @@ struct Gpu {
     std::optional<stages::RtslcScratch> scratch;
 
     explicit Gpu(const Setup& s) : setup(s) {
-        gbuffer = stages::GbufferImages::create(ctx, setup.width, setup.height);
-        std::vector<Texel> position, normal, geometric;
-        std::vector<HalfTexel> albedo, emission;
-        for (const Pixel& p : setup.pixels) {
-            position.push_back({p.position.x, p.position.y, p.position.z, p.covered ? 1.0f : 0.0f});
-            normal.push_back({p.normal.x, p.normal.y, p.normal.z, p.roughness});
-            geometric.push_back({p.geometric.x, p.geometric.y, p.geometric.z, p.metallic});
-            albedo.push_back({glm::packHalf1x16(p.albedo.x), glm::packHalf1x16(p.albedo.y), glm::packHalf1x16(p.albedo.z),
-                              glm::packHalf1x16(1.0f)});
-            emission.push_back({0, 0, 0, 0});
-        }
-        gbuffer.position.upload(position);
-        gbuffer.normal.upload(normal);
-        gbuffer.geometric_normal.upload(geometric);
-        gbuffer.albedo.upload(albedo);
-        gbuffer.emission.upload(emission);
-        bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(setup.triangles));
-        std::vector<vplkit::shaders::Vpl> gpu_vpls;
-        for (const Vpl& v : setup.vpls) {
-            vplkit::shaders::Vpl g{};
-            g.position = {v.position.x, v.position.y, v.position.z};
-            g.normal = {v.normal.x, v.normal.y, v.normal.z};
-            g.flux = {v.flux.x, v.flux.y, v.flux.z};
-            gpu_vpls.push_back(g);
-        }
-        vpls = vplkit::Buffer::create(ctx, gpu_vpls.size() * sizeof(vplkit::shaders::Vpl),
-                                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "vpls");
-        vpls.upload(gpu_vpls);
+        auto scene = vplkit::test::upload(ctx, setup.width, setup.height, setup.pixels, setup.triangles, setup.vpls);
+        gbuffer = std::move(scene.gbuffer);
+        bvh = std::move(scene.bvh);
+        vpls = std::move(scene.vpls);
         trees = stages::VplTrees::create(ctx, uint32_t(setup.vpls.size()));
         vplkit::PassList build("rtslc test trees");
         trees.add_build_passes(build, vpls);
@@ -238,26 +205,12 @@ struct Gpu {
 };
 
 double scene_min_distance(const Setup& setup) {
-    std::vector<ref::Triangle> triangles;
-    for (size_t i = 0; i + 2 < setup.triangles.size(); i += 3) {
-        triangles.push_back({d3(setup.triangles[i]), d3(setup.triangles[i + 1]), d3(setup.triangles[i + 2])});
-    }
-    return ref::kVplMinDistanceFraction * ref::scene_scale(triangles);
-}
-
-ref::ShadingPoint shading_point(const Pixel& p) {
-    return {d3(p.position), d3(p.normal), d3(p.geometric), d3(p.albedo), p.roughness, p.metallic};
-}
-
-std::vector<ref::VplDesc> ref_vpls(const Setup& setup) {
-    std::vector<ref::VplDesc> out;
-    for (const Vpl& v : setup.vpls) out.push_back({d3(v.position), d3(v.normal), d3(v.flux)});
-    return out;
+    return ref::kVplMinDistanceFraction * ref::scene_scale(vplkit::test::reference_triangles(setup.triangles));
 }
 
 // The exact unshadowed sum at every pixel (0 on background).
 std::vector<ref::Vec3> unshadowed(const Setup& setup) {
-    const auto vpls = ref_vpls(setup);
+    const auto vpls = vplkit::test::reference_vpls(setup.vpls);
     const double eps = scene_min_distance(setup);
     std::vector<ref::Vec3> out;
     for (const Pixel& p : setup.pixels) {
@@ -662,7 +615,7 @@ TEST_CASE("rtslc: hard cases stay finite and unbiased") {
         Setup s = standard_setup(100);
         std::mt19937 rng(9);
         std::uniform_real_distribution<float> decades(-6.0f, 6.0f);
-        for (Vpl& v : s.vpls) v.flux *= std::pow(10.0f, decades(rng));
+        for (TestVpl& v : s.vpls) v.flux *= std::pow(10.0f, decades(rng));
         variants.push_back({"HDR flux 1e-6..1e6", s});
     }
     variants.push_back({"flux 1e-6", standard_setup(100, 1.0f, 1e-6f)});
@@ -703,12 +656,9 @@ TEST_CASE("rtslc: a VPL behind a wall gives nothing") {
                            {{0, 0, -3}, {0, 2, -3}, {0, 2, 3}, {0, 0, -3}, {0, 2, 3}, {0, 0, 3}});
     setup.vpls = {{{-1.0f, 1.0f, 0.2f}, glm::normalize(glm::vec3(0.3f, -1.0f, 0.0f)), {3, 2, 1}}};
     Gpu gpu(setup);
-    std::vector<ref::Triangle> triangles;
-    for (size_t i = 0; i + 2 < setup.triangles.size(); i += 3) {
-        triangles.push_back({d3(setup.triangles[i]), d3(setup.triangles[i + 1]), d3(setup.triangles[i + 2])});
-    }
+    const auto triangles = vplkit::test::reference_triangles(setup.triangles);
     const double scale = ref::scene_scale(triangles);
-    const auto vpls = ref_vpls(setup);
+    const auto vpls = vplkit::test::reference_vpls(setup.vpls);
     stages::RtslcOptions options;
     const auto f = gpu.render(options);
     int lit = 0, shadowed = 0;

@@ -1,34 +1,20 @@
 #include "sampling_setup.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/bvh.hpp"
-#include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
 #include "vplkit/stages/vpl_trees.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <glm/geometric.hpp>
-#include <glm/gtc/packing.hpp>
 
 #include <cmath>
 #include <random>
 
 namespace vplkit::sampling_test {
 
-namespace {
-
-using HalfTexel = std::array<uint16_t, 4>;
-
-HalfTexel to_half(float r, float g, float b, float a) {
-    return {glm::packHalf1x16(r), glm::packHalf1x16(g), glm::packHalf1x16(b), glm::packHalf1x16(a)};
-}
-float half_round(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
-reference::Vec3 d3(glm::vec3 v) { return {v.x, v.y, v.z}; }
-
-}  // namespace
+using test::d3;
+using test::half_round;
 
 Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s, float flux_scale) {
     Scene scene;
@@ -79,37 +65,10 @@ Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s, float f
 
 Rendered render(const Scene& scene, const RunOptions& options) {
     Context& ctx = test::context();
-    auto gbuffer = stages::GbufferImages::create(ctx, scene.width, scene.height);
-    std::vector<Texel> position, normal, geometric;
-    std::vector<HalfTexel> albedo, emission;
-    for (const Pixel& p : scene.pixels) {
-        position.push_back({p.position.x, p.position.y, p.position.z, p.covered ? 1.0f : 0.0f});
-        normal.push_back({p.normal.x, p.normal.y, p.normal.z, p.roughness});
-        geometric.push_back({p.geometric.x, p.geometric.y, p.geometric.z, p.metallic});
-        albedo.push_back(to_half(p.albedo.x, p.albedo.y, p.albedo.z, 1.0f));
-        emission.push_back(to_half(0, 0, 0, 0));
-    }
-    gbuffer.position.upload(position);
-    gbuffer.normal.upload(normal);
-    gbuffer.geometric_normal.upload(geometric);
-    gbuffer.albedo.upload(albedo);
-    gbuffer.emission.upload(emission);
-    const auto bvh = upload_bvh(ctx, build_bvh(scene.triangles));
-
-    std::vector<shaders::Vpl> gpu_vpls;
-    for (const TestVpl& v : scene.vpls) {
-        shaders::Vpl g{};
-        g.position = {v.position.x, v.position.y, v.position.z};
-        g.normal = {v.normal.x, v.normal.y, v.normal.z};
-        g.flux = {v.flux.x, v.flux.y, v.flux.z};
-        gpu_vpls.push_back(g);
-    }
-    auto vpls = Buffer::create(ctx, gpu_vpls.size() * sizeof(shaders::Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               MemoryUse::device, "vpls");
-    vpls.upload(gpu_vpls);
+    auto [gbuffer, bvh, vpls] = test::upload(ctx, scene.width, scene.height, scene.pixels, scene.triangles, scene.vpls);
     stages::VplTreeOptions tree_options;
     tree_options.sst = options.sst;
-    auto trees = stages::VplTrees::create(ctx, uint32_t(gpu_vpls.size()), tree_options);
+    auto trees = stages::VplTrees::create(ctx, uint32_t(scene.vpls.size()), tree_options);
     auto indirect = Image::create(ctx, scene.width, scene.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                   VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
     auto counters = stages::create_gi_counters(ctx);
@@ -145,27 +104,9 @@ Rendered render(const Scene& scene, const RunOptions& options) {
     return out;
 }
 
-reference::ShadingPoint shading_point(const Pixel& p) {
-    return {d3(p.position), d3(p.normal), d3(p.geometric), d3(p.albedo), p.roughness, p.metallic};
-}
-
-std::vector<reference::VplDesc> reference_vpls(const Scene& scene) {
-    std::vector<reference::VplDesc> out;
-    for (const TestVpl& v : scene.vpls) out.push_back({d3(v.position), d3(v.normal), d3(v.flux)});
-    return out;
-}
-
-std::vector<reference::Triangle> reference_triangles(const Scene& scene) {
-    std::vector<reference::Triangle> out;
-    for (size_t i = 0; i + 2 < scene.triangles.size(); i += 3) {
-        out.push_back({d3(scene.triangles[i]), d3(scene.triangles[i + 1]), d3(scene.triangles[i + 2])});
-    }
-    return out;
-}
-
 std::vector<reference::Vec3> exact(const Scene& scene, bool visibility) {
-    const auto triangles = reference_triangles(scene);
-    const auto vpls = reference_vpls(scene);
+    const auto triangles = reference_triangles(scene.triangles);
+    const auto vpls = reference_vpls(scene.vpls);
     const double scale = reference::scene_scale(triangles);
     std::vector<reference::Vec3> out;
     for (const Pixel& p : scene.pixels) {

@@ -3,13 +3,15 @@
 // materials and tilted shading normals, some background, an occluding quad above part of the
 // floor, and VPLs on a ceiling (facing down), on a wall (facing the floor), free ones, and ones
 // that cannot light the floor (below it, facing away). Runs sst / hybrid on it, and the double
-// exact sum (tests/reference/vpl_reference.cpp) with or without shadows.
+// exact sum (tests/reference/vpl_reference.cpp) with or without shadows. The pixels, VPLs, upload
+// and conversions are the shared harness's (tests/reference/synthetic_scene.hpp).
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/sst_gi.hpp"
+#include "synthetic_scene.hpp"
 #include "vpl_reference.hpp"
 
 #include <glm/vec3.hpp>
@@ -20,15 +22,11 @@
 
 namespace vplkit::sampling_test {
 
-struct Pixel {
-    bool covered = false;
-    glm::vec3 position{0.0f}, normal{0.0f, 1.0f, 0.0f}, geometric{0.0f, 1.0f, 0.0f}, albedo{0.5f};
-    float roughness = 0.6f, metallic = 0.0f;
-};
-
-struct TestVpl {
-    glm::vec3 position, normal, flux;
-};
+using test::Pixel;
+using test::reference_triangles;
+using test::reference_vpls;
+using test::shading_point;
+using test::TestVpl;
 
 struct Scene {
     uint32_t width = 0, height = 0;
@@ -67,10 +65,6 @@ struct RunOptions {
 };
 
 Rendered render(const Scene& scene, const RunOptions& options);
-
-reference::ShadingPoint shading_point(const Pixel& p);
-std::vector<reference::VplDesc> reference_vpls(const Scene& scene);
-std::vector<reference::Triangle> reference_triangles(const Scene& scene);
 
 // The exact sum at every pixel (0 on background), with or without shadow rays.
 std::vector<reference::Vec3> exact(const Scene& scene, bool visibility);

@@ -65,7 +65,7 @@ TEST_CASE("hybrid cuts: no overlap, first-leaf order, and the double reference's
         const Rendered r = render(scene, options);
         const uint32_t blocks_x = 3, blocks_y = 2;
         REQUIRE(r.blocks.size() == blocks_x * blocks_y);
-        const double min_distance = ref::kVplMinDistanceFraction * ref::scene_scale(reference_triangles(scene));
+        const double min_distance = ref::kVplMinDistanceFraction * ref::scene_scale(reference_triangles(scene.triangles));
         uint32_t matched = 0;
         for (uint32_t b = 0; b < blocks_x * blocks_y; ++b) {
             const auto& block = r.blocks[b];
