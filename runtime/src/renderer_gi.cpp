@@ -59,6 +59,7 @@ GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity
     o.hybrid.block_size = settings.block_size;
     o.hybrid.seed = settings.seed;
     o.hybrid.similarity_max_distance = similarity_distance;
+    o.hybrid.mock_cuts = settings.mock_cuts;
     return o;
 }
 

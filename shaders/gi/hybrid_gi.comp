@@ -50,6 +50,7 @@ layout(push_constant) uniform HybridGiPush {
     uint visibility;       // 0: no shadow rays (tests)
     float min_cos;         // eq. 5.3 thresholds for blending
     float max_distance;
+    uint mock_cuts;        // 0: a pixel with no similar block traverses from the root instead (ch. 7.3's comparison)
 } push;
 
 void main() {
@@ -84,7 +85,8 @@ void main() {
     float weight[4];
     bool blended = cut_blend_weights(p.position, p.normal, neighbour, bilinear, push.min_cos, push.max_distance, weight);
     uint mock_level = mock_cut_level(push.cut_size, push.leaf_count);
-    uint slots = blended ? push.cut_size : (1u << mock_level);
+    bool mock = !blended && push.mock_cuts != 0u;
+    uint slots = mock ? (1u << mock_level) : push.cut_size;
 
     vec3 total = vec3(0.0);
     uint dropped = 0u, traversals = 0u, levels = 0u, dead = 0u;
@@ -117,11 +119,15 @@ void main() {
                 }
             }
             start = cuts.items[neighbour_index[chosen] * push.cut_size + i];
-        } else {
+        } else if (mock) {
             // Alg. 1 lines 11-14: the mock cut.
             start = (1u << mock_level) - 1u + i;
+        } else {
+            // Without mock cuts, the alternative the thesis compares them with: every sample from
+            // the root, averaged (each is an estimate of the whole tree).
+            start = 0u;
         }
-        if (!blended && sst_fetch(start, push.leaf_count, push.vpl_count).leaf_count == 0u) {
+        if (mock && sst_fetch(start, push.leaf_count, push.vpl_count).leaf_count == 0u) {
             continue;  // a padding node of the mock cut (a blended cut holds none)
         }
         SstSample s = sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected, min_distance, rng);
@@ -134,6 +140,9 @@ void main() {
         Vpl light = sst_sample_light(s, push.leaf_count, rng);
         gi_add_sample(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness, p.metallic, light,
                       min_distance, scale, push.visibility != 0u, total, dropped);
+    }
+    if (!blended && !mock) {
+        total /= float(push.cut_size);  // cut_size estimates of the whole tree
     }
     gi_counters_add(dropped, traversals, levels, dead, !blended, completed);
     imageStore(indirect, pixel, vec4(total, float(dropped)));

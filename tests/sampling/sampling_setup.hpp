@@ -62,6 +62,7 @@ struct RunOptions {
     bool visibility = true;
     stages::SstOptions sst;  // thresholds (nu_min > 1: never suitable, traversals go to leaves)
     float similarity_max_distance = 2.0f;  // x scene.scale (the room is 6 x 6; a pixel 0.1-0.7 wide)
+    bool mock_cuts = true;                 // hybrid
 };
 
 Rendered render(const Scene& scene, const RunOptions& options);

@@ -149,6 +149,15 @@ TEST_CASE("hybrid: a pixel unlike every block around it takes the mock cut") {
     const auto truth = exact(scene, true);
     CHECK(truth[0][0] + truth[0][1] + truth[0][2] > 0.0);
     CHECK(r.image[0][0] + r.image[0][1] + r.image[0][2] > 0.0f);
+    // Without mock cuts the pixel traverses from the root 4 times (the thesis' comparison): still
+    // counted, finite, lit, and only that pixel differs from the mock-cut frame.
+    o.mock_cuts = false;
+    const Rendered root = render(scene, o);
+    CHECK(root.counts.mock_cut_pixels == 1);
+    CHECK(all_finite(root));
+    CHECK(root.image[0][0] + root.image[0][1] + root.image[0][2] > 0.0f);
+    CHECK(root.image[0] != r.image[0]);
+    for (size_t i = 1; i < r.image.size(); ++i) CHECK(root.image[i] == r.image[i]);
 }
 
 TEST_CASE("hybrid: cut blending's bilinear and normalized weights sum to 1") {

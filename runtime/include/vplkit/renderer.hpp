@@ -72,6 +72,7 @@ struct RenderSettings {
     uint32_t block_size = 8;  // rtslc, hybrid: pixels along a cut block's side, 1..32
     uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
     uint32_t frame = 0;       // rtslc: rotates the interleaved shares
+    bool mock_cuts = true;    // hybrid: mock cuts where no block is alike (false: root traversals)
     stages::SstOptions sst;   // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
     // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
     // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.

@@ -124,6 +124,7 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                    push.visibility = options.visibility ? 1u : 0u;
                    push.min_cos = options.similarity_min_cos;
                    push.max_distance = options.similarity_max_distance;
+                   push.mock_cuts = options.mock_cuts ? 1u : 0u;
                    gi_pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
                });
 }

@@ -20,7 +20,7 @@ struct GiCounts {
     uint32_t traversals = 0;       // tree traversals (one per sample)
     uint32_t levels = 0;           // tree levels descended, summed over the traversals
     uint32_t dead_branches = 0;    // traversals that ended where both children weigh 0
-    uint32_t mock_cut_pixels = 0;  // hybrid: pixels that fell back to the mock cut
+    uint32_t mock_cut_pixels = 0;  // hybrid: pixels with no similar block (the mock cut, or root traversals)
     uint32_t cut_short = 0;        // invocations the driver ended early: the image is wrong if > 0
 
     // Levels per traversal (seed 000 Fig. 7.2); 0 without traversals.

@@ -39,6 +39,10 @@ struct HybridOptions {
     // max_distance (world units: the caller scales it to the scene; > 0).
     float similarity_min_cos = 0.9f;
     float similarity_max_distance = 0.0f;
+    // A pixel none of whose four blocks is similar uses the mock cut (sec. 5.1.4); false: it
+    // traverses from the root samples_per_pixel times and averages (what the thesis compares the
+    // mock cut with in ch. 7.3).
+    bool mock_cuts = true;
 };
 
 // Throws vplkit::Error naming the bad option.
