@@ -3,6 +3,8 @@
 
 #include "cli.hpp"
 
+#include <string>
+
 namespace vplkit::cli {
 
 int run_info(Args& args);
@@ -17,7 +19,9 @@ extern const char* const kBenchUsage;
 int run_compare(Args& args);
 extern const char* const kCompareUsage;
 
-// `vplkit bench tree` (reached through run_bench; its usage is part of kBenchUsage).
+// `vplkit bench tree` and `vplkit bench gi --scene NAME` (reached through run_bench; their
+// usage is part of kBenchUsage).
 int run_bench_tree(Args& args);
+int run_bench_gi(Args& args, const std::string& scene);
 
 }  // namespace vplkit::cli

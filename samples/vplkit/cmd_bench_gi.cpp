@@ -1,0 +1,358 @@
+// `vplkit bench gi --scene NAME` (also `vplkit bench --scene NAME`): every indirect-light method's
+// quality knobs swept on one standard set-up, each point rendered several frames and compared
+// with the exact ground truth (cached on disk); bench_gi_report.cpp writes the results.
+
+#include "bench_gi.hpp"
+#include "cli.hpp"
+#include "commands.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image_io.hpp"
+#include "vplkit/image_metrics.hpp"
+#include "vplkit/renderer.hpp"
+#include "vplkit/scene.hpp"
+#include "vplkit/scene_setups.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#ifndef VPLKIT_SETUPS_FILE
+#error "VPLKIT_SETUPS_FILE (the repository's scenes/setups.txt) must be defined by the build"
+#endif
+
+namespace vplkit::cli {
+
+namespace {
+
+// FNV-1a: a stable 64-bit name for a cache key (the key text is stored beside and checked).
+std::string fnv1a_hex(const std::string& text) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    char out[17];
+    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+    return out;
+}
+
+std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+// Everything the exact frame depends on.
+std::string ground_truth_key(const scene::Setup& setup, const scene::Scene& scene, const RenderSettings& s) {
+    std::ostringstream key;
+    key.precision(9);
+    const scene::Camera& c = scene.camera();
+    key << "vplkit exact ground truth v1\nsetup " << setup.name << "\nscene " << setup.scene.string() << "\ncamera "
+        << c.position.x << ' ' << c.position.y << ' ' << c.position.z << ' ' << c.forward.x << ' ' << c.forward.y << ' '
+        << c.forward.z << ' ' << c.up.x << ' ' << c.up.y << ' ' << c.up.z << ' ' << c.yfov << "\n";
+    for (const scene::Light& l : scene.lights) {
+        key << "light " << int(l.type) << ' ' << l.color.x << ' ' << l.color.y << ' ' << l.color.z << ' ' << l.intensity
+            << ' ' << l.position.x << ' ' << l.position.y << ' ' << l.position.z << ' ' << l.direction.x << ' '
+            << l.direction.y << ' ' << l.direction.z << ' ' << l.range << ' ' << l.inner_cone_angle << ' '
+            << l.outer_cone_angle << "\n";
+    }
+    key << "emissive triangles " << scene.emissive_triangles.size() << "\nsize " << s.width << 'x' << s.height
+        << "\nvpls " << (s.vpl_source == VplSource::brsm ? "brsm" : "ir") << ' ' << s.vpl_paths << ' ' << s.vpl_bounces
+        << ' ' << s.brsm.vpl_count << ' ' << s.brsm.samples_per_texel << ' ' << s.brsm.defensive_fraction << ' '
+        << s.rsm_resolution << "\nseed " << s.seed << "\nexposure " << s.exposure << "\n";
+    return key.str();
+}
+
+std::vector<float> unit_rgb(const std::vector<uint8_t>& rgba) {
+    std::vector<float> rgb;
+    rgb.reserve(rgba.size() / 4 * 3);
+    for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+        for (int c = 0; c < 3; ++c) rgb.push_back(rgba[i + c] / 255.0f);
+    }
+    return rgb;
+}
+
+struct GroundTruth {
+    std::vector<float> rgb;       // tonemapped, sRGB / 255
+    std::vector<float> radiance;  // linear
+    std::filesystem::path png;
+};
+
+// The points of a sweep, in the order they run.
+std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
+    std::vector<BenchPoint> points;
+    auto add = [&](std::string method, std::string sweep, unsigned spp, unsigned block, unsigned interleave, bool half,
+                   bool mock, unsigned vpls) {
+        BenchPoint p;
+        p.method = std::move(method);
+        p.sweep = std::move(sweep);
+        p.spp = spp;
+        p.block = block;
+        p.interleave = interleave;
+        p.half = half;
+        p.mock_cuts = mock;
+        p.vpls = vpls;
+        points.push_back(p);
+    };
+    const std::vector<unsigned> spps = quick ? std::vector<unsigned>{1, 4} : std::vector<unsigned>{1, 2, 4, 8, 16, 32, 64};
+    const std::vector<unsigned> blocks = quick ? std::vector<unsigned>{4, 8} : std::vector<unsigned>{1, 2, 4, 8, 16, 32};
+    const std::vector<unsigned> some = quick ? std::vector<unsigned>{4} : std::vector<unsigned>{4, 8, 16, 32};
+    for (const char* m : {"sst", "rtslc", "hybrid"}) {
+        for (unsigned spp : spps) add(m, "spp", spp, 8, 1, false, true, vpl_budget);
+    }
+    for (const char* m : {"rtslc", "hybrid"}) {
+        for (unsigned k : blocks) {
+            if (k != 8) add(m, "block", 8, k, 1, false, true, vpl_budget);
+        }
+    }
+    for (const char* m : {"rtslc", "hybrid"}) {
+        for (unsigned spp : some) add(m, "resolution", spp, 8, 1, true, true, vpl_budget);
+    }
+    for (unsigned spp : some) add("rtslc", "interleave", spp, 8, 2, false, true, vpl_budget);
+    for (unsigned spp : some) add("hybrid", "mock", spp, 8, 1, false, false, vpl_budget);
+    const std::vector<unsigned> counts = quick ? std::vector<unsigned>{vpl_budget * 4}
+                                               : std::vector<unsigned>{1024, 16384, 65536, 262144, 1048576};
+    for (unsigned n : counts) {
+        if (n != vpl_budget) add("hybrid", "vpls", 8, 8, 1, false, true, n);
+    }
+    return points;
+}
+
+bool is_gi_pass(const std::string& name) {
+    static const std::set<std::string> names = {"gi counters clear", "sst gi", "rtslc cuts", "rtslc gi",
+                                                "rtslc interleave", "hybrid cuts", "hybrid gi", "gbuffer downsample",
+                                                "upsample clear", "upsample"};
+    return names.count(name) > 0;
+}
+
+bool is_tree_pass(const std::string& name) {
+    static const std::set<std::string> names = {"vpl bounds clear", "vpl bounds", "morton keys", "sort", "gather leaves",
+                                                "light tree leaves", "light tree levels", "sst clear counters", "build sst"};
+    return names.count(name) > 0;
+}
+
+// Passes every frame has whatever the method: not part of VPL generation.
+bool is_frame_pass(const std::string& name) {
+    static const std::set<std::string> names = {"gbuffer", "direct light", "direct emissive", "indirect clear", "compose",
+                                                "tonemap stats clear", "tonemap"};
+    return names.count(name) > 0;
+}
+
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+class Progress {
+ public:
+    explicit Progress(size_t total) : total_(total), terminal_(isatty(fileno(stderr))) {}
+    void show(size_t done, const std::string& what) {
+        const int width = 30;
+        const int filled = total_ == 0 ? width : int(width * done / total_);
+        if (terminal_) {
+            std::fprintf(stderr, "\r[bench] [%s%s] %zu/%zu %-40s", std::string(filled, '#').c_str(),
+                         std::string(width - filled, '.').c_str(), done, total_, what.c_str());
+            if (done == total_) std::fprintf(stderr, "\n");
+        } else {
+            std::fprintf(stderr, "[bench] %zu/%zu %s\n", done, total_, what.c_str());
+        }
+        std::fflush(stderr);
+    }
+
+ private:
+    size_t total_;
+    bool terminal_;
+};
+
+GiMethod method_of(const std::string& name) {
+    if (name == "sst") return GiMethod::sst;
+    if (name == "rtslc") return GiMethod::rtslc;
+    return GiMethod::hybrid;
+}
+
+}  // namespace
+
+std::string BenchPoint::label() const {
+    std::string s = method + " " + std::to_string(spp) + " spp";
+    if (method != "sst") s += " k" + std::to_string(block);
+    if (interleave > 1) s += " m" + std::to_string(interleave);
+    if (half) s += " half";
+    if (!mock_cuts) s += " no-mock";
+    if (sweep == "vpls") s += " " + std::to_string(vpls) + " vpls";
+    return s;
+}
+
+int run_bench_gi(Args& args, const std::string& scene_name) {
+    ContextOptions context_options;
+    if (auto device = args.value("--device")) context_options.device = *device;
+    const bool quick = args.flag("--quick");
+    std::optional<uint32_t> width, height;
+    if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
+    if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
+    uint32_t frames = quick ? 2 : 3;
+    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 100);
+    std::optional<std::string> source = args.value("--vpl-source");
+    if (source && *source != "ir" && *source != "brsm") throw UsageError("--vpl-source expects ir or brsm, got '" + *source + "'");
+    uint32_t vpl_budget = quick ? 256 : 4096;
+    if (auto text = args.value("--vpls")) vpl_budget = parse_whole_number("--vpls", *text, 1u << 20);
+    uint32_t seed = 0;
+    if (auto text = args.value("--seed")) seed = parse_index("--seed", *text, UINT32_MAX);
+    double target_ms = 0.0;
+    if (auto text = args.value("--target-ms")) target_ms = parse_whole_number("--target-ms", *text, 1u << 30);
+    const std::filesystem::path out = args.value("--out").value_or("out/bench/" + scene_name);
+    const std::filesystem::path cache = args.value("--cache").value_or("out/bench-cache");
+    args.finish();
+
+    const scene::Setups setups = scene::load_setups(VPLKIT_SETUPS_FILE);
+    const scene::Setup& setup = setups.find(scene_name);
+    scene::Scene scene = scene::load_setup_scene(setup);
+    std::filesystem::create_directories(out / "images");
+    std::filesystem::create_directories(cache);
+
+    auto context = Context::create(context_options);
+    const DeviceInfo& device = context->info();
+    std::printf("device: %s (%s): %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
+    const bool cpu = device.type_name.find("CPU") != std::string::npos || device.type_name.find("cpu") != std::string::npos;
+    RenderSettings base;
+    base.width = width.value_or(quick ? 48 : cpu ? 320 : 1280);
+    base.height = height.value_or(quick ? 27 : cpu ? 180 : 720);
+    base.seed = seed;
+    base.vpl_source = source ? (*source == "brsm" ? VplSource::brsm : VplSource::ir)
+                             : (scene.lights.empty() ? VplSource::ir : VplSource::brsm);
+    base.vpl_paths = vpl_budget;
+    base.brsm.vpl_count = vpl_budget;
+    if (quick) base.rsm_resolution = 128;  // BRSM's shadow maps dominate a tiny frame otherwise
+    Renderer renderer(*context, scene);
+
+    BenchRun run;
+    run.scene = setup.name;
+    run.device = device.name + " (" + device.type_name + ")";
+    run.width = base.width;
+    run.height = base.height;
+    run.vpl_source = base.vpl_source == VplSource::brsm ? "brsm" : "ir";
+    run.vpl_budget = vpl_budget;
+    run.seed = seed;
+    std::printf("scene: %s, %ux%u, %s VPLs (budget %u), %u frames per point\n", setup.name.c_str(), base.width,
+                base.height, run.vpl_source.c_str(), vpl_budget, frames);
+
+    // The ground truth, from the cache when its key matches.
+    GroundTruth truth;
+    {
+        RenderSettings s = base;
+        s.method = GiMethod::exact;
+        const std::string key = ground_truth_key(setup, scene, s);
+        const std::filesystem::path stem = cache / ("exact-" + fnv1a_hex(key));
+        truth.png = stem.string() + ".png";
+        const std::filesystem::path pfm = stem.string() + ".pfm", key_file = stem.string() + ".key";
+        if (std::filesystem::exists(key_file) && read_text(key_file) == key && std::filesystem::exists(pfm) &&
+            std::filesystem::exists(truth.png)) {
+            const PngImage png = read_png(truth.png);
+            truth.rgb = unit_rgb(png.rgba);
+            truth.radiance = read_pfm(pfm).rgb;
+            run.exact_cached = true;
+            std::printf("ground truth: cached %s\n", pfm.string().c_str());
+        } else {
+            s.progress = [](uint32_t done, uint32_t total) {
+                if (isatty(fileno(stderr))) {
+                    std::fprintf(stderr, "\r[bench] ground truth: %u/%u VPLs", done, total);
+                    if (done == total) std::fprintf(stderr, "\n");
+                } else if (done == total || done % 1024 < 32) {
+                    std::fprintf(stderr, "[bench] ground truth: %u/%u VPLs\n", done, total);
+                }
+            };
+            const auto start = std::chrono::steady_clock::now();
+            const RenderedImage image = renderer.render(scene.camera(), s);
+            run.exact_wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            if (image.non_finite_pixels > 0) throw Error("bench: the ground truth has non-finite pixels");
+            write_png(truth.png, image.width, image.height, image.rgba8);
+            write_pfm(pfm, image.width, image.height, image.radiance);
+            std::ofstream(key_file, std::ios::binary) << key;
+            truth.rgb = unit_rgb(image.rgba8);
+            truth.radiance = image.radiance;
+            std::printf("ground truth: %u VPLs, %.1f s (host wall clock), cached as %s\n", image.vpl_count,
+                        run.exact_wall_ms / 1000.0, pfm.string().c_str());
+        }
+        std::filesystem::copy_file(truth.png, out / "images" / "exact.png", std::filesystem::copy_options::overwrite_existing);
+        run.exact_image = "images/exact.png";
+    }
+
+    std::vector<BenchPoint> points = plan_points(quick, vpl_budget);
+    Progress progress(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        BenchPoint& p = points[i];
+        progress.show(i, p.label());
+        RenderSettings s = base;
+        s.method = method_of(p.method);
+        s.samples_per_pixel = p.spp;
+        s.block_size = p.block;
+        s.interleave = p.interleave;
+        s.half_resolution_gi = p.half;
+        s.mock_cuts = p.mock_cuts;
+        s.vpl_paths = p.vpls;
+        s.brsm.vpl_count = p.vpls;
+        std::vector<double> frame_ms, gi_ms, trees_ms, vpls_ms;
+        RenderedImage image;
+        for (uint32_t f = 0; f < frames; ++f) {
+            image = renderer.render(scene.camera(), s);
+            if (f == 0 && frames > 1) continue;  // shader compiles at first dispatch
+            double total = 0, gi = 0, trees = 0, vpls = 0;
+            for (const PassTiming& t : image.timings) {
+                total += t.gpu_ms;
+                if (is_gi_pass(t.name)) gi += t.gpu_ms;
+                else if (is_tree_pass(t.name)) trees += t.gpu_ms;
+                else if (!is_frame_pass(t.name)) vpls += t.gpu_ms;
+            }
+            frame_ms.push_back(total);
+            gi_ms.push_back(gi);
+            trees_ms.push_back(trees);
+            vpls_ms.push_back(vpls);
+        }
+        if (image.non_finite_pixels > 0) throw Error("bench: " + p.label() + " gave non-finite pixels");
+        p.frames = uint32_t(frame_ms.size());
+        p.frame_ms = median(frame_ms);
+        p.frame_min_ms = *std::min_element(frame_ms.begin(), frame_ms.end());
+        p.frame_max_ms = *std::max_element(frame_ms.begin(), frame_ms.end());
+        p.gi_ms = median(gi_ms);
+        p.trees_ms = median(trees_ms);
+        p.vpls_ms = median(vpls_ms);
+        p.vpls = image.vpl_count;
+        const std::vector<float> rgb = unit_rgb(image.rgba8);
+        p.rmse = rmse(rgb, truth.rgb);
+        p.ssim = ssim(rgb, truth.rgb, image.width, image.height);
+        p.relmse = relative_mse(image.radiance, truth.radiance);
+        p.levels_per_traversal = image.gi_counts.levels_per_traversal();
+        p.mock_cut_pixels = image.gi_counts.mock_cut_pixels;
+        p.dropped_samples = image.gi_counts.dropped_samples;
+        std::string file = p.label();
+        std::replace(file.begin(), file.end(), ' ', '_');
+        p.image = "images/" + file + ".png";
+        write_png(out / p.image, image.width, image.height, image.rgba8);
+    }
+    progress.show(points.size(), "done");
+
+    run.points = std::move(points);
+    run.target_ms = target_ms;
+    if (run.target_ms <= 0) {
+        for (const BenchPoint& p : run.points) {
+            if (p.method == "hybrid" && p.sweep == "spp" && p.spp == (quick ? 4u : 8u)) run.target_ms = p.frame_ms;
+        }
+    }
+    write_bench_report(out, run);
+    std::printf("wrote %s (points.csv, points.json, plots, images)\n", (out / "report.md").string().c_str());
+    return 0;
+}
+
+}  // namespace vplkit::cli
