@@ -27,6 +27,11 @@ struct BenchPoint {
     double trees_ms = 0;   // keys, sort, leaves, light tree, SST
     double vpls_ms = 0;    // VPL generation (shadow maps, BRSM or light paths)
     unsigned frames = 0;   // timed frames
+    struct StageTime {
+        std::string name;  // a pass name (passes of one name in a frame summed)
+        double median_ms = 0, min_ms = 0, max_ms = 0;
+    };
+    std::vector<StageTime> stages;  // every stage of the frame, in pass order
 
     // Error against the ground truth: RMSE and SSIM of the tonemapped frames (sRGB / 255, L = 1),
     // relMSE of the linear radiance (mean (t - r)^2 / (r^2 + eps), eps kRelativeMseEpsilon).

@@ -112,7 +112,13 @@ std::string json(const BenchRun& run) {
           << p.frame_max_ms << ", \"gi_ms\": " << p.gi_ms << ", \"trees_ms\": " << p.trees_ms << ", \"vpls_ms\": " << p.vpls_ms
           << ", \"rmse\": " << p.rmse << ", \"ssim\": " << p.ssim << ", \"relmse\": " << p.relmse
           << ", \"levels_per_traversal\": " << p.levels_per_traversal << ", \"mock_cut_pixels\": " << p.mock_cut_pixels
-          << ", \"dropped_samples\": " << p.dropped_samples << ", \"image\": " << json_string(p.image) << "}"
+          << ", \"dropped_samples\": " << p.dropped_samples << ", \"image\": " << json_string(p.image) << ", \"stages\": [";
+        for (size_t k = 0; k < p.stages.size(); ++k) {
+            const BenchPoint::StageTime& t = p.stages[k];
+            s << (k ? ", " : "") << "{\"name\": " << json_string(t.name) << ", \"median_ms\": " << t.median_ms
+              << ", \"min_ms\": " << t.min_ms << ", \"max_ms\": " << t.max_ms << "}";
+        }
+        s << "]}"
           << (i + 1 < run.points.size() ? ",\n" : "\n");
     }
     s << "  ]\n}\n";
@@ -287,6 +293,25 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     md << "\n| ![exact](" << run.exact_image << ") | ";
     for (const BenchPoint* p : same_time) {
         md << "![" << p->label() << "](" << p->image << ") | ![difference](images/equal_time_" << p->method << "_diff.png) | ";
+    }
+    md << "\n\nPer-stage GPU time of these points (ms, median of the timed frames, min-max):\n\n| stage |";
+    for (const BenchPoint* p : same_time) md << " " << p->label() << " |";
+    md << "\n| --- |";
+    for (size_t i = 0; i < same_time.size(); ++i) md << " --- |";
+    std::vector<std::string> stage_names;
+    for (const BenchPoint* p : same_time) {
+        for (const auto& t : p->stages) {
+            if (std::find(stage_names.begin(), stage_names.end(), t.name) == stage_names.end()) stage_names.push_back(t.name);
+        }
+    }
+    for (const std::string& name : stage_names) {
+        md << "\n| " << name << " |";
+        for (const BenchPoint* p : same_time) {
+            const auto it = std::find_if(p->stages.begin(), p->stages.end(), [&](const auto& t) { return t.name == name; });
+            md << " " << (it == p->stages.end() ? std::string("-")
+                                                 : fixed(it->median_ms, 2) + " (" + fixed(it->min_ms, 2) + "-" + fixed(it->max_ms, 2) + ")")
+               << " |";
+        }
     }
     md << "\n\n## RMSE vs frame time (Fig. 7.3)\n\n![RMSE vs frame time](rmse_vs_time.png)\n\n"
        << "![RMSE vs GI time](rmse_vs_gi_time.png)\n\nThe Pareto front by frame time (ringed): ";

@@ -19,6 +19,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 #include <sstream>
@@ -304,17 +305,23 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         s.vpl_paths = p.vpls;
         s.brsm.vpl_count = p.vpls;
         std::vector<double> frame_ms, gi_ms, trees_ms, vpls_ms;
+        std::vector<std::string> stage_names;
+        std::map<std::string, std::vector<double>> stage_ms;
         RenderedImage image;
         for (uint32_t f = 0; f < frames; ++f) {
             image = renderer.render(scene.camera(), s);
             if (f == 0 && frames > 1) continue;  // shader compiles at first dispatch
             double total = 0, gi = 0, trees = 0, vpls = 0;
+            std::map<std::string, double> this_frame;
             for (const PassTiming& t : image.timings) {
+                if (this_frame.count(t.name) == 0 && stage_ms.count(t.name) == 0) stage_names.push_back(t.name);
+                this_frame[t.name] += t.gpu_ms;
                 total += t.gpu_ms;
                 if (is_gi_pass(t.name)) gi += t.gpu_ms;
                 else if (is_tree_pass(t.name)) trees += t.gpu_ms;
                 else if (!is_frame_pass(t.name)) vpls += t.gpu_ms;
             }
+            for (const auto& [name, ms] : this_frame) stage_ms[name].push_back(ms);
             frame_ms.push_back(total);
             gi_ms.push_back(gi);
             trees_ms.push_back(trees);
@@ -328,6 +335,10 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         p.gi_ms = median(gi_ms);
         p.trees_ms = median(trees_ms);
         p.vpls_ms = median(vpls_ms);
+        for (const std::string& name : stage_names) {
+            const std::vector<double>& v = stage_ms[name];
+            p.stages.push_back({name, median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())});
+        }
         p.vpls = image.vpl_count;
         const std::vector<float> rgb = unit_rgb(image.rgba8);
         p.rmse = rmse(rgb, truth.rgb);
