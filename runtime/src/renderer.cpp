@@ -4,6 +4,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
+#include "vplkit/planner.hpp"
 #include "vplkit/stages/compose.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
@@ -13,6 +14,7 @@
 
 #include <array>
 #include <chrono>
+#include <sstream>
 #include <string>
 
 namespace vplkit {
@@ -46,10 +48,11 @@ void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
 
 }  // namespace
 
-Renderer::GeneratedVpls Renderer::generate_vpls(const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                                                const RenderSettings& settings, RenderedImage& out) {
+Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::CameraView& view,
+                                                stages::GbufferImages& gbuffer, const RenderSettings& settings,
+                                                RenderedImage& out) {
     GeneratedVpls generated;
-    if (settings.vpl_source == VplSource::ir) {
+    if (source == VplSource::ir) {
         // Light paths from every emitter through the BVH.
         const stages::VplSources sources = stages::upload_vpl_sources(context_, scene_source_);
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
@@ -101,6 +104,39 @@ Renderer::GeneratedVpls Renderer::generate_vpls(const stages::CameraView& view, 
     return generated;
 }
 
+const Renderer::GeneratedVpls& Renderer::frame_vpls(const FramePlan& plan, const stages::CameraView& view,
+                                                    stages::GbufferImages& gbuffer, const RenderSettings& settings,
+                                                    RenderedImage& out) {
+    if (plan.reuse_vpls) {
+        out.notes.insert(out.notes.end(), cache_.vpl_notes.begin(), cache_.vpl_notes.end());
+        out.reused_vpls = true;
+        return cache_.vpls;
+    }
+    const size_t notes_before = out.notes.size();
+    GeneratedVpls generated = generate_vpls(plan.vpl_source, view, gbuffer, settings, out);
+    cache_ = FrameCache{};
+    cache_.vpl_key = plan.vpl_key;
+    cache_.vpls = std::move(generated);
+    cache_.vpl_notes.assign(out.notes.begin() + notes_before, out.notes.end());
+    return cache_.vpls;
+}
+
+namespace {
+
+// The camera and size a frame is seen with, exactly (BRSM VPLs depend on them).
+std::string view_key_of(const stages::CameraView& view, uint32_t w, uint32_t h) {
+    std::ostringstream key;
+    key.precision(9);
+    key << w << 'x' << h;
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) key << ' ' << view.view_projection[c][r];
+    }
+    key << " eye " << view.position.x << ' ' << view.position.y << ' ' << view.position.z;
+    return key.str();
+}
+
+}  // namespace
+
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& settings) {
     validate_gi_settings(settings);
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
@@ -116,13 +152,23 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     RenderedImage out;
     out.width = w;
     out.height = h;
+    // The plan decides every stage below; the passes recorded are exactly the stages it runs.
+    const FramePlan plan = plan_frame(scene_source_, settings, view_key_of(view, w, h),
+                                      {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key});
+    out.plan_summary = plan.summary();
+    out.vpl_source = plan.vpl_source;
+    for (const PlannedStage& s : plan.stages) {
+        if (s.runs) out.stages_run.push_back(stage_name(s.stage));
+    }
 
     PassList direct_passes("direct light");
     stages::add_gbuffer_pass(context_, direct_passes, scene_, view, gbuffer);
     stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_, lights_,
                                   {view.position, settings.background}, direct);
-    stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
-                                     {view.position, settings.emissive_samples, settings.seed}, direct);
+    if (plan.runs(FrameStage::direct_emissive)) {
+        stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
+                                         {view.position, settings.emissive_samples, settings.seed}, direct);
+    }
     direct_passes.add("indirect clear", {Use::transfer_dst(indirect)}, [&indirect](VkCommandBuffer cmd) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -132,7 +178,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     append(out.timings, direct_passes.timings());
 
     if (settings.vpls_only) {
-        GeneratedVpls generated = generate_vpls(view, gbuffer, settings, out);
+        const GeneratedVpls& generated = frame_vpls(plan, view, gbuffer, settings, out);
         out.vpl_count = generated.count;
         if (generated.count > 0) {
             for (const auto& v : generated.vpls.download<shaders::Vpl>(generated.count)) {
@@ -143,9 +189,8 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         }
         out.gbuffer_position = gbuffer.position.download<float>();
     } else if (settings.method != GiMethod::none) {
-        GeneratedVpls generated = generate_vpls(view, gbuffer, settings, out);
-        out.vpl_count = generated.count;
-        render_indirect(view, gbuffer, generated, settings, indirect, out);
+        out.vpl_count = frame_vpls(plan, view, gbuffer, settings, out).count;
+        render_indirect(plan, view, gbuffer, settings, indirect, out);
     }
 
     PassList output_passes("output");

@@ -6,6 +6,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
+#include "vplkit/planner.hpp"
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
@@ -78,8 +79,9 @@ void validate_gi_settings(const RenderSettings& settings) {
     }
 }
 
-void Renderer::render_indirect(const stages::CameraView& view, stages::GbufferImages& gbuffer, const GeneratedVpls& vpls,
+void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
                                const RenderSettings& settings, Image& indirect, RenderedImage& out) {
+    const GeneratedVpls& vpls = cache_.vpls;
     const bool half = settings.half_resolution_gi;
     const uint32_t w = half ? stages::half_resolution(gbuffer.width()) : gbuffer.width();
     const uint32_t h = half ? stages::half_resolution(gbuffer.height()) : gbuffer.height();
@@ -94,7 +96,7 @@ void Renderer::render_indirect(const stages::CameraView& view, stages::GbufferIm
     const stages::RtslcOptions& rtslc_options = options.rtslc;
     const stages::HybridOptions& hybrid_options = options.hybrid;
 
-    // The G-buffer and target the method works on.
+    // The G-buffer and target the method works on (the plan's downsample and upsample stages).
     std::optional<stages::GbufferImages> half_gbuffer;
     std::optional<Image> half_indirect;
     if (half) {
@@ -118,14 +120,23 @@ void Renderer::render_indirect(const stages::CameraView& view, stages::GbufferIm
         out.exact_gi_wall_ms = result.wall_ms;
         out.dropped_pixels = result.counts.dropped_pixels;
     } else {
-        stages::VplTreeOptions tree_options;
-        tree_options.sst = settings.sst;
-        auto trees = stages::VplTrees::create(context_, vpls.count, tree_options);
+        PassList passes(gi_method_name(settings.method));
+        if (plan.reuse_trees) {
+            out.reused_trees = true;
+        } else {
+            // Only the trees the method reads (the plan's light tree and SST stages).
+            stages::VplTreeOptions tree_options;
+            tree_options.sst = settings.sst;
+            cache_.trees = stages::VplTrees::create(context_, vpls.count, tree_options);
+            cache_.tree_key = plan.tree_key;
+            cache_.light_tree = plan.runs(FrameStage::light_tree);
+            cache_.sst = plan.runs(FrameStage::sst);
+            cache_.trees->add_build_passes(passes, vpls.vpls, cache_.light_tree, cache_.sst);
+        }
+        const stages::VplTrees& trees = *cache_.trees;
         auto counters = stages::create_gi_counters(context_);
         std::optional<stages::RtslcScratch> rtslc_scratch;
         std::optional<stages::HybridCuts> hybrid_cuts;
-        PassList passes(gi_method_name(settings.method));
-        trees.add_build_passes(passes, vpls.vpls);
         switch (settings.method) {
             case GiMethod::sst:
                 stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,

@@ -8,6 +8,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/image_io.hpp"
+#include "vplkit/planner.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_setups.hpp"
@@ -32,9 +33,9 @@ const char* const kRenderUsage =
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
     "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
-    "                     [--vpl-source ir|brsm] [--vpls N] [--bounces B]\n"
+    "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
-    "                     [--seed S] [--emissive-samples N] [--frames F]\n"
+    "                     [--seed S] [--emissive-samples N] [--frames F] [--all-stages]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation]\n"
     "\n"
@@ -61,9 +62,10 @@ const char* const kRenderUsage =
     "  --nu-min V, --sigma-max S   sst, hybrid: a tree node is sampled as a whole when its normal\n"
     "                   similarity is >= V and its spread along its normal <= S scene units\n"
     "                   (defaults 0.7 and 0.3, the thesis')\n"
-    "  --vpl-source S   where the VPLs come from: ir (default): instant radiosity, light paths through\n"
-    "                   the scene, multi-bounce; brsm: bidirectional reflective shadow maps, one bounce,\n"
-    "                   placed where the camera sees their light (punctual lights only)\n"
+    "  --vpl-source S   where the VPLs come from: auto (default): brsm for --bounces 1 from punctual\n"
+    "                   lights, else ir; ir: instant radiosity, light paths through the scene,\n"
+    "                   multi-bounce; brsm: bidirectional reflective shadow maps, one bounce, placed\n"
+    "                   where the camera sees their light (punctual lights only)\n"
     "  --vpls N         ir: light paths traced (default 4096; each leaves up to --bounces VPLs);\n"
     "                   brsm: VPLs over all lights, shared by power (default 4096)\n"
     "  --bounces B      ir: surface hits per light path (default 2)\n"
@@ -81,10 +83,20 @@ const char* const kRenderUsage =
     "  --exposure E     linear exposure before the tone curve (default 1)\n"
     "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
     "  --emissive-samples N  area-light samples per pixel for emissive triangles (default 16)\n"
+    "  --all-stages     run every stage the method can use, whatever the scene needs, and reuse\n"
+    "                   nothing between frames (the planner's baseline)\n"
     "  --frames F       render the frame F times and print each stage's median time over frames\n"
     "                   2..F (the first pays for shader compiles); the image is the same each time\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
     "  --validation     run with the Vulkan validation layer on\n";
+
+const char* const kPlanUsage =
+    "usage: vplkit plan [render's options: --scene NAME|FILE --method M --vpl-source S --bounces B\n"
+    "                   --gi-resolution R --sun ... --point ... ...]\n"
+    "\n"
+    "Prints the stages a frame with these options would run, and for every stage kept or left out\n"
+    "the reason (the effects planner, runtime/include/vplkit/planner.hpp). Reads the scene; no\n"
+    "device work. `vplkit render` prints the plan's one-line summary.\n";
 
 namespace {
 
@@ -162,7 +174,9 @@ std::vector<std::pair<std::string, double>> median_stages(const std::vector<std:
 
 }  // namespace
 
-int run_render(Args& args) {
+namespace {
+
+int render_or_plan(Args& args, bool plan_only) {
     ContextOptions context_options;
     if (auto device = args.value("--device")) context_options.device = *device;
     context_options.validation = args.flag("--validation");
@@ -235,7 +249,8 @@ int run_render(Args& args) {
         vpl_options_given = true;
         if (*text == "ir") settings.vpl_source = VplSource::ir;
         else if (*text == "brsm") settings.vpl_source = VplSource::brsm;
-        else throw UsageError("--vpl-source expects ir or brsm, got '" + *text + "'");
+        else if (*text == "auto") settings.vpl_source = VplSource::automatic;
+        else throw UsageError("--vpl-source expects ir, brsm or auto, got '" + *text + "'");
     }
     const bool brsm = settings.vpl_source == VplSource::brsm;
     if (auto text = args.value("--vpls")) {
@@ -259,6 +274,7 @@ int run_render(Args& args) {
     if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");
+    settings.force_all_stages = args.flag("--all-stages");
     uint32_t frames = 1;
     if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
     if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
@@ -305,6 +321,15 @@ int run_render(Args& args) {
     const double load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
 
+    if (plan_only) {
+        // No device work: the plan is a function of the scene and the settings.
+        std::printf("scene: %s: %zu triangles, %zu materials, %zu lights, %zu emissive triangles\n", described.c_str(),
+                    scene.triangle_count(), scene.materials.size(), scene.lights.size(), scene.emissive_triangles.size());
+        std::printf("method: %s, %ux%u\n", gi_method_name(settings.method), settings.width, settings.height);
+        const FramePlan plan = plan_frame(scene, settings, "");
+        std::printf("%s\n%s", plan.summary().c_str(), plan.describe().c_str());
+        return 0;
+    }
     auto context = Context::create(context_options);
     const DeviceInfo& device = context->info();
     std::printf("device: %s (%s): %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
@@ -334,9 +359,10 @@ int run_render(Args& args) {
         image = renderer.render(scene.camera(), settings);
         if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
     }
+    std::printf("%s\n", image.plan_summary.c_str());
     for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
     const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
-    if (made_vpls && brsm) {
+    if (made_vpls && image.vpl_source == VplSource::brsm) {
         std::printf("%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
                     settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
                     settings.brsm.samples_per_texel, settings.brsm.defensive_fraction);
@@ -410,5 +436,10 @@ int run_render(Args& args) {
     }
     return 0;
 }
+
+}  // namespace
+
+int run_render(Args& args) { return render_or_plan(args, false); }
+int run_plan(Args& args) { return render_or_plan(args, true); }
 
 }  // namespace vplkit::cli

@@ -13,6 +13,10 @@ extern const char* const kInfoUsage;
 int run_render(Args& args);
 extern const char* const kRenderUsage;
 
+// `vplkit plan`: render's options, the frame's plan printed instead of rendered.
+int run_plan(Args& args);
+extern const char* const kPlanUsage;
+
 int run_bench(Args& args);
 extern const char* const kBenchUsage;
 

@@ -14,17 +14,20 @@
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/upsample.hpp"
+#include "vplkit/stages/vpl_trees.hpp"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 namespace vplkit {
 
 class Context;
+struct FramePlan;
 
 // How indirect light is computed.
 enum class GiMethod {
@@ -40,8 +43,9 @@ const char* gi_method_name(GiMethod method);
 
 // Where the VPLs come from.
 enum class VplSource {
-    ir,    // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
-    brsm,  // bidirectional reflective shadow maps: one-bounce VPLs where the camera sees their light
+    ir,         // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
+    brsm,       // bidirectional reflective shadow maps: one-bounce VPLs where the camera sees their light
+    automatic,  // the planner's choice: BRSM for one bounce from punctual lights, else light paths
 };
 
 // One VPL as the host sees it (RenderedImage::vpls).
@@ -59,7 +63,7 @@ struct RenderSettings {
     uint32_t emissive_samples = 16; // area-light samples per pixel for emissive triangles
     uint32_t seed = 0;              // the same seed gives the same image
     GiMethod method = GiMethod::none;
-    VplSource vpl_source = VplSource::ir;
+    VplSource vpl_source = VplSource::automatic;
     uint32_t vpl_paths = 4096;      // ir: light paths traced for VPLs
     uint32_t vpl_bounces = 2;       // ir: surface hits per path at most
     // brsm: its options (vpl_count is the VPL budget over all punctual lights; the seed is
@@ -73,6 +77,9 @@ struct RenderSettings {
     uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
     uint32_t frame = 0;       // rtslc: rotates the interleaved shares
     bool mock_cuts = true;    // hybrid: mock cuts where no block is alike (false: root traversals)
+    // Every stage that can run for the method runs (direct emissive light without emitters, both
+    // trees) and nothing is reused from the previous frame: the planner's baseline (planner.hpp).
+    bool force_all_stages = false;
     stages::SstOptions sst;   // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
     // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
     // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.
@@ -102,6 +109,11 @@ struct RenderedImage {
     stages::UpsampleCounts upsample_counts;  // half_resolution_gi: pixels no similar sample reached
     uint32_t gi_width = 0;           // the size indirect light was computed at
     uint32_t gi_height = 0;
+    std::string plan_summary;        // the frame's plan in one line (FramePlan::summary, planner.hpp)
+    std::vector<std::string> stages_run;  // the stages the plan ran (stage_name), in order
+    VplSource vpl_source = VplSource::ir;  // where this frame's VPLs came from (automatic resolved)
+    bool reused_vpls = false;        // the previous frame's VPLs (and, below, trees) served this one
+    bool reused_trees = false;
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
 };
 
@@ -131,13 +143,31 @@ class Renderer {
         Buffer vpls;
         uint32_t count = 0;
     };
-    // VPLs by settings.vpl_source for the frame whose G-buffer is `gbuffer`; timings and notes into `out`.
-    GeneratedVpls generate_vpls(const stages::CameraView& view, stages::GbufferImages& gbuffer,
+    // VPLs from `source` for the frame whose G-buffer is `gbuffer`; timings and notes into `out`.
+    GeneratedVpls generate_vpls(VplSource source, const stages::CameraView& view, stages::GbufferImages& gbuffer,
                                 const RenderSettings& settings, RenderedImage& out);
-    // Indirect light from `vpls` by settings.method into `indirect` (full size), at full or half
-    // resolution (renderer_gi.cpp).
-    void render_indirect(const stages::CameraView& view, stages::GbufferImages& gbuffer, const GeneratedVpls& vpls,
+    // The frame's VPLs: the previous frame's when the plan reuses them, else new ones (kept for
+    // the next frame).
+    const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
+                                    const RenderSettings& settings, RenderedImage& out);
+    // Indirect light from the cached VPLs by settings.method into `indirect` (full size), at full
+    // or half resolution, with the trees the plan builds or reuses (renderer_gi.cpp).
+    void render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
                          const RenderSettings& settings, Image& indirect, RenderedImage& out);
+
+    // What a frame leaves for the next: its VPLs and the trees over them, while the plan's keys
+    // (VPL settings, view for BRSM, tree settings) stay the same. Scene geometry and lights are
+    // fixed for a renderer's life.
+    struct FrameCache {
+        std::string vpl_key;  // empty: nothing cached
+        GeneratedVpls vpls;
+        std::vector<std::string> vpl_notes;
+        std::string tree_key;
+        std::optional<stages::VplTrees> trees;
+        bool light_tree = false;
+        bool sst = false;
+    };
+    FrameCache cache_;
 
     Context& context_;
     GpuScene scene_;

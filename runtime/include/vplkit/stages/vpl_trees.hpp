@@ -35,8 +35,10 @@ struct VplTrees {
     static VplTrees create(Context& context, uint32_t count, const VplTreeOptions& options = {});
 
     // Adds the passes that fill leaves, light_tree and sst from `vpls` (Vpl[count]): "vpl keys",
-    // the sort's passes, "gather leaves", "light tree leaves/levels", "build sst".
-    void add_build_passes(PassList& passes, const Buffer& vpls);
+    // the sort's passes, "gather leaves", then "light tree leaves/levels" and "build sst" unless
+    // the caller needs only one of the trees (a method reads one: rtslc the light tree, sst and
+    // hybrid the SST).
+    void add_build_passes(PassList& passes, const Buffer& vpls, bool light_tree = true, bool sst = true);
 
  private:
     struct Scratch;

@@ -1,0 +1,87 @@
+#pragma once
+// The effects planner: which stages a frame runs, decided from its scene (lights, emissive
+// triangles) and its settings (method, VPL source, resolution) and from what the previous frame
+// left (VPLs and trees that are still valid), with the reason for every stage kept or left out.
+// The Renderer records exactly the stages the plan runs; `vplkit plan` prints the plan.
+
+#include "vplkit/renderer.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vplkit {
+
+namespace scene {
+struct Scene;
+}
+
+// A frame's stages, in the order they run.
+enum class FrameStage {
+    gbuffer,          // raster pass: position, normals, material, emission
+    direct_light,     // emission, background, punctual lights with shadow rays
+    direct_emissive,  // area-light sampling of emissive triangles
+    vpl_paths,        // instant radiosity: light paths through the BVH
+    brsm_vpls,        // reflective shadow maps and BRSM placement, light by light
+    vpl_sort,         // keys, sort, leaves in sorted order
+    light_tree,       // the RTSLC light tree
+    sst,              // the stochastic substitute tree
+    gi_downsample,    // the half-resolution G-buffer
+    gi_exact,
+    gi_sst,
+    gi_rtslc,
+    gi_hybrid,
+    gi_upsample,      // joint bilateral upsampling to full resolution
+    compose,          // direct + indirect
+    tonemap,
+};
+
+// "direct light", "gi hybrid", ... (what `vplkit plan` prints).
+const char* stage_name(FrameStage stage);
+
+// The pass names (PassList::add names, before any " (N passes)") a stage records; a pass of a
+// frame belongs to exactly one stage. "shadow map " and "brsm " are prefixes (one per light).
+bool stage_owns_pass(FrameStage stage, const std::string& pass_name);
+
+struct PlannedStage {
+    FrameStage stage;
+    bool runs = false;
+    std::string reason;  // why it runs, or why it is left out
+};
+
+// What the previous frame left that this one may reuse.
+struct ReusableWork {
+    std::string vpl_key;   // the VPL set the cached VPLs are (empty: none cached)
+    bool light_tree = false;  // the cached VPLs' trees, built with the cached tree key
+    bool sst = false;
+    std::string tree_key;
+};
+
+struct FramePlan {
+    std::vector<PlannedStage> stages;  // every stage, in frame order
+    VplSource vpl_source = VplSource::ir;  // the source chosen (VplSource::automatic resolved)
+    bool reuse_vpls = false;    // the previous frame's VPLs serve this frame
+    bool reuse_trees = false;   // and its trees
+    std::string vpl_key;        // this frame's VPL set
+    std::string tree_key;       // this frame's tree settings
+    std::vector<std::string> notes;  // e.g. "the scene has no light: the image would be black"
+
+    bool runs(FrameStage stage) const;
+    // One line: "plan: gbuffer, direct light, ... ; left out: direct emissive, ..."
+    std::string summary() const;
+    // Every stage with its reason, a line each.
+    std::string describe() const;
+};
+
+// The key of the VPL set a frame with these settings places: everything the VPLs depend on
+// (source, budget, bounces, seed, BRSM options; for BRSM also the view and size, since it places
+// VPLs where the camera sees their light).
+std::string vpl_set_key(const RenderSettings& settings, VplSource source, const std::string& view_key);
+// The key of the trees over a VPL set: the SST thresholds.
+std::string tree_settings_key(const RenderSettings& settings);
+
+// The plan of one frame. `view_key` names the camera and size (the Renderer's), `previous` what
+// the last frame left. Pure: no device work.
+FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, const std::string& view_key,
+                     const ReusableWork& previous = {});
+
+}  // namespace vplkit

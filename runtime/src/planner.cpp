@@ -1,0 +1,213 @@
+#include "vplkit/planner.hpp"
+
+#include "vplkit/scene.hpp"
+
+#include <sstream>
+
+namespace vplkit {
+
+const char* stage_name(FrameStage stage) {
+    switch (stage) {
+        case FrameStage::gbuffer: return "gbuffer";
+        case FrameStage::direct_light: return "direct light";
+        case FrameStage::direct_emissive: return "direct emissive";
+        case FrameStage::vpl_paths: return "vpl paths";
+        case FrameStage::brsm_vpls: return "brsm vpls";
+        case FrameStage::vpl_sort: return "vpl sort";
+        case FrameStage::light_tree: return "light tree";
+        case FrameStage::sst: return "sst";
+        case FrameStage::gi_downsample: return "gi downsample";
+        case FrameStage::gi_exact: return "gi exact";
+        case FrameStage::gi_sst: return "gi sst";
+        case FrameStage::gi_rtslc: return "gi rtslc";
+        case FrameStage::gi_hybrid: return "gi hybrid";
+        case FrameStage::gi_upsample: return "gi upsample";
+        case FrameStage::compose: return "compose";
+        case FrameStage::tonemap: return "tonemap";
+    }
+    return "?";
+}
+
+bool stage_owns_pass(FrameStage stage, const std::string& pass) {
+    auto starts = [&](const char* prefix) { return pass.rfind(prefix, 0) == 0; };
+    switch (stage) {
+        case FrameStage::gbuffer: return pass == "gbuffer";
+        case FrameStage::direct_light: return pass == "direct light" || pass == "indirect clear";
+        case FrameStage::direct_emissive: return pass == "direct emissive";
+        case FrameStage::vpl_paths: return pass == "vpl count clear" || pass == "trace vpls";
+        case FrameStage::brsm_vpls:
+            return starts("shadow map ") || starts("brsm ") || pass == "importance mips" || pass == "warp samples";
+        case FrameStage::vpl_sort:
+            return pass == "vpl bounds clear" || pass == "vpl bounds" || pass == "morton keys" || pass == "sort" ||
+                   pass == "gather leaves";
+        case FrameStage::light_tree: return pass == "light tree leaves" || pass == "light tree levels";
+        case FrameStage::sst: return pass == "sst clear counters" || pass == "build sst";
+        case FrameStage::gi_downsample: return pass == "gbuffer downsample";
+        case FrameStage::gi_exact: return starts("exact gi");
+        case FrameStage::gi_sst: return pass == "sst gi" || pass == "gi counters clear";
+        case FrameStage::gi_rtslc: return starts("rtslc ") || pass == "gi counters clear";
+        case FrameStage::gi_hybrid: return starts("hybrid ") || pass == "gi counters clear";
+        case FrameStage::gi_upsample: return pass == "upsample clear" || pass == "upsample";
+        case FrameStage::compose: return pass == "compose";
+        case FrameStage::tonemap: return starts("tonemap");
+    }
+    return false;
+}
+
+bool FramePlan::runs(FrameStage stage) const {
+    for (const PlannedStage& s : stages) {
+        if (s.stage == stage) return s.runs;
+    }
+    return false;
+}
+
+std::string FramePlan::summary() const {
+    std::string kept, out;
+    for (const PlannedStage& s : stages) {
+        std::string& list = s.runs ? kept : out;
+        list += (list.empty() ? "" : ", ") + std::string(stage_name(s.stage));
+    }
+    return "plan: " + kept + (out.empty() ? "" : "; left out: " + out);
+}
+
+std::string FramePlan::describe() const {
+    std::ostringstream s;
+    for (const PlannedStage& p : stages) {
+        s << (p.runs ? "  run   " : "  skip  ") << stage_name(p.stage) << ": " << p.reason << "\n";
+    }
+    for (const std::string& note : notes) s << "note: " << note << "\n";
+    return s.str();
+}
+
+std::string vpl_set_key(const RenderSettings& settings, VplSource source, const std::string& view_key) {
+    std::ostringstream key;
+    key.precision(9);
+    if (source == VplSource::brsm) {
+        // View-dependent: BRSM places VPLs where this camera sees their light.
+        key << "brsm " << settings.brsm.vpl_count << ' ' << settings.brsm.samples_per_texel << ' '
+            << settings.brsm.core_radius << ' ' << settings.brsm.max_radius << ' ' << settings.brsm.filter_sigma << ' '
+            << settings.brsm.filter_radius << ' ' << settings.brsm.similarity_min_cos << ' '
+            << settings.brsm.similarity_max_distance << ' ' << settings.brsm.defensive_fraction << ' '
+            << settings.rsm_resolution << " seed " << settings.seed << " view " << view_key;
+    } else {
+        // Light paths do not depend on the camera.
+        key << "ir " << settings.vpl_paths << ' ' << settings.vpl_bounces << " seed " << settings.seed;
+    }
+    return key.str();
+}
+
+std::string tree_settings_key(const RenderSettings& settings) {
+    std::ostringstream key;
+    key.precision(9);
+    key << "sst " << settings.sst.nu_min << ' ' << settings.sst.sigma_max;
+    return key.str();
+}
+
+FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, const std::string& view_key,
+                     const ReusableWork& previous) {
+    FramePlan plan;
+    const bool punctual = !scene.lights.empty();
+    const bool emissive = !scene.emissive_triangles.empty();
+    const bool lit = punctual || emissive;
+    const bool indirect = settings.method != GiMethod::none || settings.vpls_only;
+    const bool sampled = settings.method == GiMethod::sst || settings.method == GiMethod::rtslc ||
+                         settings.method == GiMethod::hybrid;
+    const bool half = settings.half_resolution_gi && settings.method != GiMethod::none && !settings.vpls_only;
+    auto add = [&plan](FrameStage stage, bool runs, std::string reason) { plan.stages.push_back({stage, runs, std::move(reason)}); };
+
+    if (!lit) plan.notes.push_back("the scene has no light (no punctual light, no emissive triangle): the image would be black");
+
+    // Which VPLs, if any.
+    std::string source_reason;
+    plan.vpl_source = settings.vpl_source;
+    if (settings.vpl_source == VplSource::automatic) {
+        if (settings.vpl_bounces == 1 && punctual && !emissive) {
+            plan.vpl_source = VplSource::brsm;
+            source_reason = "one bounce asked for: BRSM places first-bounce VPLs where the camera sees their light";
+        } else {
+            plan.vpl_source = VplSource::ir;
+            source_reason = settings.vpl_bounces == 1
+                                ? (emissive ? "one bounce, but BRSM has no VPLs for emissive triangles: light paths"
+                                            : "one bounce, but BRSM needs a punctual light: light paths")
+                                : "multi-bounce (" + std::to_string(settings.vpl_bounces) + " bounces): light paths";
+        }
+    } else {
+        source_reason = plan.vpl_source == VplSource::brsm ? "BRSM asked for" : "light paths asked for";
+    }
+    plan.vpl_key = vpl_set_key(settings, plan.vpl_source, view_key);
+    plan.tree_key = tree_settings_key(settings);
+    // --all-stages: every stage that can run for this method does, nothing is reused (what the
+    // planner saves is measured against this).
+    const bool force = settings.force_all_stages;
+    plan.reuse_vpls = !force && indirect && lit && !previous.vpl_key.empty() && previous.vpl_key == plan.vpl_key;
+    const bool needs_light_tree = (settings.method == GiMethod::rtslc || (force && sampled)) && !settings.vpls_only;
+    const bool needs_sst =
+        (settings.method == GiMethod::sst || settings.method == GiMethod::hybrid || (force && sampled)) && !settings.vpls_only;
+    plan.reuse_trees = plan.reuse_vpls && previous.tree_key == plan.tree_key && (!needs_light_tree || previous.light_tree) &&
+                       (!needs_sst || previous.sst);
+
+    add(FrameStage::gbuffer, true, "every frame: the surfaces the camera sees");
+    add(FrameStage::direct_light, true,
+        punctual ? std::to_string(scene.lights.size()) + " punctual light(s), plus emission and background"
+                 : "no punctual light: emission and background only");
+    add(FrameStage::direct_emissive, emissive || force,
+        emissive ? std::to_string(scene.emissive_triangles.size()) + " emissive triangles"
+                 : force ? "forced on (--all-stages); no emissive triangle" : "no emissive triangle");
+
+    const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
+    const bool make_vpls = indirect && lit && !plan.reuse_vpls;
+    auto vpl_reason = [&](VplSource source) -> std::string {
+        if (!indirect) return "direct light only (--method direct): no VPLs";
+        if (!lit) return "no light to place VPLs from";
+        if (plan.vpl_source != source) {
+            return plan.vpl_source == VplSource::brsm ? "BRSM places this frame's VPLs" : "light paths place this frame's VPLs";
+        }
+        if (plan.reuse_vpls) return reused;
+        return source_reason;
+    };
+    add(FrameStage::vpl_paths, make_vpls && plan.vpl_source == VplSource::ir, vpl_reason(VplSource::ir));
+    add(FrameStage::brsm_vpls, make_vpls && plan.vpl_source == VplSource::brsm, vpl_reason(VplSource::brsm));
+
+    const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
+    auto tree_reason = [&](bool needed, const char* who) -> std::string {
+        if (!lit) return "no light: no VPLs to build a tree over";
+        if (settings.vpls_only) return "VPLs only: no indirect light";
+        if (!sampled) {
+            return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree"
+                                                      : "direct light only: no tree";
+        }
+        if (!needed) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + who;
+        if (plan.reuse_trees) return "reused: built over the same VPLs with the same settings last frame";
+        if (force && !(settings.method == GiMethod::rtslc ? std::string(who) == "the light tree" || std::string(who) == "sorted leaves"
+                                                          : std::string(who) != "the light tree")) {
+            return "forced on (--all-stages); the method does not read it";
+        }
+        return std::string("read by ") + gi_method_name(settings.method);
+    };
+    add(FrameStage::vpl_sort, build_trees, tree_reason(true, "sorted leaves"));
+    add(FrameStage::light_tree, build_trees && needs_light_tree, tree_reason(needs_light_tree, "the light tree"));
+    add(FrameStage::sst, build_trees && needs_sst, tree_reason(needs_sst, "the SST"));
+
+    const bool gi = settings.method != GiMethod::none && !settings.vpls_only && lit;
+    const std::string no_gi = settings.method == GiMethod::none ? "direct light only" : settings.vpls_only ? "VPLs only" : "no light";
+    add(FrameStage::gi_downsample, gi && half,
+        !gi ? no_gi + ": no indirect light" : half ? "GI at half resolution" : "GI resolution equals the output: no half G-buffer");
+    for (auto [stage, method] : {std::pair{FrameStage::gi_exact, GiMethod::exact}, std::pair{FrameStage::gi_sst, GiMethod::sst},
+                                 std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid}}) {
+        const bool chosen = settings.method == method;
+        std::string reason = std::string("--method ") + gi_method_name(settings.method);
+        if (chosen) {
+            reason = settings.vpls_only ? "VPLs only: no indirect light"
+                     : !lit             ? "no light: no indirect light"
+                                        : "the method asked for";
+        }
+        add(stage, gi && chosen, reason);
+    }
+    add(FrameStage::gi_upsample, gi && half,
+        !gi ? no_gi + ": no indirect light" : half ? "GI at half resolution" : "GI resolution equals the output: no upsampling");
+    add(FrameStage::compose, true, "every frame: direct + indirect");
+    add(FrameStage::tonemap, true, "every frame: the picture");
+    return plan;
+}
+
+}  // namespace vplkit
