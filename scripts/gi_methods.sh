@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The sampling methods against the exact ground truth on one standard set-up, at a few sample
 # budgets: RMSE and SSIM of the tonemapped frame (sRGB / 255, as the thesis compares images) and
-# the relative RMSE of the linear indirect light, GI time (GPU timestamps of the sampling passes;
-# tree build separately) and tree levels per traversal. Writes OUT/SCENE.csv and the frames.
+# the relative RMSE of the linear indirect light (rmse / the reference's mean), GI time (GPU
+# timestamps of the sampling passes, with downsampling and upsampling for hybrid-half; the tree
+# build separately; medians of frames 2-3) and tree levels per traversal. Writes
+# OUT/SCENE-WxH.csv, the frames and their x10 difference pictures.
 #   scripts/gi_methods.sh SCENE [OUT] [WIDTHxHEIGHT] [SPP list] [extra render options...]
 # e.g. scripts/gi_methods.sh sponza-sun out/gi 320x180 "4 8 16 32" --vpl-source brsm --vpls 4096
 # The exact frame is rendered once per scene and size (the slow part) and reused if present.
@@ -26,13 +28,18 @@ if [[ ! -f "$base-exact.png" ]]; then
 fi
 csv="$out/$scene-${width}x$height.csv"
 echo "scene,method,spp,gi_ms,tree_ms,levels_per_traversal,mock_cut_pixels,rmse,ssim,indirect_relative_rmse" > "$csv"
-for method in sst rtslc hybrid; do
+# hybrid-half: the hybrid method at half GI resolution, upsampled.
+for variant in sst rtslc hybrid hybrid-half; do
+  method=${variant%-half}
+  resolution=full
+  [[ $variant == *-half ]] && resolution=half
   for spp in $spps; do
-    name="$base-$method-$spp"
-    echo "[$scene] $method, $spp spp" >&2
-    "$vplkit" render --scene "$scene" --method "$method" --spp "$spp" --width "$width" --height "$height" "${extra[@]}" \
-      --out "$name.png" --out-indirect "$name.pfm" > "$name.log"
-    gi_ms=$(awk '/^  (sst gi|rtslc cuts|rtslc gi|hybrid cuts|hybrid gi)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
+    name="$base-$variant-$spp"
+    echo "[$scene] $variant, $spp spp" >&2
+    # 3 frames: the times are the medians of frames 2 and 3 (the first compiles the shaders).
+    "$vplkit" render --scene "$scene" --method "$method" --spp "$spp" --width "$width" --height "$height" \
+      --gi-resolution "$resolution" --frames 3 --no-reuse "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
+    gi_ms=$(awk '/^  (sst gi|rtslc cuts|rtslc gi|hybrid cuts|hybrid gi|gbuffer downsample|upsample)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     tree_ms=$(awk '/^  (vpl bounds|morton keys|sort|gather leaves|light tree|sst clear|build sst)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     levels=$(sed -n 's/.* \([0-9.]*\) tree levels per traversal.*/\1/p' "$name.log")
     mock=$(sed -n 's/.* \([0-9]*\) mock-cut pixels.*/\1/p' "$name.log")
@@ -40,7 +47,7 @@ for method in sst rtslc hybrid; do
     rmse=$(awk '/^rmse:/ { print $2 }' "$name-compare.txt")
     ssim=$(awk '/^ssim:/ { print $2 }' "$name-compare.txt")
     rel=$("$vplkit" compare "$name.pfm" "$base-exact.pfm" | awk '/^relative rmse:/ { print $3 }')
-    echo "$scene,$method,$spp,$gi_ms,$tree_ms,$levels,${mock:-},$rmse,$ssim,$rel" >> "$csv"
+    echo "$scene,$variant,$spp,$gi_ms,$tree_ms,$levels,${mock:-},$rmse,$ssim,$rel" >> "$csv"
   done
 done
 column -s, -t "$csv"

@@ -139,7 +139,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     // --all-stages: every stage that can run for this method does, nothing is reused (what the
     // planner saves is measured against this).
     const bool force = settings.force_all_stages;
-    plan.reuse_vpls = !force && indirect && lit && !previous.vpl_key.empty() && previous.vpl_key == plan.vpl_key;
+    plan.reuse_vpls = !force && settings.reuse_static_work && indirect && lit && !previous.vpl_key.empty() &&
+                      previous.vpl_key == plan.vpl_key;
     const bool needs_light_tree = (settings.method == GiMethod::rtslc || (force && sampled)) && !settings.vpls_only;
     const bool needs_sst =
         (settings.method == GiMethod::sst || settings.method == GiMethod::hybrid || (force && sampled)) && !settings.vpls_only;

@@ -235,6 +235,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
                              : (scene.lights.empty() ? VplSource::ir : VplSource::brsm);
     base.vpl_paths = vpl_budget;
     base.brsm.vpl_count = vpl_budget;
+    base.reuse_static_work = false;  // every timed frame places its VPLs and builds its tree
     if (quick) base.rsm_resolution = 128;  // BRSM's shadow maps dominate a tiny frame otherwise
     Renderer renderer(*context, scene);
 

@@ -35,7 +35,7 @@ const char* const kRenderUsage =
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
-    "                     [--seed S] [--emissive-samples N] [--frames F] [--all-stages]\n"
+    "                     [--seed S] [--emissive-samples N] [--frames F] [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation]\n"
     "\n"
@@ -85,6 +85,7 @@ const char* const kRenderUsage =
     "  --emissive-samples N  area-light samples per pixel for emissive triangles (default 16)\n"
     "  --all-stages     run every stage the method can use, whatever the scene needs, and reuse\n"
     "                   nothing between frames (the planner's baseline)\n"
+    "  --no-reuse       place the VPLs and build the trees every frame, even when nothing changed\n"
     "  --frames F       render the frame F times and print each stage's median time over frames\n"
     "                   2..F (the first pays for shader compiles); the image is the same each time\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
@@ -275,6 +276,7 @@ int render_or_plan(Args& args, bool plan_only) {
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");
     settings.force_all_stages = args.flag("--all-stages");
+    settings.reuse_static_work = !args.flag("--no-reuse");
     uint32_t frames = 1;
     if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
     if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {

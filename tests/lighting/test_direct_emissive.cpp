@@ -181,9 +181,14 @@ TEST_CASE("direct emissive: a scene without emitters adds nothing and zero sampl
     auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 4, 4);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
     auto radiance = vplkit::Image::create(ctx, 4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
+    // The pass records (whether it runs is the planner's decision) and leaves the radiance as it was.
+    const std::vector<std::array<float, 4>> before(16, {0.25f, 0.5f, 0.75f, 1.0f});
+    radiance.upload(before);
     vplkit::PassList passes;
     vplkit::stages::add_direct_emissive_pass(ctx, passes, gbuffer, bvh, emitters, {kCamera, 4, 0}, radiance);
-    CHECK(passes.size() == 0);
+    CHECK(passes.size() == 1);
+    passes.run(ctx);
+    CHECK(radiance.download<std::array<float, 4>>() == before);
     CHECK_THROWS_WITH_AS(vplkit::stages::add_direct_emissive_pass(ctx, passes, gbuffer, bvh, emitters, {kCamera, 0, 0}, radiance),
                          doctest::Contains("at least 1"), vplkit::Error);
 }

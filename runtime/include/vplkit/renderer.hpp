@@ -80,6 +80,10 @@ struct RenderSettings {
     // Every stage that can run for the method runs (direct emissive light without emitters, both
     // trees) and nothing is reused from the previous frame: the planner's baseline (planner.hpp).
     bool force_all_stages = false;
+    // A frame whose VPL set and tree settings equal the previous frame's reuses its VPLs and
+    // trees (the scene's geometry and lights never change within a renderer). false: rebuild
+    // every frame (benchmarks that time the whole pipeline).
+    bool reuse_static_work = true;
     stages::SstOptions sst;   // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
     // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
     // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.

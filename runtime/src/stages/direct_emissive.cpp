@@ -62,7 +62,8 @@ void add_direct_emissive_pass(Context& context, PassList& passes, GbufferImages&
         throw Error("direct emissive: '" + radiance.name() + "' must be RGBA32F and of the G-buffer's size");
     }
     if (params.samples == 0) throw Error("direct emissive: samples per pixel must be at least 1");
-    if (emitters.count == 0) return;
+    // With no emitter the dispatch adds nothing (the shader returns at once): whether it runs
+    // at all is the effects planner's decision (planner.hpp), not this function's.
     const auto& pipeline = context.pipeline<shaders::direct_emissive::Pipeline>();
     passes.add("direct emissive",
                {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),

@@ -37,7 +37,8 @@ struct DirectEmissiveParams {
 };
 
 // Adds the pass "direct emissive": adds the emitters' direct light to `radiance` (RGBA32F,
-// storage, the G-buffer's size). Does nothing on the GPU for a scene without emitters.
+// storage, the G-buffer's size). With no emitter the pass still records and adds nothing (the
+// planner leaves it out of such frames).
 void add_direct_emissive_pass(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
                               const GpuEmitters& emitters, const DirectEmissiveParams& params, Image& radiance);
 
