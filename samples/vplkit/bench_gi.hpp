@@ -55,6 +55,7 @@ struct BenchRun {
     std::string exact_image;    // relative to the output folder
     std::vector<BenchPoint> points;
     double target_ms = 0;       // the equal-time target (frame time)
+    std::vector<std::string> skipped;  // points the device could not run, with the reason
 };
 
 // Writes points.csv, points.json, the plots, equal-time images with x10 difference pictures and

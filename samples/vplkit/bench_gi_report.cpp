@@ -355,6 +355,10 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     for (const BenchPoint* p : counts) {
         md << "| " << p->vpls << " | " << fixed(p->vpls_ms, 1) << " | " << fixed(p->trees_ms, 1) << " | " << fixed(p->gi_ms, 1) << " |\n";
     }
+    if (!run.skipped.empty()) {
+        md << "\n## Skipped points\n\n";
+        for (const std::string& s : run.skipped) md << "- " << s << "\n";
+    }
     md << "\nEvery point: points.csv, points.json; every frame: images/.\n";
     write_file(folder / "report.md", md.str());
 }

@@ -303,14 +303,23 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         s.interleave = p.interleave;
         s.half_resolution_gi = p.half;
         s.mock_cuts = p.mock_cuts;
-        s.vpl_paths = p.vpls;
+        // Light paths leave up to one VPL per bounce: aim the path count at the VPL count.
+        s.vpl_paths = base.vpl_source == VplSource::ir && p.sweep == "vpls" ? std::max(1u, p.vpls / base.vpl_bounces) : p.vpls;
         s.brsm.vpl_count = p.vpls;
         std::vector<double> frame_ms, gi_ms, trees_ms, vpls_ms;
         std::vector<std::string> stage_names;
         std::map<std::string, std::vector<double>> stage_ms;
         RenderedImage image;
-        for (uint32_t f = 0; f < frames; ++f) {
-            image = renderer.render(scene.camera(), s);
+        std::string failure;
+        for (uint32_t f = 0; f < frames && failure.empty(); ++f) {
+            try {
+                image = renderer.render(scene.camera(), s);
+            } catch (const Error& e) {
+                // A point the device cannot run (e.g. a tree beyond its storage-buffer range) is
+                // reported and skipped; the rest of the sweep goes on.
+                failure = e.what();
+                break;
+            }
             if (f == 0 && frames > 1) continue;  // shader compiles at first dispatch
             double total = 0, gi = 0, trees = 0, vpls = 0;
             std::map<std::string, double> this_frame;
@@ -327,6 +336,12 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             gi_ms.push_back(gi);
             trees_ms.push_back(trees);
             vpls_ms.push_back(vpls);
+        }
+        if (!failure.empty()) {
+            std::fprintf(stderr, "\n[bench] %s skipped: %s\n", p.label().c_str(), failure.c_str());
+            run.skipped.push_back(p.label() + ": " + failure);
+            p.frames = 0;
+            continue;
         }
         if (image.non_finite_pixels > 0) throw Error("bench: " + p.label() + " gave non-finite pixels");
         p.frames = uint32_t(frame_ms.size());
@@ -355,6 +370,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     }
     progress.show(points.size(), "done");
 
+    points.erase(std::remove_if(points.begin(), points.end(), [](const BenchPoint& p) { return p.frames == 0; }), points.end());
     run.points = std::move(points);
     run.target_ms = target_ms;
     if (run.target_ms <= 0) {
