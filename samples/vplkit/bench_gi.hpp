@@ -4,6 +4,7 @@
 // several frames per point); bench_gi_report.cpp writes what was measured: CSV, JSON, PNG plots,
 // the equal-time table and images, and a Markdown report that embeds them.
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -57,6 +58,9 @@ struct BenchRun {
     double target_ms = 0;       // the equal-time target (frame time)
     std::vector<std::string> skipped;  // points the device could not run, with the reason
 };
+
+// A tonemapped RGBA8 frame as RGB values in [0, 1] (sRGB codes / 255): what the metrics compare.
+std::vector<float> unit_rgb(const std::vector<uint8_t>& rgba);
 
 // Writes points.csv, points.json, the plots, equal-time images with x10 difference pictures and
 // report.md into `folder`. `exact_rgba` is the ground truth's tonemapped frame.

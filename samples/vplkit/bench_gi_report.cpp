@@ -235,18 +235,10 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
 // The equal-time images: each method's frame and |frame - exact| x 10.
 void write_equal_time_images(const std::filesystem::path& folder, const BenchRun& run,
                              const std::vector<const BenchPoint*>& points) {
-    const PngImage exact = read_png(folder / run.exact_image);
-    std::vector<float> exact_rgb;
-    for (size_t i = 0; i + 3 < exact.rgba.size(); i += 4) {
-        for (int c = 0; c < 3; ++c) exact_rgb.push_back(exact.rgba[i + c] / 255.0f);
-    }
+    const std::vector<float> exact_rgb = unit_rgb(read_png(folder / run.exact_image).rgba);
     for (const BenchPoint* p : points) {
         const PngImage image = read_png(folder / p->image);
-        std::vector<float> rgb;
-        for (size_t i = 0; i + 3 < image.rgba.size(); i += 4) {
-            for (int c = 0; c < 3; ++c) rgb.push_back(image.rgba[i + c] / 255.0f);
-        }
-        const auto diff = difference_image_rgba8(rgb, exact_rgb, image.width, image.height, 10.0f);
+        const auto diff = difference_image_rgba8(unit_rgb(image.rgba), exact_rgb, image.width, image.height, 10.0f);
         write_png(folder / ("images/equal_time_" + p->method + "_diff.png"), image.width, image.height, diff);
     }
 }

@@ -76,15 +76,6 @@ std::string ground_truth_key(const scene::Setup& setup, const scene::Scene& scen
     return key.str();
 }
 
-std::vector<float> unit_rgb(const std::vector<uint8_t>& rgba) {
-    std::vector<float> rgb;
-    rgb.reserve(rgba.size() / 4 * 3);
-    for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
-        for (int c = 0; c < 3; ++c) rgb.push_back(rgba[i + c] / 255.0f);
-    }
-    return rgb;
-}
-
 struct GroundTruth {
     std::vector<float> rgb;       // tonemapped, sRGB / 255
     std::vector<float> radiance;  // linear
@@ -185,6 +176,15 @@ GiMethod method_of(const std::string& name) {
 }
 
 }  // namespace
+
+std::vector<float> unit_rgb(const std::vector<uint8_t>& rgba) {
+    std::vector<float> rgb;
+    rgb.reserve(rgba.size() / 4 * 3);
+    for (size_t i = 0; i + 3 < rgba.size(); i += 4) {
+        for (int c = 0; c < 3; ++c) rgb.push_back(rgba[i + c] / 255.0f);
+    }
+    return rgb;
+}
 
 std::string BenchPoint::label() const {
     std::string s = method + " " + std::to_string(spp) + " spp";
