@@ -2,8 +2,9 @@
 # Quick start (a): install what is missing, build, run the main job: render the default in-repo
 # scene with the flagship pipeline (BRSM VPLs, hybrid sampling at 32 samples per pixel on a
 # half-resolution G-buffer, upsampled: cleaner than 8 at full resolution for less time), write
-# out/vplkit.png, print the device used and the GPU time of every stage. Arguments replace the flagship options and go to
-# `vplkit render` as they are (e.g. scripts/run.sh --scene sponza-sun --method rtslc).
+# out/vplkit.png, print the device used and the GPU time of every stage. Arguments replace the
+# flagship options and go to `vplkit render` as they are (e.g. scripts/run.sh --scene sponza-sun
+# --method rtslc).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
