@@ -8,6 +8,7 @@
 #include "vplkit/shaders/hybrid_cut.hpp"
 #include "vplkit/shaders/hybrid_gi.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
+#include "gi_inputs.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst_gi.hpp"
 #include "vplkit/stages/vpl_trees.hpp"
@@ -55,10 +56,7 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                           const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
                           HybridCuts& cuts, const HybridOptions& options) {
     validate(options);
-    if (indirect.format() != VK_FORMAT_R32G32B32A32_SFLOAT || indirect.width() != gbuffer.width() ||
-        indirect.height() != gbuffer.height()) {
-        throw Error("hybrid gi: '" + indirect.name() + "' must be RGBA32F and of the G-buffer's size");
-    }
+    check_gbuffer_target("hybrid gi", gbuffer, indirect);
     const uint32_t k = options.block_size;
     if (cuts.cut_size != options.samples_per_pixel || cuts.blocks_x != (gbuffer.width() + k - 1) / k ||
         cuts.blocks_y != (gbuffer.height() + k - 1) / k) {
@@ -68,17 +66,13 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
     const glm::vec3 camera = camera_position;
     const auto& cut_pipeline = context.pipeline<shaders::hybrid_cut::Pipeline>();
     passes.add("hybrid cuts",
-               {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal),
-                Use::read(gbuffer.albedo), Use::read(trees.sst), Use::read(trees.leaves), Use::write(cuts.blocks),
-                Use::write(cuts.cuts)},
+               gbuffer_uses(gbuffer, {Use::read(trees.sst), Use::read(trees.leaves), Use::write(cuts.blocks),
+                                      Use::write(cuts.cuts)}),
                [&cut_pipeline, &gbuffer, &bvh, &trees, &cuts, camera, options](VkCommandBuffer cmd) {
                    shaders::hybrid_cut::Bindings b;
                    b.sst_nodes = trees.sst.descriptor();
                    b.sst_leaves = trees.leaves.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   bind_gbuffer(b, gbuffer);
                    b.blocks = cuts.blocks.descriptor();
                    b.cuts = cuts.cuts.descriptor();
                    shaders::hybrid_cut::Push push{};
@@ -94,18 +88,13 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                });
     const auto& gi_pipeline = context.pipeline<shaders::hybrid_gi::Pipeline>();
     passes.add("hybrid gi",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(trees.sst),
-                Use::read(trees.leaves), Use::read(cuts.blocks), Use::read(cuts.cuts), Use::write(indirect),
-                Use::read_write(counters)},
+               gbuffer_bvh_uses(gbuffer, bvh,
+                                {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks), Use::read(cuts.cuts),
+                                 Use::write(indirect), Use::read_write(counters)}),
                [&gi_pipeline, &gbuffer, &bvh, &trees, &cuts, camera, &indirect, &counters, options](VkCommandBuffer cmd) {
                    shaders::hybrid_gi::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   bind_bvh(b, bvh);
+                   bind_gbuffer(b, gbuffer);
                    b.sst_nodes = trees.sst.descriptor();
                    b.sst_leaves = trees.leaves.descriptor();
                    b.blocks = cuts.blocks.descriptor();

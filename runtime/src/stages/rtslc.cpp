@@ -9,6 +9,7 @@
 #include "vplkit/shaders/rtslc_interleave.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
+#include "gi_inputs.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/vpl_trees.hpp"
 
@@ -24,10 +25,7 @@ namespace {
 
 void check_targets(GbufferImages& gbuffer, const VplTrees& trees, Image& indirect, const Buffer& counters,
                    const RtslcOptions& options, const RtslcScratch& scratch) {
-    if (indirect.format() != VK_FORMAT_R32G32B32A32_SFLOAT || indirect.width() != gbuffer.width() ||
-        indirect.height() != gbuffer.height()) {
-        refuse("'" + indirect.name() + "' must be RGBA32F and of the G-buffer's size");
-    }
+    check_gbuffer_target("rtslc", gbuffer, indirect);
     if (scratch.width != gbuffer.width() || scratch.height != gbuffer.height() ||
         scratch.block_size != options.block_size || scratch.cut_size != options.samples_per_pixel ||
         scratch.interleave != options.interleave) {
@@ -107,17 +105,13 @@ void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer
 
     const auto& cut_pipeline = context.pipeline<shaders::rtslc_cut::Pipeline>();
     passes.add("rtslc cuts",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(trees.light_tree),
-                Use::write(scratch.cuts), Use::write(scratch.representatives), Use::read_write(counters)},
+               gbuffer_bvh_uses(gbuffer, bvh,
+                                {Use::read(trees.light_tree), Use::write(scratch.cuts), Use::write(scratch.representatives),
+                                 Use::read_write(counters)}),
                [&cut_pipeline, &gbuffer, &bvh, &trees, &scratch, &counters, camera, options](VkCommandBuffer cmd) {
                    shaders::rtslc_cut::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   bind_bvh(b, bvh);
+                   bind_gbuffer(b, gbuffer);
                    b.light_tree = trees.light_tree.descriptor();
                    b.cuts = scratch.cuts.descriptor();
                    b.representatives = scratch.representatives.descriptor();
@@ -141,19 +135,14 @@ void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);
         passes.add("rtslc gi",
-                   {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position),
-                    Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
-                    Use::read(trees.light_tree), Use::read(trees.leaves), Use::read(scratch.cuts),
-                    Use::read_write(counters), Use::read_write(radiance)},
+                   gbuffer_bvh_uses(gbuffer, bvh,
+                                    {Use::read(trees.light_tree), Use::read(trees.leaves), Use::read(scratch.cuts),
+                                     Use::read_write(counters), Use::read_write(radiance)}),
                    [&gi_pipeline, &gbuffer, &bvh, &trees, &scratch, &counters, &radiance, camera, options, first,
                     end](VkCommandBuffer cmd) {
                        shaders::rtslc_gi::Bindings b;
-                       b.bvh_nodes = bvh.nodes.descriptor();
-                       b.bvh_triangles = bvh.triangles.descriptor();
-                       b.gbuffer_position = gbuffer.position.descriptor();
-                       b.gbuffer_normal = gbuffer.normal.descriptor();
-                       b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                       b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                       bind_bvh(b, bvh);
+                       bind_gbuffer(b, gbuffer);
                        b.light_tree = trees.light_tree.descriptor();
                        b.leaves = trees.leaves.descriptor();
                        b.cuts = scratch.cuts.descriptor();

@@ -8,6 +8,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/sst_gi.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
+#include "gi_inputs.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/vpl_trees.hpp"
 
@@ -26,24 +27,16 @@ void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffe
                        const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
                        const SstGiOptions& options) {
     validate(options);
-    if (indirect.format() != VK_FORMAT_R32G32B32A32_SFLOAT || indirect.width() != gbuffer.width() ||
-        indirect.height() != gbuffer.height()) {
-        throw Error("sst gi: '" + indirect.name() + "' must be RGBA32F and of the G-buffer's size");
-    }
+    check_gbuffer_target("sst gi", gbuffer, indirect);
     add_gi_counters_clear(passes, counters, "gi counters clear");
     const auto& pipeline = context.pipeline<shaders::sst_gi::Pipeline>();
     passes.add("sst gi",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(trees.sst),
-                Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)},
+               gbuffer_bvh_uses(gbuffer, bvh,
+                                {Use::read(trees.sst), Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)}),
                [&pipeline, &gbuffer, &bvh, &trees, camera_position, &indirect, &counters, options](VkCommandBuffer cmd) {
                    shaders::sst_gi::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
+                   bind_bvh(b, bvh);
+                   bind_gbuffer(b, gbuffer);
                    b.sst_nodes = trees.sst.descriptor();
                    b.sst_leaves = trees.leaves.descriptor();
                    b.indirect = indirect.descriptor();

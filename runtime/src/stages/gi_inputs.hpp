@@ -1,0 +1,54 @@
+#pragma once
+// What every indirect-light pass reads the same way: the G-buffer images and the BVH. Their
+// generated Bindings structs (vplkit/shaders/<name>.hpp) name these bindings alike, so one
+// template fills them for any of the GI shaders; the pass-list uses and the target check are
+// shared the same way. Private to the stage sources.
+
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/gbuffer_images.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vplkit::stages {
+
+// The G-buffer images a GI shader reads (position, normals, albedo), as shader bindings...
+template <typename Bindings>
+void bind_gbuffer(Bindings& b, GbufferImages& gbuffer) {
+    b.gbuffer_position = gbuffer.position.descriptor();
+    b.gbuffer_normal = gbuffer.normal.descriptor();
+    b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+    b.gbuffer_albedo = gbuffer.albedo.descriptor();
+}
+
+template <typename Bindings>
+void bind_bvh(Bindings& b, const GpuBvh& bvh) {
+    b.bvh_nodes = bvh.nodes.descriptor();
+    b.bvh_triangles = bvh.triangles.descriptor();
+}
+
+// ... and as pass uses, followed by `more`.
+inline std::vector<Use> gbuffer_uses(GbufferImages& gbuffer, std::vector<Use> more) {
+    std::vector<Use> uses = {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal),
+                             Use::read(gbuffer.albedo)};
+    uses.insert(uses.end(), more.begin(), more.end());
+    return uses;
+}
+
+inline std::vector<Use> gbuffer_bvh_uses(GbufferImages& gbuffer, const GpuBvh& bvh, std::vector<Use> more) {
+    more.insert(more.begin(), {Use::read(bvh.nodes), Use::read(bvh.triangles)});
+    return gbuffer_uses(gbuffer, std::move(more));
+}
+
+// Throws vplkit::Error "<stage>: '<image>' must be RGBA32F and of the G-buffer's size".
+inline void check_gbuffer_target(const char* stage, GbufferImages& gbuffer, const Image& target) {
+    if (target.format() != VK_FORMAT_R32G32B32A32_SFLOAT || target.width() != gbuffer.width() ||
+        target.height() != gbuffer.height()) {
+        throw Error(std::string(stage) + ": '" + target.name() + "' must be RGBA32F and of the G-buffer's size");
+    }
+}
+
+}  // namespace vplkit::stages
