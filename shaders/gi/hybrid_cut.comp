@@ -27,9 +27,6 @@
 
 layout(local_size_x = 64) in;
 
-// Bounds the per-invocation cut arrays; kMaxGiSamplesPerPixel on the host.
-const uint kMaxCutSize = 64u;
-
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
@@ -94,8 +91,8 @@ void main() {
                         g.roughness, g.metallic);
     float min_distance = vpl_min_distance(push.scene_scale);
 
-    uint node[kMaxCutSize];
-    float priority[kMaxCutSize];  // the expected contribution a / d2, or -1 for a leaf (never split)
+    uint node[kGiMaxSamplesPerPixel];
+    float priority[kGiMaxSamplesPerPixel];  // the expected contribution a / d2, or -1 for a leaf (never split)
     uint size_now = 0u;
     // The root always starts the cut, even when it looks dark from here: other pixels of the
     // block may see its light, and an empty cut would give them none.

@@ -7,7 +7,11 @@
 //
 // Needs vplkit/brdf.glsl included first.
 
-const float kGiBigFloat = 3.402823466e+38;  // FLT_MAX: finite, unlike an Inf sentinel (light_tree.glsl)
+const float kGiBigFloat = 3.402823466e+38;
+
+// The most samples per pixel (cut nodes) any sampler takes: bounds the cut shaders' local arrays.
+// kMaxGiSamplesPerPixel on the host (stages/gi_counters.hpp).
+const uint kGiMaxSamplesPerPixel = 64u;  // FLT_MAX: finite, unlike an Inf sentinel (light_tree.glsl)
 
 // Smallest squared distance from x to the box [lo, hi]: 0 inside (seed 003 eq. 1, d_min).
 float gi_box_distance2_min(vec3 x, vec3 lo, vec3 hi) {

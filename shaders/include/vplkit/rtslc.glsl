@@ -11,7 +11,7 @@
 // A cut slot without a node (a cut smaller than samples_per_pixel, or a block without surface).
 const uint kRtslcNoNode = 0xFFFFFFFFu;
 // The most nodes a cut may hold: the size of the cut shader's local arrays.
-const uint kRtslcMaxCutSize = 64u;
+const uint kRtslcMaxCutSize = kGiMaxSamplesPerPixel;  // gi_bounds.glsl
 // rng_next_float's resolution: it returns k 2^-24 for a uniform k in [0, 2^24).
 const float kRtslcProbabilityStep = 5.9604644775390625e-8;
 // The smallest material weight a child may get (see rtslc_material_weight).

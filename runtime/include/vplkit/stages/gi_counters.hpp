@@ -14,6 +14,10 @@ class PassList;
 
 namespace vplkit::stages {
 
+// The most samples per pixel (sst traversals, rtslc and hybrid cut nodes) any sampler takes:
+// kGiMaxSamplesPerPixel in shaders/include/vplkit/gi_bounds.glsl, which sizes the cut arrays.
+inline constexpr uint32_t kMaxGiSamplesPerPixel = 64;
+
 struct GiCounts {
     uint32_t dropped_pixels = 0;   // pixels with at least one dropped (non-finite) sample
     uint32_t dropped_samples = 0;  // samples left out of their pixel because they were not finite

@@ -21,6 +21,7 @@
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/image.hpp"
+#include "vplkit/stages/gi_counters.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -38,7 +39,7 @@ struct GbufferImages;
 struct VplTrees;
 
 // Bounds of the options (validate() refuses others).
-inline constexpr uint32_t kRtslcMaxSamplesPerPixel = 64;  // kRtslcMaxCutSize in rtslc.glsl
+inline constexpr uint32_t kRtslcMaxSamplesPerPixel = kMaxGiSamplesPerPixel;  // gi_counters.hpp
 inline constexpr uint32_t kRtslcMaxBlockSize = 32;
 // An empty cut slot in RtslcScratch::cuts and an empty block's representative.
 inline constexpr uint32_t kRtslcNoNode = 0xFFFFFFFFu;

@@ -8,6 +8,8 @@
 // Output: `indirect` (RGBA32F, the G-buffer's size): rgb = the estimate, a = the pixel's dropped
 // samples; counts in `counters` (gi_counters.hpp).
 
+#include "vplkit/stages/gi_counters.hpp"
+
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -24,8 +26,6 @@ namespace vplkit::stages {
 
 struct GbufferImages;
 struct VplTrees;
-
-inline constexpr uint32_t kMaxGiSamplesPerPixel = 64;
 
 struct SstGiOptions {
     uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (seed 004 uses 1)
