@@ -10,6 +10,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/image_io.hpp"
 #include "vplkit/image_metrics.hpp"
+#include "vplkit/planner.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_setups.hpp"
@@ -19,9 +20,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <map>
 #include <optional>
-#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -122,25 +123,22 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
     return points;
 }
 
-bool is_gi_pass(const std::string& name) {
-    static const std::set<std::string> names = {"gi counters clear", "sst gi", "rtslc cuts", "rtslc gi",
-                                                "rtslc interleave", "hybrid cuts", "hybrid gi", "gbuffer downsample",
-                                                "upsample clear", "upsample"};
-    return names.count(name) > 0;
+// Which group of the frame a pass belongs to, by the planner's stage of the pass.
+bool owned_by(const std::string& pass, std::initializer_list<FrameStage> stages) {
+    for (FrameStage stage : stages) {
+        if (stage_owns_pass(stage, pass)) return true;
+    }
+    return false;
 }
 
-bool is_tree_pass(const std::string& name) {
-    static const std::set<std::string> names = {"vpl bounds clear", "vpl bounds", "morton keys", "sort", "gather leaves",
-                                                "light tree leaves", "light tree levels", "sst clear counters", "build sst"};
-    return names.count(name) > 0;
+bool is_gi_pass(const std::string& pass) {
+    return owned_by(pass, {FrameStage::gi_downsample, FrameStage::gi_exact, FrameStage::gi_sst, FrameStage::gi_rtslc,
+                           FrameStage::gi_hybrid, FrameStage::gi_upsample});
 }
-
-// Passes every frame has whatever the method: not part of VPL generation.
-bool is_frame_pass(const std::string& name) {
-    static const std::set<std::string> names = {"gbuffer", "direct light", "direct emissive", "indirect clear", "compose",
-                                                "tonemap stats clear", "tonemap"};
-    return names.count(name) > 0;
+bool is_tree_pass(const std::string& pass) {
+    return owned_by(pass, {FrameStage::vpl_sort, FrameStage::light_tree, FrameStage::sst});
 }
+bool is_vpl_pass(const std::string& pass) { return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls}); }
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -329,7 +327,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
                 total += t.gpu_ms;
                 if (is_gi_pass(t.name)) gi += t.gpu_ms;
                 else if (is_tree_pass(t.name)) trees += t.gpu_ms;
-                else if (!is_frame_pass(t.name)) vpls += t.gpu_ms;
+                else if (is_vpl_pass(t.name)) vpls += t.gpu_ms;
             }
             for (const auto& [name, ms] : this_frame) stage_ms[name].push_back(ms);
             frame_ms.push_back(total);
