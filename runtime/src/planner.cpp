@@ -141,9 +141,11 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool force = settings.force_all_stages;
     plan.reuse_vpls = !force && settings.reuse_static_work && indirect && lit && !previous.vpl_key.empty() &&
                       previous.vpl_key == plan.vpl_key;
-    const bool needs_light_tree = (settings.method == GiMethod::rtslc || (force && sampled)) && !settings.vpls_only;
-    const bool needs_sst =
-        (settings.method == GiMethod::sst || settings.method == GiMethod::hybrid || (force && sampled)) && !settings.vpls_only;
+    // Which tree the method reads, and which ones this frame builds (all of them when forced).
+    const bool reads_light_tree = settings.method == GiMethod::rtslc;
+    const bool reads_sst = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
+    const bool needs_light_tree = (reads_light_tree || (force && sampled)) && !settings.vpls_only;
+    const bool needs_sst = (reads_sst || (force && sampled)) && !settings.vpls_only;
     plan.reuse_trees = plan.reuse_vpls && previous.tree_key == plan.tree_key && (!needs_light_tree || previous.light_tree) &&
                        (!needs_sst || previous.sst);
 
@@ -170,24 +172,23 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::brsm_vpls, make_vpls && plan.vpl_source == VplSource::brsm, vpl_reason(VplSource::brsm));
 
     const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
-    auto tree_reason = [&](bool needed, const char* who) -> std::string {
+    // `reads`: the method reads this tree; `built`: the frame builds it (read, or forced on).
+    auto tree_reason = [&](bool reads, bool built, const char* what) -> std::string {
         if (!lit) return "no light: no VPLs to build a tree over";
         if (settings.vpls_only) return "VPLs only: no indirect light";
         if (!sampled) {
             return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree"
                                                       : "direct light only: no tree";
         }
-        if (!needed) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + who;
+        if (!built) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + what;
         if (plan.reuse_trees) return "reused: built over the same VPLs with the same settings last frame";
-        if (force && !(settings.method == GiMethod::rtslc ? std::string(who) == "the light tree" || std::string(who) == "sorted leaves"
-                                                          : std::string(who) != "the light tree")) {
-            return "forced on (--all-stages); the method does not read it";
-        }
+        if (!reads) return "forced on (--all-stages); the method does not read it";
         return std::string("read by ") + gi_method_name(settings.method);
     };
-    add(FrameStage::vpl_sort, build_trees, tree_reason(true, "sorted leaves"));
-    add(FrameStage::light_tree, build_trees && needs_light_tree, tree_reason(needs_light_tree, "the light tree"));
-    add(FrameStage::sst, build_trees && needs_sst, tree_reason(needs_sst, "the SST"));
+    add(FrameStage::vpl_sort, build_trees, tree_reason(true, true, "sorted leaves"));
+    add(FrameStage::light_tree, build_trees && needs_light_tree,
+        tree_reason(reads_light_tree, needs_light_tree, "the light tree"));
+    add(FrameStage::sst, build_trees && needs_sst, tree_reason(reads_sst, needs_sst, "the SST"));
 
     const bool gi = settings.method != GiMethod::none && !settings.vpls_only && lit;
     const std::string no_gi = settings.method == GiMethod::none ? "direct light only" : settings.vpls_only ? "VPLs only" : "no light";
