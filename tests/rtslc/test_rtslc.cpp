@@ -1,7 +1,8 @@
-// Real-time stochastic lightcuts end to end (add_rtslc_passes on VplTrees built on the GPU) on
-// synthetic G-buffers: a floor (y = 0) of 16 x 16 pixels with tilted shading normals and varied
-// materials, VPLs on a ceiling, on a wall (some grazing), below the floor (behind every pixel),
-// facing away, free, and some of zero flux.
+// Real-time stochastic lightcuts end to end (add_rtslc_passes on VplTrees built on the GPU): the
+// shaders rtslc_cut.comp, rtslc_gi.comp and rtslc_interleave.comp (shaders/gi/) against the double
+// reference (tests/reference/rtslc_reference.cpp), on synthetic G-buffers: a floor (y = 0) of
+// 16 x 16 pixels with tilted shading normals and varied materials, VPLs on a ceiling, on a wall
+// (some grazing), below the floor (behind every pixel), facing away, free, and some of zero flux.
 //
 // - cuts: equal to the double reference's cut at the GPU's representative pixel, and a partition
 //   of the real VPLs, for 1, 2, 64, 65, 100 and 256 VPLs, cut sizes 1, 8 and 64, blocks of 4 and 8;
