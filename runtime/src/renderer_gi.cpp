@@ -49,7 +49,9 @@ struct GiStageOptions {
 // The sampling stages' options from the frame's settings; similarity_distance in world units.
 GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity_distance) {
     GiStageOptions o;
-    o.sst = {settings.samples_per_pixel, settings.seed, true};
+    o.sst.samples_per_pixel = settings.samples_per_pixel;
+    o.sst.seed = settings.seed;
+    o.sst.frame = settings.frame;
     o.rtslc.samples_per_pixel = settings.samples_per_pixel;
     o.rtslc.block_size = settings.block_size;
     o.rtslc.interleave = settings.interleave;
@@ -59,6 +61,7 @@ GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity
     o.hybrid.samples_per_pixel = settings.samples_per_pixel;
     o.hybrid.block_size = settings.block_size;
     o.hybrid.seed = settings.seed;
+    o.hybrid.frame = settings.frame;
     o.hybrid.similarity_max_distance = similarity_distance;
     o.hybrid.mock_cuts = settings.mock_cuts;
     return o;

@@ -47,6 +47,7 @@ layout(push_constant) uniform HybridGiPush {
     uint leaf_count;
     uint vpl_count;
     uint seed;
+    uint frame;            // decorrelates frames: one stream per (seed, frame, pixel)
     uint visibility;       // 0: no shadow rays (tests)
     float min_cos;         // eq. 5.3 thresholds for blending
     float max_distance;
@@ -71,7 +72,7 @@ void main() {
                         g.albedo, g.roughness, g.metallic);
     float scale = bvh_scene_scale();
     float min_distance = vpl_min_distance(scale);
-    Rng rng = rng_create(push.seed, uint(pixel.y * size.x + pixel.x));
+    Rng rng = rng_create(pcg_hash(push.seed ^ pcg_hash(push.frame)), uint(pixel.y * size.x + pixel.x));
 
     ivec2 neighbour_block[4];
     float bilinear[4];
@@ -138,8 +139,14 @@ void main() {
             continue;
         }
         Vpl light = sst_sample_light(s, push.leaf_count, rng);
-        gi_add_sample(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness, p.metallic, light,
-                      min_distance, scale, push.visibility != 0u, total, dropped);
+        bool visibility = push.visibility != 0u;
+        vec3 shadow_position = light.position, shadow_normal = light.normal;
+        if (visibility) {
+            sst_shadow_target(s, push.leaf_count, push.vpl_count, rng, shadow_position, shadow_normal);
+        }
+        gi_add_sample_shadowed_at(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness,
+                                  p.metallic, light, shadow_position, shadow_normal, min_distance, scale,
+                                  visibility, total, dropped);
     }
     if (!blended && !mock) {
         total /= float(push.cut_size);  // cut_size estimates of the whole tree

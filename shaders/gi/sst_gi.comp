@@ -40,6 +40,7 @@ layout(push_constant) uniform SstGiPush {
     uint leaf_count;  // L, a power of two
     uint vpl_count;   // real VPLs (leaves past it are padding)
     uint seed;
+    uint frame;       // decorrelates frames: one stream per (seed, frame, pixel)
     uint visibility;  // 0: no shadow rays (tests)
 } push;
 
@@ -61,7 +62,7 @@ void main() {
                         g.albedo, g.roughness, g.metallic);
     float scale = bvh_scene_scale();
     float min_distance = vpl_min_distance(scale);
-    Rng rng = rng_create(push.seed, uint(pixel.y * size.x + pixel.x));
+    Rng rng = rng_create(pcg_hash(push.seed ^ pcg_hash(push.frame)), uint(pixel.y * size.x + pixel.x));
 
     vec3 total = vec3(0.0);
     uint dropped = 0u, levels = 0u, dead = 0u;
@@ -80,8 +81,14 @@ void main() {
             continue;
         }
         Vpl light = sst_sample_light(s, push.leaf_count, rng);
-        gi_add_sample(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness, p.metallic, light,
-                      min_distance, scale, push.visibility != 0u, total, dropped);
+        bool visibility = push.visibility != 0u;
+        vec3 shadow_position = light.position, shadow_normal = light.normal;
+        if (visibility) {
+            sst_shadow_target(s, push.leaf_count, push.vpl_count, rng, shadow_position, shadow_normal);
+        }
+        gi_add_sample_shadowed_at(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness,
+                                  p.metallic, light, shadow_position, shadow_normal, min_distance, scale,
+                                  visibility, total, dropped);
     }
     gi_counters_add(dropped, push.samples_per_pixel, levels, dead, false, completed);
     imageStore(indirect, pixel, vec4(total / float(push.samples_per_pixel), float(dropped)));

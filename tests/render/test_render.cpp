@@ -679,3 +679,30 @@ TEST_CASE("render with sampled indirect light when no VPL is placed: a note and 
     bad.interleave = 3;
     CHECK_THROWS_WITH_AS(renderer.render(scene.camera(), bad), doctest::Contains("interleave 3"), vplkit::Error);
 }
+
+TEST_CASE("render: the frame counter gives sst, rtslc and hybrid other random numbers each frame, the same VPLs") {
+    // Temporal accumulation averages frames: frames that drew the same numbers would average to
+    // one frame's noise. The same seed and frame repeat the image bit for bit.
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    vplkit::Renderer renderer(ctx, scene);
+    for (const vplkit::GiMethod method : kSampledMethods) {
+        const std::string name = vplkit::gi_method_name(method);
+        CAPTURE(name);
+        auto settings = sampled_settings(method);
+        settings.seed = 5;
+        const auto frame0 = renderer.render(scene.camera(), settings);
+        settings.frame = 1;
+        const auto frame1 = renderer.render(scene.camera(), settings);
+        CHECK(frame1.reused_vpls);  // the VPLs follow the seed, not the frame
+        CHECK(frame1.indirect != frame0.indirect);
+        size_t differing = 0, lit = 0;
+        for (size_t i = 0; i < frame0.indirect.size(); ++i) {
+            lit += frame0.indirect[i] > 0.0f;
+            differing += frame0.indirect[i] != frame1.indirect[i];
+        }
+        CHECK(differing > lit / 2);  // most lit pixels, not a few
+        const auto again = renderer.render(scene.camera(), settings);
+        CHECK(again.indirect == frame1.indirect);
+    }
+}

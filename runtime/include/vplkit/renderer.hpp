@@ -75,7 +75,9 @@ struct RenderSettings {
     uint32_t samples_per_pixel = 8;
     uint32_t block_size = 8;  // rtslc, hybrid: pixels along a cut block's side, 1..32
     uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
-    uint32_t frame = 0;       // rtslc: rotates the interleaved shares
+    // The frame counter: sst, rtslc and hybrid draw other random numbers in each frame (for
+    // temporal accumulation); rtslc also rotates its interleaved shares. The VPLs follow `seed`.
+    uint32_t frame = 0;
     bool mock_cuts = true;    // hybrid: mock cuts where no block is alike (false: root traversals)
     // Every stage that can run for the method runs (direct emissive light without emitters, both
     // trees) and nothing is reused from the previous frame: the planner's baseline (planner.hpp).

@@ -110,6 +110,7 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                    push.leaf_count = trees.leaf_count;
                    push.vpl_count = trees.count;
                    push.seed = options.seed;
+                   push.frame = options.frame;
                    push.visibility = options.visibility ? 1u : 0u;
                    push.min_cos = options.similarity_min_cos;
                    push.max_distance = options.similarity_max_distance;

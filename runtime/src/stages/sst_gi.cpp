@@ -47,6 +47,7 @@ void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffe
                    push.leaf_count = trees.leaf_count;
                    push.vpl_count = trees.count;
                    push.seed = options.seed;
+                   push.frame = options.frame;
                    push.visibility = options.visibility ? 1u : 0u;
                    pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
                });

@@ -94,4 +94,20 @@ float gi_left_probability(float a_left, float d2_left, float a_right, float d2_r
     return left / sum;
 }
 
+// rng_next_float's resolution: it returns k 2^-24 for a uniform k in [0, 2^24).
+const float kGiProbabilityStep = 5.9604644775390625e-8;
+
+// A child probability p in [0, 1] of a choice between two children that both weigh more than 0,
+// rounded up to a multiple of 2^-24 and kept in [2^-24, 1 - 2^-24]: the traversal compares it
+// with rng_next_float's k 2^-24 (u < p), so the child is taken with exactly the probability the
+// estimator divides by. Unrounded, a p below 2^-24 is taken with probability 2^-24 and weighed
+// by 1 / p (over-weighted), and a p that rounds to 1 never takes its sibling (its light is lost).
+// A NaN is passed on as it is (the sample is dropped and counted).
+float gi_grid_probability(float p) {
+    if (!(p >= 0.0 && p <= 1.0)) {
+        return p;
+    }
+    return clamp(ceil(p * 16777216.0) * kGiProbabilityStep, kGiProbabilityStep, 1.0 - kGiProbabilityStep);
+}
+
 #endif

@@ -8,9 +8,12 @@
 // Adds `light`'s contribution at x to `total`. Issue 6's rule: a sample whose contribution is
 // not finite (a path probability that underflowed, bad VPL data), or that would overflow the
 // total, is left out and counted in `dropped`, never added and never traced. `visibility`
-// false skips the shadow ray (the unbiasedness tests compare with an unshadowed sum).
-void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
-                   float min_distance, float scale, bool visibility, inout vec3 total, inout uint dropped) {
+// false skips the shadow ray (the unbiasedness tests compare with an unshadowed sum). The
+// shadow ray goes to `shadow_position` (normal `shadow_normal`, facing x when lit): the light
+// itself, or for a substitute the real VPL that stands for its visibility (sst_shadow_target).
+void gi_add_sample_shadowed_at(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic,
+                               Vpl light, vec3 shadow_position, vec3 shadow_normal, float min_distance,
+                               float scale, bool visibility, inout vec3 total, inout uint dropped) {
     vec3 c = vpl_contribution(x, n, ng, wo, albedo, roughness, metallic, light, min_distance);
     vec3 next = total + c;
     if (!vpl_finite(c) || !vpl_finite(next)) {
@@ -21,10 +24,16 @@ void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughnes
         return;
     }
     // As in exact_gi.comp: the light faces x (cos_y > 0), so both ends move off their surfaces.
-    if (visibility && bvh_segment_occluded(x, ng, light.position, light.normal, scale)) {
+    if (visibility && bvh_segment_occluded(x, ng, shadow_position, shadow_normal, scale)) {
         return;
     }
     total = next;
+}
+
+void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
+                   float min_distance, float scale, bool visibility, inout vec3 total, inout uint dropped) {
+    gi_add_sample_shadowed_at(x, n, ng, wo, albedo, roughness, metallic, light, light.position, light.normal,
+                              min_distance, scale, visibility, total, dropped);
 }
 
 #endif

@@ -12,8 +12,6 @@
 const uint kRtslcNoNode = 0xFFFFFFFFu;
 // The most nodes a cut may hold: the size of the cut shader's local arrays.
 const uint kRtslcMaxCutSize = kGiMaxSamplesPerPixel;  // gi_bounds.glsl
-// rng_next_float's resolution: it returns k 2^-24 for a uniform k in [0, 2^24).
-const float kRtslcProbabilityStep = 5.9604644775390625e-8;
 // The smallest material weight a child may get (see rtslc_material_weight).
 const float kRtslcMinMaterialWeight = 1e-8;
 
@@ -135,12 +133,7 @@ RtslcChildProbability rtslc_child_probability(RtslcShading s, LightTreeNode left
     }
     float p = 0.5 * (p_min + p_max);
     // A NaN (from a NaN intensity) is passed on as it is: the sample is dropped and counted.
-    if (!(p >= 0.0 && p <= 1.0)) {
-        result.left = p;
-        return result;
-    }
-    result.left = clamp(ceil(p * 16777216.0) * kRtslcProbabilityStep, kRtslcProbabilityStep,
-                        1.0 - kRtslcProbabilityStep);
+    result.left = gi_grid_probability(p);
     return result;
 }
 
