@@ -4,8 +4,9 @@
 // SST nodes per block_size x block_size pixel block, chosen for the block's representative pixel.
 // Starting from the root, the cut node with the highest expected contribution (eq. 5.2 cosine x
 // material x intensity / clamped squared distance) is replaced by its children until the cut
-// holds cut_size nodes or only leaves; children whose box lies fully behind the surface (or that
-// hold no light, or only padding) are left out (sec. 5.1).
+// holds cut_size nodes or only leaves. Sec. 5.1 leaves out children whose box lies fully behind
+// the surface; here they stay in the cut unsplit (only padding and dark nodes are left out), so
+// the cut still covers every VPL for the other pixels that use it.
 //
 // Writes blocks[b] (HybridBlock) and cuts[b * cut_size + i]: the nodes in the order of their first
 // leaf (empty slots kCutEmptySlot at the end). Leaf order is the sorted (Morton) order, so slot i
@@ -124,17 +125,23 @@ void main() {
         for (uint c = 0u; c < 2u; ++c) {
             uint child = c == 0u ? sst_left_child(parent) : sst_right_child(parent);
             SstNode data = sst_fetch(child, push.leaf_count, push.vpl_count);
+            // Left out: only padding and nodes without light, which light no pixel.
+            if (data.leaf_count == 0u || !(data.intensity > 0.0)) {
+                continue;
+            }
             float d2;
             float a = sst_weight_numerator(p, data, kSstWeightExpected, min_distance, d2);
-            // Left out: padding, no light, or the whole box behind the surface (a = 0).
-            if (a > 0.0) {
-                child_node[kept] = child;
-                child_priority[kept] = sst_is_leaf(child, push.leaf_count) ? -1.0 : a / d2;
-                ++kept;
-            }
+            // A child that cannot light the representative pixel (its box behind the surface, a = 0)
+            // stays in the cut but is never split (priority -1, as a leaf): the cut serves every
+            // pixel of the block and the pixels that blend with it, and a pixel at another place
+            // may see that light. Dropped, its light was lost to all of them (with spp >= 2 a
+            // block whose representative sees the root only from behind had an empty cut).
+            child_node[kept] = child;
+            child_priority[kept] = a > 0.0 && !sst_is_leaf(child, push.leaf_count) ? a / d2 : -1.0;
+            ++kept;
         }
         if (kept == 0u) {
-            // Neither child can light this pixel: the node leaves the cut.
+            // No child holds light (cannot happen below a node that holds light; kept for safety).
             --size_now;
             node[pick] = node[size_now];
             priority[pick] = priority[size_now];

@@ -44,6 +44,11 @@ uint choose_emitter(float u) {
     return lo;
 }
 
+// The probability choose_emitter picks emitter i: its CDF step (exact: the CDF is on u's grid).
+float emitter_pmf(uint i) {
+    return emitters.items[i].cdf - (i == 0u ? 0.0 : emitters.items[i - 1u].cdf);
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     if (any(greaterThanEqual(pixel, imageSize(radiance))) || push.emitter_count == 0u || push.samples == 0u) {
@@ -60,7 +65,9 @@ void main() {
     Rng rng = rng_create(push.seed, uint(pixel.y) * uint(imageSize(radiance).x) + uint(pixel.x));  // a stream per pixel
     vec3 sum = vec3(0.0);
     for (uint s = 0u; s < push.samples; ++s) {
-        EmissiveTriangle e = emitters.items[choose_emitter(rng_next_float(rng))];
+        uint chosen = choose_emitter(rng_next_float(rng));
+        EmissiveTriangle e = emitters.items[chosen];
+        float pmf = emitter_pmf(chosen);
         // Uniform point on the triangle: the square-root warp (pbrt-v4 SampleUniformTriangle).
         float su = sqrt(rng_next_float(rng));
         float v = rng_next_float(rng);
@@ -68,10 +75,14 @@ void main() {
         vec3 n_y = normalize(cross(e.v1 - e.v0, e.v2 - e.v0));
         vec3 to_y = y - g.position;
         float d2 = dot(to_y, to_y);
-        if (!(d2 > 0.0) || e.pmf <= 0.0) {
+        if (!(d2 > 0.0) || !(pmf > 0.0)) {
             continue;  // on the emitter itself: its own emission is in the G-buffer already
         }
         vec3 wi = to_y * inversesqrt(d2);
+        // A double-sided emitter lights x from whichever side faces it.
+        if (e.double_sided != 0u && dot(n_y, wi) > 0.0) {
+            n_y = -n_y;
+        }
         float cos_x = dot(g.normal, wi);
         float cos_y = dot(n_y, -wi);
         if (cos_x <= 0.0 || cos_y <= 0.0 || dot(g.geometric_normal, wi) <= 0.0) {
@@ -85,7 +96,7 @@ void main() {
         }
         // pdf of y: pmf / area, so the weight is area / pmf.
         sum += brdf_evaluate(g.normal, wo, wi, g.albedo, g.roughness, g.metallic) * e.radiance * cos_x * cos_y / d2 *
-               (e.area / e.pmf);
+               (e.area / pmf);
     }
     vec4 current = imageLoad(radiance, pixel);
     imageStore(radiance, pixel, vec4(current.rgb + sum / float(push.samples), current.a));

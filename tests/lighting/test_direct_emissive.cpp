@@ -15,6 +15,8 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/selection_cdf.hpp"
+#include "vplkit/shaders/direct_emissive.hpp"
 #include "vplkit_test/context.hpp"
 #include "direct_light_reference.hpp"
 
@@ -39,8 +41,10 @@ constexpr double kRoughness = 0.7;
 const glm::vec3 kCamera{0.0f, 2.5f, 3.0f};
 
 // A floor at y = 0 and a 1 x 1 emitter at y = 1.5 facing down (its winding's normal is -y),
-// optionally a plate at y = 1 that hides the emitter from the floor's centre.
-vplkit::scene::Scene make_scene(bool with_plate) {
+// optionally a plate at y = 1 that hides the emitter from the floor's centre. `back_down`: the
+// emitter's winding faces up instead and its material is double-sided, so its back lights the
+// floor exactly as the one-sided front did.
+vplkit::scene::Scene make_scene(bool with_plate, bool back_down = false) {
     vplkit::scene::Scene s;
     auto add_quad = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material) {
         const uint32_t base = uint32_t(s.vertices.size());
@@ -54,10 +58,15 @@ vplkit::scene::Scene make_scene(bool with_plate) {
         s.triangle_materials.push_back(material);
     };
     add_quad({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);                      // floor, normal +y
-    add_quad({-0.5f, 1.5f, -0.5f}, {0.5f, 1.5f, -0.5f}, {0.5f, 1.5f, 0.5f}, {-0.5f, 1.5f, 0.5f}, 1);  // normal -y
+    if (back_down) {
+        add_quad({-0.5f, 1.5f, 0.5f}, {0.5f, 1.5f, 0.5f}, {0.5f, 1.5f, -0.5f}, {-0.5f, 1.5f, -0.5f}, 1);  // normal +y
+    } else {
+        add_quad({-0.5f, 1.5f, -0.5f}, {0.5f, 1.5f, -0.5f}, {0.5f, 1.5f, 0.5f}, {-0.5f, 1.5f, 0.5f}, 1);  // normal -y
+    }
     if (with_plate) add_quad({-0.6f, 1, -0.6f}, {-0.6f, 1, 0.6f}, {0.6f, 1, 0.6f}, {0.6f, 1, -0.6f}, 0);
     s.materials.resize(2);
     s.materials[1].emissive_factor = {float(kEmitted[0]), float(kEmitted[1]), float(kEmitted[2])};
+    s.materials[1].double_sided = back_down;
     s.emissive_triangles = {2, 3};
     return s;
 }
@@ -124,11 +133,9 @@ std::vector<Texel> run(const vplkit::scene::Scene& scene, const Floor& floor, ui
     return radiance.download<Texel>();
 }
 
-}  // namespace
-
-TEST_CASE("direct emissive: the mean over seeds matches the emitter integral within 5 sigma") {
-    const auto scene = make_scene(false);
-    const auto floor = make_floor();
+// The mean over `seeds` seeds of the estimate against the quadrature, per covered pixel and channel.
+// Returns the images.
+std::vector<std::vector<Texel>> check_against_reference(const vplkit::scene::Scene& scene, const Floor& floor) {
     constexpr int seeds = 12;
     std::vector<std::vector<Texel>> images;
     for (int s = 0; s < seeds; ++s) images.push_back(run(scene, floor, 1000 + s, 16, 0.0f));
@@ -156,9 +163,71 @@ TEST_CASE("direct emissive: the mean over seeds matches the emitter integral wit
         ++checked;
     }
     CHECK(checked > 100);
+    return images;
+}
+
+}  // namespace
+
+TEST_CASE("direct emissive: the mean over seeds matches the emitter integral within 5 sigma") {
+    const auto scene = make_scene(false);
+    const auto floor = make_floor();
+    const auto images = check_against_reference(scene, floor);
     // The same seed gives the same image; another seed another one.
     CHECK(run(scene, floor, 1000, 16, 0.0f) == images[0]);
     CHECK(images[1] != images[0]);
+}
+
+TEST_CASE("direct emissive: a double-sided emitter lights with its back as with its front") {
+    // glTF doubleSided: light paths (trace_vpls.comp) leave both faces; direct light must see
+    // both too, or the floor under an upward-wound double-sided emitter stays dark.
+    check_against_reference(make_scene(false, true), make_floor());
+}
+
+TEST_CASE("direct emissive: every emitter with power can be drawn, with the probability it is weighed by") {
+    // A bright emitter's power next to one 1e-9 as bright: in float, the dim one's CDF interval
+    // rounded to zero width (never drawn: its light lost) while a separately stored pmf weighed
+    // it. The CDF is now on the random numbers' 2^-24 grid, every emitter with power at least
+    // one step, and the shader's pmf is the CDF's step.
+    vplkit::Context& ctx = vplkit::test::context();
+    auto scene = make_scene(false);
+    scene.materials.push_back(scene.materials[1]);
+    scene.materials[1].emissive_factor *= 1e9f;
+    scene.triangle_materials[3] = 2;  // the emitter's second triangle is the dim one
+    const auto emitters = vplkit::stages::upload_emitters(ctx, scene);
+    REQUIRE(emitters.count == 2);
+    const auto triangles = emitters.triangles.download<vplkit::shaders::EmissiveTriangle>(2);
+    const float step = 1.0f / float(vplkit::stages::kSelectionSteps);
+    CHECK(triangles[0].cdf > 0.0f);
+    CHECK(triangles[1].cdf - triangles[0].cdf >= step);
+    CHECK(triangles[1].cdf == 1.0f);
+}
+
+TEST_CASE("selection cdf: on the 2^-24 grid, a step for every positive weight, none for zero weights") {
+    const std::vector<double> weights = {0.0, 1.0, 1e-12, 0.0, 3.0, 1e-30, 2.5, 0.0};
+    const auto cdf = vplkit::stages::selection_cdf(weights);
+    REQUIRE(cdf.size() == weights.size());
+    const double steps = vplkit::stages::kSelectionSteps;
+    double sum = 0.0;
+    for (double w : weights) sum += w;
+    double previous = 0.0;
+    for (size_t i = 0; i < cdf.size(); ++i) {
+        CAPTURE(i);
+        const double k = double(cdf[i]) * steps;
+        CHECK(k == std::floor(k));  // a multiple of 2^-24
+        const double width = double(cdf[i]) - previous;
+        if (weights[i] > 0.0) {
+            CHECK(width >= 1.0 / steps);
+            CHECK(std::abs(width - weights[i] / sum) <= 2.0 / steps);  // one forced step plus rounding
+        } else {
+            CHECK(width == 0.0);
+        }
+        previous = cdf[i];
+    }
+    CHECK(cdf[6] == 1.0f);  // the last positive weight ends at 1; the trailing zero stays there
+    CHECK(cdf[7] == 1.0f);
+    CHECK_THROWS_AS(vplkit::stages::selection_cdf({0.0, 0.0}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::stages::selection_cdf({1.0, -1.0}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::stages::selection_cdf({1.0, std::nan("")}), vplkit::Error);
 }
 
 TEST_CASE("direct emissive: light adds to what is there and an occluder blocks it") {

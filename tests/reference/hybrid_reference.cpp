@@ -74,9 +74,12 @@ std::vector<uint32_t> hybrid_cut(const ShadingPoint& x, const Vec3& wo, const st
         const uint32_t parent = best->node;
         std::vector<Entry> kept;
         for (uint32_t child : {2 * parent + 1, 2 * parent + 2}) {
+            const CutNode data = node(child);
+            if (data.leaf_count == 0 || !(data.intensity > 0.0)) continue;  // padding, or no light
             double d2;
-            const double a = expected_contribution(x, wo, node(child), min_distance, d2);
-            if (a > 0.0) kept.push_back(entry(child, a, d2));
+            const double a = expected_contribution(x, wo, data, min_distance, d2);
+            // Unseen from x (a = 0): kept, never split, so the cut still covers every VPL.
+            kept.push_back(a > 0.0 ? entry(child, a, d2) : Entry{child, -1.0});
         }
         cut.erase(best);
         cut.insert(cut.end(), kept.begin(), kept.end());

@@ -7,6 +7,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/direct_emissive.hpp"
 #include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/stages/selection_cdf.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -25,27 +26,29 @@ GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
         const glm::vec3 a = scene.vertices[scene.indices[3 * t]].position;
         const glm::vec3 b = scene.vertices[scene.indices[3 * t + 1]].position;
         const glm::vec3 c = scene.vertices[scene.indices[3 * t + 2]].position;
-        const glm::vec3 radiance = scene.materials[scene.triangle_materials[t]].emission();
+        const scene::Material& material = scene.materials[scene.triangle_materials[t]];
+        const glm::vec3 radiance = material.emission();
         const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
         // Luminance (Rec. 709) weights: the power a viewer sees, so bright emitters get the samples.
+        // A double-sided emitter sends as much from its back (glTF doubleSided; as trace_vpls.comp).
         const double luminance = 0.2126 * radiance.x + 0.7152 * radiance.y + 0.0722 * radiance.z;
-        const double power = luminance * area * std::numbers::pi;
+        const double sides = material.double_sided ? 2.0 : 1.0;
+        const double power = luminance * area * std::numbers::pi * sides;
         if (!(power > 0.0) || !std::isfinite(power)) continue;  // a dark or degenerate emitter lights nothing
         shaders::EmissiveTriangle e{};
         e.v0 = {a.x, a.y, a.z};
         e.v1 = {b.x, b.y, b.z};
         e.v2 = {c.x, c.y, c.z};
         e.area = float(area);
+        e.double_sided = material.double_sided ? 1u : 0u;
         e.radiance = {radiance.x, radiance.y, radiance.z};
         triangles.push_back(e);
         powers.push_back(power);
         out.total_power += power;
     }
-    double cumulative = 0.0;
-    for (size_t i = 0; i < triangles.size(); ++i) {
-        cumulative += powers[i];
-        triangles[i].pmf = float(powers[i] / out.total_power);
-        triangles[i].cdf = i + 1 == triangles.size() ? 1.0f : float(cumulative / out.total_power);
+    if (!triangles.empty()) {
+        const std::vector<float> cdf = selection_cdf(powers);
+        for (size_t i = 0; i < triangles.size(); ++i) triangles[i].cdf = cdf[i];
     }
     out.count = uint32_t(triangles.size());
     if (triangles.empty()) triangles.push_back(shaders::EmissiveTriangle{});

@@ -8,6 +8,7 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/trace_vpls.hpp"
 #include "vplkit/stages/direct_light.hpp"
+#include "vplkit/stages/selection_cdf.hpp"
 
 #include <glm/geometric.hpp>
 
@@ -140,7 +141,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     }
     out.total_power = glm::vec3(total);
 
-    // The selection CDF, normalized in double; the last entry exactly 1 so every u < 1 finds one.
+    // The selection CDF on rng_next_float's grid (selection_cdf.hpp): the shader's pmf is its steps.
     double sum = 0.0;
     for (double w : weights) {
         if (!std::isfinite(w) || w < 0.0) {
@@ -149,20 +150,11 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
         sum += w;
     }
     std::vector<float> cdf;
-    double running = 0.0;
-    for (double w : weights) {
-        running += w;
-        cdf.push_back(float(running / sum));
-    }
     out.punctual_count = uint32_t(scene.lights.size());
     out.emissive_count = uint32_t(emissive.size());
     if (sum > 0.0) {
         out.emitter_count = out.punctual_count + out.emissive_count;
-        // Trailing zero-weight emitters must keep empty intervals: set every entry from the last
-        // positive weight on to 1.
-        size_t last = weights.size();
-        while (last > 0 && weights[last - 1] == 0.0) --last;
-        for (size_t i = last - 1; i < cdf.size(); ++i) cdf[i] = 1.0f;
+        cdf = selection_cdf(weights);
     }
     if (cdf.empty()) cdf.push_back(1.0f);
     if (emissive.empty()) emissive.push_back(shaders::EmitterTriangle{});
