@@ -40,6 +40,11 @@ void main() {
     Vpl vpl;
     vpl.position = imageLoad(rsm_position, texel).xyz;
     vpl.normal = imageLoad(rsm_normal, texel).xyz;
-    vpl.flux = imageLoad(rsm_flux, texel).rgb / (float(push.sample_count) * s.pmf);
+    // A warped sample always lands on a texel of positive importance (pmf > 0); a pmf that is not
+    // positive and finite (a corrupt importance map) would make an infinite or negative VPL that
+    // poisons every tree node above it: such a VPL gets no flux.
+    float n_pmf = float(push.sample_count) * s.pmf;
+    bool valid_pmf = n_pmf > 0.0 && !isinf(n_pmf);
+    vpl.flux = valid_pmf ? imageLoad(rsm_flux, texel).rgb / n_pmf : vec3(0.0);
     vpls.items[slot] = vpl;
 }

@@ -379,9 +379,12 @@ TEST_CASE("brsm: the importance is the normalized defensive mixture") {
     }
 }
 
-TEST_CASE("brsm: every VPL is its texel with the texel's flux over N pmf, on a surface") {
-    Setup setup(box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f)}), box_camera(), 16);
-    const uint32_t n = 500;
+namespace {
+
+// Checks every VPL of light 0 against its texel: position, normal, pmf = importance / total and
+// flux / (N pmf); returns how many VPLs each quadrant of the map got (x, y halves: 0 1 / 2 3).
+std::array<int, 4> check_vpls_are_their_texels(Setup& setup, uint32_t n) {
+    std::array<int, 4> quadrants{};
     const BrsmOutput out = setup.run(small_options(n));
     const auto vpls = setup.vpls(out);
     REQUIRE(vpls.size() == n);
@@ -422,8 +425,29 @@ TEST_CASE("brsm: every VPL is its texel with the texel's flux over N pmf, on a s
         CAPTURE(nearest);
         ok = ok && nearest <= 1e-5 * setup.scene_scale();
         if (!ok && ++failures <= 5) CHECK(ok);
+        ++quadrants[(tx < light.map_size / 2 ? 0 : 1) + (ty < light.map_size / 2 ? 0 : 2)];
     }
     CHECK(failures == 0);
+    return quadrants;
+}
+
+}  // namespace
+
+TEST_CASE("brsm: every VPL is its texel with the texel's flux over N pmf, on a surface") {
+    Setup setup(box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f)}), box_camera(), 16);
+    check_vpls_are_their_texels(setup, 500);
+}
+
+TEST_CASE("brsm: a square spot-light map with importance in every quadrant: each VPL's pmf is its importance / total") {
+    // A point light's padded cube-face map never reaches one quadrant of the importance map, so
+    // a pmf wrong there passed every test above; a spot's map is square and, pointing down from
+    // under the ceiling with the defensive share, has importance in all four quadrants.
+    Setup setup(box_with({spot_light({0.0f, 1.8f, 0.0f}, {0.0f, -1.0f, 0.0f}, 5.0f)}), box_camera(), 16);
+    const auto quadrants = check_vpls_are_their_texels(setup, 2000);
+    for (int q = 0; q < 4; ++q) {
+        CAPTURE(q);
+        CHECK(quadrants[q] > 20);  // VPLs land in every quadrant, so every quadrant is checked
+    }
 }
 
 TEST_CASE("brsm: over seeds the VPLs of each light carry its RSM's reflected flux") {
