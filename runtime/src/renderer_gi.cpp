@@ -64,6 +64,7 @@ GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity
     o.hybrid.frame = settings.frame;
     o.hybrid.similarity_max_distance = similarity_distance;
     o.hybrid.mock_cuts = settings.mock_cuts;
+    o.hybrid.traversal = settings.hybrid_traversal;
     return o;
 }
 

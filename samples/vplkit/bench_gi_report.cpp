@@ -23,7 +23,7 @@ namespace vplkit::cli {
 
 namespace {
 
-const char* const kMethods[] = {"sst", "rtslc", "hybrid"};
+const char* const kMethods[] = {"sst", "rtslc", "hybrid", "hybrid-lightcuts"};
 
 std::string fixed(double v, int digits) {
     char text[64];
@@ -273,7 +273,11 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
        << "pixel with a shadow ray" << (run.exact_cached ? " (from the cache)" : ", " + fixed(run.exact_wall_ms / 1000.0, 1) + " s")
        << ". Times are GPU timestamps, the median of the timed frames (min-max in brackets); RMSE and SSIM "
        << "(11x11 Gaussian windows, L = 1) are of the tonemapped frames (sRGB / 255), relMSE of the linear radiance "
-       << "(epsilon " << kRelativeMseEpsilon << ").\n\n";
+       << "(epsilon " << kRelativeMseEpsilon << ").\n\n"
+       << "Methods: `sst` (root traversals of the substitute tree), `rtslc` (standalone stochastic lightcuts: "
+       << "its own cuts per block, traversals to leaves), `hybrid` (the thesis' blended shallow cuts and early-stop "
+       << "substitute traversals), `hybrid-lightcuts` (hybrid's cuts and blending with rtslc's traversal to a "
+       << "leaf: the thesis' sec. 7.1 protocol, where rtslc and hybrid differ only in the traversal).\n\n";
 
     md << "## Equal time (thesis Fig. 7.1)\n\nEach method at the point whose frame time is closest to "
        << fixed(run.target_ms, 1) << " ms.\n\n" << kTableHead;

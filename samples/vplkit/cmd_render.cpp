@@ -32,6 +32,7 @@ const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
     "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
+    "                     [--traversal substitute|lightcuts]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
@@ -57,6 +58,8 @@ const char* const kRenderUsage =
     "                   node (default 8, at most 64); each is one shadow ray\n"
     "  --block K        rtslc, hybrid: pixels share a cut per K x K block (default 8, at most 32)\n"
     "  --interleave M   rtslc: interleaved sampling over M x M sub-blocks (default 1: off)\n"
+    "  --traversal T    hybrid: below each cut node, substitute (default: the thesis' early-stop\n"
+    "                   traversal) or lightcuts (rtslc's traversal to a leaf over hybrid's cuts)\n"
     "  --gi-resolution R   full (default) or half: indirect light at half resolution, joint\n"
     "                   bilateral upsampling to full\n"
     "  --nu-min V, --sigma-max S   sst, hybrid: a tree node is sampled as a whole when its normal\n"
@@ -228,6 +231,14 @@ int render_or_plan(Args& args, bool plan_only) {
         if (settings.method != GiMethod::rtslc) throw UsageError("--interleave is for --method rtslc");
         settings.interleave = parse_whole_number("--interleave", *text, 32);
     }
+    if (auto text = args.value("--traversal")) {
+        if (settings.method != GiMethod::hybrid) throw UsageError("--traversal is for --method hybrid");
+        if (*text == "lightcuts") {
+            settings.hybrid_traversal = stages::HybridTraversal::lightcuts;
+        } else if (*text != "substitute") {
+            throw UsageError("--traversal expects substitute or lightcuts, got '" + *text + "'");
+        }
+    }
     if (auto text = args.value("--nu-min")) {
         if (!substitutes) throw UsageError("--nu-min is for --method sst or hybrid");
         const auto value = finite_number(*text);
@@ -380,6 +391,7 @@ int render_or_plan(Args& args, bool plan_only) {
         std::printf("%s: %u spp", gi_method_name(settings.method), settings.samples_per_pixel);
         if (blocked) std::printf(", %ux%u blocks", settings.block_size, settings.block_size);
         if (settings.interleave > 1) std::printf(", %ux%u interleaved", settings.interleave, settings.interleave);
+        if (settings.hybrid_traversal == stages::HybridTraversal::lightcuts) std::printf(", rtslc's traversal");
         std::printf("; %.2f tree levels per traversal (%u traversals), %u dead branches", c.levels_per_traversal(),
                     c.traversals, c.dead_branches);
         if (settings.method == GiMethod::hybrid) std::printf(", %u mock-cut pixels", c.mock_cut_pixels);

@@ -26,6 +26,9 @@
 #include "vplkit/gi_evaluate.glsl"
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
+#include "vplkit/light_tree.glsl"
+#include "vplkit/rtslc.glsl"
+#include "vplkit/sst_lightcuts_traversal.glsl"
 #include "vplkit/cut_blending.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -53,6 +56,13 @@ layout(push_constant) uniform HybridGiPush {
     float max_distance;
     uint mock_cuts;        // 0: a pixel with no similar block traverses from the root instead (ch. 7.3's comparison)
 } push;
+
+// The traversal below a cut node: the thesis' (expected-contribution weights, early stop at a
+// suitable node, its substitute), or stochastic lightcuts' to a leaf (sec. 7.1's protocol). A
+// specialization constant: the comparison's branch costs the default pipeline nothing.
+const uint kHybridTraversalSubstitute = 0u;
+const uint kHybridTraversalLightcuts = 1u;
+layout(constant_id = 0) const uint kTraversal = kHybridTraversalSubstitute;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -131,7 +141,10 @@ void main() {
         if (mock && sst_fetch(start, push.leaf_count, push.vpl_count).leaf_count == 0u) {
             continue;  // a padding node of the mock cut (a blended cut holds none)
         }
-        SstSample s = sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected, min_distance, rng);
+        SstSample s = kTraversal == kHybridTraversalLightcuts
+                          ? sst_traverse_lightcuts(p, start, push.leaf_count, push.vpl_count, min_distance, rng)
+                          : sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected,
+                                         min_distance, rng);
         ++traversals;
         levels += s.levels;
         if (s.dead) {

@@ -91,6 +91,7 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.visibility = options.visibility;
         o.similarity_max_distance = options.similarity_max_distance * scene.scale;
         o.mock_cuts = options.mock_cuts;
+        o.traversal = options.traversal;
         auto cuts = stages::HybridCuts::create(ctx, scene.width, scene.height, o);
         stages::add_hybrid_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, cuts, o);
         passes.run(ctx);

@@ -63,6 +63,7 @@ struct RunOptions {
     stages::SstOptions sst;  // thresholds (nu_min > 1: never suitable, traversals go to leaves)
     float similarity_max_distance = 2.0f;  // x scene.scale (the room is 6 x 6; a pixel 0.1-0.7 wide)
     bool mock_cuts = true;                 // hybrid
+    stages::HybridTraversal traversal = stages::HybridTraversal::substitute;  // hybrid
 };
 
 Rendered render(const Scene& scene, const RunOptions& options);

@@ -2,9 +2,9 @@
 //
 // Unbiasedness: with no early stop (nu_min > 1: no node is suitable, every traversal ends at a
 // leaf) and no shadow rays, sst is hierarchical importance sampling of the VPLs and must be
-// unbiased; so must hybrid with 1 x 1 blocks (each pixel's own cut: children left out of it lie
-// wholly behind the pixel's surface or hold no light, so the cut still covers every VPL that can
-// light the pixel). The mean over seeds is checked against the exact unshadowed sum within
+// unbiased; so must hybrid with 1 x 1 blocks (each pixel's own cut, which covers every VPL with
+// light), with either traversal below the cut (the thesis' substitute traversal, or rtslc's to
+// a leaf: sec. 7.1's protocol). The mean over seeds is checked against the exact unshadowed sum within
 // 4.5 sigma / sqrt(n) per pixel and channel, sigma estimated from the seeds. Hybrid needs many
 // seeds: its expected-contribution weights (eq. 5.2) are not bounds, so a child whose corners
 // look grazing can hold a VPL facing the pixel; it is then drawn rarely with a large weight.
@@ -97,6 +97,26 @@ TEST_CASE("hybrid: 1x1 blocks without early stop or shadows give the exact sum o
     MESSAGE("hybrid unbiased: " << check.checked << " values, worst z " << check.worst_z);
     CHECK(check.checked > 100);
     CHECK(check.outside == 0);
+}
+
+TEST_CASE("hybrid with rtslc's traversal (sec. 7.1's protocol): 1x1 blocks without shadows give the exact sum on average") {
+    // rtslc's min/max-distance weights bound the light, so their tail is short: 300 seeds, and
+    // 100 to see that the worst z does not grow with the count (a bias would).
+    const Scene scene = room(8, 6, 200);
+    RunOptions options;
+    options.method = Method::hybrid;
+    options.traversal = vplkit::stages::HybridTraversal::lightcuts;
+    options.samples_per_pixel = 4;
+    options.block_size = 1;
+    options.visibility = false;
+    const auto truth = exact(scene, false);
+    const MeanCheck few = check_mean(scene, options, 100, truth);
+    const MeanCheck many = check_mean(scene, options, 300, truth);
+    MESSAGE("hybrid-lightcuts unbiased: " << many.checked << " values, worst z " << few.worst_z << " (100 seeds), "
+                                          << many.worst_z << " (300 seeds)");
+    CHECK(many.checked > 100);
+    CHECK(few.outside == 0);
+    CHECK(many.outside == 0);
 }
 
 TEST_CASE("sst and hybrid: the error against exact falls with the sample budget and is bounded") {

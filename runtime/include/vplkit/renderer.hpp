@@ -12,6 +12,7 @@
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
 #include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/upsample.hpp"
 #include "vplkit/stages/vpl_trees.hpp"
@@ -79,6 +80,8 @@ struct RenderSettings {
     // temporal accumulation); rtslc also rotates its interleaved shares. The VPLs follow `seed`.
     uint32_t frame = 0;
     bool mock_cuts = true;    // hybrid: mock cuts where no block is alike (false: root traversals)
+    // hybrid: the traversal below the cut nodes (lightcuts: the thesis' comparison protocol).
+    stages::HybridTraversal hybrid_traversal = stages::HybridTraversal::substitute;
     // Every stage that can run for the method runs (direct emissive light without emitters, both
     // trees) and nothing is reused from the previous frame: the planner's baseline (planner.hpp).
     bool force_all_stages = false;

@@ -86,7 +86,9 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                    push.scene_scale = bvh.scene_scale;
                    cut_pipeline.dispatch(cmd, b, push, cuts.blocks_x * cuts.blocks_y);
                });
-    const auto& gi_pipeline = context.pipeline<shaders::hybrid_gi::Pipeline>();
+    shaders::hybrid_gi::Spec spec;
+    spec.kTraversal = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
+    const auto& gi_pipeline = context.pipeline<shaders::hybrid_gi::Pipeline>(spec);
     passes.add("hybrid gi",
                gbuffer_bvh_uses(gbuffer, bvh,
                                 {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks), Use::read(cuts.cuts),

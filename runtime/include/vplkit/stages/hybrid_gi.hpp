@@ -29,6 +29,13 @@ struct VplTrees;
 
 inline constexpr uint32_t kMaxHybridBlockSize = 32;
 
+// The traversal below each node of a pixel's blended cut.
+enum class HybridTraversal {
+    substitute,  // the thesis': expected-contribution weights, early stop at a suitable node (default)
+    lightcuts,   // stochastic lightcuts' min/max-distance weights to a leaf: seed 000 sec. 7.1's
+                 // protocol, rtslc's traversal over hybrid's own cuts and blending
+};
+
 struct HybridOptions {
     // The per-pixel sample budget: the cut size n, and so the traversals per pixel (1..64).
     uint32_t samples_per_pixel = 8;
@@ -44,6 +51,7 @@ struct HybridOptions {
     // traverses from the root samples_per_pixel times and averages (what the thesis compares the
     // mock cut with in ch. 7.3).
     bool mock_cuts = true;
+    HybridTraversal traversal = HybridTraversal::substitute;
 };
 
 // Throws vplkit::Error naming the bad option.

@@ -1,0 +1,52 @@
+#ifndef VPLKIT_SST_LIGHTCUTS_TRAVERSAL_GLSL
+#define VPLKIT_SST_LIGHTCUTS_TRAVERSAL_GLSL
+
+// The stochastic-lightcuts traversal (seed 003 eqs. 1-2: min/max-distance child probabilities,
+// rtslc.glsl) run over the SST's nodes, to a leaf: the thesis' comparison protocol (seed 000
+// sec. 7.1) compares rtslc and hybrid over the *same* cuts and blending, differing only in the
+// traversal below the cut node. The SST's inner nodes carry what a light-tree node does (the box,
+// the summed intensity, the count of real VPLs), so the same probability function serves both;
+// no substitute is used and no early stop: the sample is the leaf's VPL over its path
+// probability, unbiased for the start node's subtree.
+//
+// Include vplkit/rtslc.glsl (and what it needs) and vplkit/sst_sampling.glsl first.
+
+LightTreeNode sst_as_light_tree_node(SstNode node) {
+    if (node.leaf_count == 0u) {
+        return light_tree_empty_node();
+    }
+    return LightTreeNode(node.box_lo, node.intensity, node.box_hi, node.leaf_count);
+}
+
+// Descends from `start` to a leaf; s.data is the leaf, s.probability the path's probability.
+SstSample sst_traverse_lightcuts(GiPoint p, uint start, uint leaf_count, uint count, float min_distance,
+                                 inout Rng rng) {
+    RtslcShading shading = RtslcShading(p.position, p.normal, p.wo, p.albedo, p.roughness, p.metallic);
+    SstSample s;
+    s.node = start;
+    s.data = sst_fetch(start, leaf_count, count);
+    s.probability = 1.0;
+    s.levels = 0u;
+    s.dead = false;
+    for (uint level = 0u; level < kSstMaxLevels; ++level) {
+        if (sst_is_leaf(s.node, leaf_count)) {
+            break;
+        }
+        uint left = sst_left_child(s.node), right = sst_right_child(s.node);
+        SstNode l = sst_fetch(left, leaf_count, count), r = sst_fetch(right, leaf_count, count);
+        RtslcChildProbability c = rtslc_child_probability(shading, sst_as_light_tree_node(l),
+                                                          sst_as_light_tree_node(r), min_distance * min_distance);
+        if (c.dead) {
+            s.dead = true;
+            break;
+        }
+        bool go_left = rtslc_choose_left(c.left, rng_next_float(rng));
+        s.node = go_left ? left : right;
+        s.data = go_left ? l : r;
+        s.probability *= rtslc_choice_probability(c.left, go_left);
+        ++s.levels;
+    }
+    return s;
+}
+
+#endif
