@@ -28,17 +28,21 @@ if [[ ! -f "$base-exact.png" ]]; then
 fi
 csv="$out/$scene-${width}x$height.csv"
 echo "scene,method,spp,gi_ms,tree_ms,levels_per_traversal,mock_cut_pixels,rmse,ssim,indirect_relative_rmse" > "$csv"
-# hybrid-half: the hybrid method at half GI resolution, upsampled.
-for variant in sst rtslc hybrid hybrid-half; do
+# hybrid-half: the hybrid method at half GI resolution, upsampled. hybrid-lightcuts: hybrid's cuts
+# and blending with rtslc's traversal to a leaf (the thesis' sec. 7.1 protocol).
+for variant in sst rtslc hybrid hybrid-half hybrid-lightcuts; do
   method=${variant%-half}
+  method=${method%-lightcuts}
   resolution=full
   [[ $variant == *-half ]] && resolution=half
+  variant_options=()
+  [[ $variant == *-lightcuts ]] && variant_options=(--traversal lightcuts)
   for spp in $spps; do
     name="$base-$variant-$spp"
     echo "[$scene] $variant, $spp spp" >&2
     # 3 frames: the times are the medians of frames 2 and 3 (the first compiles the shaders).
     "$vplkit" render --scene "$scene" --method "$method" --spp "$spp" --width "$width" --height "$height" \
-      --gi-resolution "$resolution" --frames 3 --no-reuse "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
+      --gi-resolution "$resolution" --frames 3 --no-reuse "${variant_options[@]}" "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
     gi_ms=$(awk '/^  (sst gi|rtslc cuts|rtslc gi|hybrid cuts|hybrid gi|gbuffer downsample|upsample)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     tree_ms=$(awk '/^  (vpl bounds|morton keys|sort|gather leaves|light tree|sst clear|build sst)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     levels=$(sed -n 's/.* \([0-9.]*\) tree levels per traversal.*/\1/p' "$name.log")

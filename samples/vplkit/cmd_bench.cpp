@@ -60,11 +60,12 @@ const char* const kBenchUsage =
     "\n"
     "usage: vplkit bench gi --scene NAME [--out DIR] [--width W --height H] [--frames F] [--quick]\n"
     "                       [--vpl-source ir|brsm] [--vpls N] [--seed S] [--target-ms T] [--cache DIR]\n"
-    "                       [--device SEL]\n"
+    "                       [--sweeps LIST] [--device SEL]\n"
     "\n"
     "What every indirect-light method's accuracy costs on a standard set-up. Renders the exact\n"
     "ground truth once (cached in --cache, keyed by scene, camera, lights, size, VPL set and seed),\n"
-    "then sweeps each method's knob: samples per pixel 1..64 (sst, rtslc, hybrid), cut block size\n"
+    "then sweeps each method's knob: samples per pixel 1..64 (sst, rtslc, hybrid, and hybrid-lightcuts:\n"
+    "hybrid's cuts with rtslc's traversal, the thesis' sec. 7.1 protocol), cut block size\n"
     "1..32 (rtslc, hybrid), GI at half resolution, interleaving (rtslc), mock cuts on/off (hybrid)\n"
     "and the VPL count 1k..1M (build times). Every point: F frames, per-stage GPU times (median\n"
     "and spread of frames 2..F), RMSE and SSIM of the tonemapped frame against the ground truth,\n"
@@ -78,7 +79,8 @@ const char* const kBenchUsage =
     "  --vpl-source S   default brsm when the scene has punctual lights, else ir\n"
     "  --vpls N         the VPL budget (default 4096)\n"
     "  --target-ms T    the equal-time target frame time (default: hybrid's at 8 spp)\n"
-    "  --cache DIR      where ground truths are kept (default out/bench-cache)\n";
+    "  --cache DIR      where ground truths are kept (default out/bench-cache)\n"
+    "  --sweeps LIST    only these sweeps, comma-separated: spp, block, resolution, interleave, mock, vpls\n";
 
 namespace {
 

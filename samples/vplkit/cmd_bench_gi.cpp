@@ -214,6 +214,22 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     if (auto text = args.value("--target-ms")) target_ms = parse_whole_number("--target-ms", *text, 1u << 30);
     const std::filesystem::path out = args.value("--out").value_or("out/bench/" + scene_name);
     const std::filesystem::path cache = args.value("--cache").value_or("out/bench-cache");
+    // --sweeps spp,resolution,...: only those sweeps (a shorter run, e.g. scripts/gpu_report.sh).
+    std::vector<std::string> sweeps;
+    if (auto text = args.value("--sweeps")) {
+        const std::vector<std::string> known = {"spp", "block", "resolution", "interleave", "mock", "vpls"};
+        size_t start = 0;
+        while (start <= text->size()) {
+            const size_t comma = std::min(text->find(',', start), text->size());
+            const std::string name = text->substr(start, comma - start);
+            if (std::find(known.begin(), known.end(), name) == known.end()) {
+                throw UsageError("--sweeps expects a comma-separated list of spp, block, resolution, interleave, mock, "
+                                 "vpls, got '" + *text + "'");
+            }
+            sweeps.push_back(name);
+            start = comma + 1;
+        }
+    }
     args.finish();
 
     const scene::Setups setups = scene::load_setups(VPLKIT_SETUPS_FILE);
@@ -291,6 +307,11 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     }
 
     std::vector<BenchPoint> points = plan_points(quick, vpl_budget);
+    if (!sweeps.empty()) {
+        std::erase_if(points, [&](const BenchPoint& p) {
+            return std::find(sweeps.begin(), sweeps.end(), p.sweep) == sweeps.end();
+        });
+    }
     Progress progress(points.size());
     for (size_t i = 0; i < points.size(); ++i) {
         BenchPoint& p = points[i];

@@ -5,7 +5,9 @@
 // random per slot), or takes the mock cut when none of the four is similar; from every node of
 // its cut it traverses the SST with the expected-contribution weights (eqs. 5.2, 5.4), stopping
 // early at suitable nodes (eq. 5.6), and evaluates the node reached as a point light (sec. 5.3)
-// with one shadow ray. The pixel's estimate is the sum over its cut's nodes.
+// with one shadow ray (to a real VPL of the node for a substitute: sst_shadow_target). The
+// pixel's estimate is the sum over its cut's nodes. The specialization constant kTraversal swaps
+// the traversal for rtslc's to a leaf (sec. 7.1's comparison protocol).
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
 

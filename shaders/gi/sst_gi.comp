@@ -5,7 +5,8 @@
 // suitable for sampling or at a leaf; child weights = material x cosine upper bound x intensity
 // / clamped squared distance; the node evaluated as a point light (its VPL, or a position drawn
 // from its substitute distribution) with its colour divided by the path probability, one shadow
-// ray each; the pixel is the mean of its samples.
+// ray each (to the VPL, or for a substitute to a real VPL of the node: sst_shadow_target); the
+// pixel is the mean of its samples.
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
 
