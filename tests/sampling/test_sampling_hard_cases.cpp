@@ -9,12 +9,14 @@
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/sampling_test/blend_weights.hpp"
+#include "vplkit/sampling_test/child_probability.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
 
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -247,6 +249,65 @@ TEST_CASE("hybrid: cut blending's bilinear and normalized weights sum to 1") {
     MESSAGE(blended << " pixels blended, " << mock << " take the mock cut");
     CHECK(blended > 100);
     CHECK(mock > 10);
+}
+
+TEST_CASE("sst and hybrid: a child is taken with exactly the probability its light is divided by") {
+    // The traversal takes the left child when u < p, u = k 2^-24 (rng_next_float). A float p
+    // below 2^-24 was taken with probability 2^-24 but divided by p (over-weighted), and a p that
+    // rounded to 1 never took its sibling (its light lost). p is now a multiple of 2^-24 in
+    // [2^-24, 1 - 2^-24] whenever both children weigh more than 0.
+    vplkit::Context& ctx = vplkit::test::context();
+    namespace shader = vplkit::sampling_test::child_probability;
+    std::vector<vplkit::shaders::vec4> weights = {
+        {1.0f, 1.0f, 1e-9f, 1.0f},   // the right child 1e-9 as bright: p_left rounded to 1 in float
+        {1e-9f, 1.0f, 1.0f, 1.0f},   // the left child below 2^-24
+        {0.0f, 1.0f, 1.0f, 1.0f},    // the left child dark: exactly 0
+        {1.0f, 1.0f, 0.0f, 1.0f},    // the right child dark: exactly 1
+        {0.0f, 1.0f, 0.0f, 1.0f},    // both dark: a dead branch (< 0)
+    };
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> exponent(-12.0f, 12.0f);
+    for (int i = 0; i < 500; ++i) {
+        weights.push_back({std::pow(10.0f, exponent(rng)), std::pow(10.0f, exponent(rng) / 4.0f), std::pow(10.0f, exponent(rng)),
+                           std::pow(10.0f, exponent(rng) / 4.0f)});
+    }
+    constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    auto in = vplkit::Buffer::create(ctx, weights.size() * sizeof(weights[0]), storage, vplkit::MemoryUse::device, "weights");
+    auto out = vplkit::Buffer::create(ctx, weights.size() * sizeof(float), storage, vplkit::MemoryUse::device, "probabilities");
+    in.upload(weights);
+    const auto& pipeline = ctx.pipeline<shader::Pipeline>();
+    vplkit::PassList passes("child probability");
+    passes.add("child probability", {vplkit::Use::read(in), vplkit::Use::write(out)}, [&](VkCommandBuffer cmd) {
+        shader::Bindings b;
+        b.weights = in.descriptor();
+        b.probabilities = out.descriptor();
+        shader::Push push{uint32_t(weights.size())};
+        pipeline.dispatch(cmd, b, push, uint32_t(weights.size()));
+    });
+    passes.run(ctx);
+    const auto p = out.download<float>(weights.size());
+    const double step = 1.0 / 16777216.0;
+    CHECK(p[0] == float(1.0 - step));
+    CHECK(p[1] == float(step));
+    CHECK(p[2] == 0.0f);
+    CHECK(p[3] == 1.0f);
+    CHECK(p[4] < 0.0f);
+    int failures = 0;
+    for (size_t i = 5; i < weights.size(); ++i) {
+        const auto& w = weights[i];
+        const double left = double(w.x) * w.w, right = double(w.z) * w.y;
+        const double exact = left / (left + right);
+        const double k = double(p[i]) / step;
+        const bool ok = k == std::floor(k) && p[i] >= step && p[i] <= 1.0 - step &&
+                        std::abs(p[i] - std::clamp(exact, step, 1.0 - step)) <= step + 1e-6 * exact;
+        if (!ok && ++failures <= 5) {
+            CAPTURE(i);
+            CAPTURE(p[i]);
+            CAPTURE(exact);
+            CHECK(ok);
+        }
+    }
+    CHECK(failures == 0);
 }
 
 TEST_CASE("sst and hybrid: bad options are refused by name") {

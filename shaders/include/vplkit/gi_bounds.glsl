@@ -110,4 +110,12 @@ float gi_grid_probability(float p) {
     return clamp(ceil(p * 16777216.0) * kGiProbabilityStep, kGiProbabilityStep, 1.0 - kGiProbabilityStep);
 }
 
+// The left child's probability for a traversal that compares it with rng_next_float (u < p):
+// gi_left_probability, on u's grid when both children weigh more than 0 (gi_grid_probability),
+// exactly 0 or 1 when one weighs 0, negative for a dead branch.
+float gi_child_probability(float a_left, float d2_left, float a_right, float d2_right) {
+    float p = gi_left_probability(a_left, d2_left, a_right, d2_right);
+    return a_left > 0.0 && a_right > 0.0 ? gi_grid_probability(p) : p;
+}
+
 #endif

@@ -106,17 +106,14 @@ SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint 
         float a_right = sst_weight_numerator(p, r, weight_kind, min_distance, d2_right);
         // Cross-multiplied (gi_left_probability): no 1/d2, no inf/inf; < 0 marks a dead branch,
         // where the sample ends with no light (backtracking would cost a shader loop per level).
-        float p_left = gi_left_probability(a_left, d2_left, a_right, d2_right);
+        float p_left = gi_child_probability(a_left, d2_left, a_right, d2_right);
         if (p_left < 0.0) {
             s.dead = true;
             break;
         }
         // u < p_left is never true for p_left = 0 and always for p_left = 1 (u in [0, 1)): a child
-        // of zero weight is never chosen. With both weights above 0, p_left goes on u's grid
-        // (gi_grid_probability), so each child is taken with the probability divided by.
-        if (a_left > 0.0 && a_right > 0.0) {
-            p_left = gi_grid_probability(p_left);
-        }
+        // of zero weight is never chosen. With both weights above 0, p_left is on u's grid
+        // (gi_child_probability), so each child is taken with the probability divided by.
         bool go_left = rng_next_float(rng) < p_left;
         s.node = go_left ? left : right;
         s.data = go_left ? l : r;
