@@ -137,8 +137,9 @@ std::string view_key_of(const stages::CameraView& view, uint32_t w, uint32_t h) 
 
 }  // namespace
 
-RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& settings) {
-    validate_gi_settings(settings);
+RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {
+    validate_gi_settings(requested);
+    const RenderSettings settings = with_scene_relative_thresholds(requested, gpu_bvh_.scene_scale);
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const uint32_t w = settings.width, h = settings.height;
     auto gbuffer = stages::GbufferImages::create(context_, w, h);
@@ -152,6 +153,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     RenderedImage out;
     out.width = w;
     out.height = h;
+    out.sst_sigma_max = settings.sst.sigma_max;
     // The plan decides every stage below; the passes recorded are exactly the stages it runs.
     const FramePlan plan = plan_frame(scene_source_, settings, view_key_of(view, w, h),
                                       {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key});

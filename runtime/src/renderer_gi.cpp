@@ -81,6 +81,15 @@ void validate_gi_settings(const RenderSettings& settings) {
     if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) || settings.sst.sigma_max < 0.0f) {
         throw Error("render: nu_min must be finite and sigma_max finite and >= 0");
     }
+    if (settings.sigma_max_scene_fraction &&
+        !(std::isfinite(*settings.sigma_max_scene_fraction) && *settings.sigma_max_scene_fraction >= 0.0f)) {
+        throw Error("render: sigma_max_scene_fraction must be finite and >= 0");
+    }
+}
+
+RenderSettings with_scene_relative_thresholds(RenderSettings settings, float scene_scale) {
+    if (settings.sigma_max_scene_fraction) settings.sst.sigma_max = *settings.sigma_max_scene_fraction * scene_scale;
+    return settings;
 }
 
 void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,

@@ -64,7 +64,8 @@ const char* const kRenderUsage =
     "                   bilateral upsampling to full\n"
     "  --nu-min V, --sigma-max S   sst, hybrid: a tree node is sampled as a whole when its normal\n"
     "                   similarity is >= V and its spread along its normal <= S scene units\n"
-    "                   (defaults 0.7 and 0.3, the thesis')\n"
+    "                   (defaults: 0.7, the thesis', and 1.2% of the scene's size, the thesis' 0.3\n"
+    "                   in its Sponza; the value used is printed)\n"
     "  --vpl-source S   where the VPLs come from: auto (default): brsm for --bounces 1 from punctual\n"
     "                   lights, else ir; ir: instant radiosity, light paths through the scene,\n"
     "                   multi-bounce; brsm: bidirectional reflective shadow maps, one bounce, placed\n"
@@ -250,6 +251,7 @@ int render_or_plan(Args& args, bool plan_only) {
         const auto value = finite_number(*text);
         if (!value || *value < 0.0f) throw UsageError("--sigma-max expects a number >= 0, got '" + *text + "'");
         settings.sst.sigma_max = *value;
+        settings.sigma_max_scene_fraction.reset();  // absolute, as given
     }
     if (auto text = args.value("--gi-resolution")) {
         if (settings.method == GiMethod::none) throw UsageError("--gi-resolution needs an indirect-light --method");
@@ -392,6 +394,7 @@ int render_or_plan(Args& args, bool plan_only) {
         if (blocked) std::printf(", %ux%u blocks", settings.block_size, settings.block_size);
         if (settings.interleave > 1) std::printf(", %ux%u interleaved", settings.interleave, settings.interleave);
         if (settings.hybrid_traversal == stages::HybridTraversal::lightcuts) std::printf(", rtslc's traversal");
+        if (substitutes) std::printf(", nu_min %.2f, sigma_max %.3g", settings.sst.nu_min, image.sst_sigma_max);
         std::printf("; %.2f tree levels per traversal (%u traversals), %u dead branches", c.levels_per_traversal(),
                     c.traversals, c.dead_branches);
         if (settings.method == GiMethod::hybrid) std::printf(", %u mock-cut pixels", c.mock_cut_pixels);

@@ -26,7 +26,8 @@ struct SstOptions {
     // the thesis' (seed 000 sec. 5.2: 0.7 / 0.3); the SST paper used 0.5 / 0.1 (seed 004 sec. 6).
     // sigma_max is an absolute length in world units, as in both papers: sigma_z is the
     // standard deviation of the node's VPLs along its normal. A scene in other units (or far
-    // larger or smaller than a room) needs it scaled accordingly.
+    // larger or smaller than a room) needs it scaled accordingly: vplkit::Renderer does so by
+    // default (RenderSettings::sigma_max_scene_fraction).
     float nu_min = 0.7f;
     float sigma_max = 0.3f;
     // Threads per workgroup of the build (a specialization constant).
