@@ -32,7 +32,7 @@ const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
     "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
-    "                     [--traversal substitute|lightcuts]\n"
+    "                     [--traversal substitute|lightcuts] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
@@ -85,6 +85,8 @@ const char* const kRenderUsage =
     "  --sun ...        add a directional light travelling along (DX,DY,DZ), colour RGB, I lux\n"
     "  --point ...      add a point light at (X,Y,Z), colour RGB, I candela\n"
     "  --exposure E     linear exposure before the tone curve (default 1)\n"
+    "  --brdf B         gltf (default): the file's metallic-roughness materials; lambert: every\n"
+    "                   material a pure Lambertian of its base colour (for diffuse-only references)\n"
     "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
     "  --emissive-samples N  area-light samples per pixel for emissive triangles (default 16)\n"
     "  --all-stages     run every stage the method can use, whatever the scene needs, and reuse\n"
@@ -288,6 +290,11 @@ int render_or_plan(Args& args, bool plan_only) {
     if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
     if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
     settings.vpls_only = args.flag("--vpls-only");
+    bool lambertian = false;
+    if (auto text = args.value("--brdf")) {
+        if (*text != "gltf" && *text != "lambert") throw UsageError("--brdf expects gltf or lambert, got '" + *text + "'");
+        lambertian = *text == "lambert";
+    }
     settings.force_all_stages = args.flag("--all-stages");
     settings.reuse_static_work = !args.flag("--no-reuse");
     uint32_t frames = 1;
@@ -333,6 +340,7 @@ int render_or_plan(Args& args, bool plan_only) {
         settings.height = height.value_or(setup.height ? setup.height : 360);
     }
     scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
+    if (lambertian) scene::use_lambertian_materials(scene);
     const double load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
 

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -84,9 +85,15 @@ size_t check_parts_add_up(const vplkit::RenderedImage& image) {
 
 }  // namespace
 
-TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path at pixel centres") {
+namespace {
+
+// The in-repo Cornell box's direct light against the CPU path; `lambert`: every material made a
+// pure Lambertian (scene::use_lambertian_materials), whose BRDF is base colour / pi.
+void check_direct_against_cpu_path(bool lambert) {
     vplkit::Context& ctx = vplkit::test::context();
-    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    const auto original_materials = scene.materials;
+    if (lambert) vplkit::scene::use_lambertian_materials(scene);
     REQUIRE(scene.lights.size() == 1);
     const uint32_t width = 48, height = 40;
     vplkit::Renderer renderer(ctx, scene);
@@ -144,7 +151,7 @@ TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path
             Vec3 wo = {camera.position.x - p[0], camera.position.y - p[1], camera.position.z - p[2]};
             const double wo_length = std::sqrt(wo[0] * wo[0] + wo[1] * wo[1] + wo[2] * wo[2]);
             for (double& c : wo) c /= wo_length;
-            const auto& material = scene.materials[scene.triangle_materials[hit.triangle]];
+            const auto& material = original_materials[scene.triangle_materials[hit.triangle]];
 
             Vec3 expected = {material.emission().x, material.emission().y, material.emission().z};
             const auto s = vplkit::reference::sample_light(light_desc, p);
@@ -161,7 +168,10 @@ TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path
             if (cos_theta > 0.0 && !vplkit::reference::occluded(triangles, shadow)) {
                 ++lit;
                 const Vec3 base = {material.base_color_factor.x, material.base_color_factor.y, material.base_color_factor.z};
-                const Vec3 f = vplkit::reference::gltf_brdf(n, wo, s.wi, base, material.roughness_factor, material.metallic_factor);
+                const double pi = std::numbers::pi;
+                const Vec3 f = lambert ? Vec3{base[0] / pi, base[1] / pi, base[2] / pi}
+                                       : vplkit::reference::gltf_brdf(n, wo, s.wi, base, material.roughness_factor,
+                                                                      material.metallic_factor);
                 for (int c = 0; c < 3; ++c) expected[c] += f[c] * s.irradiance[c] * cos_theta;
             }
             ++compared;
@@ -175,6 +185,16 @@ TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path
     CHECK(skipped * 5 < compared);
     CHECK(lit * 2 > compared);  // most of the box sees the light
     CHECK(lit < compared);      // and the blocks cast shadows
+}
+
+}  // namespace
+
+TEST_CASE("direct render: the in-repo Cornell box matches a brute-force CPU path at pixel centres") {
+    check_direct_against_cpu_path(false);
+}
+
+TEST_CASE("direct render: with every material made Lambertian (--brdf lambert) the BRDF is base colour / pi") {
+    check_direct_against_cpu_path(true);
 }
 
 TEST_CASE("direct render: a scene without any light is refused by name") {

@@ -221,6 +221,13 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = 
 // The vertices of every triangle in order, 3 per triangle (for BVH builders and tests).
 std::vector<glm::vec3> triangle_positions(const Scene& scene);
 
+// Makes every material a pure Lambertian reflector of its base colour (metallic 0, no
+// metallic-roughness texture, roughness kLambertianRoughness, which brdf.glsl evaluates as
+// base colour / pi): for comparisons with references that render diffuse-only, such as
+// ../shared/reference (`vplkit render --brdf lambert`).
+inline constexpr float kLambertianRoughness = -1.0f;
+void use_lambertian_materials(Scene& scene);
+
 // The generated camera load_gltf uses when a file has none.
 Camera framing_camera(const Bounds& bounds);
 

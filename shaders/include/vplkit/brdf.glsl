@@ -34,11 +34,16 @@ vec3 schlick_fresnel(vec3 f0, float v_dot_h) {
 }
 
 // f(wo, wi) for unit n, wo (towards the viewer), wi (towards the light). Zero when wi is below
-// the shading normal; wo below it (a normal map can do that) is treated as grazing.
+// the shading normal; wo below it (a normal map can do that) is treated as grazing. A negative
+// roughness (scene::kLambertianRoughness, set by scene::use_lambertian_materials for `--brdf
+// lambert`) selects a pure Lambertian BRDF, base_color / pi: glTF roughness is never negative.
 vec3 brdf_evaluate(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, float metallic) {
     float n_dot_l = dot(n, wi);
     if (n_dot_l <= 0.0) {
         return vec3(0.0);
+    }
+    if (roughness < 0.0) {
+        return base_color / kPi;
     }
     float n_dot_v = max(dot(n, wo), 1e-4);
     vec3 h = normalize(wo + wi);

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""vplkit's one-bounce indirect / direct ratio against Blender Cycles' (../shared/reference).
+
+usage: scripts/cycles_ratio.py REFERENCE_DIR DIRECT.pfm INDIRECT.pfm
+
+REFERENCE_DIR holds Cycles' DiffDir.exr, DiffInd.exr and DiffCol.exr (uncompressed single-part
+scanline float OpenEXR, channels B,G,R; see ../shared/reference/README.md). Cycles' passes are
+irradiance / pi without the albedo; vplkit's direct and indirect radiance carry the albedo, so they
+are divided by DiffCol first. Only pixels whose albedo is at least 0.02 in every channel count,
+for both renderers (dividing by a darker albedo only amplifies noise). Both are then measured as
+the reference's ratio_map.txt is: channel means; the ratio of the means over those pixels, and
+the median per-pixel ratio (p10, p90) over those whose direct light is above 5% of its mean.
+Also printed: vplkit's direct and indirect radiance over Cycles' (albedo x pass), all pixels.
+"""
+import math
+import struct
+import sys
+
+sys.path.insert(0, __import__("os").path.dirname(__file__))
+from pfm_error import read_pfm  # noqa: E402
+
+
+def read_exr(path):
+    """(width, height, {channel: [float]}) rows top to bottom, of an uncompressed float EXR."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if struct.unpack_from("<I", data, 0)[0] != 20000630:
+        raise SystemExit(f"{path}: not an OpenEXR file")
+    pos, channels, window, compression = 8, [], None, None
+    while data[pos] != 0:
+        end = data.index(b"\0", pos)
+        name = data[pos:end].decode()
+        end2 = data.index(b"\0", end + 1)
+        kind = data[end + 1:end2].decode()
+        size = struct.unpack_from("<i", data, end2 + 1)[0]
+        value = data[end2 + 5:end2 + 5 + size]
+        if name == "channels":
+            p = 0
+            while value[p] != 0:
+                e = value.index(b"\0", p)
+                pixel_type = struct.unpack_from("<i", value, e + 1)[0]
+                channels.append((value[p:e].decode(), pixel_type))
+                p = e + 1 + 16
+        elif name == "dataWindow":
+            window = struct.unpack("<4i", value)
+        elif name == "compression":
+            compression = value[0]
+        pos = end2 + 5 + size
+    pos += 1
+    if compression != 0 or any(t != 2 for _, t in channels):
+        raise SystemExit(f"{path}: only uncompressed 32-bit float EXR is read here")
+    x0, y0, x1, y1 = window
+    width, height = x1 - x0 + 1, y1 - y0 + 1
+    offsets = struct.unpack_from(f"<{height}Q", data, pos)
+    out = {name: [0.0] * (width * height) for name, _ in channels}
+    for offset in offsets:
+        y, size = struct.unpack_from("<ii", data, offset)
+        row = y - y0
+        p = offset + 8
+        for name, _ in channels:  # stored in alphabetical order, as the header lists them
+            values = struct.unpack_from(f"<{width}f", data, p)
+            out[name][row * width:(row + 1) * width] = values
+            p += 4 * width
+    return width, height, out
+
+
+def stats(direct, indirect):
+    """ratio of means, median ratio, p10, p90, pixel count over pixels with direct > 5% mean."""
+    valid = [i for i in range(len(direct)) if direct[i] is not None and indirect[i] is not None]
+    mean_direct = sum(direct[i] for i in valid) / len(valid)
+    chosen = [i for i in valid if direct[i] > 0.05 * mean_direct]
+    ratio_of_means = sum(indirect[i] for i in valid) / sum(direct[i] for i in valid)
+    ratios = sorted(indirect[i] / direct[i] for i in chosen)
+
+    def quantile(q):
+        return ratios[min(len(ratios) - 1, int(q * len(ratios)))]
+
+    return ratio_of_means, quantile(0.5), quantile(0.1), quantile(0.9), len(chosen)
+
+
+def main():
+    if len(sys.argv) != 4:
+        raise SystemExit(__doc__)
+    ref, direct_pfm, indirect_pfm = sys.argv[1:]
+    w, h, ddir = read_exr(f"{ref}/DiffDir.exr")
+    _, _, dind = read_exr(f"{ref}/DiffInd.exr")
+    _, _, dcol = read_exr(f"{ref}/DiffCol.exr")
+    vw, vh, vdir = read_pfm(direct_pfm)
+    _, _, vind = read_pfm(indirect_pfm)
+    if (vw, vh) != (w, h):
+        raise SystemExit(f"vplkit's images are {vw}x{vh}, the reference {w}x{h}")
+    n = w * h
+    cycles_dir = [(ddir["R"][i] + ddir["G"][i] + ddir["B"][i]) / 3 for i in range(n)]
+    cycles_ind = [(dind["R"][i] + dind["G"][i] + dind["B"][i]) / 3 for i in range(n)]
+    ours_dir, ours_ind = [None] * n, [None] * n
+    for i in range(n):
+        # PFM rows run bottom to top; the EXR's top to bottom.
+        row, col = divmod(i, w)
+        j = (h - 1 - row) * w + col
+        albedo = (dcol["R"][i], dcol["G"][i], dcol["B"][i])
+        if min(albedo) < 0.02:
+            continue
+        ours_dir[i] = sum(vdir[3 * j + c] / albedo[c] for c in range(3)) / 3
+        ours_ind[i] = sum(vind[3 * j + c] / albedo[c] for c in range(3)) / 3
+    cycles_dir = [v if ours_dir[i] is not None else None for i, v in enumerate(cycles_dir)]
+    cycles_ind = [v if ours_ind[i] is not None else None for i, v in enumerate(cycles_ind)]
+    c = stats(cycles_dir, cycles_ind)
+    o = stats(ours_dir, ours_ind)
+    for name, s in (("cycles", c), ("vplkit", o)):
+        print(f"{name}: ratio of means {s[0]:.4f}, median ratio {s[1]:.4f} (p10 {s[2]:.4f}, p90 {s[3]:.4f}), "
+              f"{s[4]} pixels")
+    print(f"vplkit / cycles: ratio of means {o[0] / c[0] - 1:+.1%}, median ratio {o[1] / c[1] - 1:+.1%}")
+    flip = lambda v, i, c: v[3 * ((h - 1 - i // w) * w + i % w) + c]  # noqa: E731
+    for name, ours, theirs in (("direct", vdir, ddir), ("indirect", vind, dind)):
+        sum_ours = sum(flip(ours, i, c) for i in range(n) for c in range(3))
+        sum_theirs = sum(dcol[ch][i] * theirs[ch][i] for i in range(n) for ch in "RGB")
+        print(f"{name} radiance (albedo x pass for Cycles), all pixels: vplkit / cycles {sum_ours / sum_theirs - 1:+.1%}")
+    if not (math.isfinite(o[0]) and math.isfinite(o[1])):
+        raise SystemExit("vplkit's ratios are not finite")
+
+
+if __name__ == "__main__":
+    main()
