@@ -22,12 +22,7 @@ LightTreeNode sst_as_light_tree_node(SstNode node) {
 SstSample sst_traverse_lightcuts(GiPoint p, uint start, uint leaf_count, uint count, float min_distance,
                                  inout Rng rng) {
     RtslcShading shading = RtslcShading(p.position, p.normal, p.wo, p.albedo, p.roughness, p.metallic);
-    SstSample s;
-    s.node = start;
-    s.data = sst_fetch(start, leaf_count, count);
-    s.probability = 1.0;
-    s.levels = 0u;
-    s.dead = false;
+    SstSample s = sst_sample_at(start, leaf_count, count);
     for (uint level = 0u; level < kSstMaxLevels; ++level) {
         if (sst_is_leaf(s.node, leaf_count)) {
             break;

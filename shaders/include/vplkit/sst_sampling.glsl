@@ -85,16 +85,22 @@ struct SstSample {
 // Kept below 32 so that a tree of up to 2^31 leaves always reaches a leaf.
 const uint kSstMaxLevels = 32u;
 
-// Descends from `start` until a leaf or a suitable node (eq. 5.6), picking a child with
-// probability w / (w_left + w_right) (seed 000 eq. 5.4) and a fresh random number per level.
-SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, float min_distance,
-                       inout Rng rng) {
+// A traversal standing at `start`, before its first step.
+SstSample sst_sample_at(uint start, uint leaf_count, uint count) {
     SstSample s;
     s.node = start;
     s.data = sst_fetch(start, leaf_count, count);
     s.probability = 1.0;
     s.levels = 0u;
     s.dead = false;
+    return s;
+}
+
+// Descends from `start` until a leaf or a suitable node (eq. 5.6), picking a child with
+// probability w / (w_left + w_right) (seed 000 eq. 5.4) and a fresh random number per level.
+SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, float min_distance,
+                       inout Rng rng) {
+    SstSample s = sst_sample_at(start, leaf_count, count);
     for (uint level = 0u; level < kSstMaxLevels; ++level) {
         if (sst_is_leaf(s.node, leaf_count) || (s.data.flags & kSstFlagSuitable) != 0u) {
             break;
