@@ -14,4 +14,9 @@ mkdir -p out
 if [[ $# -eq 0 ]]; then
   set -- --method hybrid --vpl-source brsm --spp 32 --gi-resolution half
 fi
-./build/release/samples/vplkit render --out out/vplkit.png "$@"
+# out/vplkit.png unless the arguments name their own --out.
+out=(--out out/vplkit.png)
+for arg in "$@"; do
+  [[ $arg == --out || $arg == --out=* ]] && out=()
+done
+./build/release/samples/vplkit render "${out[@]}" "$@"

@@ -1,5 +1,6 @@
 #include "cli.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace vplkit::cli {
@@ -8,6 +9,8 @@ bool Args::flag(std::string_view name, std::string_view short_name) {
   for (auto it = args_.begin(); it != args_.end(); ++it) {
     if (*it == name || (!short_name.empty() && *it == short_name)) {
       args_.erase(it);
+      read_.emplace_back(name);
+      if (!short_name.empty()) read_.emplace_back(short_name);
       return true;
     }
   }
@@ -20,12 +23,14 @@ std::optional<std::string> Args::value(std::string_view name) {
     if (it->rfind(prefix, 0) == 0) {
       std::string v = it->substr(prefix.size());
       args_.erase(it);
+      read_.emplace_back(name);
       return v;
     }
     if (*it == name) {
       if (it + 1 == args_.end()) throw UsageError("option " + std::string(name) + " needs a value");
       std::string v = *(it + 1);
       args_.erase(it, it + 2);
+      read_.emplace_back(name);
       return v;
     }
   }
@@ -46,6 +51,10 @@ std::optional<std::string> Args::positional() {
 void Args::finish() const {
   if (args_.empty()) return;
   const std::string& first = args_.front();
+  const std::string name = first.substr(0, first.find('='));
+  if (std::find(read_.begin(), read_.end(), name) != read_.end()) {
+    throw UsageError("option '" + name + "' given more than once for '" + command_ + "'");
+  }
   if (!first.empty() && first[0] == '-') throw UsageError("unknown option '" + first + "' for '" + command_ + "'");
   throw UsageError("unexpected argument '" + first + "' for '" + command_ + "'");
 }

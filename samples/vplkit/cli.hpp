@@ -27,6 +27,8 @@ class Args {
   std::optional<std::string> value(std::string_view name);
   // The next argument that is not an option.
   std::optional<std::string> positional();
+  // Refuses what is left: an option already read ("given more than once"; the options read in
+  // a loop, such as --sun, take every occurrence), an unknown option, or an extra argument.
   void finish() const;
 
   const std::string& command() const { return command_; }
@@ -34,6 +36,7 @@ class Args {
  private:
   std::string command_;
   std::vector<std::string> args_;
+  std::vector<std::string> read_;  // the options flag() and value() found
 };
 
 // A whole number from 1 to max, or a UsageError naming the option and the text.
