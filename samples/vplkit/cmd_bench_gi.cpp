@@ -13,6 +13,7 @@
 #include "vplkit/planner.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/scene_lights.hpp"
 #include "vplkit/scene_setups.hpp"
 
 #include <algorithm>
@@ -212,7 +213,17 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     if (auto text = args.value("--seed")) seed = parse_index("--seed", *text, UINT32_MAX);
     double target_ms = 0.0;
     if (auto text = args.value("--target-ms")) target_ms = parse_whole_number("--target-ms", *text, 1u << 30);
-    const std::filesystem::path out = args.value("--out").value_or("out/bench/" + scene_name);
+    // --scene takes a set-up name or a .gltf/.glb file, as render does; a file brings its own
+    // camera (--camera N) and lights, plus --sun and --point.
+    const bool is_file = scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") ||
+                         scene_name.ends_with(".glb");
+    std::optional<uint32_t> camera;
+    if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
+    std::vector<scene::Light> extra_lights;
+    while (auto spec = args.value("--sun")) extra_lights.push_back(scene::parse_sun(*spec));
+    while (auto spec = args.value("--point")) extra_lights.push_back(scene::parse_point(*spec));
+    const std::string out_name = is_file ? std::filesystem::path(scene_name).stem().string() : scene_name;
+    const std::filesystem::path out = args.value("--out").value_or("out/bench/" + out_name);
     const std::filesystem::path cache = args.value("--cache").value_or("out/bench-cache");
     // --sweeps spp,resolution,...: only those sweeps (a shorter run, e.g. scripts/gpu_report.sh).
     std::vector<std::string> sweeps;
@@ -232,9 +243,19 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     }
     args.finish();
 
-    const scene::Setups setups = scene::load_setups(VPLKIT_SETUPS_FILE);
-    const scene::Setup& setup = setups.find(scene_name);
-    scene::Scene scene = scene::load_setup_scene(setup);
+    scene::Setup setup;
+    scene::Scene scene;
+    scene::LoadOptions load_options;
+    load_options.camera = camera;
+    if (is_file) {
+        setup.name = out_name;
+        setup.scene = std::filesystem::absolute(scene_name);
+        scene = scene::load_gltf(setup.scene, load_options);
+    } else {
+        setup = scene::load_setups(VPLKIT_SETUPS_FILE).find(scene_name);
+        scene = scene::load_setup_scene(setup, load_options);
+    }
+    scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
     std::filesystem::create_directories(out / "images");
     std::filesystem::create_directories(cache);
 
