@@ -69,6 +69,23 @@ TEST_CASE("bad input: the .bin buffer is missing") {
     check_error(load_error(path), path, {"buffer file", (dir.path() / "model.bin").string().c_str(), "not found"});
 }
 
+TEST_CASE("a buffer URI that is an absolute path is that file (RFC 3986), and its absence names it") {
+    TempDir dir("absolute_uri");
+    const fs::path path = quad_builder().write(dir.path(), "model");
+    const fs::path elsewhere = dir / "elsewhere";
+    fs::create_directories(elsewhere);
+    fs::rename(dir / "model.bin", elsewhere / "model.bin");
+    const std::string text = read_text(path);
+    const std::string relative = "\"uri\":\"model.bin\"";
+    REQUIRE(text.find(relative) != std::string::npos);
+    std::string absolute = text;
+    absolute.replace(text.find(relative), relative.size(), "\"uri\":\"" + (elsewhere / "model.bin").string() + "\"");
+    write_text(path, absolute);
+    CHECK(vplkit::scene::load_gltf(path).triangle_count() == 2);
+    fs::remove(elsewhere / "model.bin");
+    check_error(load_error(path), path, {"buffer file", (elsewhere / "model.bin").string().c_str(), "not found"});
+}
+
 TEST_CASE("bad input: the .bin buffer is truncated") {
     TempDir dir("truncated_bin");
     const fs::path path = quad_builder().write(dir.path(), "model");

@@ -529,6 +529,19 @@ std::optional<std::string> buffer_problem(const std::string& why, const std::fil
     return std::nullopt;
 }
 
+// tinygltf joins every buffer and image URI to the glTF file's folder, an absolute-path reference
+// too ("dir" + "/" + "/abs/b.bin": not found although /abs/b.bin exists). RFC 3986 resolves a
+// reference that starts with '/' to that path alone; `base_dir` is the folder tinygltf joins
+// (everything before the file name's last separator, as its GetBaseDir takes it).
+std::string expand_uri_path(const std::string& joined, void* base_dir) {
+    const std::string& base = *static_cast<const std::string*>(base_dir);
+    const std::string absolute_join = base + "//";
+    if (!base.empty() && joined.rfind(absolute_join, 0) == 0) {
+        return tinygltf::ExpandFilePath(joined.substr(base.size() + 1), nullptr);
+    }
+    return tinygltf::ExpandFilePath(joined, nullptr);
+}
+
 bool is_glb(const std::filesystem::path& path) {
     std::ifstream file(path, std::ios::binary);
     char magic[4] = {};
@@ -564,6 +577,10 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
     {
         tinygltf::TinyGLTF loader;
         loader.SetImageLoader(&detail::capture_image_bytes, &captured);
+        const size_t separator = file.find_last_of("/\\");
+        std::string base_dir = separator == std::string::npos ? std::string() : file.substr(0, separator);
+        loader.SetFsCallbacks({&tinygltf::FileExists, &expand_uri_path, &tinygltf::ReadWholeFile,
+                               &tinygltf::WriteWholeFile, &base_dir});
         std::string err;
         const bool ok = is_glb(path) ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
                                      : loader.LoadASCIIFromFile(&model, &err, &warn, file);
