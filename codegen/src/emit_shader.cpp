@@ -60,6 +60,15 @@ std::string descriptor_words(const Binding& b) {
   return "";
 }
 
+const char* access_cpp(Access a) {
+  switch (a) {
+    case Access::Read: return "Access::read";
+    case Access::Write: return "Access::write";
+    case Access::ReadWrite: return "Access::read_write";
+  }
+  return "";
+}
+
 bool is_buffer(DescriptorKind k) {
   return k == DescriptorKind::UniformBuffer || k == DescriptorKind::StorageBuffer;
 }
@@ -189,12 +198,14 @@ class ShaderEmitter {
     if (s_.bindings.empty()) {
       out += "// This shader has no descriptors.\n";
       out += "inline constexpr std::array<VkDescriptorSetLayoutBinding, 0> kSetLayoutBindings = {};\n";
+      out += "inline constexpr std::array<Access, 0> kBindingAccess = {};\n";
       return out;
     }
     CommentedLines lines;
     for (const Binding& b : s_.bindings) {
       std::string comment = descriptor_words(b);
       if (b.is_array) comment += ", array of " + std::to_string(b.count);
+      comment += b.access == Access::Read ? ", read" : b.access == Access::Write ? ", written" : ", read and written";
       lines.add("inline constexpr uint32_t kBinding" + camel_case(b.name) + " = " + std::to_string(b.binding) + ";", comment);
     }
     out += lines.render("");
@@ -203,6 +214,11 @@ class ShaderEmitter {
       out += "    {kBinding" + camel_case(b.name) + ", " + descriptor_type(b.kind) + ", " + std::to_string(b.count) +
              ", kStage, nullptr},\n";
     }
+    out += "};\n";
+    out += "// How the shader uses each binding of kSetLayoutBindings, in the same order (readonly /\n"
+           "// writeonly in the GLSL): the accesses a caller's barriers must cover.\n";
+    out += "inline constexpr Access kBindingAccess[] = {\n";
+    for (const Binding& b : s_.bindings) out += "    " + std::string(access_cpp(b.access)) + ",  // " + b.name + "\n";
     out += "};\n";
     return out;
   }

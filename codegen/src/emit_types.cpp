@@ -30,6 +30,10 @@ std::string matrix_struct(const MatrixShape& m) {
 std::string basic_types(const TypeTable& types) {
   std::string out;
   out +=
+      "// How a shader uses a binding (each header's kBindingAccess): SPIR-V NonWritable / NonReadable,\n"
+      "// GLSL readonly / writeonly. Uniform buffers, samplers and sampled images are read.\n"
+      "enum class Access : uint8_t { read, write, read_write };\n\n";
+  out +=
       "// An element of an array whose stride is wider than the element (a vec3 in a std430\n"
       "// array, a float or vec2 in a std140 array), or a matrix column: the padding is a member.\n"
       "template <typename T, std::size_t Stride>\n"

@@ -77,12 +77,18 @@ enum class DescriptorKind {
   InputAttachment,
 };
 
+// How a shader may use a binding, from SPIR-V's NonWritable / NonReadable decorations (GLSL
+// readonly / writeonly): what a frame graph needs to place barriers. Uniform buffers, samplers and
+// sampled images are read.
+enum class Access { Read, Write, ReadWrite };
+
 struct Binding {
   std::string name;        // GLSL instance name (the block type name if the block has none)
   uint32_t binding = 0;
   uint32_t count = 1;      // descriptor count: > 1 for a descriptor array
   bool is_array = false;   // declared as an array (even of size 1): the Bindings field is a std::array
   DescriptorKind kind = DescriptorKind::StorageBuffer;
+  Access access = Access::Read;
   std::string block_type;  // buffers only: the block's struct name
 };
 

@@ -128,6 +128,11 @@ class Reflector {
     if (instance.empty()) instance = block;  // `buffer Foo { ... };` has no instance name
     Binding b = make_binding(r, kind, instance);
     b.block_type = block;
+    if (kind == DescriptorKind::StorageBuffer) {
+      // A block's flags are the decorations all its members share (glslang puts readonly /
+      // writeonly on each member of the block).
+      b.access = access_of(compiler_.get_buffer_block_flags(r.id));
+    }
     reflect_struct(r.base_type_id, "block '" + block + "'");
     model_.bindings.push_back(std::move(b));
   }
@@ -137,7 +142,15 @@ class Reflector {
     if (kind != DescriptorKind::Sampler && type.image.dim == spv::DimBuffer) {
       fail("binding '" + r.name + "' is a texel buffer; texel buffers are not supported (use a storage buffer)");
     }
-    model_.bindings.push_back(make_binding(r, kind, r.name));
+    Binding b = make_binding(r, kind, r.name);
+    if (kind == DescriptorKind::StorageImage) b.access = access_of(compiler_.get_decoration_bitset(r.id));
+    model_.bindings.push_back(std::move(b));
+  }
+
+  static Access access_of(const spirv_cross::Bitset& decorations) {
+    const bool no_write = decorations.get(spv::DecorationNonWritable);
+    const bool no_read = decorations.get(spv::DecorationNonReadable);
+    return no_write ? Access::Read : no_read ? Access::Write : Access::ReadWrite;
   }
 
   void add_push(const spirv_cross::Resource& r) {

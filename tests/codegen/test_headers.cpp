@@ -112,6 +112,22 @@ TEST_CASE("bindings: named constants - instance names - block names for anonymou
   static_assert(std::is_same_v<decltype(fx::spec_consts::Bindings::Counters), VkDescriptorBufferInfo>);
 }
 
+TEST_CASE("binding access: readonly / writeonly reflected, uniforms and samplers read") {
+  using fx::Access;
+  namespace rt = fx::roundtrip;
+  REQUIRE(std::size(rt::kBindingAccess) == std::size(rt::kSetLayoutBindings));
+  CHECK(rt::kBindingAccess[0] == Access::read_write);  // buffer Std430Traps
+  CHECK(rt::kBindingAccess[1] == Access::read);        // uniform Std140Traps
+  namespace sc = fx::spec_consts;
+  REQUIRE(std::size(sc::kBindingAccess) == 3);
+  CHECK(sc::kBindingAccess[0] == Access::read_write);
+  CHECK(sc::kBindingAccess[2] == Access::write);       // writeonly buffer Written
+  CHECK(sc::kSetLayoutBindings[2].binding == sc::kBindingWrittenList);
+  namespace lo = fx::layout_only;
+  for (Access a : lo::kBindingAccess) CHECK(a == Access::read);  // samplers, a readonly image, a uniform
+  CHECK(std::size(fx::fullscreen::kBindingAccess) == 0);
+}
+
 TEST_CASE("dispatch takes a Push only when the shader has push constants") {
   namespace rt = fx::roundtrip;
   namespace sc = fx::spec_consts;
