@@ -4,7 +4,8 @@
 // left (VPLs and trees that are still valid), with the reason for every stage kept or left out.
 // The Renderer records exactly the stages the plan runs; `vplkit plan` prints the plan.
 
-#include "vplkit/renderer.hpp"
+#include "vplkit/render_settings.hpp"
+#include "vplkit/scene.hpp"
 
 #include <string>
 #include <vector>

@@ -5,6 +5,7 @@
 // construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
+#include "vplkit/render_settings.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
@@ -30,86 +31,11 @@ namespace vplkit {
 class Context;
 struct FramePlan;
 
-// How indirect light is computed.
-enum class GiMethod {
-    none,    // direct light only
-    exact,   // every VPL at every pixel with a shadow ray each: the ground truth
-    sst,     // stochastic substitute tree traversals from the root (seed 004)
-    rtslc,   // real-time stochastic lightcuts: a cut per block, traversals to leaves (seed 003)
-    hybrid,  // the thesis method: shallow SST cuts per block, blended, early-stop traversals (seed 000)
-};
-
-// "direct", "exact", "sst", "rtslc", "hybrid".
-const char* gi_method_name(GiMethod method);
-
-// Where the VPLs come from.
-enum class VplSource {
-    ir,         // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
-    brsm,       // bidirectional reflective shadow maps: one-bounce VPLs where the camera sees their light
-    automatic,  // the planner's choice: BRSM for one bounce from punctual lights, else light paths
-};
-
-// The default suitability threshold sigma_max (seed 000 eq. 5.6) as a fraction of the scene scale:
-// the thesis' 0.3 in its Sponza, whose scale is ~25 (0.3 / 25.5). Measured (lavapipe, 320x180,
-// 4096 BRSM VPLs, mean indirect against exact): the absolute 0.3 in the Breakfast room (scale ~2.3,
-// so 13% of it) merged clusters thick enough that their substitutes lost 10% of the light (sst
-// 0.90, hybrid 0.93); 1.2% of its scale (0.028) gives sst 0.99-1.00, hybrid 0.97, and lower RMSE.
-inline constexpr float kSigmaMaxSceneFraction = 0.012f;
-
 // One VPL as the host sees it (RenderedImage::vpls).
 struct VplPoint {
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f};
     glm::vec3 flux{0.0f};
-};
-
-struct RenderSettings {
-    uint32_t width = 640;
-    uint32_t height = 360;
-    float exposure = 1.0f;          // linear scale before the tone curve
-    glm::vec3 background{0.0f};     // radiance where no surface was drawn
-    uint32_t emissive_samples = 16; // area-light samples per pixel for emissive triangles
-    uint32_t seed = 0;              // the same seed gives the same image
-    GiMethod method = GiMethod::none;
-    VplSource vpl_source = VplSource::automatic;
-    uint32_t vpl_paths = 4096;      // ir: light paths traced for VPLs
-    uint32_t vpl_bounces = 2;       // ir: surface hits per path at most
-    // brsm: its options (vpl_count is the VPL budget over all punctual lights; the seed is
-    // replaced by `seed`), and the side of each light's RSM face.
-    stages::BrsmOptions brsm;
-    uint32_t rsm_resolution = 512;
-    // sst, rtslc, hybrid: samples per pixel (sst: traversals from the root, averaged; rtslc and
-    // hybrid: the cut size, one traversal per cut node, summed), 1..64.
-    uint32_t samples_per_pixel = 8;
-    uint32_t block_size = 8;  // rtslc, hybrid: pixels along a cut block's side, 1..32
-    uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
-    // The frame counter: sst, rtslc and hybrid draw other random numbers in each frame (for
-    // temporal accumulation); rtslc also rotates its interleaved shares. The VPLs follow `seed`.
-    uint32_t frame = 0;
-    bool mock_cuts = true;    // hybrid: mock cuts where no block is alike (false: root traversals)
-    // hybrid: the traversal below the cut nodes (lightcuts: the thesis' comparison protocol).
-    stages::HybridTraversal hybrid_traversal = stages::HybridTraversal::substitute;
-    // Every stage that can run for the method runs (direct emissive light without emitters, both
-    // trees) and nothing is reused from the previous frame: the planner's baseline (planner.hpp).
-    bool force_all_stages = false;
-    // A frame whose VPL set and tree settings equal the previous frame's reuses its VPLs and
-    // trees (the scene's geometry and lights never change within a renderer). false: rebuild
-    // every frame (benchmarks that time the whole pipeline).
-    bool reuse_static_work = true;
-    stages::SstOptions sst;   // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
-    // sst, hybrid: when set (the default), sst.sigma_max is replaced by this fraction of the scene
-    // scale (the BVH's largest coordinate magnitude), so the threshold means the same in a room
-    // and in a hall, in metres and in millimetres; unset: sst.sigma_max as given. See
-    // kSigmaMaxSceneFraction.
-    std::optional<float> sigma_max_scene_fraction = kSigmaMaxSceneFraction;
-    // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
-    // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.
-    bool half_resolution_gi = false;
-    // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
-    // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
-    bool vpls_only = false;
-    // Called during long indirect-light work with (done, total) units of work.
-    std::function<void(uint32_t done, uint32_t total)> progress;
 };
 
 struct RenderedImage {
@@ -138,15 +64,6 @@ struct RenderedImage {
     bool reused_trees = false;
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
 };
-
-// Throws vplkit::Error naming the first bad sampling option of `settings` (samples per pixel,
-// block size, interleave, SST thresholds) for its method; render() checks them first too, so a
-// bad option fails before any work, whether or not the frame gets VPLs.
-void validate_gi_settings(const RenderSettings& settings);
-
-// `settings` with the scene-relative thresholds made absolute for a scene of `scene_scale`
-// (sst.sigma_max from sigma_max_scene_fraction, when set); render() does this first.
-RenderSettings with_scene_relative_thresholds(RenderSettings settings, float scene_scale);
 
 class Renderer {
  public:
