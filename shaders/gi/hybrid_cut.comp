@@ -141,7 +141,7 @@ void main() {
             ++kept;
         }
         if (kept == 0u) {
-            // No child holds light (cannot happen below a node that holds light; kept for safety).
+            // No child holds light: only a root whose VPLs are all dark (it starts every cut).
             --size_now;
             node[pick] = node[size_now];
             priority[pick] = priority[size_now];

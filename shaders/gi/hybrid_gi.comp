@@ -28,6 +28,7 @@
 #include "vplkit/gi_evaluate.glsl"
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
+#include "vplkit/sst_evaluate.glsl"
 #include "vplkit/light_tree.glsl"
 #include "vplkit/rtslc.glsl"
 #include "vplkit/sst_lightcuts_traversal.glsl"
@@ -153,15 +154,8 @@ void main() {
             ++dead;
             continue;
         }
-        Vpl light = sst_sample_light(s, push.leaf_count, rng);
-        bool visibility = push.visibility != 0u;
-        vec3 shadow_position = light.position, shadow_normal = light.normal;
-        if (visibility) {
-            sst_shadow_target(s, push.leaf_count, push.vpl_count, rng, shadow_position, shadow_normal);
-        }
-        gi_add_sample_shadowed_at(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness,
-                                  p.metallic, light, shadow_position, shadow_normal, min_distance, scale,
-                                  visibility, total, dropped);
+        sst_add_sample(p, s, push.leaf_count, push.vpl_count, min_distance, scale, push.visibility != 0u, rng,
+                       total, dropped);
     }
     if (!blended && !mock) {
         total /= float(push.cut_size);  // cut_size estimates of the whole tree

@@ -53,16 +53,21 @@ ref::CutNode cut_node(const Rendered& r, uint32_t count, uint32_t index) {
     return n;
 }
 
+// Hybrid on `scene` with 8 x 8 blocks and cuts of `cut_size` nodes.
+Rendered render_hybrid_cuts(const Scene& scene, uint32_t cut_size) {
+    RunOptions options;
+    options.method = Method::hybrid;
+    options.samples_per_pixel = cut_size;
+    options.block_size = 8;
+    return render(scene, options);
+}
+
 }  // namespace
 
 TEST_CASE("hybrid cuts: no overlap, first-leaf order, and the double reference's nodes") {
     for (uint32_t cut_size : {1u, 5u, 16u}) {
         const Scene scene = room(24, 16, 300);
-        RunOptions options;
-        options.method = Method::hybrid;
-        options.samples_per_pixel = cut_size;
-        options.block_size = 8;
-        const Rendered r = render(scene, options);
+        const Rendered r = render_hybrid_cuts(scene, cut_size);
         const uint32_t blocks_x = 3, blocks_y = 2;
         REQUIRE(r.blocks.size() == blocks_x * blocks_y);
         const double min_distance = ref::kVplMinDistanceFraction * ref::scene_scale(reference_triangles(scene.triangles));
@@ -112,11 +117,7 @@ TEST_CASE("hybrid cuts: every block's cut covers every VPL with light, also thos
     // behind (coplanar boxes have a zero corner cosine), so every cut size meets such nodes.
     for (uint32_t cut_size : {2u, 5u, 16u}) {
         const Scene scene = room(24, 16, 300);
-        RunOptions options;
-        options.method = Method::hybrid;
-        options.samples_per_pixel = cut_size;
-        options.block_size = 8;
-        const Rendered r = render(scene, options);
+        const Rendered r = render_hybrid_cuts(scene, cut_size);
         const uint32_t count = uint32_t(scene.vpls.size());
         for (uint32_t b = 0; b < r.blocks.size(); ++b) {
             CAPTURE(cut_size);

@@ -5,15 +5,14 @@
 // construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
-#include "vplkit/render_settings.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
 #include "vplkit/stages/gi_counters.hpp"
-#include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/upsample.hpp"
 #include "vplkit/stages/vpl_trees.hpp"

@@ -141,18 +141,12 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     }
     out.total_power = glm::vec3(total);
 
-    // The selection CDF on rng_next_float's grid (selection_cdf.hpp): the shader's pmf is its steps.
-    double sum = 0.0;
-    for (double w : weights) {
-        if (!std::isfinite(w) || w < 0.0) {
-            throw Error("VPL tracing: an emitter's power is not finite (" + std::to_string(w) + ")");
-        }
-        sum += w;
-    }
+    // The selection CDF on rng_next_float's grid (selection_cdf.hpp: the shader's pmf is its
+    // steps; it refuses a negative or non-finite power, which != 0 lets through to it).
     std::vector<float> cdf;
     out.punctual_count = uint32_t(scene.lights.size());
     out.emissive_count = uint32_t(emissive.size());
-    if (sum > 0.0) {
+    if (std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0.0; })) {
         out.emitter_count = out.punctual_count + out.emissive_count;
         cdf = selection_cdf(weights);
     }

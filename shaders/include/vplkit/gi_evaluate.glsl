@@ -11,9 +11,9 @@
 // false skips the shadow ray (the unbiasedness tests compare with an unshadowed sum). The
 // shadow ray goes to `shadow_position` (normal `shadow_normal`, facing x when lit): the light
 // itself, or for a substitute the real VPL that stands for its visibility (sst_shadow_target).
-void gi_add_sample_shadowed_at(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic,
-                               Vpl light, vec3 shadow_position, vec3 shadow_normal, float min_distance,
-                               float scale, bool visibility, inout vec3 total, inout uint dropped) {
+void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
+                   vec3 shadow_position, vec3 shadow_normal, float min_distance, float scale, bool visibility,
+                   inout vec3 total, inout uint dropped) {
     vec3 c = vpl_contribution(x, n, ng, wo, albedo, roughness, metallic, light, min_distance);
     vec3 next = total + c;
     if (!vpl_finite(c) || !vpl_finite(next)) {
@@ -28,12 +28,6 @@ void gi_add_sample_shadowed_at(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, fl
         return;
     }
     total = next;
-}
-
-void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
-                   float min_distance, float scale, bool visibility, inout vec3 total, inout uint dropped) {
-    gi_add_sample_shadowed_at(x, n, ng, wo, albedo, roughness, metallic, light, light.position, light.normal,
-                              min_distance, scale, visibility, total, dropped);
 }
 
 #endif
