@@ -8,22 +8,12 @@
 #include "validation_sink.hpp"
 #include "vplkit/barriers.hpp"
 
-#include <cxxabi.h>
-
 #include <cstdlib>
 #include <string>
 #include <vector>
 
 namespace vplkit {
 namespace {
-
-std::string demangle(const char* name) {
-  int status = 0;
-  char* text = abi::__cxa_demangle(name, nullptr, nullptr, &status);
-  std::string out = (status == 0 && text) ? text : name;
-  std::free(text);
-  return out;
-}
 
 struct DeviceRequest {
   std::string request;
@@ -178,6 +168,7 @@ void Context::init(const ContextOptions& options) {
   set_name(queue_, "vplkit queue");
   set_name(command_pool_, "vplkit one-shot pool");
   set_name(pipeline_cache_, "vplkit pipeline cache");
+  attach(device_, stages::Limits::query(physical_device_), pipeline_cache_);
 }
 
 Context::~Context() { destroy(); }
@@ -185,8 +176,7 @@ Context::~Context() { destroy(); }
 void Context::destroy() {
   if (device_) {
     vkDeviceWaitIdle(device_);
-    for (auto& [key, entry] : pipelines_) entry.destroy(entry.pipeline);
-    pipelines_.clear();
+    destroy_pipelines();
     if (pipeline_cache_) vkDestroyPipelineCache(device_, pipeline_cache_, nullptr);
     if (command_pool_) vkDestroyCommandPool(device_, command_pool_, nullptr);
     vkDestroyDevice(device_, nullptr);
@@ -277,19 +267,5 @@ void Context::one_shot(const std::function<void(VkCommandBuffer)>& record) {
 }
 
 void Context::wait_idle() const { VPLKIT_CHECK(vkDeviceWaitIdle(device_)); }
-
-void* Context::cached_pipeline(std::type_index type, std::string key, const std::function<VkResult(void**)>& create,
-                               void (*destroy)(void*)) {
-  std::lock_guard lock(pipelines_mutex_);
-  auto found = pipelines_.find({type, key});
-  if (found != pipelines_.end()) return found->second.pipeline;
-  void* pipeline = nullptr;
-  const VkResult result = create(&pipeline);
-  if (result != VK_SUCCESS) {
-    throw Error("vplkit: creating the pipeline " + demangle(type.name()) + " failed: " + result_name(result), result);
-  }
-  pipelines_.emplace(std::make_pair(type, std::move(key)), PipelineEntry{pipeline, destroy});
-  return pipeline;
-}
 
 }  // namespace vplkit

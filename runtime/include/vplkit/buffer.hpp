@@ -2,6 +2,8 @@
 // A VkBuffer with its own memory allocation (one vkAllocateMemory per buffer: the kit allocates a
 // few dozen long-lived buffers, far below any allocation limit, so no sub-allocator is needed).
 
+#include "vplkit/stages/views.hpp"
+
 #include <vulkan/vulkan.h>
 
 #include <cstddef>
@@ -42,6 +44,9 @@ class Buffer {
   const std::string& name() const { return name_; }
   // Non-null when the memory is mapped (host-visible and coherent): upload/download are memcpy.
   void* mapped() const { return mapped_; }
+
+  // The whole buffer as a stage sees it (stage functions take BufferViews).
+  operator BufferView() const { return {buffer_, 0, size_, name_}; }
 
   VkDescriptorBufferInfo descriptor(VkDeviceSize offset = 0, VkDeviceSize range = VK_WHOLE_SIZE) const {
     return {buffer_, offset, range};

@@ -5,6 +5,7 @@
 
 #include "vplkit/device_info.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/stages/device.hpp"
 #include "vplkit/validation.hpp"
 
 #include <vulkan/vulkan.h>
@@ -46,7 +47,8 @@ struct ContextOptions {
   bool map_device_memory = true;
 };
 
-class Context {
+// A Context is a stages::Device (stage functions take one): its pipelines and limits.
+class Context : public stages::Device {
  public:
   static std::unique_ptr<Context> create(const ContextOptions& options = {});
 
@@ -91,20 +93,12 @@ class Context {
   // Blocks until the queue is idle.
   void wait_idle() const;
 
-  // The pipeline of a generated shader type P (e.g. vplkit::shaders::morton_keys::Pipeline)
-  // for specialization `spec`, created on first use through P::create(device, cache, spec, &p)
-  // and kept until the context is destroyed. One pipeline per (P, spec bytes).
-  template <class P>
-  const P& pipeline(const typename P::Spec& spec = {});
+  // pipeline<P>(spec) and limits(): stages::Device's; pipelines live as long as the context.
 
  private:
   Context() = default;
   void init(const ContextOptions& options);
   void destroy();
-  // Finds or creates the pipeline for (type, key); `create` returns the VkResult of P::create and
-  // stores the new object in *out; failures throw Error naming the (demangled) type.
-  void* cached_pipeline(std::type_index type, std::string key,
-                        const std::function<VkResult(void** out)>& create, void (*destroy)(void*));
 
   ContextOptions options_;
   DeviceInfo info_;
@@ -124,12 +118,6 @@ class Context {
   PFN_vkCmdBeginDebugUtilsLabelEXT begin_label_ = nullptr;
   PFN_vkCmdEndDebugUtilsLabelEXT end_label_ = nullptr;
 
-  struct PipelineEntry {
-    void* pipeline = nullptr;
-    void (*destroy)(void*) = nullptr;
-  };
-  std::mutex pipelines_mutex_;
-  std::map<std::pair<std::type_index, std::string>, PipelineEntry> pipelines_;
   std::recursive_mutex submit_mutex_;
 };
 
@@ -166,33 +154,6 @@ void Context::set_name(Handle handle, std::string_view name) const {
   static_assert(object_type_of<Handle>::value != VK_OBJECT_TYPE_UNKNOWN,
                 "no VkObjectType known for this handle type: use set_name(VkObjectType, uint64_t, name)");
   set_name(object_type_of<Handle>::value, reinterpret_cast<uint64_t>(handle), name);
-}
-
-template <class P>
-const P& Context::pipeline(const typename P::Spec& spec) {
-  using Spec = typename P::Spec;
-  static_assert(std::is_trivially_copyable_v<Spec> && std::is_standard_layout_v<Spec>,
-                "a generated Spec's bytes are its specialization data");
-  // An empty Spec still has sizeof 1 with an indeterminate byte: it must not become the key.
-  std::string key;
-  if constexpr (!std::is_empty_v<Spec>) {
-    key.resize(sizeof(Spec));
-    std::memcpy(key.data(), &spec, sizeof(Spec));
-  }
-  void* p = cached_pipeline(
-      std::type_index(typeid(P)), std::move(key),
-      [&](void** out) -> VkResult {
-        auto created = std::make_unique<P>();
-        VkResult result = P::create(device_, pipeline_cache_, spec, created.get());
-        if (result == VK_SUCCESS) *out = created.release();
-        return result;
-      },
-      [](void* owned) {
-        auto* typed = static_cast<P*>(owned);
-        typed->destroy();
-        delete typed;
-      });
-  return *static_cast<const P*>(p);
 }
 
 }  // namespace vplkit

@@ -3,6 +3,8 @@
 // The image remembers its current layout so that PassList and transition() know what to
 // transition from.
 
+#include "vplkit/stages/views.hpp"
+
 #include <vulkan/vulkan.h>
 
 #include <cstddef>
@@ -52,6 +54,11 @@ class Image {
   // Records a conservative barrier (all commands -> all commands) from layout() to `layout`
   // and updates layout(). For code outside a PassList; inside one, Use does this precisely.
   void transition(VkCommandBuffer cmd, VkImageLayout layout);
+
+  // The image as a stage sees it, with its tracked layout (stage functions take ImageViews).
+  operator ImageView() { return {image_, view_, format_, width_, height_, name_, aspect_, &layout_}; }
+  // A const image has no tracked layout to update: recording assumes its first use's layout.
+  operator ImageView() const { return {image_, view_, format_, width_, height_, name_, aspect_, nullptr}; }
 
   VkDescriptorImageInfo descriptor(VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL,
                                    VkSampler sampler = VK_NULL_HANDLE) const {

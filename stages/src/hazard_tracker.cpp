@@ -1,6 +1,6 @@
 #include "hazard_tracker.hpp"
 
-#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/steps.hpp"
 
 namespace vplkit::detail {
 

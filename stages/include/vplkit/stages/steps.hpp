@@ -1,0 +1,168 @@
+#pragma once
+// StepList: what a stage records, as a list of steps (a dispatch, a fill, a draw), each with the
+// buffers and images it touches and how. A stage function appends its steps; the caller then
+//   - records them into its own command buffer: steps.record(cmd) inserts a synchronization2
+//     barrier before a step only where a use conflicts with an earlier one (read-after-write,
+//     write-after-write, write-after-read, an image layout change);
+//   - or hands them to its own frame graph: steps.steps() (name, uses, record function) and
+//     entry() / exit(): the first and last access of each resource, what the caller must make
+//     visible before the stage and what later work must wait for.
+//
+//   vplkit::StepList steps;
+//   vplkit::stages::add_sst_passes(device, steps, leaves, nodes, counters, count);
+//   steps.record(cmd);
+//
+// Resources are tracked whole (no sub-ranges), by handle. vplkit::PassList (the runtime's
+// convenience layer) is a StepList that also submits and times each step.
+
+#include "vplkit/stages/views.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace vplkit {
+
+// Where a step touches a resource. Combine with | when one step uses it in several stages.
+enum class Stage : uint32_t {
+    compute = 1u << 0,
+    vertex = 1u << 1,
+    fragment = 1u << 2,
+    transfer = 1u << 3,          // copies, fills, clears, blits
+    host = 1u << 4,              // the CPU reads it after the submission
+    indirect = 1u << 5,          // indirect dispatch/draw arguments
+    vertex_input = 1u << 6,      // vertex and index buffers
+    color_attachment = 1u << 7,
+    depth_attachment = 1u << 8,  // depth/stencil tests and writes
+};
+constexpr Stage operator|(Stage a, Stage b) { return Stage(uint32_t(a) | uint32_t(b)); }
+constexpr bool has_stage(Stage set, Stage s) { return (uint32_t(set) & uint32_t(s)) != 0; }
+
+enum class Access { read, write, read_write };
+
+struct Use {
+    BufferView buffer;  // exactly one of buffer and image is set
+    ImageView image;
+    Access access = Access::read;
+    Stage stages = Stage::compute;
+    // For images: the layout the step needs. VK_IMAGE_LAYOUT_UNDEFINED = the default for the
+    // stage and access: GENERAL for shader access (valid for both storage and sampled images),
+    // TRANSFER_SRC/DST_OPTIMAL for transfer reads/writes, the attachment layouts for attachments.
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+
+    bool is_image() const { return bool(image); }
+    const std::string& name() const { return is_image() ? image.name : buffer.name; }
+
+    static Use read(const BufferView& buffer, Stage stages = Stage::compute);
+    static Use write(const BufferView& buffer, Stage stages = Stage::compute);
+    static Use read_write(const BufferView& buffer, Stage stages = Stage::compute);
+    static Use transfer_src(const BufferView& buffer) { return read(buffer, Stage::transfer); }
+    static Use transfer_dst(const BufferView& buffer) { return write(buffer, Stage::transfer); }
+    static Use indirect(const BufferView& buffer) { return read(buffer, Stage::indirect); }
+    // The host reads the buffer once the submission has finished (a mapped readback buffer).
+    static Use host_read(const BufferView& buffer) { return read(buffer, Stage::host); }
+
+    static Use read(const ImageView& image, Stage stages = Stage::compute,
+                    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED);
+    static Use write(const ImageView& image, Stage stages = Stage::compute,
+                     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED);
+    static Use read_write(const ImageView& image, Stage stages = Stage::compute,
+                          VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED);
+    // Sampled through a combined image sampler / sampled image in SHADER_READ_ONLY_OPTIMAL.
+    static Use sampled(const ImageView& image, Stage stages = Stage::fragment) {
+        return read(image, stages, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    }
+    static Use transfer_src(const ImageView& image) { return read(image, Stage::transfer); }
+    static Use transfer_dst(const ImageView& image) { return write(image, Stage::transfer); }
+    static Use color_attachment(const ImageView& image) { return read_write(image, Stage::color_attachment); }
+    static Use depth_attachment(const ImageView& image) { return read_write(image, Stage::depth_attachment); }
+};
+
+// Why a barrier was inserted (bit set).
+enum Hazard : uint32_t {
+    hazard_read_after_write = 1u << 0,
+    hazard_write_after_write = 1u << 1,
+    hazard_write_after_read = 1u << 2,
+    hazard_layout_transition = 1u << 3,
+};
+
+// One buffer or image barrier that recording inserted.
+struct BarrierRecord {
+    size_t pass = 0;        // index of the step it was recorded before
+    std::string resource;   // the buffer's or image's name ("" when unnamed)
+    bool is_image = false;
+    uint32_t hazards = 0;   // Hazard bits
+    VkPipelineStageFlags2 src_stages = 0;
+    VkAccessFlags2 src_access = 0;
+    VkPipelineStageFlags2 dst_stages = 0;
+    VkAccessFlags2 dst_access = 0;
+    VkImageLayout old_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImageLayout new_layout = VK_IMAGE_LAYOUT_UNDEFINED;
+
+    // "before 'sort': keys RAW (compute write -> compute read)"
+    std::string describe(const std::vector<std::string>& pass_names) const;
+};
+
+// One resource's access as Vulkan sees it: what the caller's barrier before a stage must make
+// visible to (entry), or what work after it must wait for (exit).
+struct ResourceUse {
+    std::string name;
+    VkBuffer buffer = VK_NULL_HANDLE;  // one of buffer and image
+    VkImage image = VK_NULL_HANDLE;
+    std::string step;                  // the first (entry) or last (exit) step that uses it
+    Access access = Access::read;      // of that step
+    VkPipelineStageFlags2 stages = 0;
+    VkAccessFlags2 access_flags = 0;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // images: the layout that step uses
+};
+
+struct Step {
+    using Record = std::function<void(VkCommandBuffer)>;
+    std::string name;
+    std::vector<Use> uses;
+    Record record;
+};
+
+class StepList {
+public:
+    using Record = Step::Record;
+
+    virtual ~StepList() = default;
+
+    // Appends a step. `uses` lists every buffer and image the step reads or writes; a resource
+    // may appear several times (the uses are merged), but an image must not be asked for in two
+    // different layouts in one step (Error). The record function runs when the list is recorded;
+    // what it captures must live until then.
+    StepList& add(std::string name, std::vector<Use> uses, Record record);
+
+    // Records every step into `cmd`, in order, with the barriers between them. Images whose
+    // view carries a layout pointer are transitioned from it (and it is updated). The command
+    // buffer must be in the recording state and allow compute (and, for raster steps, graphics).
+    // Returns the barriers it inserted. Can be called again (e.g. into another command buffer).
+    std::vector<BarrierRecord> record(VkCommandBuffer cmd) const;
+
+    // The first / last use of each resource, in order of first appearance.
+    std::vector<ResourceUse> entry() const;
+    std::vector<ResourceUse> exit() const;
+
+    const std::vector<Step>& steps() const { return steps_; }
+    size_t size() const { return steps_.size(); }
+    bool empty() const { return steps_.empty(); }
+    virtual void clear() { steps_.clear(); }
+
+    // Hooks around each step, for a recorder that labels or times them (PassList does both).
+    struct Hooks {
+        std::function<void(VkCommandBuffer, size_t step)> before;  // before the step's barriers
+        std::function<void(VkCommandBuffer, size_t step)> after;   // after its commands
+    };
+    std::vector<BarrierRecord> record(VkCommandBuffer cmd, const Hooks& hooks) const;
+
+private:
+    std::vector<Step> steps_;
+};
+
+}  // namespace vplkit
