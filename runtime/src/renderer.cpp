@@ -7,7 +7,7 @@
 #include "vplkit/planner.hpp"
 #include "vplkit/stages/compose.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 #include "vplkit/stages/tonemap.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"

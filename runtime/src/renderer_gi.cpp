@@ -9,7 +9,7 @@
 #include "vplkit/planner.hpp"
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/sst_gi.hpp"

@@ -11,7 +11,7 @@
 #include "vplkit/scene_setups.hpp"
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 
 #include <algorithm>

@@ -29,7 +29,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/importance_warp.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 #include "vplkit_test/context.hpp"

@@ -21,7 +21,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <glm/geometric.hpp>
 

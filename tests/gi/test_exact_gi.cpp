@@ -21,7 +21,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/exact_gi.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit_test/context.hpp"
 #include "synthetic_scene.hpp"
 #include "vpl_reference.hpp"

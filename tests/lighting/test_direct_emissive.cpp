@@ -14,7 +14,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/selection_cdf.hpp"
 #include "vplkit/shaders/direct_emissive.hpp"
 #include "vplkit_test/context.hpp"

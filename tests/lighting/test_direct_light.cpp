@@ -14,7 +14,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/stages/direct_light.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit_test/context.hpp"
 #include "direct_light_reference.hpp"
 #include "ray_reference.hpp"

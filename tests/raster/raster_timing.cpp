@@ -20,7 +20,7 @@
 #include "vplkit/scene_lights.hpp"
 #include "vplkit/scene_setups.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 
 #include <glm/gtc/packing.hpp>

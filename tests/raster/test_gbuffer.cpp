@@ -22,7 +22,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>

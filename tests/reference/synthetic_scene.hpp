@@ -9,7 +9,7 @@
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/bvh_gpu.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <glm/vec3.hpp>
 

@@ -23,7 +23,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/vpl_trees.hpp"

@@ -23,7 +23,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/upsample.hpp"
 #include "vplkit_test/context.hpp"
 #include "upsample_reference.hpp"

@@ -8,6 +8,7 @@
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/bvh.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
 
 #include <cstdint>
 
@@ -22,6 +23,9 @@ struct GpuBvh {
     uint32_t node_count = 0;
     uint32_t triangle_count = 0;  // 0 for an empty scene
     float scene_scale = kBvhMinScale;  // Bvh::scene_scale, for offset_ray_origin
+
+    // As the stages take it.
+    operator stages::BvhBuffers() const { return {nodes, triangles, node_count, triangle_count, scene_scale}; }
 };
 
 // Device-local buffers with the BVH's nodes and triangles. Throws Error when a buffer would

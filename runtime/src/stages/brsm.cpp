@@ -11,7 +11,7 @@
 #include "vplkit/shaders/brsm_vpl_count.hpp"
 #include "vplkit/shaders/brsm_vpls.hpp"
 #include "vplkit/stages/gbuffer.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/importance_warp.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 

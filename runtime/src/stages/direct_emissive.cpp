@@ -6,7 +6,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/direct_emissive.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/selection_cdf.hpp"
 
 #include <glm/geometric.hpp>

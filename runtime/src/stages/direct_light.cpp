@@ -6,7 +6,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/direct_light.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <glm/geometric.hpp>
 

@@ -7,7 +7,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/exact_gi.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <algorithm>
 #include <chrono>

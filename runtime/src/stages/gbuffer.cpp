@@ -8,7 +8,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/gbuffer_raster.hpp"
 #include "vplkit/shaders/gbuffer_shade.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <cmath>
 #include <cstring>

@@ -8,7 +8,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <string>
 #include <vector>

@@ -7,7 +7,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/hybrid_cut.hpp"
 #include "vplkit/shaders/hybrid_gi.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "gi_inputs.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst_gi.hpp"

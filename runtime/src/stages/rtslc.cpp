@@ -8,7 +8,7 @@
 #include "vplkit/shaders/rtslc_gi.hpp"
 #include "vplkit/shaders/rtslc_interleave.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "gi_inputs.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/vpl_trees.hpp"

@@ -7,7 +7,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/sst_gi.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 #include "gi_inputs.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/vpl_trees.hpp"

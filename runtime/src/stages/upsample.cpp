@@ -7,7 +7,7 @@
 #include "vplkit/shaders/gbuffer_downsample.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/shaders/upsample_bilateral.hpp"
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include <cmath>
 #include <string>

@@ -2,7 +2,7 @@
 #define VPLKIT_GBUFFER_GLSL
 
 // The G-buffer every screen-space stage reads (written by the G-buffer raster pass; host side:
-// runtime/include/vplkit/stages/gbuffer_images.hpp). All images have the output's size.
+// stages/include/vplkit/stages/gbuffer_views.hpp). All images have the output's size.
 //   position          RGBA32F  xyz world position; w = 1 where a surface was drawn, 0 background
 //   normal            RGBA32F  xyz unit shading normal (normal map applied), on the viewer's side
 //                              of the surface; w = perceptual roughness (glTF roughness)

@@ -1,4 +1,4 @@
-#include "vplkit/stages/gbuffer_images.hpp"
+#include "vplkit/gbuffer_images.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
