@@ -7,6 +7,7 @@
 #include "vplkit/stages/light_tree.hpp"
 #include "vplkit/stages/sort.hpp"
 #include "vplkit/stages/sst.hpp"
+#include "vplkit/stages/vpl_tree_buffers.hpp"
 
 #include <cstdint>
 #include <memory>
@@ -30,6 +31,9 @@ struct VplTrees {
     Buffer leaves;            // Vpl[leaf_count], sorted; index >= count is bogus padding
     Buffer light_tree;        // LightTreeNode[2 leaf_count - 1] (light_tree.hpp)
     Buffer sst;               // SstNode[sst_node_count(count)] (sst.hpp)
+
+    // As the GI stages take them.
+    operator VplTreeBuffers() const { return {count, leaf_count, leaves, light_tree, sst}; }
 
     // The buffers for `count` VPLs (1..kMaxKeyedVpls); throws vplkit::Error otherwise.
     static VplTrees create(Context& context, uint32_t count, const VplTreeOptions& options = {});
