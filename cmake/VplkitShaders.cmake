@@ -73,7 +73,8 @@ function(vplkit_add_shader_library target)
 
   add_library(${target} INTERFACE)
   add_dependencies(${target} ${target}_codegen)
-  target_include_directories(${target} INTERFACE "${gen_root}")
+  target_include_directories(${target} INTERFACE
+    "$<BUILD_INTERFACE:${gen_root}>" "$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
   target_link_libraries(${target} INTERFACE Vulkan::Headers)
   set_property(TARGET ${target} PROPERTY VPLKIT_SPIRV_FILES "${spv_files}")
 endfunction()
