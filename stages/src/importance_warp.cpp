@@ -1,9 +1,6 @@
 #include "vplkit/stages/importance_warp.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/importance_mips.hpp"
 #include "vplkit/shaders/warp_samples.hpp"
 
@@ -24,9 +21,9 @@ void check_size(uint32_t size) {
     }
 }
 
-void check_bytes(const Buffer& buffer, uint64_t bytes, const char* what) {
-    if (buffer.size() < bytes) {
-        throw Error(std::string("importance warp: ") + what + " buffer holds " + std::to_string(buffer.size()) +
+void check_bytes(const BufferView& buffer, uint64_t bytes, const char* what) {
+    if (buffer.size < bytes) {
+        throw Error(std::string("importance warp: ") + what + " buffer holds " + std::to_string(buffer.size) +
                     " bytes, needs " + std::to_string(bytes));
     }
 }
@@ -44,31 +41,32 @@ uint64_t importance_mip_floats(uint32_t size) {
 
 uint64_t importance_top_offset(uint32_t size) { return importance_mip_floats(size) - 1; }
 
-void add_importance_mips_pass(Context& context, PassList& passes, const Buffer& importance, Buffer& mips,
+void add_importance_mips_pass(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
                               uint32_t size) {
     const uint64_t floats = importance_mip_floats(size);
     const uint64_t level0_bytes = uint64_t(size) * size * sizeof(float);
     check_bytes(importance, level0_bytes, "importance");
     check_bytes(mips, floats * sizeof(float), "mip");
 
+    // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     passes.add("importance copy", {Use::transfer_src(importance), Use::transfer_dst(mips)},
-               [&importance, &mips, level0_bytes](VkCommandBuffer cmd) {
-                   VkBufferCopy region{0, 0, level0_bytes};
-                   vkCmdCopyBuffer(cmd, importance.handle(), mips.handle(), 1, &region);
+               [importance, mips, level0_bytes](VkCommandBuffer cmd) {
+                   VkBufferCopy region{importance.offset, mips.offset, level0_bytes};
+                   vkCmdCopyBuffer(cmd, importance.buffer, mips.buffer, 1, &region);
                });
 
-    add_importance_mip_levels_pass(context, passes, mips, size);
+    add_importance_mip_levels_pass(device, passes, mips, size);
 }
 
-void add_importance_mip_levels_pass(Context& context, PassList& passes, Buffer& mips, uint32_t size) {
+void add_importance_mip_levels_pass(Device& device, StepList& passes, const BufferView& mips, uint32_t size) {
     check_bytes(mips, importance_mip_floats(size) * sizeof(float), "mip");
-    const auto& pipeline = context.pipeline<shaders::importance_mips::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::importance_mips::Pipeline>();
     uint32_t src_offset = 0;
     for (uint32_t src_size = size; src_size > 1; src_size /= 2) {
         const uint32_t dst_size = src_size / 2;
         const uint32_t dst_offset = src_offset + src_size * src_size;
         passes.add("importance mips", {Use::read_write(mips)},
-                   [&pipeline, &mips, src_offset, dst_offset, dst_size](VkCommandBuffer cmd) {
+                   [&pipeline, mips, src_offset, dst_offset, dst_size](VkCommandBuffer cmd) {
                        shaders::importance_mips::Bindings bindings;
                        bindings.mips = mips.descriptor();
                        shaders::importance_mips::Push push{};
@@ -81,8 +79,8 @@ void add_importance_mip_levels_pass(Context& context, PassList& passes, Buffer& 
     }
 }
 
-void add_warp_samples_pass(Context& context, PassList& passes, const Buffer& mips, Buffer& samples,
-                           Buffer& count, uint32_t size, uint32_t sample_count, uint32_t seed) {
+void add_warp_samples_pass(Device& device, StepList& passes, const BufferView& mips, const BufferView& samples,
+                           const BufferView& count, uint32_t size, uint32_t sample_count, uint32_t seed) {
     if (sample_count == 0) {
         throw Error("importance warp: sample_count is 0");
     }
@@ -91,11 +89,11 @@ void add_warp_samples_pass(Context& context, PassList& passes, const Buffer& mip
     check_bytes(samples, uint64_t(sample_count) * sizeof(shaders::WarpedSample), "sample");
     check_bytes(count, sizeof(shaders::WarpCountBuffer), "count");
 
-    const auto& pipeline = context.pipeline<shaders::warp_samples::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::warp_samples::Pipeline>();
     const uint32_t levels = uint32_t(std::countr_zero(size));
     const uint32_t top_offset = uint32_t(floats - 1);
     passes.add("warp samples", {Use::read(mips), Use::write(samples), Use::write(count)},
-               [&pipeline, &mips, &samples, &count, sample_count, seed, levels, top_offset](VkCommandBuffer cmd) {
+               [&pipeline, mips, samples, count, sample_count, seed, levels, top_offset](VkCommandBuffer cmd) {
                    shaders::warp_samples::Bindings bindings;
                    bindings.mips = mips.descriptor();
                    bindings.samples = samples.descriptor();

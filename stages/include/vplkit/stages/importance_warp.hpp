@@ -11,13 +11,11 @@
 // (an all-zero map), in which case no sample is written.
 // The map must be finite and non-negative (it is an importance): a negative texel breaks the ratios.
 
-#include <cstdint>
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
 
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-}  // namespace vplkit
+#include <cstdint>
 
 namespace vplkit::stages {
 
@@ -26,19 +24,20 @@ namespace vplkit::stages {
 uint64_t importance_mip_floats(uint32_t size);
 uint64_t importance_top_offset(uint32_t size);
 
-// Adds "importance copy" (the map, size x size floats, into level 0 of `mips`) and one pass
-// "importance mips" per coarser level. Throws vplkit::Error for a bad size or buffers too small.
-void add_importance_mips_pass(Context& context, PassList& passes, const Buffer& importance, Buffer& mips,
+// Adds "importance copy" (the map, size x size floats read from `importance`, into level 0 of
+// `mips`) and one pass "importance mips" per coarser level (`mips` read and written). Throws
+// vplkit::Error for a bad size or buffers too small.
+void add_importance_mips_pass(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
                               uint32_t size);
 
 // The same chain for a map already in level 0 of `mips` (a stage wrote it there): one pass
 // "importance mips" per coarser level, none for size 1.
-void add_importance_mip_levels_pass(Context& context, PassList& passes, Buffer& mips, uint32_t size);
+void add_importance_mip_levels_pass(Device& device, StepList& passes, const BufferView& mips, uint32_t size);
 
 // Adds "warp samples": sample_count points of the Hammersley set rotated by `seed`, warped down
-// `mips` (built by add_importance_mips_pass for the same size). Throws vplkit::Error for a bad
-// size, sample_count 0 or buffers too small.
-void add_warp_samples_pass(Context& context, PassList& passes, const Buffer& mips, Buffer& samples,
-                           Buffer& count, uint32_t size, uint32_t sample_count, uint32_t seed);
+// `mips` (read; built by add_importance_mips_pass for the same size) into `samples` and `count`
+// (both written). Throws vplkit::Error for a bad size, sample_count 0 or buffers too small.
+void add_warp_samples_pass(Device& device, StepList& passes, const BufferView& mips, const BufferView& samples,
+                           const BufferView& count, uint32_t size, uint32_t sample_count, uint32_t seed);
 
 }  // namespace vplkit::stages
