@@ -10,7 +10,7 @@
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 #include "vplkit/stages/tonemap.hpp"
-#include "vplkit/stages/vpl_tracing.hpp"
+#include "vplkit/vpl_tracing_buffers.hpp"
 
 #include <array>
 #include <chrono>

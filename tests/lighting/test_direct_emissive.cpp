@@ -13,7 +13,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
-#include "vplkit/stages/direct_emissive.hpp"
+#include "vplkit/gpu_lights.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/selection_cdf.hpp"
 #include "vplkit/shaders/direct_emissive.hpp"

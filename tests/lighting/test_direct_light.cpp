@@ -13,7 +13,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
-#include "vplkit/stages/direct_light.hpp"
+#include "vplkit/gpu_lights.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit_test/context.hpp"
 #include "direct_light_reference.hpp"

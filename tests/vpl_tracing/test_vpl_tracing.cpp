@@ -21,7 +21,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/vpl_tracing.hpp"
+#include "vplkit/vpl_tracing_buffers.hpp"
 #include "vplkit_test/context.hpp"
 #include "geometry_reference.hpp"
 

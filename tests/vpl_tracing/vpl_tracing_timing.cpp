@@ -15,7 +15,7 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_lights.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/vpl_tracing.hpp"
+#include "vplkit/vpl_tracing_buffers.hpp"
 
 #include <algorithm>
 #include <cstdio>

@@ -5,13 +5,12 @@
 // construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
+#include "vplkit/gpu_lights.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/brsm.hpp"
-#include "vplkit/stages/direct_emissive.hpp"
-#include "vplkit/stages/direct_light.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/upsample.hpp"
@@ -28,6 +27,7 @@
 namespace vplkit {
 
 class Context;
+class Image;
 struct FramePlan;
 
 // One VPL as the host sees it (RenderedImage::vpls).

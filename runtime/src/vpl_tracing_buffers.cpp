@@ -1,13 +1,11 @@
-#include "vplkit/stages/vpl_tracing.hpp"
+#include "vplkit/vpl_tracing_buffers.hpp"
 
-#include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gpu_lights.hpp"
 #include "vplkit/light_power.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/trace_vpls.hpp"
-#include "vplkit/stages/direct_light.hpp"
 #include "vplkit/stages/selection_cdf.hpp"
 
 #include <glm/geometric.hpp>
@@ -168,87 +166,22 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     return out;
 }
 
-uint32_t vpl_capacity(const VplTracingOptions& options) {
-    if (options.paths == 0 || options.max_bounces == 0 || options.max_bounces == std::numeric_limits<uint32_t>::max()) {
-        throw Error("VPL tracing: paths and max_bounces must be at least 1, max_bounces below 2^32 - 1 (got " + std::to_string(options.paths) +
-                    " and " + std::to_string(options.max_bounces) + ")");
-    }
-    const uint64_t capacity = uint64_t(options.paths) * options.max_bounces;
-    if (capacity > std::numeric_limits<uint32_t>::max()) {
-        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths x " +
-                    std::to_string(options.max_bounces) + " bounces is more VPLs than a 32-bit count holds");
-    }
-    return uint32_t(capacity);
-}
-
 VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOptions& options) {
+    const VplTracingRequirements needed = vpl_tracing_requirements(options);
     VplTracingOutput out;
-    out.capacity = vpl_capacity(options);
-    const uint64_t bytes = uint64_t(out.capacity) * sizeof(shaders::Vpl);
+    out.capacity = needed.capacity;
+    const uint64_t bytes = needed.vpls_bytes;
     if (bytes > context.info().max_storage_buffer_range) {
         throw Error("VPL tracing: " + std::to_string(out.capacity) + " VPLs need " + std::to_string(bytes) +
                     " bytes, more than this device's maxStorageBufferRange of " +
                     std::to_string(context.info().max_storage_buffer_range));
     }
     out.vpls = Buffer::create(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpls");
-    out.bounces = Buffer::create(context, uint64_t(out.capacity) * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                 MemoryUse::device, "vpl bounces");
-    out.count = Buffer::create(context, sizeof(shaders::VplCountBuffer), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               MemoryUse::device, "vpl count");
+    out.bounces = Buffer::create(context, needed.bounces_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
+                                 "vpl bounces");
+    out.count = Buffer::create(context, needed.count_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
+                               "vpl count");
     return out;
-}
-
-void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, const VplSources& sources,
-                         const VplTracingOptions& options, VplTracingOutput& output) {
-    const uint32_t capacity = vpl_capacity(options);
-    if (output.vpls.size() < uint64_t(capacity) * sizeof(shaders::Vpl) ||
-        output.bounces.size() < uint64_t(capacity) * sizeof(uint32_t) ||
-        output.count.size() < sizeof(shaders::VplCountBuffer)) {
-        throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
-                    " VPLs (paths x max_bounces)");
-    }
-    const auto& pipeline = context.pipeline<shaders::trace_vpls::Pipeline>();
-    const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * context.info().max_workgroup_count[0];
-    if (options.paths > max_paths) {
-        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths exceed one dispatch's " +
-                    std::to_string(max_paths));
-    }
-
-    Buffer& count = output.count;
-    passes.add("vpl count clear", {Use::transfer_dst(count)},
-               [&count](VkCommandBuffer cmd) {
-                   vkCmdFillBuffer(cmd, count.handle(), 0, sizeof(shaders::VplCountBuffer), 0u);
-               });
-
-    shaders::trace_vpls::Push push{};
-    push.scene_center = {sources.scene_center.x, sources.scene_center.y, sources.scene_center.z};
-    push.scene_radius = sources.scene_radius;
-    push.path_count = options.paths;
-    push.max_bounces = options.max_bounces;
-    push.seed = options.seed;
-    push.punctual_count = sources.punctual_count;
-    push.emitter_count = sources.emitter_count;
-    push.triangle_count = sources.triangle_count;
-    push.capacity = capacity;
-    // vpl_capacity refused max_bounces = 2^32 - 1: this does not wrap.
-    push.step_limit = options.max_bounces + 1;
-    passes.add("trace vpls",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(sources.lights), Use::read(sources.emissive),
-                Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo), Use::write(output.vpls),
-                Use::write(output.bounces), Use::read_write(count)},
-               [&pipeline, &bvh, &sources, &output, push](VkCommandBuffer cmd) {
-                   shaders::trace_vpls::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.lights = sources.lights.descriptor();
-                   b.emissive = sources.emissive.descriptor();
-                   b.emitter_cdf = sources.emitter_cdf.descriptor();
-                   b.albedo = sources.triangle_albedo.descriptor();
-                   b.vpls = output.vpls.descriptor();
-                   b.vpl_count = output.count.descriptor();
-                   b.vpl_bounces = output.bounces.descriptor();
-                   pipeline.dispatch(cmd, b, push, push.path_count);
-               });
 }
 
 VplCounts download_vpl_counts(const VplTracingOutput& output) {

@@ -1,25 +1,10 @@
 #pragma once
-// VPL generation by instant radiosity (trace_vpls.comp): light paths from the scene's emitters
-// (punctual lights and emissive triangles, chosen by power) traced through the BVH, one VPL
-// appended at every diffuse surface hit, cosine-weighted bounces with Russian roulette.
-//
-//   auto bvh = vplkit::upload_bvh(context, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
-//   auto sources = vplkit::stages::upload_vpl_sources(context, scene);
-//   auto out = vplkit::stages::VplTracingOutput::create(context, options);
-//   vplkit::PassList passes;
-//   vplkit::stages::add_trace_vpls_pass(context, passes, bvh, sources, options, out);
-//   passes.run(context);
-//   uint32_t count = vplkit::stages::download_vpl_count(out);   // VPLs 0..count-1 of out.vpls
-//
-// What a VPL's flux means: the flux its surface re-emits diffusely, i.e. the flux arriving along
-// the path times the diffuse reflectance, divided by the number of paths; the VPLs of bounce k
-// together estimate, without bias, the flux reflected after k surface interactions (see the
-// shader's header). Surfaces reflect diffusely with rho = base colour x (1 - metallic), each
-// texture entering as its mean over the image (the mean linear colour of the base colour
-// texture, the mean B channel of the metallic-roughness texture): no texture lookup at hits;
-// the specular lobe is not followed, and alpha is ignored (opaque).
+// The runtime's side of VPL tracing (stages/vpl_tracing.hpp): a scene's emitters and reflectances
+// uploaded for the tracer, the output buffers, and the blocking read of the count. The owning
+// structs convert to the views the stage takes.
 
 #include "vplkit/buffer.hpp"
+#include "vplkit/stages/vpl_tracing.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -27,20 +12,12 @@
 
 namespace vplkit {
 class Context;
-class PassList;
-struct GpuBvh;
 namespace scene {
 struct Scene;
 }
 }  // namespace vplkit
 
 namespace vplkit::stages {
-
-struct VplTracingOptions {
-    uint32_t paths = 0;        // light paths, >= 1
-    uint32_t max_bounces = 0;  // surface hits per path (VPLs per path at most), >= 1
-    uint32_t seed = 0;         // the same seed gives the same set of VPLs
-};
 
 // Everything the tracer reads about the scene besides the BVH.
 struct VplSources {
@@ -59,13 +36,18 @@ struct VplSources {
     // integral of the squared cone attenuation, directional E x pi r^2 of the covering disc,
     // emissive triangle pi L A (x 2 when double-sided). Range windows are not counted.
     glm::vec3 total_power{0.0f};
+
+    operator VplSourceBuffers() const {
+        return {lights,         emissive,       emitter_cdf,    triangle_albedo, punctual_count,
+                emissive_count, emitter_count,  triangle_count, scene_center,    scene_radius};
+    }
 };
 
 // Uploads scene.lights (validated like upload_lights: a bad light throws Error naming it), the
 // emissive triangles (scene.emissive_triangles, radiance = Material::emission(), front face,
 // both when the material is double-sided), the selection CDF (weight = an emitter's power summed
-// over RGB) and the per-triangle diffuse reflectance (see above; textures read from
-// scene.textures and scene.images). Reads vertices, indices,
+// over RGB) and the per-triangle diffuse reflectance (see stages/vpl_tracing.hpp; textures read
+// from scene.textures and scene.images). Reads vertices, indices,
 // triangle_materials, materials, emissive_triangles and lights. The BVH must be built from
 // scene::triangle_positions(scene) (ids = scene triangle indices). Throws Error for a scene
 // without triangles or with a material index out of range.
@@ -81,15 +63,9 @@ struct VplTracingOutput {
     // Throws Error when the options are invalid or the VPL buffer would exceed the device's
     // maxStorageBufferRange.
     static VplTracingOutput create(Context& context, const VplTracingOptions& options);
+
+    operator VplTracingBuffers() const { return {vpls, bounces, count}; }
 };
-
-// Throws Error for paths or max_bounces 0, max_bounces 2^32 - 1, or paths x max_bounces above 2^32 - 1.
-uint32_t vpl_capacity(const VplTracingOptions& options);
-
-// Adds the passes "vpl count clear" and "trace vpls". `output` must hold at least
-// vpl_capacity(options) VPLs (Error otherwise).
-void add_trace_vpls_pass(Context& context, PassList& passes, const GpuBvh& bvh, const VplSources& sources,
-                         const VplTracingOptions& options, VplTracingOutput& output);
 
 struct VplCounts {
     uint32_t vpls = 0;       // appended (at most the capacity)

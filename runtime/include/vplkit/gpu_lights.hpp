@@ -1,0 +1,43 @@
+#pragma once
+// A scene's lights uploaded for the direct-light stages (stages/direct_light.hpp,
+// stages/direct_emissive.hpp): the owning buffers, which convert to the views the stages take.
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/scene.hpp"
+#include "vplkit/scene_lights.hpp"
+#include "vplkit/stages/direct_emissive.hpp"
+#include "vplkit/stages/direct_light.hpp"
+
+#include <cstdint>
+#include <span>
+
+namespace vplkit {
+class Context;
+}
+
+namespace vplkit::stages {
+
+// The scene's punctual lights in the shader's layout (PunctualLight, shaders/include/vplkit/lights.glsl).
+// Never empty (Vulkan has no empty buffers): with no lights it holds one unused entry and count 0.
+struct GpuLights {
+    Buffer buffer;
+    uint32_t count = 0;
+
+    operator LightBuffers() const { return {buffer, count}; }
+};
+// Throws vplkit::Error naming the light for a non-finite or negative value.
+GpuLights upload_lights(Context& context, std::span<const scene::Light> lights);
+
+// The scene's emissive triangles (EmissiveTriangle, shaders/include/vplkit/emitters.glsl), each
+// with the probability of being sampled, proportional to its power (luminance of the emitted
+// radiance x area). Never empty: with no emitter it holds one unused entry and count 0.
+struct GpuEmitters {
+    Buffer triangles;
+    uint32_t count = 0;
+    double total_power = 0.0;  // sum of luminance(radiance) x area x pi, watts in luminance
+
+    operator EmitterBuffers() const { return {triangles, count}; }
+};
+GpuEmitters upload_emitters(Context& context, const scene::Scene& scene);
+
+}  // namespace vplkit::stages

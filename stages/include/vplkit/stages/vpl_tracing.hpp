@@ -1,0 +1,80 @@
+#pragma once
+// VPL generation by instant radiosity (trace_vpls.comp): light paths from the scene's emitters
+// (punctual lights and emissive triangles, chosen by power) traced through the BVH, one VPL
+// appended at every diffuse surface hit, cosine-weighted bounces with Russian roulette.
+//
+//   auto bvh = vplkit::upload_bvh(context, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
+//   auto sources = vplkit::stages::upload_vpl_sources(context, scene);     // runtime: vpl_tracing_buffers.hpp
+//   auto out = vplkit::stages::VplTracingOutput::create(context, options);  // runtime: vpl_tracing_buffers.hpp
+//   vplkit::PassList passes;
+//   vplkit::stages::add_trace_vpls_pass(context, passes, bvh, sources, options, out);
+//   passes.run(context);
+//   uint32_t count = vplkit::stages::download_vpl_count(out);   // VPLs 0..count-1 of out.vpls
+//
+// What a VPL's flux means: the flux its surface re-emits diffusely, i.e. the flux arriving along
+// the path times the diffuse reflectance, divided by the number of paths; the VPLs of bounce k
+// together estimate, without bias, the flux reflected after k surface interactions (see the
+// shader's header). Surfaces reflect diffusely with rho = base colour x (1 - metallic), each
+// texture entering as its mean over the image (the mean linear colour of the base colour
+// texture, the mean B channel of the metallic-roughness texture): no texture lookup at hits;
+// the specular lobe is not followed, and alpha is ignored (opaque).
+
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+namespace vplkit::stages {
+
+struct VplTracingOptions {
+    uint32_t paths = 0;        // light paths, >= 1
+    uint32_t max_bounces = 0;  // surface hits per path (VPLs per path at most), >= 1
+    uint32_t seed = 0;         // the same seed gives the same set of VPLs
+};
+
+// Everything the tracer reads about the scene besides the BVH (all read only). The runtime
+// fills them from a scene (vplkit/vpl_tracing_buffers.hpp: upload_vpl_sources).
+struct VplSourceBuffers {
+    BufferView lights;           // PunctualLight[max(punctual_count, 1)] (lights.glsl)
+    BufferView emissive;         // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
+    BufferView emitter_cdf;      // float[max(emitter_count, 1)]: selection_cdf of the emitters' powers
+    BufferView triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
+    uint32_t punctual_count = 0;
+    uint32_t emissive_count = 0;
+    // punctual_count + emissive_count, or 0 when no emitter has any power (then no path is traced).
+    uint32_t emitter_count = 0;
+    uint32_t triangle_count = 0;
+    glm::vec3 scene_center{0.0f};  // bounding sphere of the triangles: directional lights cover it
+    float scene_radius = 0.0f;
+};
+
+// What one tracing writes.
+struct VplTracingBuffers {
+    BufferView vpls;     // Vpl[capacity]: the first `count` are valid after the pass
+    BufferView bounces;  // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
+    BufferView count;    // VplCountBuffer: the number of VPLs appended, and of paths cut short
+};
+
+// Throws Error for paths or max_bounces 0, max_bounces 2^32 - 1, or paths x max_bounces above 2^32 - 1.
+uint32_t vpl_capacity(const VplTracingOptions& options);
+
+// Bytes of each VplTracingBuffers buffer for `options` (capacity = vpl_capacity(options)).
+struct VplTracingRequirements {
+    uint32_t capacity = 0;
+    uint64_t vpls_bytes = 0;
+    uint64_t bounces_bytes = 0;
+    uint64_t count_bytes = 0;
+};
+VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options);
+
+// Adds the passes "vpl count clear" and "trace vpls": reads the BVH and `sources`, writes
+// `output` (count cleared first). `output` must hold at least vpl_capacity(options) VPLs (Error
+// otherwise); paths must fit one dispatch (Error).
+void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
+                         const VplTracingOptions& options, const VplTracingBuffers& output);
+
+}  // namespace vplkit::stages

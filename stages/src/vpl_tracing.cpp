@@ -1,0 +1,87 @@
+#include "vplkit/stages/vpl_tracing.hpp"
+
+#include "vplkit/error.hpp"
+#include "vplkit/shaders/trace_vpls.hpp"
+
+#include <limits>
+#include <string>
+
+namespace vplkit::stages {
+
+uint32_t vpl_capacity(const VplTracingOptions& options) {
+    if (options.paths == 0 || options.max_bounces == 0 || options.max_bounces == std::numeric_limits<uint32_t>::max()) {
+        throw Error("VPL tracing: paths and max_bounces must be at least 1, max_bounces below 2^32 - 1 (got " + std::to_string(options.paths) +
+                    " and " + std::to_string(options.max_bounces) + ")");
+    }
+    const uint64_t capacity = uint64_t(options.paths) * options.max_bounces;
+    if (capacity > std::numeric_limits<uint32_t>::max()) {
+        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths x " +
+                    std::to_string(options.max_bounces) + " bounces is more VPLs than a 32-bit count holds");
+    }
+    return uint32_t(capacity);
+}
+
+VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options) {
+    VplTracingRequirements r;
+    r.capacity = vpl_capacity(options);
+    r.vpls_bytes = uint64_t(r.capacity) * sizeof(shaders::Vpl);
+    r.bounces_bytes = uint64_t(r.capacity) * sizeof(uint32_t);
+    r.count_bytes = sizeof(shaders::VplCountBuffer);
+    return r;
+}
+
+void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
+                         const VplTracingOptions& options, const VplTracingBuffers& output) {
+    const VplTracingRequirements needed = vpl_tracing_requirements(options);
+    const uint32_t capacity = needed.capacity;
+    if (output.vpls.size < needed.vpls_bytes || output.bounces.size < needed.bounces_bytes ||
+        output.count.size < needed.count_bytes) {
+        throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
+                    " VPLs (paths x max_bounces)");
+    }
+    const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>();
+    const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * device.limits().max_workgroup_count[0];
+    if (options.paths > max_paths) {
+        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths exceed one dispatch's " +
+                    std::to_string(max_paths));
+    }
+
+    // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
+    const BufferView count = output.count;
+    passes.add("vpl count clear", {Use::transfer_dst(count)},
+               [count](VkCommandBuffer cmd) {
+                   vkCmdFillBuffer(cmd, count.buffer, count.offset, sizeof(shaders::VplCountBuffer), 0u);
+               });
+
+    shaders::trace_vpls::Push push{};
+    push.scene_center = {sources.scene_center.x, sources.scene_center.y, sources.scene_center.z};
+    push.scene_radius = sources.scene_radius;
+    push.path_count = options.paths;
+    push.max_bounces = options.max_bounces;
+    push.seed = options.seed;
+    push.punctual_count = sources.punctual_count;
+    push.emitter_count = sources.emitter_count;
+    push.triangle_count = sources.triangle_count;
+    push.capacity = capacity;
+    // vpl_capacity refused max_bounces = 2^32 - 1: this does not wrap.
+    push.step_limit = options.max_bounces + 1;
+    passes.add("trace vpls",
+               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(sources.lights), Use::read(sources.emissive),
+                Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo), Use::write(output.vpls),
+                Use::write(output.bounces), Use::read_write(count)},
+               [&pipeline, bvh, sources, output, push](VkCommandBuffer cmd) {
+                   shaders::trace_vpls::Bindings b;
+                   b.bvh_nodes = bvh.nodes.descriptor();
+                   b.bvh_triangles = bvh.triangles.descriptor();
+                   b.lights = sources.lights.descriptor();
+                   b.emissive = sources.emissive.descriptor();
+                   b.emitter_cdf = sources.emitter_cdf.descriptor();
+                   b.albedo = sources.triangle_albedo.descriptor();
+                   b.vpls = output.vpls.descriptor();
+                   b.vpl_count = output.count.descriptor();
+                   b.vpl_bounces = output.bounces.descriptor();
+                   pipeline.dispatch(cmd, b, push, push.path_count);
+               });
+}
+
+}  // namespace vplkit::stages
