@@ -6,9 +6,10 @@
 #include "vplkit/image.hpp"
 #include "vplkit/planner.hpp"
 #include "vplkit/stages/compose.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/gbuffer_images.hpp"
-#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit/brsm_buffers.hpp"
+#include "vplkit/shadow_map.hpp"
 #include "vplkit/stages/tonemap.hpp"
 #include "vplkit/vpl_tracing_buffers.hpp"
 

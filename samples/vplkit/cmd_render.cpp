@@ -12,7 +12,7 @@
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_setups.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/camera_view.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -9,10 +9,10 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_setups.hpp"
-#include "vplkit/stages/brsm.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/brsm_buffers.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/gbuffer_images.hpp"
-#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit/shadow_map.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -27,11 +27,11 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/brsm.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/brsm_buffers.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/importance_warp.hpp"
-#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit/shadow_map.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>

@@ -19,9 +19,9 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_lights.hpp"
 #include "vplkit/scene_setups.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/gbuffer_images.hpp"
-#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit/shadow_map.hpp"
 
 #include <glm/gtc/packing.hpp>
 

@@ -21,7 +21,7 @@
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit_test/context.hpp"
 

@@ -21,7 +21,7 @@
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
-#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit/shadow_map.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>

@@ -11,7 +11,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/stages/upsample.hpp"
 #include "vplkit_test/context.hpp"
 #include "direct_light_reference.hpp"

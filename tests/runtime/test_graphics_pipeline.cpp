@@ -79,8 +79,8 @@ TEST_CASE("graphics pipeline: two triangles with a depth test match a CPU raster
     vplkit::RasterState state;
     state.color_formats = {VK_FORMAT_R32G32B32A32_SFLOAT};
     state.depth_format = VK_FORMAT_D32_SFLOAT;
-    auto pipeline = vplkit::GraphicsPipeline::create<vs::Module, fs::Module>(
-        ctx, state, "raster test");
+    auto pipeline = vplkit::GraphicsPipeline::create<vs::Module, fs::Module>(ctx.device(), ctx.pipeline_cache(), state);
+    ctx.set_name(pipeline.handle(), "raster test");
 
     vplkit::runtime_test::RasterTestPush push{};
     push.colors[0] = {1.0f, 0.0f, 0.0f, 0.0f};
@@ -89,7 +89,7 @@ TEST_CASE("graphics pipeline: two triangles with a depth test match a CPU raster
     passes.add("draw", {vplkit::Use::read(vertex_buffer, vplkit::Stage::vertex), vplkit::Use::color_attachment(color),
                         vplkit::Use::depth_attachment(depth)},
                [&](VkCommandBuffer cmd) {
-                   vplkit::begin_rendering(cmd, {{&color}, {VkClearColorValue{{0.0f, 0.0f, 0.0f, -1.0f}}}, &depth, 1.0f});
+                   vplkit::begin_rendering(cmd, {{color}, {VkClearColorValue{{0.0f, 0.0f, 0.0f, -1.0f}}}, depth, 1.0f});
                    pipeline.bind(cmd);
                    vs::Bindings bindings;
                    bindings.vertices = vertex_buffer.descriptor();
@@ -142,7 +142,7 @@ TEST_CASE("graphics pipeline: push constants of the wrong size are refused") {
     vplkit::Context& ctx = vplkit::test::context();
     vplkit::RasterState state;
     state.color_formats = {VK_FORMAT_R32G32B32A32_SFLOAT};
-    auto pipeline = vplkit::GraphicsPipeline::create<vs::Module, fs::Module>(ctx, state);
+    auto pipeline = vplkit::GraphicsPipeline::create<vs::Module, fs::Module>(ctx.device(), ctx.pipeline_cache(), state);
     uint32_t too_small = 0;
     ctx.one_shot([&](VkCommandBuffer cmd) {
         CHECK_THROWS_WITH_AS(pipeline.push_constants(cmd, too_small), doctest::Contains("pushed 4 bytes"), vplkit::Error);

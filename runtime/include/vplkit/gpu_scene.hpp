@@ -10,6 +10,7 @@
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/stages/scene_buffers.hpp"
 
 #include <vulkan/vulkan.h>
 
@@ -74,24 +75,6 @@ class TextureImage {
   std::string name_;
 };
 
-// One draw: a maximal run of consecutive triangles of one material (Scene::triangle_materials),
-// so primitive instances of one material that the loader placed one after the other are one draw. Recorded as vkCmdDraw(3 * triangle_count, 1, 3 * first_triangle, 0):
-// the vertex shaders pull vertices through the index buffer themselves.
-struct GpuDraw {
-  uint32_t first_triangle = 0;
-  uint32_t triangle_count = 0;
-  uint32_t material = 0;
-};
-
-// The four combined image samplers a draw of one material binds (SHADER_READ_ONLY_OPTIMAL), in
-// the order of raster_material.glsl's texture bindings.
-struct MaterialTextures {
-  VkDescriptorImageInfo base_color{};          // sRGB view, or the white default
-  VkDescriptorImageInfo metallic_roughness{};  // UNORM view, or the white default
-  VkDescriptorImageInfo normal{};              // UNORM view, or the flat-normal default
-  VkDescriptorImageInfo emissive{};            // sRGB view, or the white default (glTF: factor alone)
-};
-
 struct GpuSceneOptions {
   // Generate mip chains (without them, minified textures alias: Sponza's floor shimmers).
   bool mipmaps = true;
@@ -122,6 +105,9 @@ class GpuScene {
 
   std::span<const GpuDraw> draws() const { return draws_; }
   const MaterialTextures& textures(uint32_t material) const { return material_textures_.at(material); }
+
+  // As the raster stages take it (the draws and textures stay in this object).
+  operator stages::SceneBuffers() const { return {vertices_, indices_, materials_, draws_, material_textures_}; }
 
   const scene::Bounds& bounds() const { return bounds_; }
   uint32_t triangle_count() const { return triangle_count_; }

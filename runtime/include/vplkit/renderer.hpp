@@ -29,6 +29,9 @@ namespace vplkit {
 class Context;
 class Image;
 struct FramePlan;
+namespace stages {
+struct GbufferImages;
+}
 
 // One VPL as the host sees it (RenderedImage::vpls).
 struct VplPoint {

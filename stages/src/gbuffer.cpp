@@ -1,14 +1,9 @@
 #include "vplkit/stages/gbuffer.hpp"
 
-#include "gpu_scene_pipelines.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/gpu_scene.hpp"
 #include "vplkit/graphics_pipeline.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/gbuffer_raster.hpp"
 #include "vplkit/shaders/gbuffer_shade.hpp"
-#include "vplkit/gbuffer_images.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -22,7 +17,6 @@ namespace vert = shaders::gbuffer_raster;
 namespace frag = shaders::gbuffer_shade;
 
 struct GbufferPipelineDescription {
-  static const char* name() { return "gbuffer"; }
   static RasterState state() {
     RasterState s;
     s.color_formats = {kGbufferPositionFormat, kGbufferNormalFormat, kGbufferGeometricNormalFormat, kGbufferAlbedoFormat,
@@ -33,7 +27,7 @@ struct GbufferPipelineDescription {
     return s;
   }
 };
-using GbufferPipeline = detail::CachedRasterPipeline<vert::Module, frag::Module, GbufferPipelineDescription>;
+using GbufferPipeline = RasterPipeline<vert::Module, frag::Module, GbufferPipelineDescription>;
 
 }  // namespace
 
@@ -61,43 +55,42 @@ glm::mat4 vulkan_perspective(float yfov, float aspect, float znear, float zfar) 
   return m;
 }
 
-CameraView camera_view(const scene::Camera& camera, uint32_t width, uint32_t height) {
-  if (width == 0 || height == 0) throw Error("camera: image size " + std::to_string(width) + "x" + std::to_string(height));
-  CameraView view;
-  view.view_projection = vulkan_perspective(camera.yfov, float(width) / float(height), camera.znear, camera.zfar) * camera.view();
-  view.position = camera.position;
-  return view;
-}
-
-void add_gbuffer_pass(Context& context, PassList& passes, const GpuScene& scene, const CameraView& view,
-                      GbufferImages& images) {
-  const GraphicsPipeline& pipeline = GbufferPipeline::get(context);
+void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
+                      const GbufferViews& images) {
+  for (const GpuDraw& draw : scene.draws) {
+    if (draw.material >= scene.textures.size()) {
+      throw Error("gbuffer: a draw uses material " + std::to_string(draw.material) + ", but the scene has textures for " +
+                  std::to_string(scene.textures.size()));
+    }
+  }
+  const GraphicsPipeline& pipeline = device.pipeline<GbufferPipeline>().pipeline;
   frag::Push push{};
   std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
   push.viewer_position = {view.position.x, view.position.y, view.position.z};
   passes.add("gbuffer",
-             {Use::read(scene.vertices(), Stage::vertex), Use::read(scene.indices(), Stage::vertex),
-              Use::read(scene.materials(), Stage::fragment), Use::color_attachment(images.position),
+             {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
+              Use::read(scene.materials, Stage::fragment), Use::color_attachment(images.position),
               Use::color_attachment(images.normal), Use::color_attachment(images.geometric_normal),
               Use::color_attachment(images.albedo), Use::color_attachment(images.emission),
               Use::depth_attachment(images.depth)},
-             [&pipeline, &scene, &images, push](VkCommandBuffer cmd) mutable {
+             // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
+             [&pipeline, scene, images, push](VkCommandBuffer cmd) mutable {
                const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
-               begin_rendering(cmd, {{&images.position, &images.normal, &images.geometric_normal, &images.albedo,
-                                      &images.emission},
+               begin_rendering(cmd, {{images.position, images.normal, images.geometric_normal, images.albedo,
+                                      images.emission},
                                      {zero, zero, zero, zero, zero},
-                                     &images.depth,
+                                     images.depth,
                                      1.0f});
                pipeline.bind(cmd);
                vert::Bindings geometry;
-               geometry.scene_vertices = scene.vertices().descriptor();
-               geometry.scene_indices = scene.indices().descriptor();
+               geometry.scene_vertices = scene.vertices.descriptor();
+               geometry.scene_indices = scene.indices.descriptor();
                uint32_t bound_material = UINT32_MAX;
-               for (const GpuDraw& draw : scene.draws()) {
+               for (const GpuDraw& draw : scene.draws) {
                  if (draw.material != bound_material) {
-                   const MaterialTextures& textures = scene.textures(draw.material);
+                   const MaterialTextures& textures = scene.textures[draw.material];
                    frag::Bindings material;
-                   material.scene_materials = scene.materials().descriptor();
+                   material.scene_materials = scene.materials.descriptor();
                    material.base_color_texture = textures.base_color;
                    material.metallic_roughness_texture = textures.metallic_roughness;
                    material.normal_texture = textures.normal;

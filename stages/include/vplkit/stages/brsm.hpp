@@ -19,7 +19,9 @@
 // re-emits, as for instant radiosity (stages/vpl_tracing.hpp): RSM flux = base colour x
 // (1 - metallic) x the light's power into the texel.
 //
-// All lights at once (every light's map and buffers alive together):
+// The runtime allocates the buffers (vplkit/brsm_buffers.hpp: BrsmOutput, which converts to
+// BrsmOutputViews; ShadowMap converts to ShadowMapViews). All lights at once (every light's map
+// and buffers alive together):
 //   std::vector<ShadowMap> maps = ...;            // one per light, rendered (add_shadow_map_passes)
 //   auto out = vplkit::stages::BrsmOutput::create(context, maps, bounds, options);
 //   vplkit::PassList passes;
@@ -34,23 +36,23 @@
 //                      add_shadow_map_pass(...); add_brsm_light_passes(..., map, i, ...); passes.run(context);
 //                      download_brsm_light_vpl_count(out, i); out.lights[i] = {vpl_share} (frees them)
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/scene.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/shadow_maps.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-namespace vplkit {
-class Context;
-class PassList;
-}  // namespace vplkit
-
 namespace vplkit::stages {
 
-struct CameraView;
-struct GbufferImages;
-struct ShadowMap;
+// The largest importance map the warp takes (importance_warp.hpp): a light's RSM may have at
+// most this many texels along its larger side.
+inline constexpr uint32_t kMaxBrsmMapSize = 4096;
 
 struct BrsmOptions {
     uint32_t vpl_count = 4096;       // over all lights, >= the number of lights with power
@@ -83,73 +85,56 @@ struct BrsmOptions {
 // Throws vplkit::Error naming the first option out of range.
 void validate(const BrsmOptions& options);
 
-// Each light's share of `vpl_count`, in proportion to its power (punctual_light_power, summed
-// over RGB; directional lights over the disc of the scene's bounding sphere), rounded by largest
-// remainder so the shares add up to vpl_count; every light with power gets at least one, a light
-// without power none. Throws Error when no light has power or vpl_count is smaller than the
-// number of lights with power.
-std::vector<uint32_t> brsm_vpl_shares(std::span<const scene::Light> lights, const scene::Bounds& bounds,
-                                      uint32_t vpl_count);
-
-// One light's working buffers.
-struct BrsmLightBuffers {
-    uint32_t map_size = 0;     // side of the square importance map: the RSM's larger side, rounded up to 2^k
-    uint32_t vpl_share = 0;    // N, the VPLs this light places (0: no pass is recorded for it)
-    Buffer contribution;       // float[map_size^2]: the raw estimates
-    Buffer contribution_mips;  // the filtered estimates' mip chain (importance_warp.hpp layout)
-    Buffer flux_mips;          // flux luminance per texel, mip chain
-    Buffer importance_mips;    // the mixture (sums to 1), mip chain
-    Buffer samples;            // WarpedSample[vpl_share]
-    Buffer warp_count;         // WarpCountBuffer: vpl_share, or 0 when the importance is all zero
+// One light's working buffers (all written and read by its passes only).
+struct BrsmLightViews {
+    uint32_t map_size = 0;         // side of the square importance map: the RSM's larger side, rounded up to 2^k
+    uint32_t vpl_share = 0;        // N, the VPLs this light places (0: no pass is recorded for it)
+    BufferView contribution;       // float[map_size^2]: the raw estimates
+    BufferView contribution_mips;  // the filtered estimates' mip chain (importance_warp.hpp layout)
+    BufferView flux_mips;          // flux luminance per texel, mip chain
+    BufferView importance_mips;    // the mixture (sums to 1), mip chain
+    BufferView samples;            // WarpedSample[vpl_share]
+    BufferView warp_count;         // WarpCountBuffer: vpl_share, or 0 when the importance is all zero
 };
 
-struct BrsmOutput {
-    Buffer vpls;   // Vpl[capacity]: the first `count` are valid after the passes
-    Buffer count;  // VplCountBuffer (count; cut_short stays 0)
+// Bytes of each of a light's buffers for a map of map_width x map_height texels and a share of
+// vpl_share VPLs (all 0 but map_size when the share is 0). Throws Error for a zero map size; a
+// map_size above kMaxBrsmMapSize is the caller's to refuse.
+struct BrsmLightRequirements {
+    uint32_t map_size = 0;
+    uint64_t contribution_bytes = 0;
+    uint64_t mip_chain_bytes = 0;  // each of contribution_mips, flux_mips, importance_mips
+    uint64_t samples_bytes = 0;
+    uint64_t warp_count_bytes = 0;
+};
+BrsmLightRequirements brsm_light_requirements(uint32_t map_width, uint32_t map_height, uint32_t vpl_share);
+
+// What the passes write: the VPLs of every light, one after the other, and their running count.
+struct BrsmOutputViews {
+    BufferView vpls;   // Vpl[capacity]: the first `count` are valid after the passes
+    BufferView count;  // VplCountBuffer (count; cut_short stays 0): cleared, then read and written
     uint32_t capacity = 0;
-    std::vector<BrsmLightBuffers> lights;  // one per map
-
-    // Buffers for these maps (each map's light gives its share). Throws Error for bad options
-    // (validate), no maps, a map too large for an importance map (4096^2), or buffers beyond the
-    // device's maxStorageBufferRange.
-    static BrsmOutput create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
-                             const BrsmOptions& options);
-    // The VPL buffer, the count and each light's share, but no light's buffers yet
-    // (allocate_brsm_light_buffers). Errors as create, and no lights.
-    static BrsmOutput create_for_lights(Context& context, std::span<const scene::Light> lights,
-                                        const scene::Bounds& bounds, const BrsmOptions& options);
+    std::vector<BrsmLightViews> lights;  // one per map
 };
-
-// A light's working buffers for its map (nothing when its share is 0). Throws Error for a map
-// too large (4096^2 importance map at most) or buffers beyond maxStorageBufferRange.
-void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLightBuffers& light);
 
 // "brsm count clear": the running VPL count to 0, before the first light's passes.
-void add_brsm_count_clear_pass(PassList& passes, BrsmOutput& output);
+void add_brsm_count_clear_pass(StepList& passes, const BrsmOutputViews& output);
 
 // The passes of light `light_index` (none when its share is 0), appending its VPLs after those
-// already counted. Its buffers must be allocated for `map`. Throws Error otherwise, for bad
-// options or a scene_scale that is not positive.
-void add_brsm_light_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
-                           ShadowMap& map, size_t light_index, float scene_scale, const BrsmOptions& options,
-                           BrsmOutput& output);
+// already counted. Reads the map's position, normal and flux and the G-buffer (position,
+// normal, geometric normal, albedo; GENERAL layout). Its buffers must be allocated for `map`
+// (brsm_light_requirements). Throws Error otherwise, for bad options or a scene_scale that is
+// not positive.
+void add_brsm_light_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
+                           const ShadowMapViews& map, size_t light_index, float scene_scale,
+                           const BrsmOptions& options, const BrsmOutputViews& output);
 
 // add_brsm_count_clear_pass, then add_brsm_light_passes for every map in order. `maps` must
-// be rendered before (add_shadow_map_passes, in this or an earlier PassList) and be the maps
-// `output` was created for; `gbuffer` is the camera's, seen through `view`. `scene_scale` is the
-// BVH's (GpuBvh::scene_scale), which the VPL falloff clamp is relative to. Everything referenced
-// must outlive passes.run().
-void add_brsm_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const CameraView& view,
-                     std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options, BrsmOutput& output);
-
-// Blocking read of output.count after a run: the VPLs placed (lights whose importance was all
-// zero placed none).
-uint32_t download_brsm_vpl_count(const BrsmOutput& output);
-
-// Blocking read of the VPLs a light placed: its share, or 0 when its importance was all zero
-// (its light reaches no surface, or no surface it reaches reflects), or when it had no share.
-// Throws Error when the light has a share but no buffers.
-uint32_t download_brsm_light_vpl_count(const BrsmOutput& output, size_t light_index);
-std::vector<uint32_t> download_brsm_light_vpl_counts(const BrsmOutput& output);
+// be rendered before (add_shadow_map_passes, in this or an earlier step list) and be the maps
+// `output` was allocated for; `gbuffer` is the camera's, seen through `view`. `scene_scale` is the
+// BVH's (BvhBuffers::scene_scale), which the VPL falloff clamp is relative to.
+void add_brsm_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
+                     std::span<const ShadowMapViews> maps, float scene_scale, const BrsmOptions& options,
+                     const BrsmOutputViews& output);
 
 }  // namespace vplkit::stages

@@ -1,29 +1,24 @@
 #pragma once
 // The G-buffer raster pass (shaders/raster/gbuffer_raster.vert + gbuffer_shade.frag): the scene
-// seen from a camera, written into GbufferImages as shaders/include/vplkit/gbuffer.glsl defines
-// them. Standard depth: 0 at the near plane, 1 at the far plane and where nothing was drawn
+// seen from a camera, written into the G-buffer images as shaders/include/vplkit/gbuffer.glsl
+// defines them. Standard depth: 0 at the near plane, 1 at the far plane and where nothing was drawn
 // (cleared to 1, test LESS). Every triangle is drawn from both sides (no culling; normals are
 // turned to the viewer), glTF alpha mode MASK discards below the cutoff, BLEND is drawn as MASK
 // at 0.5 (one surface per pixel).
 
-#include "vplkit/scene.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/scene_buffers.hpp"
+#include "vplkit/stages/steps.hpp"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 
-namespace vplkit {
-class Context;
-class GpuScene;
-class PassList;
-}  // namespace vplkit
-
 namespace vplkit::stages {
 
-struct GbufferImages;
-
-// Where a raster pass looks from.
+// Where a raster pass looks from (the runtime makes one from a scene::Camera: vplkit/camera_view.hpp).
 struct CameraView {
   // World space -> Vulkan clip space: x right, y down in the image, depth 0 (near) .. 1 (far).
   glm::mat4 view_projection{1.0f};
@@ -37,14 +32,12 @@ struct CameraView {
 // (0, pi), a non-positive aspect or znear, or a zfar that is neither 0 nor beyond znear.
 glm::mat4 vulkan_perspective(float yfov, float aspect, float znear, float zfar);
 
-// The camera's view for an image of width x height (the image's aspect ratio, not the file's:
-// pixels stay square). Errors as vulkan_perspective.
-CameraView camera_view(const scene::Camera& camera, uint32_t width, uint32_t height);
-
-// Adds the pass "gbuffer": clears every image (position, normals, albedo, emission to 0, depth
-// to 1) and draws every GpuDraw with its material's textures. `scene`, `images` and the
-// pipeline (created on first use, kept by the context) must stay alive until the PassList runs.
-void add_gbuffer_pass(Context& context, PassList& passes, const GpuScene& scene, const CameraView& view,
-                      GbufferImages& images);
+// Adds the pass "gbuffer": reads `scene`, clears every image of `images` (position, normals,
+// albedo, emission to 0, depth to 1; colour/depth attachment usage, the formats of
+// gbuffer_views.hpp) and draws every GpuDraw with its material's textures into them. The
+// scene's draw and texture arrays must stay alive until the steps are recorded; the pipeline
+// is created on first use and kept by `device`. Throws Error for a draw whose material has no textures.
+void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
+                      const GbufferViews& images);
 
 }  // namespace vplkit::stages

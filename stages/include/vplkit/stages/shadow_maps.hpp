@@ -22,12 +22,13 @@
 //   point        a cube map as a 3 x 2 atlas of square faces, +X -X +Y -Y +Z -Z from left to
 //                right and top to bottom, each a 90-degree perspective projection
 // Every triangle is drawn from both sides, alpha MASK is discarded below the cutoff and BLEND at
-// 0.5, as in the G-buffer.
+// 0.5, as in the G-buffer. The runtime's ShadowMap (vplkit/shadow_map.hpp) fits the faces to a
+// light and a scene's bounds, allocates the images and converts to ShadowMapViews.
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/image.hpp"
-#include "vplkit/scene.hpp"
-#include "vplkit/scene_lights.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/scene_buffers.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
 
 #include <glm/mat4x4.hpp>
 #include <vulkan/vulkan.h>
@@ -35,13 +36,6 @@
 #include <cstdint>
 #include <numbers>
 #include <span>
-#include <vector>
-
-namespace vplkit {
-class Context;
-class GpuScene;
-class PassList;
-}  // namespace vplkit
 
 namespace vplkit::stages {
 
@@ -62,38 +56,30 @@ struct ShadowFace {
   VkRect2D rect{};  // the face's texels in the map's images
 };
 
-struct ShadowMap {
-  scene::Light light;
-  uint32_t face_resolution = 0;    // texels along a face's side
-  std::vector<ShadowFace> faces;   // 1, or 6 for a cube map
-  // Where depth is 0 and 1: distance from the light along the face's axis (point, spot), or
-  // signed distance along the light from the bounds' centre (directional; depth is linear).
-  float near_plane = 0.0f;
-  float far_plane = 0.0f;
-  float texel_area = 0.0f;         // directional: one texel's beam cross-section (m^2); else 0
-  Image position;
-  Image normal;
-  Image flux;
-  Image depth;
-  Buffer light_uniform;  // shaders::RsmLight, read by rsm_shade.frag
+// One light's map as the stages take it. The raster pass writes the four images (colour/depth
+// attachment usage, the formats above, one size); BRSM reads position, normal and flux (GENERAL
+// layout, storage usage). `faces` is referenced, not copied: it must outlive the recording.
+struct ShadowMapViews {
+  std::span<const ShadowFace> faces;  // 1, or 6 for a cube map
+  ImageView position;
+  ImageView normal;
+  ImageView flux;
+  ImageView depth;
+  BufferView light_uniform;  // shaders::RsmLight (uniform usage), read by rsm_shade.frag
 
-  // Images of face_resolution x face_resolution (3 x 2 faces for a cube map) with colour/depth
-  // attachment, storage (colour) and sampled usage. `bounds` is the scene's (GpuScene::bounds()):
-  // the directional fit and every light's near and far planes come from it. Throws Error for a
-  // zero resolution, a light with a non-finite or zero direction, or a negative intensity.
-  static ShadowMap create(Context& context, const scene::Light& light, const scene::Bounds& bounds,
-                          uint32_t face_resolution);
-
-  uint32_t width() const { return position.width(); }
-  uint32_t height() const { return position.height(); }
+  uint32_t width() const { return position.width; }
+  uint32_t height() const { return position.height; }
 };
 
-// Adds the pass "shadow map <n>" (n = `index`, for timings): clears the images (colours to 0,
-// depth to 1) and draws the scene into every face. `scene` and `map` must stay alive until the
-// PassList runs.
-void add_shadow_map_pass(Context& context, PassList& passes, const GpuScene& scene, ShadowMap& map, uint32_t index = 0);
+// Adds the pass "shadow map <n>" (n = `index`, for timings): reads `scene` and the light
+// uniform, clears the images (colours to 0, depth to 1) and draws the scene into every face.
+// The scene's draw and texture arrays and the map's faces must stay alive until the steps are
+// recorded. Throws Error for a draw whose material has no textures.
+void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& scene, const ShadowMapViews& map,
+                         uint32_t index = 0);
 
 // One pass per map, in order.
-void add_shadow_map_passes(Context& context, PassList& passes, const GpuScene& scene, std::span<ShadowMap> maps);
+void add_shadow_map_passes(Device& device, StepList& passes, const SceneBuffers& scene,
+                           std::span<const ShadowMapViews> maps);
 
 }  // namespace vplkit::stages

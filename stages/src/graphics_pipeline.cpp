@@ -1,8 +1,5 @@
 #include "vplkit/graphics_pipeline.hpp"
 
-#include "vplkit/context.hpp"
-#include "vplkit/image.hpp"
-
 #include <algorithm>
 #include <map>
 #include <utility>
@@ -34,10 +31,10 @@ std::vector<VkDescriptorSetLayoutBinding> merge_bindings(std::span<const ShaderS
 
 }  // namespace
 
-GraphicsPipeline GraphicsPipeline::create(Context& context, std::span<const ShaderStageDesc> stages,
-                                          const RasterState& state, std::string_view name) {
+GraphicsPipeline GraphicsPipeline::create(VkDevice device, VkPipelineCache cache, std::span<const ShaderStageDesc> stages,
+                                          const RasterState& state) {
   GraphicsPipeline p;
-  p.device_ = context.device();
+  p.device_ = device;
   p.push_descriptor_set_ = reinterpret_cast<PFN_vkCmdPushDescriptorSetKHR>(
       vkGetDeviceProcAddr(p.device_, "vkCmdPushDescriptorSetKHR"));
   if (!p.push_descriptor_set_) throw Error("graphics pipeline: vkCmdPushDescriptorSetKHR is not available");
@@ -142,10 +139,9 @@ GraphicsPipeline GraphicsPipeline::create(Context& context, std::span<const Shad
   info.pColorBlendState = &color_blend;
   info.pDynamicState = &dynamic;
   info.layout = p.layout_;
-  VkResult result = vkCreateGraphicsPipelines(p.device_, context.pipeline_cache(), 1, &info, nullptr, &p.pipeline_);
+  VkResult result = vkCreateGraphicsPipelines(p.device_, cache, 1, &info, nullptr, &p.pipeline_);
   for (VkShaderModule m : modules) vkDestroyShaderModule(p.device_, m, nullptr);  // the pipeline keeps what it needs
   check(result, "vkCreateGraphicsPipelines");
-  if (!name.empty()) context.set_name(p.pipeline_, name);
   return p;
 }
 
@@ -194,17 +190,17 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& targets) {
   if (targets.colors.size() != targets.clear_colors.size()) {
     throw Error("begin_rendering: one clear colour per colour target");
   }
-  const Image* any = !targets.colors.empty() ? targets.colors.front() : targets.depth;
+  const ImageView* any = !targets.colors.empty() ? &targets.colors.front() : targets.depth ? &targets.depth : nullptr;
   if (!any) throw Error("begin_rendering: no render targets");
-  const VkExtent2D extent = any->extent();
+  const VkExtent2D extent = {any->width, any->height};
   std::vector<VkRenderingAttachmentInfo> colors;
   for (size_t i = 0; i < targets.colors.size(); ++i) {
-    const Image& image = *targets.colors[i];
-    if (image.width() != extent.width || image.height() != extent.height) {
-      throw Error("begin_rendering: render targets of different sizes ('" + image.name() + "')");
+    const ImageView& image = targets.colors[i];
+    if (image.width != extent.width || image.height != extent.height) {
+      throw Error("begin_rendering: render targets of different sizes ('" + image.name + "')");
     }
     VkRenderingAttachmentInfo a{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    a.imageView = image.view();
+    a.imageView = image.view;
     a.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
@@ -213,7 +209,7 @@ void begin_rendering(VkCommandBuffer cmd, const RenderTargets& targets) {
   }
   VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
   if (targets.depth) {
-    depth.imageView = targets.depth->view();
+    depth.imageView = targets.depth.view;
     depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_ATTACHMENT_OPTIMAL;
     depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;

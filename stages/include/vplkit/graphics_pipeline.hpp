@@ -2,9 +2,11 @@
 // A graphics pipeline made of a generated vertex and fragment shader (their `Module` types):
 // the two set-0 layouts merged into one push-descriptor layout, one push-constant range shared by
 // both stages, dynamic rendering (no render pass objects). The kit's raster stages (G-buffer,
-// shadow maps) use it; compute stages use the generated Pipeline directly.
+// shadow maps) use it through RasterPipeline (created once per stages::Device, like the
+// generated compute pipelines); compute stages use the generated Pipeline directly.
 
 #include "vplkit/error.hpp"
+#include "vplkit/stages/views.hpp"
 
 #include <vulkan/vulkan.h>
 
@@ -16,9 +18,6 @@
 #include <vector>
 
 namespace vplkit {
-
-class Context;
-class Image;
 
 // Fixed-function state of a raster pipeline.
 struct RasterState {
@@ -58,20 +57,21 @@ ShaderStageDesc stage_desc(const typename M::Spec& spec) {
 
 class GraphicsPipeline {
  public:
+  // On `device` (VK_KHR_push_descriptor enabled), through `cache` (may be VK_NULL_HANDLE).
   // Throws Error when the two stages disagree on a binding (same number, different type) or use
-  // push constants of different sizes.
-  static GraphicsPipeline create(Context& context, std::span<const ShaderStageDesc> stages, const RasterState& state,
-                                 std::string_view name = {});
+  // push constants of different sizes. Debug names are the caller's (handle()).
+  static GraphicsPipeline create(VkDevice device, VkPipelineCache cache, std::span<const ShaderStageDesc> stages,
+                                 const RasterState& state);
 
   // From the generated Module types of a vertex and a fragment shader. If both stages have push
   // constants they must be the same block (the same bytes are pushed to both).
   template <class VS, class FS>
-  static GraphicsPipeline create(Context& context, const RasterState& state, std::string_view name = {},
+  static GraphicsPipeline create(VkDevice device, VkPipelineCache cache, const RasterState& state,
                                  const typename VS::Spec& vertex_spec = {}, const typename FS::Spec& fragment_spec = {}) {
     static_assert(VS::stage == VK_SHADER_STAGE_VERTEX_BIT && FS::stage == VK_SHADER_STAGE_FRAGMENT_BIT,
                   "GraphicsPipeline::create<VS, FS>: a vertex then a fragment shader Module");
     const ShaderStageDesc stages[2] = {stage_desc<VS>(vertex_spec), stage_desc<FS>(fragment_spec)};
-    return create(context, stages, state, name);
+    return create(device, cache, stages, state);
   }
 
   GraphicsPipeline() = default;
@@ -113,13 +113,29 @@ class GraphicsPipeline {
   PFN_vkCmdPushDescriptorSetKHR push_descriptor_set_ = nullptr;
 };
 
-// Dynamic rendering into whole images that a PassList pass declared as attachments
+// A raster stage's pipeline, created once per stages::Device on first use and kept by it, like
+// the generated compute pipelines: `device.pipeline<RasterPipeline<VS, FS, Describe>>().pipeline`.
+// Describe::state() gives its RasterState.
+template <class VS, class FS, class Describe>
+struct RasterPipeline {
+  struct Spec {};
+
+  GraphicsPipeline pipeline;
+
+  static VkResult create(VkDevice device, VkPipelineCache cache, const Spec&, RasterPipeline* out) {
+    out->pipeline = GraphicsPipeline::create<VS, FS>(device, cache, Describe::state());
+    return VK_SUCCESS;
+  }
+  void destroy() { pipeline = GraphicsPipeline(); }
+};
+
+// Dynamic rendering into whole images that a step declared as attachments
 // (Use::color_attachment / Use::depth_attachment put them in the right layouts).
 // Clears every attachment to the given values, sets a full-image viewport and scissor.
 struct RenderTargets {
-  std::vector<Image*> colors;
+  std::vector<ImageView> colors;
   std::vector<VkClearColorValue> clear_colors;  // one per color image
-  Image* depth = nullptr;
+  ImageView depth;                              // none when its image is VK_NULL_HANDLE
   float clear_depth = 1.0f;
 };
 void begin_rendering(VkCommandBuffer cmd, const RenderTargets& targets);
