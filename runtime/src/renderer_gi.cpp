@@ -5,8 +5,13 @@
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/exact_gi_render.hpp"
+#include "vplkit/gi_counters_buffer.hpp"
+#include "vplkit/hybrid_cuts.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/planner.hpp"
+#include "vplkit/rtslc_scratch.hpp"
+#include "vplkit/upsample_counters.hpp"
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/gbuffer_images.hpp"

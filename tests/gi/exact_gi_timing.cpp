@@ -13,6 +13,7 @@
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/exact_gi_render.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
@@ -20,7 +21,7 @@
 #include "vplkit/scene_setups.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/exact_gi.hpp"
-#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/camera_view.hpp"
 #include "vplkit/gbuffer_images.hpp"
 
 #include <glm/geometric.hpp>

@@ -17,6 +17,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/device_info.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/exact_gi_render.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/types.hpp"

@@ -1,6 +1,8 @@
 #include "sampling_setup.hpp"
 
 #include "vplkit/context.hpp"
+#include "vplkit/gi_counters_buffer.hpp"
+#include "vplkit/hybrid_cuts.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/stages/vpl_trees.hpp"

@@ -25,6 +25,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/upsample.hpp"
+#include "vplkit/upsample_counters.hpp"
 #include "vplkit_test/context.hpp"
 #include "upsample_reference.hpp"
 

@@ -1,6 +1,6 @@
 #pragma once
-// A Bvh (vplkit/bvh.hpp) on the GPU, and the batch ray-query stage over it
-// (shaders/bvh/trace_closest.comp, trace_occlusion.comp). Other stages bind the two buffers
+// A Bvh (vplkit/bvh.hpp) on the GPU. The batch ray-query stage over it is in the stage library
+// (stages/trace_rays.hpp, included here for its callers). Other stages bind the two buffers
 // themselves: their shaders include vplkit/bvh.glsl, which declares `bvh_nodes` and
 // `bvh_triangles`, so their generated Bindings have fields of those names:
 //     bindings.bvh_nodes = gpu_bvh.nodes.descriptor();
@@ -9,13 +9,13 @@
 #include "vplkit/buffer.hpp"
 #include "vplkit/bvh.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/trace_rays.hpp"
 
 #include <cstdint>
 
 namespace vplkit {
 
 class Context;
-class PassList;
 
 struct GpuBvh {
     Buffer nodes;                 // BvhNode[node_count]
@@ -32,15 +32,8 @@ struct GpuBvh {
 // exceed the device's maxStorageBufferRange (naming both sizes).
 GpuBvh upload_bvh(Context& context, const Bvh& bvh);
 
-enum class TraceMode {
-    closest_hit,  // results: BvhHit[ray_count] (t, id, barycentrics, triangle; id kBvhNoHit on a miss)
-    occlusion,    // results: uint32_t[ray_count], 1 when something lies strictly between tmin and tmax
-};
-
-// Adds the pass "trace closest" or "trace occlusion": one query per BvhRay in `rays`.
-// Throws Error for ray_count 0, buffers smaller than ray_count elements, or more rays than one
-// dispatch can hold (64 * maxComputeWorkGroupCount[0]).
-void add_trace_rays_pass(Context& context, PassList& passes, const GpuBvh& bvh, const Buffer& rays,
-                         Buffer& results, uint32_t ray_count, TraceMode mode);
+// The ray-query stage under the names its callers use (it takes a GpuBvh: GpuBvh converts).
+using stages::TraceMode;
+using stages::add_trace_rays_pass;
 
 }  // namespace vplkit

@@ -8,23 +8,18 @@
 // pixel dropped because they were not finite (0 on a clean pixel). A dropped contribution is
 // left out of rgb, never turned into NaN or 0 for the whole pixel, and counted in `counters`.
 
-#include "vplkit/buffer.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <functional>
 
-namespace vplkit {
-class Context;
-class Image;
-class PassList;
-struct GpuBvh;
-}  // namespace vplkit
-
 namespace vplkit::stages {
-
-struct GbufferImages;
 
 struct ExactGiOptions {
     // Pixels x VPLs per dispatch at most, so no dispatch runs long enough to trip a device
@@ -40,9 +35,14 @@ struct ExactGiOptions {
     uint32_t max_vpls_per_dispatch = 32;
     // VPLs per dispatch; 0 = the most both limits above allow (at least 1).
     uint32_t chunk_size = 0;
-    // render_exact_gi only: called after each submission with the VPLs done so far and the total.
+    // render_exact_gi only (runtime: vplkit/exact_gi_render.hpp): called after each submission
+    // with the VPLs done so far and the total.
     std::function<void(uint32_t done, uint32_t total)> progress;
 };
+
+// Bytes of the counters buffer: one ExactGiCounters record (three uint32; exact_gi.cpp checks it
+// against the generated struct). The runtime's create_exact_gi_counters allocates it.
+inline constexpr uint64_t kExactGiCountersBytes = 3 * sizeof(uint32_t);
 
 // The counters exact_gi.comp increments (ExactGiCounters).
 struct ExactGiCounts {
@@ -51,38 +51,31 @@ struct ExactGiCounts {
     uint32_t cut_short = 0;              // invocations the driver stopped early: the image is wrong if > 0
 };
 
-// A device buffer for the counters (add_exact_gi_passes clears it), and reading it back.
-Buffer create_exact_gi_counters(Context& context);
-ExactGiCounts read_exact_gi_counters(const Buffer& counters);
-
 // VPLs per dispatch for this image size and options (>= 1).
 uint32_t exact_gi_chunk_size(uint32_t width, uint32_t height, const ExactGiOptions& options);
 
 // Adds "exact gi clear" (zeroes `indirect` and `counters`) and one "exact gi" dispatch per chunk
-// of VPLs, all into `passes` (one submission when run: options.progress is not called; use
-// render_exact_gi for long runs). `vpls` holds Vpl[vpl_count] (shaders::Vpl); vpl_count 0 leaves
-// `indirect` cleared. The referenced objects must outlive passes.run(); read `counters` after
-// it and distrust the image when cut_short > 0. Throws vplkit::Error
-// for an `indirect` of the wrong format or size, or a `vpls` buffer smaller than vpl_count VPLs.
-void add_exact_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                         const Buffer& vpls, uint32_t vpl_count, glm::vec3 camera_position, Image& indirect,
-                         Buffer& counters, const ExactGiOptions& options = {});
+// of VPLs, all into `passes` (options.progress is not called; the runtime's render_exact_gi
+// submits chunk by chunk). Reads the G-buffer's position, normals and albedo, the BVH and `vpls`
+// (Vpl[vpl_count], shaders::Vpl); writes `indirect` (RGBA32F, the G-buffer's size, storage and
+// transfer-dst usage) and `counters` (kExactGiCountersBytes). vpl_count 0 leaves `indirect`
+// cleared. Read `counters` after the steps ran and distrust the image when cut_short > 0.
+// Throws vplkit::Error for an `indirect` of the wrong format or size, a `vpls` buffer smaller
+// than vpl_count VPLs, or a counters buffer too small.
+void add_exact_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                         const BufferView& vpls, uint32_t vpl_count, glm::vec3 camera_position,
+                         const ImageView& indirect, const BufferView& counters, const ExactGiOptions& options = {});
 
-struct ExactGiResult {
-    ExactGiCounts counts;
-    uint32_t dispatches = 0;
-    double gpu_ms = 0.0;  // summed over the submissions
-    // Host time from the first chunk's submission to the last one's end, counter reads included.
-    // A check on gpu_ms: lavapipe was seen to stamp most chunks of a gather that followed the
-    // BRSM passes at ~0.01 ms while each took ~77 ms (brsm_timing's passes stamp correctly).
-    double wall_ms = 0.0;
-};
-
-// The same work as add_exact_gi_passes, one submission per chunk, calling options.progress
-// after each: what the ground-truth command line runs. Throws vplkit::Error (after the
-// chunk) when the driver cut a dispatch short: retry with a smaller chunk_size.
-ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const GpuBvh& bvh, const Buffer& vpls,
-                              uint32_t vpl_count, glm::vec3 camera_position, Image& indirect,
-                              const ExactGiOptions& options = {});
+// The parts of add_exact_gi_passes, for a caller that submits each chunk on its own
+// (render_exact_gi): check_exact_gi_inputs throws what add_exact_gi_passes would;
+// add_exact_gi_clear adds "exact gi clear"; add_exact_gi_chunk adds one "exact gi" dispatch over
+// VPLs [first, first + count), accumulating into `indirect` and `counters` (checked as for
+// first + count VPLs).
+void check_exact_gi_inputs(const GbufferViews& gbuffer, const BufferView& vpls, uint32_t vpl_count,
+                           const ImageView& indirect, const BufferView& counters);
+void add_exact_gi_clear(StepList& passes, const ImageView& indirect, const BufferView& counters);
+void add_exact_gi_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                        const BufferView& vpls, uint32_t first, uint32_t count, glm::vec3 camera_position,
+                        const ImageView& indirect, const BufferView& counters);
 
 }  // namespace vplkit::stages

@@ -5,27 +5,24 @@
 // Biased by design (a substitute position stands for a cluster), so it is measured against
 // `exact`, not tested for unbiasedness.
 //
-// Output: `indirect` (RGBA32F, the G-buffer's size): rgb = the estimate, a = the pixel's dropped
-// samples; counts in `counters` (gi_counters.hpp).
+// Reads the G-buffer's position, normals and albedo, the BVH, and the trees' sst and leaves.
+// Output: `indirect` (RGBA32F, the G-buffer's size, storage usage; written): rgb = the estimate,
+// a = the pixel's dropped samples; counts in `counters` (kGiCountersBytes, gi_counters.hpp;
+// cleared, then read and written).
 
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+#include "vplkit/stages/vpl_tree_buffers.hpp"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 
-namespace vplkit {
-class Buffer;
-class Context;
-class Image;
-class PassList;
-struct GpuBvh;
-}  // namespace vplkit
-
 namespace vplkit::stages {
-
-struct GbufferImages;
-struct VplTrees;
 
 struct SstGiOptions {
     uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (seed 004 uses 1)
@@ -37,10 +34,10 @@ struct SstGiOptions {
 // Throws vplkit::Error naming the bad option.
 void validate(const SstGiOptions& options);
 
-// Adds "gi counters clear" and "sst gi". The referenced objects must outlive passes.run().
-// Throws vplkit::Error for bad options or an `indirect` of the wrong format or size.
-void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                       const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
-                       const SstGiOptions& options);
+// Adds "gi counters clear" and "sst gi". Throws vplkit::Error for bad options or an `indirect`
+// of the wrong format or size.
+void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                       const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                       const BufferView& counters, const SstGiOptions& options);
 
 }  // namespace vplkit::stages

@@ -1,6 +1,6 @@
 #pragma once
 // Real-time stochastic lightcuts (seed 003 sec. 3.2-3.4, 4): indirect light from the VPLs of a
-// perfect light tree (VplTrees::light_tree), a few light samples per pixel.
+// perfect light tree (VplTreeBuffers::light_tree), a few light samples per pixel.
 //
 //   "gi counters clear"  zeroes `counters` (GiCounters, gi_counters.hpp)
 //   "rtslc cuts"         shaders/gi/rtslc_cut.comp: one cut of samples_per_pixel nodes per
@@ -19,29 +19,24 @@
 // unbiased for the sum over every VPL (with visibility); with it, an approximation (biased at
 // edges: rtslc_interleave.comp says why).
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/image.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+#include "vplkit/stages/vpl_tree_buffers.hpp"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
 
-namespace vplkit {
-class Context;
-class PassList;
-struct GpuBvh;
-}  // namespace vplkit
-
 namespace vplkit::stages {
-
-struct GbufferImages;
-struct VplTrees;
 
 // Bounds of the options (validate() refuses others).
 inline constexpr uint32_t kRtslcMaxSamplesPerPixel = kMaxGiSamplesPerPixel;  // gi_counters.hpp
 inline constexpr uint32_t kRtslcMaxBlockSize = 32;
-// An empty cut slot in RtslcScratch::cuts and an empty block's representative.
+// An empty cut slot in RtslcScratchBuffers::cuts and an empty block's representative.
 inline constexpr uint32_t kRtslcNoNode = 0xFFFFFFFFu;
 
 struct RtslcOptions {
@@ -70,32 +65,46 @@ void validate(const RtslcOptions& options);
 
 // What the passes hand each other: the cuts and their representative pixels, and with
 // interleaving the per-pixel estimates before reconstruction. Sized for one image size and
-// (samples_per_pixel, block_size, interleave); reusable across frames.
-struct RtslcScratch {
+// (samples_per_pixel, block_size, interleave) by rtslc_scratch_requirements; reusable across
+// frames. The runtime's RtslcScratch (vplkit/rtslc_scratch.hpp) allocates them.
+struct RtslcScratchBuffers {
     uint32_t width = 0, height = 0;
     uint32_t block_size = 0;
     uint32_t cut_size = 0;   // samples_per_pixel: slots per block in `cuts`
     uint32_t interleave = 1;
-    Buffer cuts;             // uint32[block_count() * cut_size]: light tree node indices, the cut's
-                             // nodes first (in no particular order), then kRtslcNoNode
-    Buffer representatives;  // uint32[block_count()]: the pixel y * width + x that chose the cut;
-                             // kRtslcNoNode for a block without covered pixels (its cut is empty)
-    Image estimates;         // RGBA32F, interleave > 1 only: each pixel's sum over its own share
+    BufferView cuts;             // uint32[block_count() * cut_size]: light tree node indices, the cut's
+                                 // nodes first (in no particular order), then kRtslcNoNode
+    BufferView representatives;  // uint32[block_count()]: the pixel y * width + x that chose the cut;
+                                 // kRtslcNoNode for a block without covered pixels (its cut is empty)
+    ImageView estimates;         // RGBA32F, width x height, storage usage; interleave > 1 only: each
+                                 // pixel's sum over its own share
 
     uint32_t blocks_x() const { return (width + block_size - 1) / block_size; }
     uint32_t blocks_y() const { return (height + block_size - 1) / block_size; }
     uint32_t block_count() const { return blocks_x() * blocks_y(); }
-
-    // Validates the options; throws vplkit::Error for a zero size too.
-    static RtslcScratch create(Context& context, uint32_t width, uint32_t height, const RtslcOptions& options);
 };
 
-// Adds the passes above. The referenced objects must outlive passes.run(); read `counters`
-// (read_gi_counters) after it and distrust the image when cut_short > 0. Throws vplkit::Error
-// for bad options, an `indirect` of the wrong format or size, a scratch made for another size
-// or other options, trees with no VPLs, or a counters buffer too small.
-void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                      const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
-                      const RtslcOptions& options, RtslcScratch& scratch);
+// What the scratch for an image of width x height and these options must hold.
+struct RtslcScratchRequirements {
+    uint32_t blocks_x = 0;
+    uint32_t blocks_y = 0;
+    uint32_t cut_size = 0;
+    uint64_t cuts_bytes = 0;
+    uint64_t representatives_bytes = 0;
+    bool estimates = false;  // an RGBA32F width x height storage image is needed (interleave > 1)
+};
+
+// Validates the options; throws vplkit::Error for a zero size too.
+RtslcScratchRequirements rtslc_scratch_requirements(uint32_t width, uint32_t height, const RtslcOptions& options);
+
+// Adds the passes above. Reads the G-buffer's position, normals and albedo, the BVH, and the
+// trees' light_tree and leaves; writes the scratch, `indirect` (storage usage) and `counters`
+// (kGiCountersBytes). Read `counters` after the steps ran and distrust the image when
+// cut_short > 0. Throws vplkit::Error for bad options, an `indirect` of the wrong format or
+// size, a scratch made for another size or other options (or buffers smaller than its
+// requirements), trees with no VPLs, or a counters buffer too small.
+void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                      const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                      const BufferView& counters, const RtslcOptions& options, const RtslcScratchBuffers& scratch);
 
 }  // namespace vplkit::stages

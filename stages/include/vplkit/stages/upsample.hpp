@@ -5,25 +5,20 @@
 // brings it back to full size: bilinear weights times the geometric similarity of eq. 5.3, so
 // light does not bleed across creases or depth jumps.
 //
-//   auto half = GbufferImages::create(context, half_resolution(w), half_resolution(h));
-//   add_gbuffer_downsample_pass(context, passes, gbuffer, half);
+//   half: a G-buffer of half_resolution(w) x half_resolution(h) (the runtime: GbufferImages::create)
+//   add_gbuffer_downsample_pass(device, passes, gbuffer, half);
 //   ... GI stage on `half` into half_indirect (RGBA32F, half size) ...
-//   add_upsample_pass(context, passes, gbuffer, half, half_indirect, indirect, counters,
+//   add_upsample_pass(device, passes, gbuffer, half, half_indirect, indirect, counters,
 //                     upsample_options_for_scene(bvh.scene_scale));
 
-#include "vplkit/buffer.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
 
 #include <cstdint>
 
-namespace vplkit {
-class Context;
-class Image;
-class PassList;
-}  // namespace vplkit
-
 namespace vplkit::stages {
-
-struct GbufferImages;
 
 // The half-resolution size of a full-resolution side: (full + 1) / 2, so half pixel i copies
 // full pixel 2i and the last full column or row (odd sizes) still has a sample on it.
@@ -31,9 +26,9 @@ uint32_t half_resolution(uint32_t full);
 
 // Adds "gbuffer downsample": half pixel (i, j) = full pixel (2i, 2j) of position, normal,
 // geometric normal, albedo and emission (a copy, so positions stay on real surfaces and normals
-// unit; half.depth is not written). Throws vplkit::Error unless half is
-// half_resolution(full's width) x half_resolution(full's height). Both must outlive passes.run().
-void add_gbuffer_downsample_pass(Context& context, PassList& passes, GbufferImages& full, GbufferImages& half);
+// unit; half.depth is not written; the half images need storage usage). Throws vplkit::Error
+// unless half is half_resolution(full's width) x half_resolution(full's height).
+void add_gbuffer_downsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half);
 
 struct UpsampleOptions {
     // Eq. 5.3's n_min: a sample is similar when the dot product of its shading normal with the
@@ -56,6 +51,11 @@ inline constexpr float kUpsampleMaxDistanceFraction = 0.02f;
 // Throws vplkit::Error for a scene_scale that is not a positive finite number.
 UpsampleOptions upsample_options_for_scene(float scene_scale);
 
+// Bytes of the counters buffer: one UpsampleCounters record (two uint32; upsample.cpp checks it
+// against the generated struct). The runtime's create_upsample_counters
+// (vplkit/upsample_counters.hpp) allocates it.
+inline constexpr uint64_t kUpsampleCountersBytes = 2 * sizeof(uint32_t);
+
 // The counters upsample_bilateral.comp increments (UpsampleCounters).
 struct UpsampleCounts {
     // Covered pixels that no sample was similar to: they took the nearest covered sample whose
@@ -65,20 +65,17 @@ struct UpsampleCounts {
     uint32_t empty_pixels = 0;
 };
 
-// A device buffer for the counters (add_upsample_pass clears it), and reading it back.
-Buffer create_upsample_counters(Context& context);
-UpsampleCounts read_upsample_counters(const Buffer& counters);
-
 // Adds "upsample clear" (zeroes `counters`) and "upsample": full_indirect (RGBA32F, full's size,
 // storage usage) from half_indirect (RGBA32F, half's size): for each covered full pixel the
 // four half samples around it, bilinear weights times eq. 5.3's similarity, normalized; when
 // every weight is 0 the nearest facing sample (counted in fallback_pixels), or 0 (counted in
 // empty_pixels). Background pixels get 0; alpha is 0 everywhere. `half` is the G-buffer
-// half_indirect was shaded on (add_gbuffer_downsample_pass's output). Everything referenced must
-// outlive passes.run(). Throws vplkit::Error for bad options (not finite, min_cos outside
-// [-1, 1), max_distance not > 0), a half G-buffer that is not half of full, or an image of the
-// wrong format or size, naming it.
-void add_upsample_pass(Context& context, PassList& passes, GbufferImages& full, GbufferImages& half,
-                       Image& half_indirect, Image& full_indirect, Buffer& counters, const UpsampleOptions& options);
+// half_indirect was shaded on (add_gbuffer_downsample_pass's output). `counters` holds
+// kUpsampleCountersBytes. Throws vplkit::Error for bad options (not finite, min_cos outside
+// [-1, 1), max_distance not > 0), a half G-buffer that is not half of full, an image of the
+// wrong format or size, naming it, or a counters buffer too small.
+void add_upsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half,
+                       const ImageView& half_indirect, const ImageView& full_indirect, const BufferView& counters,
+                       const UpsampleOptions& options);
 
 }  // namespace vplkit::stages

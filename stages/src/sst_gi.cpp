@@ -1,16 +1,8 @@
 #include "vplkit/stages/sst_gi.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/bvh_gpu.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/image.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/sst_gi.hpp"
-#include "vplkit/gbuffer_images.hpp"
 #include "gi_inputs.hpp"
-#include "vplkit/stages/gi_counters.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
 
 #include <string>
 
@@ -23,17 +15,17 @@ void validate(const SstGiOptions& options) {
     }
 }
 
-void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                       const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
-                       const SstGiOptions& options) {
+void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                       const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                       const BufferView& counters, const SstGiOptions& options) {
     validate(options);
     check_gbuffer_target("sst gi", gbuffer, indirect);
     add_gi_counters_clear(passes, counters, "gi counters clear");
-    const auto& pipeline = context.pipeline<shaders::sst_gi::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>();
     passes.add("sst gi",
                gbuffer_bvh_uses(gbuffer, bvh,
                                 {Use::read(trees.sst), Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)}),
-               [&pipeline, &gbuffer, &bvh, &trees, camera_position, &indirect, &counters, options](VkCommandBuffer cmd) {
+               [&pipeline, gbuffer, bvh, trees, camera_position, indirect, counters, options](VkCommandBuffer cmd) {
                    shaders::sst_gi::Bindings b;
                    bind_bvh(b, bvh);
                    bind_gbuffer(b, gbuffer);
@@ -49,7 +41,7 @@ void add_sst_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffe
                    push.seed = options.seed;
                    push.frame = options.frame;
                    push.visibility = options.visibility ? 1u : 0u;
-                   pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
+                   pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
                });
 }
 

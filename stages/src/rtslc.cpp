@@ -1,17 +1,11 @@
 #include "vplkit/stages/rtslc.hpp"
 
-#include "vplkit/bvh_gpu.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/rtslc_cut.hpp"
 #include "vplkit/shaders/rtslc_gi.hpp"
 #include "vplkit/shaders/rtslc_interleave.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/gbuffer_images.hpp"
 #include "gi_inputs.hpp"
-#include "vplkit/stages/gi_counters.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -23,19 +17,28 @@ namespace {
 
 [[noreturn]] void refuse(const std::string& what) { throw Error("rtslc: " + what); }
 
-void check_targets(GbufferImages& gbuffer, const VplTrees& trees, Image& indirect, const Buffer& counters,
-                   const RtslcOptions& options, const RtslcScratch& scratch) {
+void check_targets(const GbufferViews& gbuffer, const VplTreeBuffers& trees, const ImageView& indirect,
+                   const BufferView& counters, const RtslcOptions& options, const RtslcScratchBuffers& scratch) {
     check_gbuffer_target("rtslc", gbuffer, indirect);
     if (scratch.width != gbuffer.width() || scratch.height != gbuffer.height() ||
         scratch.block_size != options.block_size || scratch.cut_size != options.samples_per_pixel ||
         scratch.interleave != options.interleave) {
         refuse("the scratch was made for another image size or other samples_per_pixel, block_size or interleave");
     }
+    const RtslcScratchRequirements needs = rtslc_scratch_requirements(scratch.width, scratch.height, options);
+    if (scratch.cuts.size < needs.cuts_bytes || scratch.representatives.size < needs.representatives_bytes) {
+        refuse("the scratch's buffers '" + scratch.cuts.name + "' and '" + scratch.representatives.name +
+               "' are smaller than rtslc_scratch_requirements");
+    }
+    if (needs.estimates && (scratch.estimates.format != VK_FORMAT_R32G32B32A32_SFLOAT ||
+                            scratch.estimates.width != scratch.width || scratch.estimates.height != scratch.height)) {
+        refuse("the scratch's estimates '" + scratch.estimates.name + "' must be RGBA32F and of the G-buffer's size");
+    }
     if (trees.count == 0 || trees.leaf_count == 0) {
         refuse("the light tree holds no VPLs");
     }
-    if (counters.size() < sizeof(shaders::GiCounters)) {
-        refuse("buffer '" + counters.name() + "' is too small for the counters");
+    if (counters.size < kGiCountersBytes) {
+        refuse("buffer '" + counters.name + "' is too small for the counters");
     }
 }
 
@@ -72,43 +75,36 @@ void validate(const RtslcOptions& options) {
     }
 }
 
-RtslcScratch RtslcScratch::create(Context& context, uint32_t width, uint32_t height, const RtslcOptions& options) {
+RtslcScratchRequirements rtslc_scratch_requirements(uint32_t width, uint32_t height, const RtslcOptions& options) {
     validate(options);
     if (width == 0 || height == 0) {
         refuse("a " + std::to_string(width) + " x " + std::to_string(height) + " image");
     }
-    RtslcScratch scratch;
-    scratch.width = width;
-    scratch.height = height;
-    scratch.block_size = options.block_size;
-    scratch.cut_size = options.samples_per_pixel;
-    scratch.interleave = options.interleave;
-    constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    scratch.cuts = Buffer::create(context, VkDeviceSize(scratch.block_count()) * scratch.cut_size * sizeof(uint32_t),
-                                  storage, MemoryUse::device, "rtslc cuts");
-    scratch.representatives = Buffer::create(context, VkDeviceSize(scratch.block_count()) * sizeof(uint32_t), storage,
-                                             MemoryUse::device, "rtslc representatives");
-    if (options.interleave > 1) {
-        scratch.estimates = Image::create(context, width, height, VK_FORMAT_R32G32B32A32_SFLOAT,
-                                          VK_IMAGE_USAGE_STORAGE_BIT, "rtslc estimates");
-    }
-    return scratch;
+    RtslcScratchRequirements needs;
+    needs.blocks_x = (width + options.block_size - 1) / options.block_size;
+    needs.blocks_y = (height + options.block_size - 1) / options.block_size;
+    needs.cut_size = options.samples_per_pixel;
+    const uint64_t blocks = uint64_t(needs.blocks_x) * needs.blocks_y;
+    needs.cuts_bytes = blocks * needs.cut_size * sizeof(uint32_t);
+    needs.representatives_bytes = blocks * sizeof(uint32_t);
+    needs.estimates = options.interleave > 1;
+    return needs;
 }
 
-void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                      const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
-                      const RtslcOptions& options, RtslcScratch& scratch) {
+void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                      const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                      const BufferView& counters, const RtslcOptions& options, const RtslcScratchBuffers& scratch) {
     validate(options);
     check_targets(gbuffer, trees, indirect, counters, options, scratch);
     const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     add_gi_counters_clear(passes, counters, "gi counters clear");
 
-    const auto& cut_pipeline = context.pipeline<shaders::rtslc_cut::Pipeline>();
+    const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>();
     passes.add("rtslc cuts",
                gbuffer_bvh_uses(gbuffer, bvh,
                                 {Use::read(trees.light_tree), Use::write(scratch.cuts), Use::write(scratch.representatives),
                                  Use::read_write(counters)}),
-               [&cut_pipeline, &gbuffer, &bvh, &trees, &scratch, &counters, camera, options](VkCommandBuffer cmd) {
+               [&cut_pipeline, gbuffer, bvh, trees, scratch, counters, camera, options](VkCommandBuffer cmd) {
                    shaders::rtslc_cut::Bindings b;
                    bind_bvh(b, bvh);
                    bind_gbuffer(b, gbuffer);
@@ -130,15 +126,15 @@ void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer
 
     shaders::rtslc_gi::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
-    const auto& gi_pipeline = context.pipeline<shaders::rtslc_gi::Pipeline>(spec);
-    Image& radiance = options.interleave > 1 ? scratch.estimates : indirect;
+    const auto& gi_pipeline = device.pipeline<shaders::rtslc_gi::Pipeline>(spec);
+    const ImageView radiance = options.interleave > 1 ? scratch.estimates : indirect;
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);
         passes.add("rtslc gi",
                    gbuffer_bvh_uses(gbuffer, bvh,
                                     {Use::read(trees.light_tree), Use::read(trees.leaves), Use::read(scratch.cuts),
                                      Use::read_write(counters), Use::read_write(radiance)}),
-                   [&gi_pipeline, &gbuffer, &bvh, &trees, &scratch, &counters, &radiance, camera, options, first,
+                   [&gi_pipeline, gbuffer, bvh, trees, scratch, counters, radiance, camera, options, first,
                     end](VkCommandBuffer cmd) {
                        shaders::rtslc_gi::Bindings b;
                        bind_bvh(b, bvh);
@@ -159,16 +155,16 @@ void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer
                        push.interleave = options.interleave;
                        push.slot_first = first;
                        push.slot_end = end;
-                       gi_pipeline.dispatch(cmd, b, push, radiance.width(), radiance.height());
+                       gi_pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
                    });
     }
 
     if (options.interleave > 1) {
-        const auto& interleave_pipeline = context.pipeline<shaders::rtslc_interleave::Pipeline>();
+        const auto& interleave_pipeline = device.pipeline<shaders::rtslc_interleave::Pipeline>();
         passes.add("rtslc interleave",
                    {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(scratch.cuts),
                     Use::read(scratch.estimates), Use::write(indirect)},
-                   [&interleave_pipeline, &gbuffer, &scratch, &indirect, options](VkCommandBuffer cmd) {
+                   [&interleave_pipeline, gbuffer, scratch, indirect, options](VkCommandBuffer cmd) {
                        shaders::rtslc_interleave::Bindings b;
                        b.gbuffer_position = gbuffer.position.descriptor();
                        b.gbuffer_normal = gbuffer.normal.descriptor();
@@ -183,7 +179,7 @@ void add_rtslc_passes(Context& context, PassList& passes, GbufferImages& gbuffer
                        push.frame = options.frame;
                        push.similarity_min_cos = options.similarity_min_cos;
                        push.similarity_max_distance = options.similarity_max_distance;
-                       interleave_pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
+                       interleave_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
                    });
     }
 }

@@ -5,27 +5,24 @@
 // sst_sampling.glsl). Biased by design (substitute positions, blended cuts that need not
 // partition the tree, children left out of a cut), so it is measured against `exact`.
 //
-// Output: `indirect` (RGBA32F, the G-buffer's size): rgb = the estimate, a = the pixel's dropped
-// samples; counts (including mock-cut pixels) in `counters` (gi_counters.hpp).
+// Reads the G-buffer's position, normals and albedo, the BVH, and the trees' sst and leaves.
+// Output: `indirect` (RGBA32F, the G-buffer's size, storage usage; written): rgb = the estimate,
+// a = the pixel's dropped samples; counts (including mock-cut pixels) in `counters`
+// (kGiCountersBytes, gi_counters.hpp; cleared, then read and written).
 
-#include "vplkit/buffer.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/gi_counters.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+#include "vplkit/stages/vpl_tree_buffers.hpp"
 
 #include <glm/vec3.hpp>
 
 #include <cstdint>
-#include <vector>
-
-namespace vplkit {
-class Context;
-class Image;
-class PassList;
-struct GpuBvh;
-}  // namespace vplkit
 
 namespace vplkit::stages {
-
-struct GbufferImages;
-struct VplTrees;
 
 inline constexpr uint32_t kMaxHybridBlockSize = 32;
 
@@ -57,23 +54,35 @@ struct HybridOptions {
 // Throws vplkit::Error naming the bad option.
 void validate(const HybridOptions& options);
 
-// The per-block cut records: HybridBlock[blocks] and uint[blocks x cut_size] (shaders/include/
-// vplkit/cut_blending.glsl), for an image of width x height.
-struct HybridCuts {
+// The per-block cut records: HybridBlock[blocks_x * blocks_y] and uint[blocks_x * blocks_y *
+// cut_size] (shaders/include/vplkit/cut_blending.glsl), written by "hybrid cuts" and read by
+// "hybrid gi"; sized by hybrid_cut_requirements. The runtime's HybridCuts
+// (vplkit/hybrid_cuts.hpp) allocates them.
+struct HybridCutBuffers {
     uint32_t blocks_x = 0;
     uint32_t blocks_y = 0;
     uint32_t cut_size = 0;
-    Buffer blocks;
-    Buffer cuts;
-
-    static HybridCuts create(Context& context, uint32_t width, uint32_t height, const HybridOptions& options);
+    BufferView blocks;
+    BufferView cuts;
 };
 
-// Adds "gi counters clear", "hybrid cuts" and "hybrid gi". The referenced objects must outlive
-// passes.run(). Throws vplkit::Error for bad options, cuts made for another size or budget, or
+// What the cut buffers for an image of width x height and these options must hold.
+struct HybridCutRequirements {
+    uint32_t blocks_x = 0;
+    uint32_t blocks_y = 0;
+    uint32_t cut_size = 0;
+    uint64_t blocks_bytes = 0;
+    uint64_t cuts_bytes = 0;
+};
+
+// Validates the options; throws vplkit::Error for a zero size too.
+HybridCutRequirements hybrid_cut_requirements(uint32_t width, uint32_t height, const HybridOptions& options);
+
+// Adds "gi counters clear", "hybrid cuts" and "hybrid gi". Throws vplkit::Error for bad
+// options, cuts made for another size or budget (or smaller than hybrid_cut_requirements), or
 // an `indirect` of the wrong format or size.
-void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                          const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
-                          HybridCuts& cuts, const HybridOptions& options);
+void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                          const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                          const BufferView& counters, const HybridCutBuffers& cuts, const HybridOptions& options);
 
 }  // namespace vplkit::stages

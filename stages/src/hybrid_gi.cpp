@@ -1,17 +1,10 @@
 #include "vplkit/stages/hybrid_gi.hpp"
 
-#include "vplkit/bvh_gpu.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/image.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/hybrid_cut.hpp"
 #include "vplkit/shaders/hybrid_gi.hpp"
-#include "vplkit/gbuffer_images.hpp"
+#include "vplkit/shaders/types.hpp"
 #include "gi_inputs.hpp"
-#include "vplkit/stages/gi_counters.hpp"
-#include "vplkit/stages/sst_gi.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
 
 #include <cmath>
 #include <string>
@@ -36,25 +29,24 @@ void validate(const HybridOptions& options) {
     }
 }
 
-HybridCuts HybridCuts::create(Context& context, uint32_t width, uint32_t height, const HybridOptions& options) {
+HybridCutRequirements hybrid_cut_requirements(uint32_t width, uint32_t height, const HybridOptions& options) {
     validate(options);
     if (width == 0 || height == 0) {
         throw Error("hybrid gi: the image size must not be 0");
     }
-    HybridCuts c;
-    c.blocks_x = (width + options.block_size - 1) / options.block_size;
-    c.blocks_y = (height + options.block_size - 1) / options.block_size;
-    c.cut_size = options.samples_per_pixel;
-    const uint64_t blocks = uint64_t(c.blocks_x) * c.blocks_y;
-    constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    c.blocks = Buffer::create(context, blocks * sizeof(shaders::HybridBlock), storage, MemoryUse::device, "hybrid blocks");
-    c.cuts = Buffer::create(context, blocks * c.cut_size * sizeof(uint32_t), storage, MemoryUse::device, "hybrid cuts");
-    return c;
+    HybridCutRequirements needs;
+    needs.blocks_x = (width + options.block_size - 1) / options.block_size;
+    needs.blocks_y = (height + options.block_size - 1) / options.block_size;
+    needs.cut_size = options.samples_per_pixel;
+    const uint64_t blocks = uint64_t(needs.blocks_x) * needs.blocks_y;
+    needs.blocks_bytes = blocks * sizeof(shaders::HybridBlock);
+    needs.cuts_bytes = blocks * needs.cut_size * sizeof(uint32_t);
+    return needs;
 }
 
-void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbuffer, const GpuBvh& bvh,
-                          const VplTrees& trees, glm::vec3 camera_position, Image& indirect, Buffer& counters,
-                          HybridCuts& cuts, const HybridOptions& options) {
+void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                          const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                          const BufferView& counters, const HybridCutBuffers& cuts, const HybridOptions& options) {
     validate(options);
     check_gbuffer_target("hybrid gi", gbuffer, indirect);
     const uint32_t k = options.block_size;
@@ -62,13 +54,18 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
         cuts.blocks_y != (gbuffer.height() + k - 1) / k) {
         throw Error("hybrid gi: the cut buffers were made for another image size, block size or sample budget");
     }
+    const HybridCutRequirements needs = hybrid_cut_requirements(gbuffer.width(), gbuffer.height(), options);
+    if (cuts.blocks.size < needs.blocks_bytes || cuts.cuts.size < needs.cuts_bytes) {
+        throw Error("hybrid gi: the cut buffers '" + cuts.blocks.name + "' and '" + cuts.cuts.name +
+                    "' are smaller than hybrid_cut_requirements");
+    }
     add_gi_counters_clear(passes, counters, "gi counters clear");
     const glm::vec3 camera = camera_position;
-    const auto& cut_pipeline = context.pipeline<shaders::hybrid_cut::Pipeline>();
+    const auto& cut_pipeline = device.pipeline<shaders::hybrid_cut::Pipeline>();
     passes.add("hybrid cuts",
                gbuffer_uses(gbuffer, {Use::read(trees.sst), Use::read(trees.leaves), Use::write(cuts.blocks),
                                       Use::write(cuts.cuts)}),
-               [&cut_pipeline, &gbuffer, &bvh, &trees, &cuts, camera, options](VkCommandBuffer cmd) {
+               [&cut_pipeline, gbuffer, bvh, trees, cuts, camera, options](VkCommandBuffer cmd) {
                    shaders::hybrid_cut::Bindings b;
                    b.sst_nodes = trees.sst.descriptor();
                    b.sst_leaves = trees.leaves.descriptor();
@@ -88,12 +85,12 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                });
     shaders::hybrid_gi::Spec spec;
     spec.kTraversal = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
-    const auto& gi_pipeline = context.pipeline<shaders::hybrid_gi::Pipeline>(spec);
+    const auto& gi_pipeline = device.pipeline<shaders::hybrid_gi::Pipeline>(spec);
     passes.add("hybrid gi",
                gbuffer_bvh_uses(gbuffer, bvh,
                                 {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks), Use::read(cuts.cuts),
                                  Use::write(indirect), Use::read_write(counters)}),
-               [&gi_pipeline, &gbuffer, &bvh, &trees, &cuts, camera, &indirect, &counters, options](VkCommandBuffer cmd) {
+               [&gi_pipeline, gbuffer, bvh, trees, cuts, camera, indirect, counters, options](VkCommandBuffer cmd) {
                    shaders::hybrid_gi::Bindings b;
                    bind_bvh(b, bvh);
                    bind_gbuffer(b, gbuffer);
@@ -117,7 +114,7 @@ void add_hybrid_gi_passes(Context& context, PassList& passes, GbufferImages& gbu
                    push.min_cos = options.similarity_min_cos;
                    push.max_distance = options.similarity_max_distance;
                    push.mock_cuts = options.mock_cuts ? 1u : 0u;
-                   gi_pipeline.dispatch(cmd, b, push, indirect.width(), indirect.height());
+                   gi_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
                });
 }
 

@@ -2,21 +2,23 @@
 // The counters every sampling method (rtslc, sst, hybrid) increments while it renders indirect
 // light (shaders/include/vplkit/gi_counters.glsl): dropped samples, traversals and the tree
 // levels they descended, dead branches, mock cuts, and invocations a driver cut short.
+// The buffer is the caller's (kGiCountersBytes, storage usage); the runtime's
+// create_gi_counters / read_gi_counters (vplkit/gi_counters_buffer.hpp) allocate and read it.
 
-#include "vplkit/buffer.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
 
 #include <cstdint>
-
-namespace vplkit {
-class Context;
-class PassList;
-}  // namespace vplkit
 
 namespace vplkit::stages {
 
 // The most samples per pixel (sst traversals, rtslc and hybrid cut nodes) any sampler takes:
 // kGiMaxSamplesPerPixel in shaders/include/vplkit/gi_bounds.glsl, which sizes the cut arrays.
 inline constexpr uint32_t kMaxGiSamplesPerPixel = 64;
+
+// Bytes of the counters buffer: one GiCounters record (seven uint32; gi_counters.cpp checks it
+// against the generated struct).
+inline constexpr uint64_t kGiCountersBytes = 7 * sizeof(uint32_t);
 
 struct GiCounts {
     uint32_t dropped_pixels = 0;   // pixels with at least one dropped (non-finite) sample
@@ -31,10 +33,8 @@ struct GiCounts {
     double levels_per_traversal() const { return traversals == 0 ? 0.0 : double(levels) / traversals; }
 };
 
-// A device buffer for the counters.
-Buffer create_gi_counters(Context& context, const char* name = "gi counters");
-// Adds "<name> clear": zeroes the counters.
-void add_gi_counters_clear(PassList& passes, Buffer& counters, const char* pass_name);
-GiCounts read_gi_counters(const Buffer& counters);
+// Adds "<pass_name>": zeroes the kGiCountersBytes counters at the start of `counters` (written,
+// transfer).
+void add_gi_counters_clear(StepList& passes, const BufferView& counters, const char* pass_name);
 
 }  // namespace vplkit::stages

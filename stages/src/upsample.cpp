@@ -1,24 +1,35 @@
 #include "vplkit/stages/upsample.hpp"
 
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/image.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/gbuffer_downsample.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/shaders/upsample_bilateral.hpp"
-#include "vplkit/gbuffer_images.hpp"
 
 #include <cmath>
 #include <string>
 
 namespace vplkit::stages {
 
+static_assert(kUpsampleCountersBytes == sizeof(shaders::UpsampleCounters), "upsample.hpp's size is the generated struct's");
+
 namespace {
 
 std::string size_text(uint32_t width, uint32_t height) { return std::to_string(width) + "x" + std::to_string(height); }
 
-void validate_half_gbuffer(const char* stage, GbufferImages& full, GbufferImages& half) {
+// The formats an indirect image is likely to be given in, by name (for the error message).
+std::string format_text(VkFormat format) {
+    switch (format) {
+        case VK_FORMAT_R32G32B32A32_SFLOAT: return "VK_FORMAT_R32G32B32A32_SFLOAT";
+        case VK_FORMAT_R16G16B16A16_SFLOAT: return "VK_FORMAT_R16G16B16A16_SFLOAT";
+        case VK_FORMAT_R8G8B8A8_UNORM: return "VK_FORMAT_R8G8B8A8_UNORM";
+        case VK_FORMAT_R8G8B8A8_SRGB: return "VK_FORMAT_R8G8B8A8_SRGB";
+        case VK_FORMAT_B8G8R8A8_UNORM: return "VK_FORMAT_B8G8R8A8_UNORM";
+        case VK_FORMAT_B8G8R8A8_SRGB: return "VK_FORMAT_B8G8R8A8_SRGB";
+        default: return "VkFormat(" + std::to_string(int(format)) + ")";
+    }
+}
+
+void validate_half_gbuffer(const char* stage, const GbufferViews& full, const GbufferViews& half) {
     const uint32_t width = half_resolution(full.width());
     const uint32_t height = half_resolution(full.height());
     if (half.width() != width || half.height() != height) {
@@ -28,11 +39,12 @@ void validate_half_gbuffer(const char* stage, GbufferImages& full, GbufferImages
     }
 }
 
-void validate_indirect(Image& image, uint32_t width, uint32_t height, const char* which) {
-    if (image.format() != VK_FORMAT_R32G32B32A32_SFLOAT || (image.usage() & VK_IMAGE_USAGE_STORAGE_BIT) == 0 ||
-        image.width() != width || image.height() != height) {
-        throw Error("upsample: " + std::string(which) + " '" + image.name() + "' (" +
-                    size_text(image.width(), image.height()) + ", " + format_name(image.format()) +
+// A view carries no usage flags: storage usage is the caller's to provide (the validation layer
+// reports it otherwise).
+void validate_indirect(const ImageView& image, uint32_t width, uint32_t height, const char* which) {
+    if (image.format != VK_FORMAT_R32G32B32A32_SFLOAT || image.width != width || image.height != height) {
+        throw Error("upsample: " + std::string(which) + " '" + image.name + "' (" +
+                    size_text(image.width, image.height) + ", " + format_text(image.format) +
                     ") must be RGBA32F storage of the " + which + " G-buffer's size, " + size_text(width, height));
     }
 }
@@ -55,14 +67,14 @@ uint32_t half_resolution(uint32_t full) {
     return uint32_t((uint64_t(full) + 1) / 2);
 }
 
-void add_gbuffer_downsample_pass(Context& context, PassList& passes, GbufferImages& full, GbufferImages& half) {
+void add_gbuffer_downsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half) {
     validate_half_gbuffer("gbuffer downsample", full, half);
-    const auto& pipeline = context.pipeline<shaders::gbuffer_downsample::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::gbuffer_downsample::Pipeline>();
     passes.add("gbuffer downsample",
                {Use::read(full.position), Use::read(full.normal), Use::read(full.geometric_normal),
                 Use::read(full.albedo), Use::read(full.emission), Use::write(half.position), Use::write(half.normal),
                 Use::write(half.geometric_normal), Use::write(half.albedo), Use::write(half.emission)},
-               [&pipeline, &full, &half](VkCommandBuffer cmd) {
+               [&pipeline, full, half](VkCommandBuffer cmd) {
                    shaders::gbuffer_downsample::Bindings b;
                    b.full_position = full.position.descriptor();
                    b.full_normal = full.normal.descriptor();
@@ -87,36 +99,27 @@ UpsampleOptions upsample_options_for_scene(float scene_scale) {
     return options;
 }
 
-Buffer create_upsample_counters(Context& context) {
-    return Buffer::create(context, sizeof(shaders::UpsampleCounters), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                          MemoryUse::device, "upsample counters");
-}
-
-UpsampleCounts read_upsample_counters(const Buffer& counters) {
-    const auto c = counters.download<shaders::UpsampleCounters>(1);
-    return {c[0].fallback_pixels, c[0].empty_pixels};
-}
-
-void add_upsample_pass(Context& context, PassList& passes, GbufferImages& full, GbufferImages& half,
-                       Image& half_indirect, Image& full_indirect, Buffer& counters, const UpsampleOptions& options) {
+void add_upsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half,
+                       const ImageView& half_indirect, const ImageView& full_indirect, const BufferView& counters,
+                       const UpsampleOptions& options) {
     validate_options(options);
     validate_half_gbuffer("upsample", full, half);
     validate_indirect(half_indirect, half.width(), half.height(), "half");
     validate_indirect(full_indirect, full.width(), full.height(), "full");
-    if (counters.size() < sizeof(shaders::UpsampleCounters)) {
-        throw Error("upsample: buffer '" + counters.name() + "' is too small for the counters");
+    if (counters.size < kUpsampleCountersBytes) {
+        throw Error("upsample: buffer '" + counters.name + "' is too small for the counters");
     }
-    passes.add("upsample clear", {Use::transfer_dst(counters)}, [&counters](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, counters.handle(), 0, sizeof(shaders::UpsampleCounters), 0u);
+    passes.add("upsample clear", {Use::transfer_dst(counters)}, [counters](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, counters.buffer, counters.offset, kUpsampleCountersBytes, 0u);
     });
-    const auto& pipeline = context.pipeline<shaders::upsample_bilateral::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::upsample_bilateral::Pipeline>();
     shaders::upsample_bilateral::Push push{};
     push.min_cos = options.min_cos;
     push.max_distance = options.max_distance;
     passes.add("upsample",
                {Use::read(full.position), Use::read(full.normal), Use::read(half.position), Use::read(half.normal),
                 Use::read(half_indirect), Use::write(full_indirect), Use::read_write(counters)},
-               [&pipeline, &full, &half, &half_indirect, &full_indirect, &counters, push](VkCommandBuffer cmd) {
+               [&pipeline, full, half, half_indirect, full_indirect, counters, push](VkCommandBuffer cmd) {
                    shaders::upsample_bilateral::Bindings b;
                    b.full_position = full.position.descriptor();
                    b.full_normal = full.normal.descriptor();
@@ -125,7 +128,7 @@ void add_upsample_pass(Context& context, PassList& passes, GbufferImages& full, 
                    b.half_indirect = half_indirect.descriptor();
                    b.full_indirect = full_indirect.descriptor();
                    b.counters = counters.descriptor();
-                   pipeline.dispatch(cmd, b, push, full_indirect.width(), full_indirect.height());
+                   pipeline.dispatch(cmd, b, push, full_indirect.width, full_indirect.height);
                });
 }
 

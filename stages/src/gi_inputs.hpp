@@ -1,14 +1,13 @@
 #pragma once
 // What every indirect-light pass reads the same way: the G-buffer images and the BVH. Their
 // generated Bindings structs (vplkit/shaders/<name>.hpp) name these bindings alike, so one
-// template fills them for any of the GI shaders; the pass-list uses and the target check are
+// template fills them for any of the GI shaders; the step uses and the target check are
 // shared the same way. Private to the stage sources.
 
-#include "vplkit/bvh_gpu.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/image.hpp"
-#include "vplkit/pass_list.hpp"
-#include "vplkit/gbuffer_images.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/steps.hpp"
 
 #include <string>
 #include <vector>
@@ -17,7 +16,7 @@ namespace vplkit::stages {
 
 // The G-buffer images a GI shader reads (position, normals, albedo), as shader bindings...
 template <typename Bindings>
-void bind_gbuffer(Bindings& b, GbufferImages& gbuffer) {
+void bind_gbuffer(Bindings& b, const GbufferViews& gbuffer) {
     b.gbuffer_position = gbuffer.position.descriptor();
     b.gbuffer_normal = gbuffer.normal.descriptor();
     b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
@@ -25,29 +24,29 @@ void bind_gbuffer(Bindings& b, GbufferImages& gbuffer) {
 }
 
 template <typename Bindings>
-void bind_bvh(Bindings& b, const GpuBvh& bvh) {
+void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
     b.bvh_nodes = bvh.nodes.descriptor();
     b.bvh_triangles = bvh.triangles.descriptor();
 }
 
-// ... and as pass uses, followed by `more`.
-inline std::vector<Use> gbuffer_uses(GbufferImages& gbuffer, std::vector<Use> more) {
+// ... and as step uses, followed by `more`.
+inline std::vector<Use> gbuffer_uses(const GbufferViews& gbuffer, std::vector<Use> more) {
     std::vector<Use> uses = {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal),
                              Use::read(gbuffer.albedo)};
     uses.insert(uses.end(), more.begin(), more.end());
     return uses;
 }
 
-inline std::vector<Use> gbuffer_bvh_uses(GbufferImages& gbuffer, const GpuBvh& bvh, std::vector<Use> more) {
+inline std::vector<Use> gbuffer_bvh_uses(const GbufferViews& gbuffer, const BvhBuffers& bvh, std::vector<Use> more) {
     more.insert(more.begin(), {Use::read(bvh.nodes), Use::read(bvh.triangles)});
     return gbuffer_uses(gbuffer, std::move(more));
 }
 
 // Throws vplkit::Error "<stage>: '<image>' must be RGBA32F and of the G-buffer's size".
-inline void check_gbuffer_target(const char* stage, GbufferImages& gbuffer, const Image& target) {
-    if (target.format() != VK_FORMAT_R32G32B32A32_SFLOAT || target.width() != gbuffer.width() ||
-        target.height() != gbuffer.height()) {
-        throw Error(std::string(stage) + ": '" + target.name() + "' must be RGBA32F and of the G-buffer's size");
+inline void check_gbuffer_target(const char* stage, const GbufferViews& gbuffer, const ImageView& target) {
+    if (target.format != VK_FORMAT_R32G32B32A32_SFLOAT || target.width != gbuffer.width() ||
+        target.height != gbuffer.height()) {
+        throw Error(std::string(stage) + ": '" + target.name + "' must be RGBA32F and of the G-buffer's size");
     }
 }
 

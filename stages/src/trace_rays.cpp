@@ -1,0 +1,67 @@
+// The batch ray-query pass.
+
+#include "vplkit/stages/trace_rays.hpp"
+
+#include "vplkit/error.hpp"
+#include "vplkit/shaders/trace_closest.hpp"
+#include "vplkit/shaders/trace_occlusion.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vplkit::stages {
+
+void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const BufferView& rays,
+                         const BufferView& results, uint32_t ray_count, TraceMode mode) {
+    const char* name = mode == TraceMode::closest_hit ? "trace closest" : "trace occlusion";
+    if (ray_count == 0) {
+        throw Error(std::string(name) + ": no rays");
+    }
+    const uint64_t result_size = mode == TraceMode::closest_hit ? sizeof(shaders::BvhHit) : sizeof(uint32_t);
+    if (rays.size < uint64_t(ray_count) * sizeof(shaders::BvhRay)) {
+        throw Error(std::string(name) + ": buffer '" + rays.name + "' holds fewer than " + std::to_string(ray_count) +
+                    " rays");
+    }
+    if (results.size < uint64_t(ray_count) * result_size) {
+        throw Error(std::string(name) + ": buffer '" + results.name + "' holds fewer than " +
+                    std::to_string(ray_count) + " results");
+    }
+    const uint64_t group_size = mode == TraceMode::closest_hit ? shaders::trace_closest::kWorkgroupSize[0]
+                                                               : shaders::trace_occlusion::kWorkgroupSize[0];
+    const uint64_t max_rays = group_size * device.limits().max_workgroup_count[0];
+    if (ray_count > max_rays) {
+        throw Error(std::string(name) + ": " + std::to_string(ray_count) + " rays, one dispatch holds at most " +
+                    std::to_string(max_rays) + " on this device");
+    }
+    // Views by value: the caller's may be temporaries (a GpuBvh or Buffer converted at the call).
+    const BufferView nodes = bvh.nodes;
+    const BufferView triangles = bvh.triangles;
+    std::vector<Use> uses = {Use::read(nodes), Use::read(triangles), Use::read(rays), Use::write(results)};
+    if (mode == TraceMode::closest_hit) {
+        const auto& pipeline = device.pipeline<shaders::trace_closest::Pipeline>();
+        passes.add(name, std::move(uses), [&pipeline, nodes, triangles, rays, results, ray_count](VkCommandBuffer cmd) {
+            shaders::trace_closest::Bindings bindings;
+            bindings.bvh_nodes = nodes.descriptor();
+            bindings.bvh_triangles = triangles.descriptor();
+            bindings.rays = rays.descriptor();
+            bindings.hits = results.descriptor();
+            shaders::trace_closest::Push push{};
+            push.ray_count = ray_count;
+            pipeline.dispatch(cmd, bindings, push, ray_count);
+        });
+    } else {
+        const auto& pipeline = device.pipeline<shaders::trace_occlusion::Pipeline>();
+        passes.add(name, std::move(uses), [&pipeline, nodes, triangles, rays, results, ray_count](VkCommandBuffer cmd) {
+            shaders::trace_occlusion::Bindings bindings;
+            bindings.bvh_nodes = nodes.descriptor();
+            bindings.bvh_triangles = triangles.descriptor();
+            bindings.rays = rays.descriptor();
+            bindings.occlusion = results.descriptor();
+            shaders::trace_occlusion::Push push{};
+            push.ray_count = ray_count;
+            pipeline.dispatch(cmd, bindings, push, ray_count);
+        });
+    }
+}
+
+}  // namespace vplkit::stages
