@@ -7,8 +7,10 @@
 #include "instance.hpp"
 #include "validation_sink.hpp"
 #include "vplkit/barriers.hpp"
+#include "vplkit/buffer.hpp"
 
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -172,6 +174,11 @@ void Context::init(const ContextOptions& options) {
 }
 
 Context::~Context() { destroy(); }
+
+stages::ScratchBuffer Context::create_scratch_buffer(VkDeviceSize bytes, const std::string& name) {
+  auto buffer = std::make_shared<Buffer>(Buffer::create(*this, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, name));
+  return {*buffer, buffer};
+}
 
 void Context::destroy() {
   if (device_) {

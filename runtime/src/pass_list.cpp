@@ -62,7 +62,7 @@ void PassList::run(Context& context) {
 
   barriers_ = std::move(barriers);
   const std::vector<double> durations = queries.pair_durations_ms();
-  for (size_t i = 0; i < size(); ++i) timings_.push_back({steps()[i].name, durations.at(i)});
+  for (size_t i = 0; i < size(); ++i) timings_.push_back({steps()[i].name, durations.at(i), steps()[i].tag});
 }
 
 }  // namespace vplkit

@@ -185,7 +185,7 @@ int run_bench(Args& args) {
         sort_options.algorithm = algorithm;
         stages::KeyValueSorter sorter(*context, count, sort_options);
         PassList passes("bench sort");
-        stages::add_vpl_key_passes(*context, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
+        stages::add_vpl_key_passes(*context, passes, {vpl_buffer, bounds, keys, values}, count);
         sorter.add_pass(passes, keys, values, count);
 
         // The key passes rewrite the keys, so every run sorts unsorted input.

@@ -111,7 +111,7 @@ int run_bench_tree(Args& args) {
 
         stages::KeyValueSorter sorter(*context, count, sort_options);
         PassList passes("bench tree");
-        stages::add_vpl_key_passes(*context, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
+        stages::add_vpl_key_passes(*context, passes, {vpl_buffer, bounds, keys, values}, count);
         sorter.add_pass(passes, keys, values, count);
         stages::add_gather_leaves_pass(*context, passes, vpl_buffer, values, leaf_buffer, count);
         stages::add_light_tree_passes(*context, passes, leaf_buffer, light_tree, count, tree_options);

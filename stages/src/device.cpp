@@ -30,6 +30,7 @@ Limits Limits::query(VkPhysicalDevice physical_device) {
         limits.max_workgroup_size[i] = l.maxComputeWorkGroupSize[i];
         limits.max_workgroup_count[i] = l.maxComputeWorkGroupCount[i];
     }
+    limits.cpu = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
     return limits;
 }
 
@@ -44,6 +45,12 @@ void Device::destroy_pipelines() {
     std::lock_guard lock(mutex_);
     for (auto& [key, entry] : pipelines_) entry.destroy(entry.pipeline);
     pipelines_.clear();
+}
+
+ScratchBuffer Device::create_scratch_buffer(VkDeviceSize bytes, const std::string& name) {
+    throw Error("vplkit: '" + name + "' needs " + std::to_string(bytes) +
+                " bytes of scratch memory, and this stages::Device has no allocator: pass the buffers to the stage "
+                "or override Device::create_scratch_buffer");
 }
 
 void* Device::cached_pipeline(std::type_index type, std::string key, const std::function<VkResult(void**)>& create,

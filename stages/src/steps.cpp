@@ -201,7 +201,7 @@ StepList& StepList::add(std::string name, std::vector<Use> uses, Record record) 
     if (!record) throw Error("vplkit: pass '" + name + "' has no recording function");
     // Validate now, where the caller's mistake is, rather than at recording.
     merge_uses(uses, name);
-    steps_.push_back({std::move(name), std::move(uses), std::move(record)});
+    steps_.push_back({std::move(name), std::move(uses), std::move(record), tag_});
     return *this;
 }
 

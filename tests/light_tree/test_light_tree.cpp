@@ -420,10 +420,10 @@ TEST_CASE("light tree: the dispatch schedule") {
 }
 
 TEST_CASE("light tree: the default group size follows the device type") {
-    vplkit::DeviceInfo device;
-    device.type = vplkit::DeviceType::cpu;
+    vplkit::stages::Limits device;
+    device.cpu = true;
     CHECK(vplkit::stages::light_tree_default_group_levels(device) == 1);
-    device.type = vplkit::DeviceType::discrete_gpu;
+    device.cpu = false;
     CHECK(vplkit::stages::light_tree_default_group_levels(device) == 4);
     // Group size 0 (the default) builds the same tree as an explicit one.
     const std::vector<RefVpl> vpls = random_vpls(300, 17);

@@ -75,7 +75,7 @@ GpuKeys run_keys(const std::vector<Vpl>& vpls, bool sort = false) {
     vpl_buffer.upload(vpls);
 
     vplkit::PassList passes("vpl keys test");
-    vplkit::stages::add_vpl_key_passes(ctx, passes, {&vpl_buffer, &bounds, &keys, &values}, count);
+    vplkit::stages::add_vpl_key_passes(ctx, passes, {vpl_buffer, bounds, keys, values}, count);
     if (sort) {
         vplkit::stages::add_bitonic_sort_pass(ctx, passes, keys, values, count);
     }

@@ -94,6 +94,8 @@ class Context : public stages::Device {
   void wait_idle() const;
 
   // pipeline<P>(spec) and limits(): stages::Device's; pipelines live as long as the context.
+  // Scratch memory for stage objects: a device-local Buffer, freed with the last owner.
+  stages::ScratchBuffer create_scratch_buffer(VkDeviceSize bytes, const std::string& name) override;
 
  private:
   Context() = default;

@@ -32,6 +32,7 @@ class Context;
 struct PassTiming {
   std::string name;
   double gpu_ms = 0.0;  // GPU time from the end of everything before the pass to its own end
+  uint32_t tag = 0;     // the pass's Step::tag
 };
 
 class PassList : public StepList {

@@ -45,7 +45,7 @@ VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions
 
 void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, bool build_light_tree, bool build_sst) {
     Scratch& s = *scratch_;
-    add_vpl_key_passes(*context_, passes, {&vpls, &s.bounds, &s.keys, &s.values}, count);
+    add_vpl_key_passes(*context_, passes, {vpls, s.bounds, s.keys, s.values}, count);
     s.sorter.add_pass(passes, s.keys, s.values, count);
     add_gather_leaves_pass(*context_, passes, vpls, s.values, leaves, count);
     if (build_light_tree) add_light_tree_passes(*context_, passes, leaves, light_tree, count, options_.light_tree);

@@ -13,6 +13,7 @@
 // pushes its descriptors), plus scalarBlockLayout (see README: "Use it in your renderer").
 
 #include "vplkit/error.hpp"
+#include "vplkit/stages/views.hpp"
 
 #include <vulkan/vulkan.h>
 
@@ -21,6 +22,7 @@
 #include <cstring>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <type_traits>
@@ -38,8 +40,17 @@ struct Limits {
     std::array<uint32_t, 3> max_workgroup_size{};
     uint32_t max_workgroup_invocations = 0;
     std::array<uint32_t, 3> max_workgroup_count{};
+    // A CPU implementation (lavapipe): some stages pick other defaults there (measured).
+    bool cpu = false;
 
     static Limits query(VkPhysicalDevice physical_device);
+};
+
+// Scratch memory a stage object keeps for its lifetime (a sort's ping-pong copy of the pairs):
+// the view, and whatever keeps the memory alive (released with the last copy).
+struct ScratchBuffer {
+    BufferView view;
+    std::shared_ptr<void> owner;
 };
 
 class Device {
@@ -63,6 +74,12 @@ public:
 
     // Destroys every pipeline created so far (before the VkDevice goes).
     void destroy_pipelines();
+
+    // Device-local storage memory for stage objects that need scratch space and were not given
+    // buffers of their own (RadixSorter). This base class has no allocator and throws Error
+    // naming the size: pass the buffers explicitly, or override this with your allocator
+    // (vplkit::Context does).
+    virtual ScratchBuffer create_scratch_buffer(VkDeviceSize bytes, const std::string& name);
 
 protected:
     void attach(VkDevice device, const Limits& limits, VkPipelineCache cache);

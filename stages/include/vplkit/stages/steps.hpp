@@ -125,6 +125,7 @@ struct Step {
     std::string name;
     std::vector<Use> uses;
     Record record;
+    uint32_t tag = 0;  // the caller's label for the step's group (StepList::set_tag); 0 = none
 };
 
 class StepList {
@@ -149,10 +150,18 @@ public:
     std::vector<ResourceUse> entry() const;
     std::vector<ResourceUse> exit() const;
 
+    // Tags every step added from now on (a frame graph's id for the stage that adds them, so that
+    // steps are grouped by a value rather than by their names). 0 = untagged, the default.
+    void set_tag(uint32_t tag) { tag_ = tag; }
+    uint32_t tag() const { return tag_; }
+
     const std::vector<Step>& steps() const { return steps_; }
     size_t size() const { return steps_.size(); }
     bool empty() const { return steps_.empty(); }
-    virtual void clear() { steps_.clear(); }
+    virtual void clear() {
+        steps_.clear();
+        tag_ = 0;
+    }
 
     // Hooks around each step, for a recorder that labels or times them (PassList does both).
     struct Hooks {
@@ -163,6 +172,7 @@ public:
 
 private:
     std::vector<Step> steps_;
+    uint32_t tag_ = 0;
 };
 
 }  // namespace vplkit

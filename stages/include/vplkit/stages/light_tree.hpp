@@ -10,14 +10,10 @@
 // box_max and vpl_count (real VPLs below it). Bogus subtrees have vpl_count 0, intensity 0 and
 // the empty box [+FLT_MAX, -FLT_MAX]; no field is ever Inf or NaN for finite input.
 
-#include <cstdint>
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-struct DeviceInfo;
-}  // namespace vplkit
+#include <cstdint>
 
 namespace vplkit::stages {
 
@@ -43,7 +39,7 @@ struct LightTreeOptions {
 // leaves do groups of 2-3 win (0.33 vs 0.45 ms).
 // Other devices: 4, not measured yet: on a GPU each barrier drains the whole device while
 // the re-reads of a source level mostly hit the cache; seed 003 sec. 4 builds in groups.
-uint32_t light_tree_default_group_levels(const DeviceInfo& device);
+uint32_t light_tree_default_group_levels(const Limits& limits);
 
 // Leaves of the tree over `count` VPLs: stages::leaf_count (leaves.hpp), the gather's padding.
 uint32_t light_tree_leaf_count(uint32_t count);
@@ -58,7 +54,7 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels);
 // first `count` real; `nodes` receives light_tree_node_count(count) LightTreeNodes.
 // Throws vplkit::Error for count 0 or above kLightTreeMaxLeaves, bad options, buffers too small,
 // or a tree the device cannot dispatch or address in one storage buffer.
-void add_light_tree_passes(Context& context, PassList& passes, const Buffer& leaves, Buffer& nodes, uint32_t count,
+void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, uint32_t count,
                            const LightTreeOptions& options = {});
 
 }  // namespace vplkit::stages

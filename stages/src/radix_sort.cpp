@@ -1,9 +1,9 @@
 #include "vplkit/stages/radix_sort.hpp"
 
 #include "vplkit/barriers.hpp"
-#include "vplkit/context.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/radix_copy.hpp"
 #include "vplkit/shaders/radix_histogram.hpp"
 #include "vplkit/shaders/radix_scan_chunks.hpp"
@@ -33,8 +33,7 @@ uint32_t scan_shared_bytes(uint32_t workgroup_size) {
     return 4 * (workgroup_size + uint32_t(ceil_div(workgroup_size, 16)) + 1);
 }
 
-void check_options(const Context& context, const RadixSortOptions& options) {
-    const DeviceInfo& info = context.info();
+void check_options(const Limits& info, const RadixSortOptions& options) {
     if (options.key_bits < 1 || options.key_bits > 64) {
         throw Error("radix sort: key_bits " + std::to_string(options.key_bits) + " is outside 1..64");
     }
@@ -61,6 +60,66 @@ void check_options(const Context& context, const RadixSortOptions& options) {
     }
 }
 
+uint32_t scan_workgroup_size(const Limits& limits) { return std::min(kScanWorkgroupSize, limits.max_workgroup_invocations); }
+
+uint32_t tile_count(const RadixSortOptions& options, uint32_t count) {
+    return uint32_t(ceil_div(count, uint64_t(options.workgroup_size) * options.items_per_thread));
+}
+
+struct ScanLevel {
+    VkDeviceSize offset = 0;
+    uint32_t length = 0;
+};
+
+// Where each level of the digit-count prefix-sum hierarchy lives in the counts buffer for `count`
+// pairs: level 0 holds the tile counts, level i + 1 one sum per chunk of level i, the last fits one chunk.
+std::vector<ScanLevel> scan_levels(const Limits& limits, const RadixSortOptions& options, uint32_t count) {
+    const uint64_t chunk = uint64_t(scan_workgroup_size(limits)) * kScanItemsPerThread;
+    // Descriptor offsets must be multiples of this (a power of two, at most 256 by the spec).
+    const VkDeviceSize alignment = std::max<VkDeviceSize>(limits.min_storage_buffer_offset_alignment, 4);
+    std::vector<ScanLevel> levels;
+    uint64_t length = uint64_t(tile_count(options, count)) << options.digit_bits;
+    VkDeviceSize offset = 0;
+    while (true) {
+        levels.push_back({offset, uint32_t(length)});
+        if (length <= chunk) {
+            return levels;
+        }
+        offset = ceil_div(offset + length * sizeof(uint32_t), alignment) * alignment;
+        length = ceil_div(length, chunk);
+    }
+}
+
+// The options as the sorter uses them (items per thread resolved), checked against the device.
+RadixSortOptions resolved_options(const Limits& limits, uint32_t max_count, const RadixSortOptions& options) {
+    RadixSortOptions resolved = options;
+    resolved.items_per_thread = radix_sort_items_per_thread(limits, options);
+    check_options(limits, resolved);
+    if (max_count < 1) {
+        throw Error("radix sort: max_count must be at least 1");
+    }
+    const uint64_t key_bytes = uint64_t(max_count) * sizeof(uint64_t);
+    if (key_bytes > limits.max_storage_buffer_range) {
+        throw Error("radix sort: " + std::to_string(max_count) + " keys take " + std::to_string(key_bytes) +
+                    " bytes, more than the device's storage-buffer range of " +
+                    std::to_string(limits.max_storage_buffer_range));
+    }
+    // The largest dispatches: one workgroup per tile (histogram, scatter). The scans have a
+    // workgroup per 1024 counts, of which a tile has 2^digit_bits, and the copy loops.
+    const uint64_t tiles = tile_count(resolved, max_count);
+    if (tiles > limits.max_workgroup_count[0]) {
+        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " + std::to_string(tiles) +
+                    " workgroups in one dispatch; the device allows " + std::to_string(limits.max_workgroup_count[0]) +
+                    " (raise the workgroup size or items per thread)");
+    }
+    if (VkDeviceSize(scan_levels(limits, resolved, max_count).front().length) * sizeof(uint32_t) >
+        limits.max_storage_buffer_range) {
+        throw Error("radix sort: the digit counts of " + std::to_string(max_count) +
+                    " pairs exceed the device's storage-buffer range (raise items per thread)");
+    }
+    return resolved;
+}
+
 }  // namespace
 
 uint32_t radix_sort_shared_bytes(const RadixSortOptions& options) {
@@ -72,52 +131,54 @@ uint32_t radix_sort_shared_bytes(const RadixSortOptions& options) {
     return uint32_t(std::min<uint64_t>(bytes, UINT32_MAX));
 }
 
-uint32_t radix_sort_items_per_thread(const DeviceInfo& device, const RadixSortOptions& options) {
+uint32_t radix_sort_items_per_thread(const Limits& limits, const RadixSortOptions& options) {
     if (options.items_per_thread != 0) {
         return options.items_per_thread;
     }
-    return device.type == DeviceType::cpu ? 128 : 16;
+    return limits.cpu ? 128 : 16;
 }
 
 uint32_t radix_sort_pass_count(const RadixSortOptions& options) {
     return uint32_t(ceil_div(options.key_bits, options.digit_bits));
 }
 
-RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOptions& options)
-    : context_(&context), options_(options), max_count_(max_count) {
-    options_.items_per_thread = radix_sort_items_per_thread(context.info(), options);
-    check_options(context, options_);
-    if (max_count < 1) {
-        throw Error("radix sort: max_count must be at least 1");
-    }
-    const DeviceInfo& info = context.info();
-    const uint64_t key_bytes = uint64_t(max_count) * sizeof(uint64_t);
-    if (key_bytes > info.max_storage_buffer_range) {
-        throw Error("radix sort: " + std::to_string(max_count) + " keys take " + std::to_string(key_bytes) +
-                    " bytes, more than the device's storage-buffer range of " +
-                    std::to_string(info.max_storage_buffer_range));
-    }
-    // The largest dispatches: one workgroup per tile (histogram, scatter). The scans have a
-    // workgroup per 1024 counts, of which a tile has 2^digit_bits, and the copy loops.
-    const uint64_t tiles = tile_count(max_count);
-    if (tiles > info.max_workgroup_count[0]) {
-        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " + std::to_string(tiles) +
-                    " workgroups in one dispatch; the device allows " + std::to_string(info.max_workgroup_count[0]) +
-                    " (raise the workgroup size or items per thread)");
-    }
+RadixSortRequirements radix_sort_requirements(const Limits& limits, uint32_t max_count,
+                                              const RadixSortOptions& options) {
+    const RadixSortOptions resolved = resolved_options(limits, max_count, options);
+    const ScanLevel top = scan_levels(limits, resolved, max_count).back();
+    return {uint64_t(max_count) * sizeof(uint64_t), uint64_t(max_count) * sizeof(uint32_t),
+            top.offset + VkDeviceSize(top.length) * sizeof(uint32_t)};
+}
 
-    const std::vector<ScanLevel> levels = scan_levels(max_count);
-    const VkDeviceSize count_bytes = levels.back().offset + VkDeviceSize(levels.back().length) * sizeof(uint32_t);
-    if (VkDeviceSize(levels.front().length) * sizeof(uint32_t) > info.max_storage_buffer_range) {
-        throw Error("radix sort: the digit counts of " + std::to_string(max_count) +
-                    " pairs exceed the device's storage-buffer range (raise items per thread)");
-    }
-    const VkBufferUsageFlags usage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    scratch_keys_ = Buffer::create(context, key_bytes, usage, MemoryUse::device, "radix sort scratch keys");
-    scratch_values_ = Buffer::create(context, uint64_t(max_count) * sizeof(uint32_t), usage, MemoryUse::device,
-                                     "radix sort scratch values");
-    counts_ = Buffer::create(context, count_bytes, usage, MemoryUse::device, "radix sort digit counts");
+RadixSorter::RadixSorter(Device& device, uint32_t max_count, const RadixSortOptions& options)
+    : limits_(device.limits()), max_count_(max_count) {
+    const RadixSortRequirements needs = radix_sort_requirements(limits_, max_count, options);
+    ScratchBuffer keys = device.create_scratch_buffer(needs.key_bytes, "radix sort scratch keys");
+    ScratchBuffer values = device.create_scratch_buffer(needs.value_bytes, "radix sort scratch values");
+    ScratchBuffer counts = device.create_scratch_buffer(needs.count_bytes, "radix sort digit counts");
+    scratch_ = {keys.view, values.view, counts.view};
+    scratch_owners_ = {keys.owner, values.owner, counts.owner};
+    init(device, options);
+}
 
+RadixSorter::RadixSorter(Device& device, uint32_t max_count, const RadixSortScratch& scratch,
+                         const RadixSortOptions& options)
+    : limits_(device.limits()), max_count_(max_count), scratch_(scratch) {
+    const RadixSortRequirements needs = radix_sort_requirements(limits_, max_count, options);
+    auto check_size = [](const BufferView& buffer, VkDeviceSize bytes, const char* what) {
+        if (!buffer || buffer.size < bytes) {
+            throw Error(std::string("radix sort: scratch ") + what + " '" + buffer.name + "' holds " +
+                        std::to_string(buffer.size) + " bytes; it needs " + std::to_string(bytes));
+        }
+    };
+    check_size(scratch.keys, needs.key_bytes, "keys");
+    check_size(scratch.values, needs.value_bytes, "values");
+    check_size(scratch.counts, needs.count_bytes, "counts");
+    init(device, options);
+}
+
+void RadixSorter::init(Device& device, const RadixSortOptions& options) {
+    options_ = resolved_options(limits_, max_count_, options);
     shaders::radix_histogram::Spec histogram_spec;
     histogram_spec.local_size_x = options.workgroup_size;
     histogram_spec.items_per_thread = options_.items_per_thread;
@@ -132,49 +193,26 @@ RadixSorter::RadixSorter(Context& context, uint32_t max_count, const RadixSortOp
     chunks_spec.local_size_x = scan_workgroup_size();
     shaders::radix_copy::Spec copy_spec;
     copy_spec.local_size_x = scan_workgroup_size();
-    histogram_ = &context.pipeline<shaders::radix_histogram::Pipeline>(histogram_spec);
-    scan_reduce_ = &context.pipeline<shaders::radix_scan_reduce::Pipeline>(reduce_spec);
-    scan_chunks_ = &context.pipeline<shaders::radix_scan_chunks::Pipeline>(chunks_spec);
-    scatter_ = &context.pipeline<shaders::radix_scatter::Pipeline>(scatter_spec);
-    copy_ = &context.pipeline<shaders::radix_copy::Pipeline>(copy_spec);
+    histogram_ = &device.pipeline<shaders::radix_histogram::Pipeline>(histogram_spec);
+    scan_reduce_ = &device.pipeline<shaders::radix_scan_reduce::Pipeline>(reduce_spec);
+    scan_chunks_ = &device.pipeline<shaders::radix_scan_chunks::Pipeline>(chunks_spec);
+    scatter_ = &device.pipeline<shaders::radix_scatter::Pipeline>(scatter_spec);
+    copy_ = &device.pipeline<shaders::radix_copy::Pipeline>(copy_spec);
 }
 
-uint32_t RadixSorter::scan_workgroup_size() const {
-    return std::min(kScanWorkgroupSize, context_->info().max_workgroup_invocations);
-}
-
-uint32_t RadixSorter::tile_count(uint32_t count) const {
-    return uint32_t(ceil_div(count, uint64_t(options_.workgroup_size) * options_.items_per_thread));
-}
-
-std::vector<RadixSorter::ScanLevel> RadixSorter::scan_levels(uint32_t count) const {
-    const uint64_t chunk = uint64_t(scan_workgroup_size()) * kScanItemsPerThread;
-    // Descriptor offsets must be multiples of this (a power of two, at most 256 by the spec).
-    const VkDeviceSize alignment = std::max<VkDeviceSize>(context_->info().min_storage_buffer_offset_alignment, 4);
-    std::vector<ScanLevel> levels;
-    uint64_t length = uint64_t(tile_count(count)) << options_.digit_bits;
-    VkDeviceSize offset = 0;
-    while (true) {
-        levels.push_back({offset, uint32_t(length)});
-        if (length <= chunk) {
-            return levels;
-        }
-        offset = ceil_div(offset + length * sizeof(uint32_t), alignment) * alignment;
-        length = ceil_div(length, chunk);
-    }
-}
+uint32_t RadixSorter::scan_workgroup_size() const { return stages::scan_workgroup_size(limits_); }
 
 uint32_t RadixSorter::dispatch_count(uint32_t count) const {
     if (count <= 1) {
         return 0;
     }
     const uint32_t passes = radix_sort_pass_count(options_);
-    const uint32_t reduce_levels = uint32_t(scan_levels(count).size()) - 1;
+    const uint32_t reduce_levels = uint32_t(scan_levels(limits_, options_, count).size()) - 1;
     // Per pass: histogram, a reduce and a chunk scan per lower level, the top scan, the scatter.
     return passes * (3 + 2 * reduce_levels) + passes % 2;
 }
 
-void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& values, uint32_t count) const {
+void RadixSorter::record(VkCommandBuffer cmd, const BufferView& keys, const BufferView& values, uint32_t count) const {
     if (count <= 1) {
         return;  // already sorted
     }
@@ -182,23 +220,23 @@ void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& 
         throw Error("radix sort: " + std::to_string(count) + " pairs, but the sorter was made for at most " +
                     std::to_string(max_count_));
     }
-    if (keys.size() < uint64_t(count) * sizeof(uint64_t) || values.size() < uint64_t(count) * sizeof(uint32_t)) {
-        throw Error("radix sort: buffers '" + keys.name() + "' / '" + values.name() + "' are too small for " +
+    if (keys.size < uint64_t(count) * sizeof(uint64_t) || values.size < uint64_t(count) * sizeof(uint32_t)) {
+        throw Error("radix sort: buffers '" + keys.name + "' / '" + values.name + "' are too small for " +
                     std::to_string(count) + " pairs");
     }
     const uint32_t size = options_.workgroup_size;
     const uint32_t scan_size = scan_workgroup_size();
-    const uint32_t tiles = tile_count(count);
-    const std::vector<ScanLevel> levels = scan_levels(count);
+    const uint32_t tiles = tile_count(options_, count);
+    const std::vector<ScanLevel> levels = scan_levels(limits_, options_, count);
     auto level_descriptor = [this](const ScanLevel& level) {
-        return counts_.descriptor(level.offset, VkDeviceSize(level.length) * sizeof(uint32_t));
+        return scratch_.counts.descriptor(level.offset, VkDeviceSize(level.length) * sizeof(uint32_t));
     };
     // Exactly the first `count` pairs: a descriptor no larger than the data keeps the sort's
     // reads and writes (and what synchronization validation tracks) to the pairs it sorts.
     const VkDescriptorBufferInfo pairs[2][2] = {
         {keys.descriptor(0, uint64_t(count) * sizeof(uint64_t)), values.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
-        {scratch_keys_.descriptor(0, uint64_t(count) * sizeof(uint64_t)),
-         scratch_values_.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
+        {scratch_.keys.descriptor(0, uint64_t(count) * sizeof(uint64_t)),
+         scratch_.values.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
     };
 
     const uint32_t passes = radix_sort_pass_count(options_);
@@ -264,20 +302,20 @@ void RadixSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& 
         copy_bindings.values = {pairs[1][1], pairs[0][1]};
         shaders::radix_copy::Push copy_push{};
         copy_push.count = count;
-        const uint64_t max_threads = uint64_t(context_->info().max_workgroup_count[0]) * scan_size;
+        const uint64_t max_threads = uint64_t(limits_.max_workgroup_count[0]) * scan_size;
         copy_->dispatch(cmd, copy_bindings, copy_push, uint32_t(std::min<uint64_t>(count, max_threads)));
     }
 }
 
-void RadixSorter::add_pass(PassList& passes, Buffer& keys, Buffer& values, uint32_t count, std::string name) {
+void RadixSorter::add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name) {
     if (count > max_count_) {  // fail now, not in the middle of recording
         throw Error("radix sort: " + std::to_string(count) + " pairs, but the sorter was made for at most " +
                     std::to_string(max_count_));
     }
     passes.add(std::move(name),
-               {Use::read_write(keys), Use::read_write(values), Use::read_write(scratch_keys_),
-                Use::read_write(scratch_values_), Use::read_write(counts_)},
-               [this, &keys, &values, count](VkCommandBuffer cmd) { record(cmd, keys, values, count); });
+               {Use::read_write(keys), Use::read_write(values), Use::read_write(scratch_.keys),
+                Use::read_write(scratch_.values), Use::read_write(scratch_.counts)},
+               [this, keys, values, count](VkCommandBuffer cmd) { record(cmd, keys, values, count); });
 }
 
 }  // namespace vplkit::stages

@@ -1,32 +1,29 @@
 #include "vplkit/stages/leaves.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/gather_leaves.hpp"
 
 #include <string>
 
 namespace vplkit::stages {
 
-void add_gather_leaves_pass(Context& context, PassList& passes, const Buffer& vpls, const Buffer& sorted_values,
-                            Buffer& leaves, uint32_t count) {
+void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& vpls, const BufferView& sorted_values,
+                            const BufferView& leaves, uint32_t count) {
     if (count == 0) {
         throw Error("gather leaves: no VPLs (a tree needs at least one)");
     }
     const uint32_t leaves_needed = leaf_count(count);
-    if (leaves.size() < uint64_t(leaves_needed) * sizeof(shaders::Vpl)) {
-        throw Error("gather leaves: buffer '" + leaves.name() + "' holds fewer than the " +
+    if (leaves.size < uint64_t(leaves_needed) * sizeof(shaders::Vpl)) {
+        throw Error("gather leaves: buffer '" + leaves.name + "' holds fewer than the " +
                     std::to_string(leaves_needed) + " leaves of " + std::to_string(count) + " VPLs");
     }
-    if (vpls.size() < uint64_t(count) * sizeof(shaders::Vpl) || sorted_values.size() < uint64_t(count) * sizeof(uint32_t)) {
-        throw Error("gather leaves: buffers '" + vpls.name() + "' / '" + sorted_values.name() + "' are smaller than " +
+    if (vpls.size < uint64_t(count) * sizeof(shaders::Vpl) || sorted_values.size < uint64_t(count) * sizeof(uint32_t)) {
+        throw Error("gather leaves: buffers '" + vpls.name + "' / '" + sorted_values.name + "' are smaller than " +
                     std::to_string(count) + " VPLs");
     }
-    const auto& pipeline = context.pipeline<shaders::gather_leaves::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::gather_leaves::Pipeline>();
     passes.add("gather leaves", {Use::read(vpls), Use::read(sorted_values), Use::write(leaves)},
-               [&pipeline, &vpls, &sorted_values, &leaves, count, leaves_needed](VkCommandBuffer cmd) {
+               [&pipeline, vpls, sorted_values, leaves, count, leaves_needed](VkCommandBuffer cmd) {
                    shaders::gather_leaves::Bindings bindings;
                    bindings.vpls = vpls.descriptor();
                    bindings.order = sorted_values.descriptor();

@@ -3,13 +3,10 @@
 // vpls[sorted_values[i]] for i < count, then all-zero bogus leaves up to leaf_count(count).
 
 #include <bit>
-#include <cstdint>
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-}  // namespace vplkit
+#include <cstdint>
 
 namespace vplkit::stages {
 
@@ -18,7 +15,7 @@ inline uint32_t leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_c
 
 // Adds the pass "gather leaves". `leaves` holds leaf_count(count) Vpls; `sorted_values` holds
 // the count VPL indices in key order (the values the key sort moved).
-void add_gather_leaves_pass(Context& context, PassList& passes, const Buffer& vpls, const Buffer& sorted_values,
-                            Buffer& leaves, uint32_t count);
+void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& vpls, const BufferView& sorted_values,
+                            const BufferView& leaves, uint32_t count);
 
 }  // namespace vplkit::stages

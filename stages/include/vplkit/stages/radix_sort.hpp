@@ -14,19 +14,15 @@
 // number of passes radix_copy.comp moves them back, so the result always ends in the caller's.
 // No shader uses subgroup operations: nothing depends on the subgroup size.
 
-#include "vplkit/buffer.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
-
-namespace vplkit {
-class Context;
-class PassList;
-struct DeviceInfo;
-}  // namespace vplkit
 
 namespace vplkit::shaders {
 namespace radix_histogram { struct Pipeline; }
@@ -60,7 +56,7 @@ struct RadixSortOptions {
 };
 
 // items_per_thread as the sorter uses it on this device (resolves 0).
-uint32_t radix_sort_items_per_thread(const DeviceInfo& device, const RadixSortOptions& options);
+uint32_t radix_sort_items_per_thread(const Limits& limits, const RadixSortOptions& options);
 
 // Shared memory (bytes) the scatter shader of these options needs (the largest of the sort's shaders).
 uint32_t radix_sort_shared_bytes(const RadixSortOptions& options);
@@ -68,14 +64,37 @@ uint32_t radix_sort_shared_bytes(const RadixSortOptions& options);
 // Digit passes for these options: ceil(key_bits / digit_bits).
 uint32_t radix_sort_pass_count(const RadixSortOptions& options);
 
-// Owns the scratch buffers (a copy of the pairs, and the digit counts with their prefix-sum
-// hierarchy) for sorting up to `max_count` pairs, and the pipelines. Reusable for any number of
-// sorts of up to max_count pairs, one at a time (they share the scratch buffers).
+// The scratch memory of a sort of up to max_count pairs: a copy of the pairs, and the digit
+// counts with their prefix-sum hierarchy (device-local storage buffers).
+struct RadixSortScratch {
+    BufferView keys;    // uint64_t[max_count]
+    BufferView values;  // uint32_t[max_count]
+    BufferView counts;  // radix_sort_requirements().count_bytes
+};
+
+struct RadixSortRequirements {
+    VkDeviceSize key_bytes = 0;
+    VkDeviceSize value_bytes = 0;
+    VkDeviceSize count_bytes = 0;
+};
+
+// The scratch a RadixSorter for up to `max_count` pairs needs on a device with these limits.
+// Throws vplkit::Error as the RadixSorter constructor does.
+RadixSortRequirements radix_sort_requirements(const Limits& limits, uint32_t max_count,
+                                              const RadixSortOptions& options = {});
+
+// Holds the scratch buffers for sorting up to `max_count` pairs, and the pipelines. Reusable for
+// any number of sorts of up to max_count pairs, one at a time (they share the scratch buffers).
 class RadixSorter {
  public:
-    // Creates the pipelines and scratch buffers. Throws vplkit::Error for bad options (naming the
-    // option and the device limit it breaks) or a max_count the device cannot sort in one go.
-    RadixSorter(Context& context, uint32_t max_count, const RadixSortOptions& options = {});
+    // Creates the pipelines; the scratch buffers come from device.create_scratch_buffer (the
+    // runtime's Context allocates them; a plain stages::Device throws: use the other constructor).
+    // Throws vplkit::Error for bad options (naming the option and the device limit it breaks) or
+    // a max_count the device cannot sort in one go.
+    RadixSorter(Device& device, uint32_t max_count, const RadixSortOptions& options = {});
+    // The same with the caller's scratch buffers (radix_sort_requirements() says how large).
+    RadixSorter(Device& device, uint32_t max_count, const RadixSortScratch& scratch,
+                const RadixSortOptions& options = {});
 
     RadixSorter(RadixSorter&&) noexcept = default;
     RadixSorter& operator=(RadixSorter&&) noexcept = default;
@@ -91,32 +110,24 @@ class RadixSorter {
     // buffers and to the scratch buffers, is a compute-shader write. The caller orders it against
     // what wrote the buffers before and reads them after (a PassList pass does: see add_pass).
     // Throws vplkit::Error when count > max_count() or a buffer is too small.
-    void record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& values, uint32_t count) const;
+    void record(VkCommandBuffer cmd, const BufferView& keys, const BufferView& values, uint32_t count) const;
 
-    // Adds one pass named `name` that runs record() on the buffers, declaring the scratch buffers
-    // among its uses. The sorter (at the same address) and the buffers must outlive the PassList's runs.
-    void add_pass(PassList& passes, Buffer& keys, Buffer& values, uint32_t count, std::string name = "radix sort");
+    // Adds one step named `name` that runs record() on the buffers, declaring the scratch buffers
+    // among its uses. The sorter (at the same address) must outlive the recording.
+    void add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name = "radix sort");
 
     // The scratch buffers record() writes, for callers that declare uses themselves.
-    std::vector<const Buffer*> scratch_buffers() const { return {&scratch_keys_, &scratch_values_, &counts_}; }
+    const RadixSortScratch& scratch() const { return scratch_; }
 
  private:
-    // Where each level of the digit-count prefix-sum hierarchy lives in counts_ for `count` pairs:
-    // level 0 holds the tile counts, level i + 1 one sum per chunk of level i, the last fits one chunk.
-    struct ScanLevel {
-        VkDeviceSize offset = 0;
-        uint32_t length = 0;
-    };
-    std::vector<ScanLevel> scan_levels(uint32_t count) const;
-    uint32_t tile_count(uint32_t count) const;
     uint32_t scan_workgroup_size() const;
+    void init(Device& device, const RadixSortOptions& options);
 
-    Context* context_ = nullptr;
+    Limits limits_;
     RadixSortOptions options_;
     uint32_t max_count_ = 0;
-    Buffer scratch_keys_;
-    Buffer scratch_values_;
-    Buffer counts_;
+    RadixSortScratch scratch_;
+    std::vector<std::shared_ptr<void>> scratch_owners_;  // when the device allocated them
     const shaders::radix_histogram::Pipeline* histogram_ = nullptr;
     const shaders::radix_scan_reduce::Pipeline* scan_reduce_ = nullptr;
     const shaders::radix_scan_chunks::Pipeline* scan_chunks_ = nullptr;

@@ -1,9 +1,6 @@
 #include "vplkit/stages/sst.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/build_sst.hpp"
 
 #include <cmath>
@@ -13,21 +10,21 @@ namespace vplkit::stages {
 
 namespace {
 
-void check_range(const Context& context, const Buffer& buffer, uint64_t needed, const std::string& what) {
-    if (buffer.size() < needed) {
-        throw Error("sst: buffer '" + buffer.name() + "' holds " + std::to_string(buffer.size()) + " bytes; " + what +
+void check_range(const Device& device, const BufferView& buffer, uint64_t needed, const std::string& what) {
+    if (buffer.size < needed) {
+        throw Error("sst: buffer '" + buffer.name + "' holds " + std::to_string(buffer.size) + " bytes; " + what +
                     " need " + std::to_string(needed));
     }
     // The shader binds whole buffers: what it needs must fit one storage-buffer descriptor.
-    if (needed > context.info().max_storage_buffer_range) {
+    if (needed > device.limits().max_storage_buffer_range) {
         throw Error("sst: " + what + " need " + std::to_string(needed) + " bytes, above the device's storage-buffer range of " +
-                    std::to_string(context.info().max_storage_buffer_range));
+                    std::to_string(device.limits().max_storage_buffer_range));
     }
 }
 
 }  // namespace
 
-void add_sst_passes(Context& context, PassList& passes, const Buffer& leaves, Buffer& nodes, Buffer& counters,
+void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, const BufferView& counters,
                     uint32_t count, const SstOptions& options) {
     if (count == 0) {
         throw Error("sst: no VPLs (a tree needs at least one)");
@@ -40,39 +37,39 @@ void add_sst_passes(Context& context, PassList& passes, const Buffer& leaves, Bu
                     std::to_string(options.sigma_max) + " must be finite and sigma_max >= 0");
     }
     const uint32_t size = options.workgroup_size;
-    if (size == 0 || size > context.info().max_workgroup_invocations || size > context.info().max_workgroup_size[0]) {
+    if (size == 0 || size > device.limits().max_workgroup_invocations || size > device.limits().max_workgroup_size[0]) {
         throw Error("sst: workgroup size " + std::to_string(size) + " is outside 1.." +
-                    std::to_string(context.info().max_workgroup_invocations));
+                    std::to_string(device.limits().max_workgroup_invocations));
     }
     const uint32_t leaves_in_tree = leaf_count(count);
     const uint32_t threads = leaves_in_tree == 1 ? 1u : leaves_in_tree / 2u;
-    if ((threads + size - 1) / size > context.info().max_workgroup_count[0]) {
+    if ((threads + size - 1) / size > device.limits().max_workgroup_count[0]) {
         throw Error("sst: " + std::to_string(count) + " VPLs need more workgroups than the device allows in one dispatch (" +
-                    std::to_string(context.info().max_workgroup_count[0]) + "); raise the workgroup size");
+                    std::to_string(device.limits().max_workgroup_count[0]) + "); raise the workgroup size");
     }
     const uint32_t node_count = sst_node_count(count);
     const uint32_t counter_count = sst_counter_count(count);
-    check_range(context, leaves, uint64_t(leaves_in_tree) * sizeof(shaders::Vpl),
+    check_range(device, leaves, uint64_t(leaves_in_tree) * sizeof(shaders::Vpl),
                 "the " + std::to_string(leaves_in_tree) + " leaves of " + std::to_string(count) + " VPLs");
-    check_range(context, nodes, uint64_t(node_count) * sizeof(shaders::SstNode),
+    check_range(device, nodes, uint64_t(node_count) * sizeof(shaders::SstNode),
                 "the " + std::to_string(node_count) + " nodes of " + std::to_string(count) + " VPLs");
-    check_range(context, counters, uint64_t(counter_count) * sizeof(uint32_t),
+    check_range(device, counters, uint64_t(counter_count) * sizeof(uint32_t),
                 "the " + std::to_string(counter_count) + " counters of " + std::to_string(count) + " VPLs");
 
-    passes.add("sst clear counters", {Use::transfer_dst(counters)}, [&counters, counter_count](VkCommandBuffer cmd) {
-        vkCmdFillBuffer(cmd, counters.handle(), 0, uint64_t(counter_count) * sizeof(uint32_t), 0u);
+    passes.add("sst clear counters", {Use::transfer_dst(counters)}, [counters, counter_count](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, counters.buffer, counters.offset, uint64_t(counter_count) * sizeof(uint32_t), 0u);
     });
 
     shaders::build_sst::Spec spec;
     spec.local_size_x = size;
-    const auto& pipeline = context.pipeline<shaders::build_sst::Pipeline>(spec);
+    const auto& pipeline = device.pipeline<shaders::build_sst::Pipeline>(spec);
     shaders::build_sst::Push push{};
     push.count = count;
     push.leaf_count = leaves_in_tree;
     push.nu_min = options.nu_min;
     push.sigma_max = options.sigma_max;
     passes.add("build sst", {Use::read(leaves), Use::write(nodes), Use::read_write(counters)},
-               [&pipeline, &leaves, &nodes, &counters, push, threads](VkCommandBuffer cmd) {
+               [&pipeline, leaves, nodes, counters, push, threads](VkCommandBuffer cmd) {
                    shaders::build_sst::Bindings bindings;
                    bindings.leaves = leaves.descriptor();
                    bindings.nodes = nodes.descriptor();

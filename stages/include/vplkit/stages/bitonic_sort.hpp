@@ -4,15 +4,12 @@
 // values of equal keys come out in some order. No step waits on another workgroup: each dispatch
 // is one step (or a run of steps that fits one workgroup's shared memory).
 
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
+
 #include <cstdint>
 
 #include <vulkan/vulkan.h>
-
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-}  // namespace vplkit
 
 namespace vplkit::stages {
 
@@ -29,11 +26,11 @@ uint32_t bitonic_sort_dispatch_count(uint32_t count, const BitonicSortOptions& o
 // into `cmd`, with compute barriers between its dispatches. The caller orders it against what
 // wrote the buffers before and reads them after (a PassList pass with read_write uses does).
 // Throws vplkit::Error for a bad workgroup size or a count the device cannot dispatch.
-void record_bitonic_sort(Context& context, VkCommandBuffer cmd, const Buffer& keys, const Buffer& values,
+void record_bitonic_sort(Device& device, VkCommandBuffer cmd, const BufferView& keys, const BufferView& values,
                          uint32_t count, const BitonicSortOptions& options = {});
 
 // Adds one pass named "sort" that runs record_bitonic_sort on the buffers.
-void add_bitonic_sort_pass(Context& context, PassList& passes, Buffer& keys, Buffer& values, uint32_t count,
+void add_bitonic_sort_pass(Device& device, StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
                            const BitonicSortOptions& options = {});
 
 }  // namespace vplkit::stages

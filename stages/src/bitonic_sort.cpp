@@ -1,10 +1,9 @@
 #include "vplkit/stages/bitonic_sort.hpp"
 
 #include "vplkit/barriers.hpp"
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 #include "vplkit/shaders/bitonic_global_step.hpp"
 #include "vplkit/shaders/bitonic_local.hpp"
 
@@ -30,27 +29,27 @@ void for_each_dispatch(uint32_t padded, uint32_t tile, LocalSort local_sort, Glo
     }
 }
 
-void check_options(const Context& context, uint32_t count, const BitonicSortOptions& options) {
+void check_options(const Device& device, uint32_t count, const BitonicSortOptions& options) {
     const uint32_t size = options.workgroup_size;
     if (size < 2 || !std::has_single_bit(size)) {
         throw Error("bitonic sort: workgroup size " + std::to_string(size) + " is not a power of two >= 2");
     }
-    if (size > context.info().max_workgroup_invocations) {
+    if (size > device.limits().max_workgroup_invocations) {
         throw Error("bitonic sort: workgroup size " + std::to_string(size) + " exceeds the device's limit of " +
-                    std::to_string(context.info().max_workgroup_invocations));
+                    std::to_string(device.limits().max_workgroup_invocations));
     }
     // A tile is 2 x size pairs of (uint64, uint32) in shared memory.
     const uint64_t shared_bytes = uint64_t(size) * 2 * (sizeof(uint64_t) + sizeof(uint32_t));
-    if (shared_bytes > context.info().max_shared_memory_bytes) {
+    if (shared_bytes > device.limits().max_shared_memory_bytes) {
         throw Error("bitonic sort: workgroup size " + std::to_string(size) + " needs " + std::to_string(shared_bytes) +
-                    " bytes of shared memory; the device has " + std::to_string(context.info().max_shared_memory_bytes));
+                    " bytes of shared memory; the device has " + std::to_string(device.limits().max_shared_memory_bytes));
     }
     const uint64_t padded = std::bit_ceil(uint64_t(count));
     const uint64_t groups = padded / 2 / size;
-    if (groups > context.info().max_workgroup_count[0]) {
+    if (groups > device.limits().max_workgroup_count[0]) {
         throw Error("bitonic sort: " + std::to_string(count) + " pairs need " + std::to_string(groups) +
                     " workgroups in one dispatch; the device allows " +
-                    std::to_string(context.info().max_workgroup_count[0]) + " (raise the workgroup size)");
+                    std::to_string(device.limits().max_workgroup_count[0]) + " (raise the workgroup size)");
     }
 }
 
@@ -66,14 +65,14 @@ uint32_t bitonic_sort_dispatch_count(uint32_t count, const BitonicSortOptions& o
     return dispatches;
 }
 
-void record_bitonic_sort(Context& context, VkCommandBuffer cmd, const Buffer& keys, const Buffer& values,
+void record_bitonic_sort(Device& device, VkCommandBuffer cmd, const BufferView& keys, const BufferView& values,
                          uint32_t count, const BitonicSortOptions& options) {
     if (count <= 1) {
         return;  // already sorted
     }
-    check_options(context, count, options);
-    if (keys.size() < uint64_t(count) * sizeof(uint64_t) || values.size() < uint64_t(count) * sizeof(uint32_t)) {
-        throw Error("bitonic sort: buffers '" + keys.name() + "' / '" + values.name() + "' are too small for " +
+    check_options(device, count, options);
+    if (keys.size < uint64_t(count) * sizeof(uint64_t) || values.size < uint64_t(count) * sizeof(uint32_t)) {
+        throw Error("bitonic sort: buffers '" + keys.name + "' / '" + values.name + "' are too small for " +
                     std::to_string(count) + " pairs");
     }
 
@@ -81,8 +80,8 @@ void record_bitonic_sort(Context& context, VkCommandBuffer cmd, const Buffer& ke
     local_spec.local_size_x = options.workgroup_size;
     shaders::bitonic_global_step::Spec global_spec;
     global_spec.local_size_x = options.workgroup_size;
-    const auto& local = context.pipeline<shaders::bitonic_local::Pipeline>(local_spec);
-    const auto& global = context.pipeline<shaders::bitonic_global_step::Pipeline>(global_spec);
+    const auto& local = device.pipeline<shaders::bitonic_local::Pipeline>(local_spec);
+    const auto& global = device.pipeline<shaders::bitonic_global_step::Pipeline>(global_spec);
 
     const uint32_t padded = std::bit_ceil(count);
     const uint32_t tile = 2 * options.workgroup_size;
@@ -131,14 +130,14 @@ void record_bitonic_sort(Context& context, VkCommandBuffer cmd, const Buffer& ke
         });
 }
 
-void add_bitonic_sort_pass(Context& context, PassList& passes, Buffer& keys, Buffer& values, uint32_t count,
+void add_bitonic_sort_pass(Device& device, StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
                            const BitonicSortOptions& options) {
     if (count > 1) {
-        check_options(context, count, options);  // fail now, not in the middle of recording
+        check_options(device, count, options);  // fail now, not in the middle of recording
     }
     passes.add("sort", {Use::read_write(keys), Use::read_write(values)},
-               [&context, &keys, &values, count, options](VkCommandBuffer cmd) {
-                   record_bitonic_sort(context, cmd, keys, values, count, options);
+               [&device, keys, values, count, options](VkCommandBuffer cmd) {
+                   record_bitonic_sort(device, cmd, keys, values, count, options);
                });
 }
 

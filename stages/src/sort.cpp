@@ -1,9 +1,7 @@
 #include "vplkit/stages/sort.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/steps.hpp"
 #include "vplkit/stages/bitonic_sort.hpp"
 #include "vplkit/stages/radix_sort.hpp"
 
@@ -59,8 +57,8 @@ std::optional<SortAlgorithm> parse_sort_algorithm(std::string_view name) {
     return std::nullopt;
 }
 
-KeyValueSorter::KeyValueSorter(Context& context, uint32_t max_count, const SortOptions& options)
-    : context_(&context), options_(options), max_count_(max_count) {
+KeyValueSorter::KeyValueSorter(Device& device, uint32_t max_count, const SortOptions& options)
+    : device_(&device), options_(options), max_count_(max_count) {
     if (options.key_bits < 1 || options.key_bits > 64) {
         throw Error("sort: key_bits " + std::to_string(options.key_bits) + " is outside 1..64");
     }
@@ -68,7 +66,7 @@ KeyValueSorter::KeyValueSorter(Context& context, uint32_t max_count, const SortO
         throw Error("sort: max_count must be at least 1");
     }
     if (options.algorithm == SortAlgorithm::radix) {
-        radix_ = std::make_unique<RadixSorter>(context, max_count, radix_options(options));
+        radix_ = std::make_unique<RadixSorter>(device, max_count, radix_options(options));
     }
 }
 
@@ -80,31 +78,31 @@ uint32_t KeyValueSorter::dispatch_count(uint32_t count) const {
     return radix_ ? radix_->dispatch_count(count) : bitonic_sort_dispatch_count(count, bitonic_options(options_));
 }
 
-void KeyValueSorter::record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& values, uint32_t count) const {
+void KeyValueSorter::record(VkCommandBuffer cmd, const BufferView& keys, const BufferView& values, uint32_t count) const {
     if (radix_) {
         radix_->record(cmd, keys, values, count);
         return;
     }
     check_count("bitonic", count, max_count_);
-    record_bitonic_sort(*context_, cmd, keys, values, count, bitonic_options(options_));
+    record_bitonic_sort(*device_, cmd, keys, values, count, bitonic_options(options_));
 }
 
-void KeyValueSorter::add_pass(PassList& passes, Buffer& keys, Buffer& values, uint32_t count, std::string name) {
+void KeyValueSorter::add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name) {
     if (radix_) {
         radix_->add_pass(passes, keys, values, count, std::move(name));
         return;
     }
     check_count("bitonic", count, max_count_);
-    Context& context = *context_;
+    Device& device = *device_;
     const BitonicSortOptions bitonic = bitonic_options(options_);
     // add_bitonic_sort_pass checks the options and the count against the device, so that a bad
     // one is refused now rather than while the pass list records; but it names its pass "sort".
     // So it adds its pass to a list that is dropped, and the pass of the caller's name goes here.
-    PassList check;
-    add_bitonic_sort_pass(context, check, keys, values, count, bitonic);
+    StepList check;
+    add_bitonic_sort_pass(device, check, keys, values, count, bitonic);
     passes.add(std::move(name), {Use::read_write(keys), Use::read_write(values)},
-               [&context, &keys, &values, count, bitonic](VkCommandBuffer cmd) {
-                   record_bitonic_sort(context, cmd, keys, values, count, bitonic);
+               [&device, keys, values, count, bitonic](VkCommandBuffer cmd) {
+                   record_bitonic_sort(device, cmd, keys, values, count, bitonic);
                });
 }
 

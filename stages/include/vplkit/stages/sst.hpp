@@ -11,13 +11,10 @@
 
 #include "vplkit/stages/leaves.hpp"
 
-#include <cstdint>
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-}  // namespace vplkit
+#include <cstdint>
 
 namespace vplkit::stages {
 
@@ -53,7 +50,7 @@ inline uint32_t sst_counter_count(uint32_t count) {
 // `nodes` gets sst_node_count(count) SstNodes; `counters` holds sst_counter_count(count) uints
 // (contents on entry do not matter). Throws vplkit::Error for count 0, a buffer too small,
 // thresholds that are not finite or a sigma_max < 0, or a workgroup size the device refuses.
-void add_sst_passes(Context& context, PassList& passes, const Buffer& leaves, Buffer& nodes, Buffer& counters,
+void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, const BufferView& counters,
                     uint32_t count, const SstOptions& options = {});
 
 }  // namespace vplkit::stages

@@ -1,9 +1,6 @@
 #include "vplkit/stages/vpl_keys.hpp"
 
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/morton_keys.hpp"
 #include "vplkit/shaders/vpl_bounds.hpp"
 
@@ -37,24 +34,24 @@ void validate_vpls(std::span<const shaders::Vpl> vpls) {
     }
 }
 
-void add_vpl_key_passes(Context& context, PassList& passes, const VplKeyBuffers& buffers, uint32_t count) {
+void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& buffers, uint32_t count) {
     if (count == 0 || count > kMaxKeyedVpls) {
         throw Error("VPL keys: count " + std::to_string(count) + " is outside 1.." + std::to_string(kMaxKeyedVpls));
     }
-    const Buffer& vpls = *buffers.vpls;
-    Buffer& bounds = *buffers.bounds;
-    Buffer& keys = *buffers.keys;
-    Buffer& values = *buffers.values;
+    const BufferView& vpls = buffers.vpls;
+    const BufferView& bounds = buffers.bounds;
+    const BufferView& keys = buffers.keys;
+    const BufferView& values = buffers.values;
 
-    passes.add("vpl bounds clear", {Use::transfer_dst(bounds)}, [&bounds](VkCommandBuffer cmd) {
+    passes.add("vpl bounds clear", {Use::transfer_dst(bounds)}, [bounds](VkCommandBuffer cmd) {
         // An empty box: lo at the largest ordered value, hi at the smallest.
-        vkCmdFillBuffer(cmd, bounds.handle(), offsetof(shaders::VplBoundsBuffer, lo), 3 * sizeof(uint32_t), 0xffffffffu);
-        vkCmdFillBuffer(cmd, bounds.handle(), offsetof(shaders::VplBoundsBuffer, hi), 3 * sizeof(uint32_t), 0u);
+        vkCmdFillBuffer(cmd, bounds.buffer, bounds.offset + offsetof(shaders::VplBoundsBuffer, lo), 3 * sizeof(uint32_t), 0xffffffffu);
+        vkCmdFillBuffer(cmd, bounds.buffer, bounds.offset + offsetof(shaders::VplBoundsBuffer, hi), 3 * sizeof(uint32_t), 0u);
     });
 
-    const auto& bounds_pipeline = context.pipeline<shaders::vpl_bounds::Pipeline>();
+    const auto& bounds_pipeline = device.pipeline<shaders::vpl_bounds::Pipeline>();
     passes.add("vpl bounds", {Use::read(vpls), Use::read_write(bounds)},
-               [&bounds_pipeline, &vpls, &bounds, count](VkCommandBuffer cmd) {
+               [&bounds_pipeline, vpls, bounds, count](VkCommandBuffer cmd) {
                    shaders::vpl_bounds::Bindings bindings;
                    bindings.vpls = vpls.descriptor();
                    bindings.bounds = bounds.descriptor();
@@ -63,9 +60,9 @@ void add_vpl_key_passes(Context& context, PassList& passes, const VplKeyBuffers&
                    bounds_pipeline.dispatch(cmd, bindings, push, count);
                });
 
-    const auto& keys_pipeline = context.pipeline<shaders::morton_keys::Pipeline>();
+    const auto& keys_pipeline = device.pipeline<shaders::morton_keys::Pipeline>();
     passes.add("morton keys", {Use::read(vpls), Use::read(bounds), Use::write(keys), Use::write(values)},
-               [&keys_pipeline, &vpls, &bounds, &keys, &values, count](VkCommandBuffer cmd) {
+               [&keys_pipeline, vpls, bounds, keys, values, count](VkCommandBuffer cmd) {
                    shaders::morton_keys::Bindings bindings;
                    bindings.vpls = vpls.descriptor();
                    bindings.bounds = bounds.descriptor();

@@ -3,9 +3,12 @@
 // algorithms: an object made once for a largest count, which holds the scratch memory its
 // algorithm needs, and records sorts of up to that many pairs.
 //
-//   vplkit::stages::KeyValueSorter sorter(context, max_vpls);   // radix, all 64 key bits
+//   vplkit::stages::KeyValueSorter sorter(device, max_vpls);    // radix, all 64 key bits
 //   sorter.add_pass(passes, keys, values, vpl_count);           // pass "sort"
-//   passes.run(context);                                        // keys/values now sorted in place
+//   passes.record(cmd);                                         // keys/values now sorted in place
+
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 
 #include <vulkan/vulkan.h>
 
@@ -14,12 +17,6 @@
 #include <optional>
 #include <string>
 #include <string_view>
-
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-}  // namespace vplkit
 
 namespace vplkit::stages {
 
@@ -53,7 +50,7 @@ class KeyValueSorter {
     // For radix, creates the pipelines and the scratch buffers for up to `max_count` pairs.
     // Throws vplkit::Error for bad options or a count the device cannot sort (bitonic checks its
     // workgroup size and the count when a pass is added or recorded).
-    KeyValueSorter(Context& context, uint32_t max_count, const SortOptions& options = {});
+    KeyValueSorter(Device& device, uint32_t max_count, const SortOptions& options = {});
     ~KeyValueSorter();
     KeyValueSorter(KeyValueSorter&&) noexcept;
     KeyValueSorter& operator=(KeyValueSorter&&) noexcept;
@@ -69,14 +66,14 @@ class KeyValueSorter {
     // (uint32_t[]) into `cmd`; the result ends in these buffers. Every write is a compute-shader
     // write; the caller orders the sort against the work before and after it (add_pass does).
     // Throws vplkit::Error when count > max_count() or a buffer is too small.
-    void record(VkCommandBuffer cmd, const Buffer& keys, const Buffer& values, uint32_t count) const;
+    void record(VkCommandBuffer cmd, const BufferView& keys, const BufferView& values, uint32_t count) const;
 
     // Adds one pass named `name` that records the sort, with every buffer it touches among its
-    // uses. The sorter and the buffers must outlive the PassList's runs (moving the sorter is fine).
-    void add_pass(PassList& passes, Buffer& keys, Buffer& values, uint32_t count, std::string name = "sort");
+    // uses. The sorter must outlive the recording (moving it is fine).
+    void add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name = "sort");
 
  private:
-    Context* context_ = nullptr;
+    Device* device_ = nullptr;
     SortOptions options_;
     uint32_t max_count_ = 0;
     std::unique_ptr<RadixSorter> radix_;  // radix only

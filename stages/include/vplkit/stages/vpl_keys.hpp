@@ -3,15 +3,11 @@
 // (morton_keys.comp): 30-bit Morton code | 9-bit normal code | 25-bit id, with the VPL index as value.
 
 #include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
 #include <span>
-
-namespace vplkit {
-class Buffer;
-class Context;
-class PassList;
-}  // namespace vplkit
 
 namespace vplkit::stages {
 
@@ -25,14 +21,14 @@ inline constexpr uint32_t kVplBoundsBytes = sizeof(shaders::VplBoundsBuffer);
 void validate_vpls(std::span<const shaders::Vpl> vpls);
 
 struct VplKeyBuffers {
-    const Buffer* vpls = nullptr;  // Vpl[count]
-    Buffer* bounds = nullptr;      // kVplBoundsBytes; written here
-    Buffer* keys = nullptr;        // uint64_t[count]; written here
-    Buffer* values = nullptr;      // uint32_t[count]; written here (VPL index)
+    BufferView vpls;    // Vpl[count]; read
+    BufferView bounds;  // kVplBoundsBytes; written here
+    BufferView keys;    // uint64_t[count]; written here
+    BufferView values;  // uint32_t[count]; written here (VPL index)
 };
 
 // Adds three passes to `passes`: clear the bounds, reduce the bounds, write the keys.
 // `count` must be at least 1 and at most kMaxKeyedVpls.
-void add_vpl_key_passes(Context& context, PassList& passes, const VplKeyBuffers& buffers, uint32_t count);
+void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& buffers, uint32_t count);
 
 }  // namespace vplkit::stages

@@ -1,11 +1,7 @@
 #include "vplkit/stages/light_tree.hpp"
 
 #include "vplkit/barriers.hpp"
-#include "vplkit/buffer.hpp"
-#include "vplkit/context.hpp"
-#include "vplkit/device_info.hpp"
 #include "vplkit/error.hpp"
-#include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/light_tree_leaves.hpp"
 #include "vplkit/shaders/light_tree_levels.hpp"
 #include "vplkit/stages/leaves.hpp"
@@ -36,12 +32,12 @@ uint32_t group_threads(uint32_t source_level, uint32_t levels) {
     return (1u << source_level) - (1u << (source_level - levels));
 }
 
-void check(const Context& context, uint32_t count, const LightTreeOptions& options) {
+void check(const Device& device, uint32_t count, const LightTreeOptions& options) {
     if (count == 0 || count > kLightTreeMaxLeaves) {
         throw Error("light tree: count " + std::to_string(count) + " is outside 1.." +
                     std::to_string(kLightTreeMaxLeaves));
     }
-    const DeviceInfo& info = context.info();
+    const Limits& info = device.limits();
     const uint32_t size = options.workgroup_size;
     if (size == 0 || size > info.max_workgroup_invocations || size > info.max_workgroup_size[0]) {
         throw Error("light tree: workgroup size " + std::to_string(size) + " is outside 1.." +
@@ -72,8 +68,8 @@ void check(const Context& context, uint32_t count, const LightTreeOptions& optio
 
 }  // namespace
 
-uint32_t light_tree_default_group_levels(const DeviceInfo& device) {
-    return device.type == DeviceType::cpu ? 1u : 4u;
+uint32_t light_tree_default_group_levels(const Limits& limits) {
+    return limits.cpu ? 1u : 4u;
 }
 
 uint32_t light_tree_leaf_count(uint32_t count) { return leaf_count(count); }  // the leaves gather_leaves pads to
@@ -90,18 +86,18 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
     return dispatches;
 }
 
-void add_light_tree_passes(Context& context, PassList& passes, const Buffer& leaves, Buffer& nodes, uint32_t count,
+void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, uint32_t count,
                            const LightTreeOptions& options) {
-    check(context, count, options);
+    check(device, count, options);
     const uint32_t leaf_count = light_tree_leaf_count(count);
     const VkDeviceSize leaf_bytes = VkDeviceSize(leaf_count) * sizeof(shaders::Vpl);
     const VkDeviceSize node_bytes = VkDeviceSize(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
-    if (leaves.size() < leaf_bytes) {
-        throw Error("light tree: buffer '" + leaves.name() + "' holds fewer than the " + std::to_string(leaf_count) +
+    if (leaves.size < leaf_bytes) {
+        throw Error("light tree: buffer '" + leaves.name + "' holds fewer than the " + std::to_string(leaf_count) +
                     " leaves of " + std::to_string(count) + " VPLs");
     }
-    if (nodes.size() < node_bytes) {
-        throw Error("light tree: buffer '" + nodes.name() + "' holds fewer than the " +
+    if (nodes.size < node_bytes) {
+        throw Error("light tree: buffer '" + nodes.name + "' holds fewer than the " +
                     std::to_string(light_tree_node_count(count)) + " nodes of " + std::to_string(count) + " VPLs");
     }
 
@@ -109,11 +105,11 @@ void add_light_tree_passes(Context& context, PassList& passes, const Buffer& lea
     leaves_spec.local_size_x = options.workgroup_size;
     shaders::light_tree_levels::Spec levels_spec;
     levels_spec.local_size_x = options.workgroup_size;
-    const auto& leaves_pipeline = context.pipeline<shaders::light_tree_leaves::Pipeline>(leaves_spec);
-    const auto& levels_pipeline = context.pipeline<shaders::light_tree_levels::Pipeline>(levels_spec);
+    const auto& leaves_pipeline = device.pipeline<shaders::light_tree_leaves::Pipeline>(leaves_spec);
+    const auto& levels_pipeline = device.pipeline<shaders::light_tree_levels::Pipeline>(levels_spec);
 
     passes.add("light tree leaves", {Use::read(leaves), Use::write(nodes)},
-               [&leaves_pipeline, &leaves, &nodes, count, leaf_count, leaf_bytes, node_bytes](VkCommandBuffer cmd) {
+               [&leaves_pipeline, leaves, nodes, count, leaf_count, leaf_bytes, node_bytes](VkCommandBuffer cmd) {
                    shaders::light_tree_leaves::Bindings bindings;
                    bindings.leaves = leaves.descriptor(0, leaf_bytes);
                    bindings.nodes = nodes.descriptor(0, node_bytes);
@@ -126,9 +122,9 @@ void add_light_tree_passes(Context& context, PassList& passes, const Buffer& lea
         return;  // the root is the only leaf
     }
     passes.add("light tree levels", {Use::read_write(nodes)},
-               [&levels_pipeline, &nodes, leaf_count, node_bytes,
+               [&levels_pipeline, nodes, leaf_count, node_bytes,
                 group_levels = options.group_levels != 0 ? options.group_levels
-                                                         : light_tree_default_group_levels(context.info())](
+                                                         : light_tree_default_group_levels(device.limits())](
                    VkCommandBuffer cmd) {
                    shaders::light_tree_levels::Bindings bindings;
                    bindings.nodes = nodes.descriptor(0, node_bytes);

@@ -1,0 +1,68 @@
+#pragma once
+// The renderer side of the drop-in sample: what an engine already has before it takes a vplkit
+// stage. Plain Vulkan, no vplkit runtime: an instance, a device with the features the kit's
+// shaders need, memory, one queue and a blocking submit. Deliberately minimal (every buffer in
+// host-visible memory, no allocator): an engine brings its own.
+
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace dropin {
+
+// Throws std::runtime_error naming the call unless it returned VK_SUCCESS.
+void check(VkResult result, const char* call);
+#define DROPIN_CHECK(call) ::dropin::check((call), #call)
+
+struct Gpu {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queue_family = 0;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    std::string name;  // the device's name
+
+    // The first device (a GPU before a CPU implementation) with a compute queue and what vplkit's
+    // stages need: Vulkan 1.3 (synchronization2), VK_KHR_push_descriptor, scalarBlockLayout,
+    // shaderInt64. `validation`: enable VK_LAYER_KHRONOS_validation when it is installed.
+    static Gpu create(bool validation);
+    void destroy();
+
+    // Records `record` into a fresh command buffer, submits it and waits.
+    void submit(const std::function<void(VkCommandBuffer)>& record) const;
+};
+
+// A buffer in host-visible, coherent memory, mapped.
+struct HostBuffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;
+
+    static HostBuffer create(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFlags usage);
+    void destroy(const Gpu& gpu);
+};
+
+// A 2D storage image (one level, one layer) in device-local memory, with a view.
+struct StorageImage {
+    VkImage image = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    uint32_t width = 0;
+    uint32_t height = 0;
+
+    static StorageImage create(const Gpu& gpu, uint32_t width, uint32_t height, VkFormat format);
+    void destroy(const Gpu& gpu);
+};
+
+// Copies between an image (in GENERAL layout) and a tightly packed buffer, with the barriers.
+void copy_buffer_to_image(VkCommandBuffer cmd, const HostBuffer& buffer, const StorageImage& image);
+void copy_image_to_buffer(VkCommandBuffer cmd, const StorageImage& image, const HostBuffer& buffer);
+// Every image from UNDEFINED to GENERAL (the layout vplkit's compute stages use).
+void to_general(VkCommandBuffer cmd, const StorageImage& image);
+
+}  // namespace dropin
