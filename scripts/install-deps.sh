@@ -10,6 +10,7 @@ packages=(
   mesa-vulkan-drivers                # lavapipe: the CPU Vulkan driver used when no GPU is present
   vulkan-validationlayers            # always on in tests
   libtinygltf-dev libstb-dev doctest-dev
+  clang-format                       # the C++ style (.clang-format), checked by ctest format/cpp
   libasan8 libubsan1                 # the asan preset's sanitizer runtimes (CI runs the CLI and scene tests under it)
 )
 

@@ -11,7 +11,7 @@
 namespace vplkit::codegen {
 
 struct EmitOptions {
-  std::string cpp_namespace;  // e.g. vplkit::shaders
+    std::string cpp_namespace;  // e.g. vplkit::shaders
 };
 
 std::string emit_types_header(const TypeTable& types, const EmitOptions& options);

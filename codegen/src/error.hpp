@@ -9,8 +9,8 @@
 namespace vplkit::codegen {
 
 class Error : public std::runtime_error {
- public:
-  explicit Error(const std::string& message) : std::runtime_error(message) {}
+public:
+    explicit Error(const std::string& message) : std::runtime_error(message) {}
 };
 
 }  // namespace vplkit::codegen

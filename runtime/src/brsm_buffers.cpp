@@ -93,7 +93,8 @@ void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLig
     const uint32_t size = std::bit_ceil(std::max(map.width(), map.height()));
     if (size > kMaxBrsmMapSize) {
         throw Error("BRSM: light '" + map.light.name + "''s shadow map is " + std::to_string(map.width()) + "x" +
-                    std::to_string(map.height()) + " texels; importance maps go up to " + std::to_string(kMaxBrsmMapSize) +
+                    std::to_string(map.height()) + " texels; importance maps go up to " +
+                    std::to_string(kMaxBrsmMapSize) +
                     "^2 (a point light's cube map is 3 x 2 faces): use smaller faces");
     }
     light.map_size = size;
@@ -126,7 +127,8 @@ void add_brsm_passes(Device& device, StepList& passes, const GbufferViews& gbuff
                      std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options,
                      const BrsmOutputViews& output) {
     const std::vector<ShadowMapViews> views = shadow_map_views(maps);
-    add_brsm_passes(device, passes, gbuffer, view, std::span<const ShadowMapViews>(views), scene_scale, options, output);
+    add_brsm_passes(device, passes, gbuffer, view, std::span<const ShadowMapViews>(views), scene_scale, options,
+                    output);
 }
 
 uint32_t download_brsm_vpl_count(const BrsmOutput& output) {

@@ -11,12 +11,13 @@ namespace vplkit {
 namespace {
 
 struct FormatEntry {
-  VkFormat format;
-  const char* name;
-  uint32_t texel_bytes;
+    VkFormat format;
+    const char* name;
+    uint32_t texel_bytes;
 };
 
-#define VPLKIT_FORMAT(f, bytes) {f, #f, bytes}
+#define VPLKIT_FORMAT(f, bytes) \
+    { f, #f, bytes }
 constexpr FormatEntry kFormats[] = {
     VPLKIT_FORMAT(VK_FORMAT_R8_UNORM, 1),
     VPLKIT_FORMAT(VK_FORMAT_R8_UINT, 1),
@@ -58,41 +59,41 @@ constexpr FormatEntry kFormats[] = {
 #undef VPLKIT_FORMAT
 
 const FormatEntry* find(VkFormat format) {
-  for (const auto& entry : kFormats) {
-    if (entry.format == format) return &entry;
-  }
-  return nullptr;
+    for (const auto& entry : kFormats) {
+        if (entry.format == format) return &entry;
+    }
+    return nullptr;
 }
 
 }  // namespace
 
 uint32_t format_texel_bytes(VkFormat format) {
-  const FormatEntry* entry = find(format);
-  return entry ? entry->texel_bytes : 0;
+    const FormatEntry* entry = find(format);
+    return entry ? entry->texel_bytes : 0;
 }
 
 std::string format_name(VkFormat format) {
-  const FormatEntry* entry = find(format);
-  return entry ? entry->name : "VkFormat(" + std::to_string(int(format)) + ")";
+    const FormatEntry* entry = find(format);
+    return entry ? entry->name : "VkFormat(" + std::to_string(int(format)) + ")";
 }
 
 namespace detail {
 
 VkImageAspectFlags format_aspects(VkFormat format) {
-  switch (format) {
-    case VK_FORMAT_D16_UNORM:
-    case VK_FORMAT_X8_D24_UNORM_PACK32:
-    case VK_FORMAT_D32_SFLOAT:
-      return VK_IMAGE_ASPECT_DEPTH_BIT;
-    case VK_FORMAT_D16_UNORM_S8_UINT:
-    case VK_FORMAT_D24_UNORM_S8_UINT:
-    case VK_FORMAT_D32_SFLOAT_S8_UINT:
-      return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
-    case VK_FORMAT_S8_UINT:
-      return VK_IMAGE_ASPECT_STENCIL_BIT;
-    default:
-      return VK_IMAGE_ASPECT_COLOR_BIT;
-  }
+    switch (format) {
+        case VK_FORMAT_D16_UNORM:
+        case VK_FORMAT_X8_D24_UNORM_PACK32:
+        case VK_FORMAT_D32_SFLOAT:
+            return VK_IMAGE_ASPECT_DEPTH_BIT;
+        case VK_FORMAT_D16_UNORM_S8_UINT:
+        case VK_FORMAT_D24_UNORM_S8_UINT:
+        case VK_FORMAT_D32_SFLOAT_S8_UINT:
+            return VK_IMAGE_ASPECT_DEPTH_BIT | VK_IMAGE_ASPECT_STENCIL_BIT;
+        case VK_FORMAT_S8_UINT:
+            return VK_IMAGE_ASPECT_STENCIL_BIT;
+        default:
+            return VK_IMAGE_ASPECT_COLOR_BIT;
+    }
 }
 
 }  // namespace detail

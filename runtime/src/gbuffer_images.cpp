@@ -15,10 +15,12 @@ GbufferImages GbufferImages::create(Context& context, uint32_t width, uint32_t h
     GbufferImages g;
     g.position = Image::create(context, width, height, kGbufferPositionFormat, color, "gbuffer position");
     g.normal = Image::create(context, width, height, kGbufferNormalFormat, color, "gbuffer normal");
-    g.geometric_normal = Image::create(context, width, height, kGbufferGeometricNormalFormat, color, "gbuffer geometric normal");
+    g.geometric_normal =
+        Image::create(context, width, height, kGbufferGeometricNormalFormat, color, "gbuffer geometric normal");
     g.albedo = Image::create(context, width, height, kGbufferAlbedoFormat, color, "gbuffer albedo");
     g.emission = Image::create(context, width, height, kGbufferEmissionFormat, color, "gbuffer emission");
-    g.depth = Image::create(context, width, height, kGbufferDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "gbuffer depth");
+    g.depth = Image::create(context, width, height, kGbufferDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
+                            "gbuffer depth");
     return g;
 }
 

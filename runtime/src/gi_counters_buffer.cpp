@@ -11,7 +11,8 @@ Buffer create_gi_counters(Context& context, const char* name) {
 
 GiCounts read_gi_counters(const Buffer& counters) {
     const auto c = counters.download<shaders::GiCounters>(1)[0];
-    return {c.dropped_pixels, c.dropped_samples, c.traversals, c.levels, c.dead_branches, c.mock_cut_pixels, c.cut_short};
+    return {c.dropped_pixels, c.dropped_samples, c.traversals, c.levels,
+            c.dead_branches,  c.mock_cut_pixels, c.cut_short};
 }
 
 }  // namespace vplkit::stages

@@ -35,213 +35,230 @@ constexpr uint32_t kDoubleSided = 4u;
 constexpr float kBlendAsMaskCutoff = 0.5f;
 
 VkSamplerAddressMode address_mode(scene::Wrap wrap) {
-  switch (wrap) {
-    case scene::Wrap::repeat: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    case scene::Wrap::clamp_to_edge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    case scene::Wrap::mirrored_repeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-  }
-  throw Error("vplkit: unknown texture wrap mode " + std::to_string(uint32_t(wrap)));
+    switch (wrap) {
+        case scene::Wrap::repeat:
+            return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        case scene::Wrap::clamp_to_edge:
+            return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        case scene::Wrap::mirrored_repeat:
+            return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    }
+    throw Error("vplkit: unknown texture wrap mode " + std::to_string(uint32_t(wrap)));
 }
 
-VkFilter filter(scene::Filter f) { return f == scene::Filter::nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
+VkFilter filter(scene::Filter f) {
+    return f == scene::Filter::nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR;
+}
 
 VkSampler create_sampler(Context& context, const scene::Sampler& s) {
-  VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
-  info.magFilter = filter(s.mag_filter);
-  info.minFilter = filter(s.min_filter);
-  info.addressModeU = address_mode(s.wrap_s);
-  info.addressModeV = address_mode(s.wrap_t);
-  info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-  info.minLod = 0.0f;
-  if (s.mipmap_mode == scene::MipmapMode::none) {
-    // The Vulkan specification's recipe for a non-mipmapped minification filter: level 0 only,
-    // while the level of detail still chooses between the min and mag filters.
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.maxLod = 0.25f;
-  } else {
-    info.mipmapMode =
-        s.mipmap_mode == scene::MipmapMode::nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
-    info.maxLod = VK_LOD_CLAMP_NONE;
-  }
-  VkSampler sampler = VK_NULL_HANDLE;
-  VPLKIT_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler));
-  return sampler;
+    VkSamplerCreateInfo info{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    info.magFilter = filter(s.mag_filter);
+    info.minFilter = filter(s.min_filter);
+    info.addressModeU = address_mode(s.wrap_s);
+    info.addressModeV = address_mode(s.wrap_t);
+    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    info.minLod = 0.0f;
+    if (s.mipmap_mode == scene::MipmapMode::none) {
+        // The Vulkan specification's recipe for a non-mipmapped minification filter: level 0 only,
+        // while the level of detail still chooses between the min and mag filters.
+        info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+        info.maxLod = 0.25f;
+    } else {
+        info.mipmapMode = s.mipmap_mode == scene::MipmapMode::nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST
+                                                                      : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+        info.maxLod = VK_LOD_CLAMP_NONE;
+    }
+    VkSampler sampler = VK_NULL_HANDLE;
+    VPLKIT_CHECK(vkCreateSampler(context.device(), &info, nullptr, &sampler));
+    return sampler;
 }
 
 scene::Image solid_image(const char* name, uint8_t r, uint8_t g, uint8_t b, bool srgb, bool linear) {
-  scene::Image image;
-  image.name = name;
-  image.width = 1;
-  image.height = 1;
-  image.rgba = {r, g, b, 255};
-  image.srgb = srgb;
-  image.linear = linear;
-  return image;
+    scene::Image image;
+    image.name = name;
+    image.width = 1;
+    image.height = 1;
+    image.rgba = {r, g, b, 255};
+    image.srgb = srgb;
+    image.linear = linear;
+    return image;
 }
 
-vs::vec3 to_vec3(glm::vec3 v) { return {v.x, v.y, v.z}; }
-vs::vec4 to_vec4(glm::vec4 v) { return {v.x, v.y, v.z, v.w}; }
+vs::vec3 to_vec3(glm::vec3 v) {
+    return {v.x, v.y, v.z};
+}
+vs::vec4 to_vec4(glm::vec4 v) {
+    return {v.x, v.y, v.z, v.w};
+}
 
 }  // namespace
 
 GpuScene GpuScene::create(Context& context, const scene::Scene& scene, const GpuSceneOptions& options) {
-  const std::string what = "GPU scene '" + scene.source.string() + "'";
-  const size_t triangles = scene.indices.size() / 3;
-  if (triangles == 0 || scene.indices.size() % 3 != 0) {
-    throw Error("vplkit: " + what + ": " + std::to_string(scene.indices.size()) +
-                " indices (needs a positive multiple of 3)");
-  }
-  if (scene.triangle_materials.size() != triangles) {
-    throw Error("vplkit: " + what + ": " + std::to_string(scene.triangle_materials.size()) + " triangle materials for " +
-                std::to_string(triangles) + " triangles");
-  }
-  for (uint32_t index : scene.indices) {
-    if (index >= scene.vertices.size()) {
-      throw Error("vplkit: " + what + ": vertex index " + std::to_string(index) + " is outside the " +
-                  std::to_string(scene.vertices.size()) + " vertices");
+    const std::string what = "GPU scene '" + scene.source.string() + "'";
+    const size_t triangles = scene.indices.size() / 3;
+    if (triangles == 0 || scene.indices.size() % 3 != 0) {
+        throw Error("vplkit: " + what + ": " + std::to_string(scene.indices.size()) +
+                    " indices (needs a positive multiple of 3)");
     }
-  }
-  for (uint32_t material : scene.triangle_materials) {
-    if (material >= scene.materials.size()) {
-      throw Error("vplkit: " + what + ": material " + std::to_string(material) + " is outside the " +
-                  std::to_string(scene.materials.size()) + " materials");
+    if (scene.triangle_materials.size() != triangles) {
+        throw Error("vplkit: " + what + ": " + std::to_string(scene.triangle_materials.size()) +
+                    " triangle materials for " + std::to_string(triangles) + " triangles");
     }
-  }
-  for (const scene::Texture& texture : scene.textures) {
-    if (texture.image >= scene.images.size()) {
-      throw Error("vplkit: " + what + ": a texture uses image " + std::to_string(texture.image) + " of " +
-                  std::to_string(scene.images.size()));
+    for (uint32_t index : scene.indices) {
+        if (index >= scene.vertices.size()) {
+            throw Error("vplkit: " + what + ": vertex index " + std::to_string(index) + " is outside the " +
+                        std::to_string(scene.vertices.size()) + " vertices");
+        }
     }
-  }
-
-  GpuScene g;
-  g.context_ = &context;
-  g.triangle_count_ = uint32_t(triangles);
-  g.vertex_count_ = uint32_t(scene.vertices.size());
-
-  // Draws: maximal runs of triangles of one material (primitive instances of one material that
-  // the loader placed one after the other become one draw).
-  for (uint32_t t = 0; t < triangles; ++t) {
-    const uint32_t material = scene.triangle_materials[t];
-    if (!g.draws_.empty() && g.draws_.back().material == material) {
-      ++g.draws_.back().triangle_count;
-    } else {
-      g.draws_.push_back({t, 1, material});
+    for (uint32_t material : scene.triangle_materials) {
+        if (material >= scene.materials.size()) {
+            throw Error("vplkit: " + what + ": material " + std::to_string(material) + " is outside the " +
+                        std::to_string(scene.materials.size()) + " materials");
+        }
     }
-  }
-  g.bounds_.min = g.bounds_.max = scene.vertices[scene.indices[0]].position;
-  for (uint32_t index : scene.indices) {
-    g.bounds_.min = glm::min(g.bounds_.min, scene.vertices[index].position);
-    g.bounds_.max = glm::max(g.bounds_.max, scene.vertices[index].position);
-  }
-
-  g.vertices_ = Buffer::create(context, scene.vertices.size() * sizeof(scene::Vertex),
-                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, MemoryUse::device,
-                               "scene vertices");
-  g.vertices_.upload(scene.vertices);
-  g.indices_ = Buffer::create(context, scene.indices.size() * sizeof(uint32_t),
-                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT, MemoryUse::device,
-                              "scene indices");
-  g.indices_.upload(scene.indices);
-
-  std::vector<vs::SceneMaterial> materials(scene.materials.size());
-  for (size_t i = 0; i < scene.materials.size(); ++i) {
-    const scene::Material& m = scene.materials[i];
-    vs::SceneMaterial& out = materials[i];
-    out.base_color_factor = to_vec4(m.base_color_factor);
-    out.emission = to_vec3(m.emission());
-    out.metallic_factor = m.metallic_factor;
-    out.roughness_factor = m.roughness_factor;
-    out.normal_scale = m.normal_scale;
-    out.alpha_cutoff = m.alpha_mode == scene::AlphaMode::blend ? kBlendAsMaskCutoff : m.alpha_cutoff;
-    out.flags = (m.alpha_mode != scene::AlphaMode::opaque ? kAlphaTest : 0u) |
-                (m.normal_texture != scene::kNoTexture ? kNormalTexture : 0u) | (m.double_sided ? kDoubleSided : 0u);
-  }
-  g.materials_ = Buffer::create(context, materials.size() * sizeof(vs::SceneMaterial), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                MemoryUse::device, "scene materials");
-  g.materials_.upload(materials);
-
-  g.images_.reserve(scene.images.size());
-  for (size_t i = 0; i < scene.images.size(); ++i) {
-    g.images_.push_back(TextureImage::create(context, scene.images[i], options.mipmaps, scene.images[i].name));
-  }
-  g.defaults_[0] = TextureImage::create(context, solid_image("default white", 255, 255, 255, true, true), false);
-  g.defaults_[1] = TextureImage::create(context, solid_image("default normal", 128, 128, 255, false, true), false);
-
-  g.samplers_.push_back(create_sampler(context, {scene::Wrap::clamp_to_edge, scene::Wrap::clamp_to_edge,
-                                                 scene::Filter::nearest, scene::Filter::nearest, scene::MipmapMode::none}));
-  context.set_name(g.samplers_.back(), "default texture sampler");
-  std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>, VkSampler> samplers;
-  auto sampler_for = [&](const scene::Sampler& s) {
-    const auto key = std::make_tuple(uint32_t(s.wrap_s), uint32_t(s.wrap_t), uint32_t(s.mag_filter),
-                                     uint32_t(s.min_filter), uint32_t(s.mipmap_mode));
-    auto found = samplers.find(key);
-    if (found != samplers.end()) return found->second;
-    g.samplers_.push_back(create_sampler(context, s));
-    samplers.emplace(key, g.samplers_.back());
-    return g.samplers_.back();
-  };
-
-  constexpr VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-  // A texture's image through the view its use calls for; the default when there is none.
-  auto bind = [&](int32_t texture, bool srgb, const TextureImage& fallback, const char* use, size_t material) {
-    if (texture == scene::kNoTexture) {
-      return VkDescriptorImageInfo{g.samplers_[0], srgb ? fallback.srgb_view() : fallback.unorm_view(), layout};
+    for (const scene::Texture& texture : scene.textures) {
+        if (texture.image >= scene.images.size()) {
+            throw Error("vplkit: " + what + ": a texture uses image " + std::to_string(texture.image) + " of " +
+                        std::to_string(scene.images.size()));
+        }
     }
-    if (texture < 0 || size_t(texture) >= scene.textures.size()) {
-      throw Error("vplkit: " + what + ": material " + std::to_string(material) + " (" + scene.materials[material].name +
-                  ") uses texture " + std::to_string(texture) + " of " + std::to_string(scene.textures.size()));
+
+    GpuScene g;
+    g.context_ = &context;
+    g.triangle_count_ = uint32_t(triangles);
+    g.vertex_count_ = uint32_t(scene.vertices.size());
+
+    // Draws: maximal runs of triangles of one material (primitive instances of one material that
+    // the loader placed one after the other become one draw).
+    for (uint32_t t = 0; t < triangles; ++t) {
+        const uint32_t material = scene.triangle_materials[t];
+        if (!g.draws_.empty() && g.draws_.back().material == material) {
+            ++g.draws_.back().triangle_count;
+        } else {
+            g.draws_.push_back({t, 1, material});
+        }
     }
-    const scene::Texture& t = scene.textures[size_t(texture)];
-    const TextureImage& image = g.images_[t.image];
-    const VkImageView view = srgb ? image.srgb_view() : image.unorm_view();
-    if (!view) {
-      throw Error("vplkit: " + what + ": image '" + image.name() + "' is the " + use + " texture of material '" +
-                  scene.materials[material].name + "' but is not marked as " + (srgb ? "colour (srgb)" : "data (linear)"));
+    g.bounds_.min = g.bounds_.max = scene.vertices[scene.indices[0]].position;
+    for (uint32_t index : scene.indices) {
+        g.bounds_.min = glm::min(g.bounds_.min, scene.vertices[index].position);
+        g.bounds_.max = glm::max(g.bounds_.max, scene.vertices[index].position);
     }
-    return VkDescriptorImageInfo{sampler_for(t.sampler), view, layout};
-  };
-  g.material_textures_.resize(scene.materials.size());
-  for (size_t i = 0; i < scene.materials.size(); ++i) {
-    const scene::Material& m = scene.materials[i];
-    MaterialTextures& out = g.material_textures_[i];
-    out.base_color = bind(m.base_color_texture, true, g.defaults_[0], "base colour", i);
-    out.metallic_roughness = bind(m.metallic_roughness_texture, false, g.defaults_[0], "metallic-roughness", i);
-    out.normal = bind(m.normal_texture, false, g.defaults_[1], "normal", i);
-    // glTF: emission = factor x texture, and a missing texture counts as white (the factor alone).
-    out.emissive = bind(m.emissive_texture, true, g.defaults_[0], "emissive", i);
-  }
-  return g;
+
+    g.vertices_ = Buffer::create(context, scene.vertices.size() * sizeof(scene::Vertex),
+                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                 MemoryUse::device, "scene vertices");
+    g.vertices_.upload(scene.vertices);
+    g.indices_ = Buffer::create(context, scene.indices.size() * sizeof(uint32_t),
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+                                MemoryUse::device, "scene indices");
+    g.indices_.upload(scene.indices);
+
+    std::vector<vs::SceneMaterial> materials(scene.materials.size());
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        const scene::Material& m = scene.materials[i];
+        vs::SceneMaterial& out = materials[i];
+        out.base_color_factor = to_vec4(m.base_color_factor);
+        out.emission = to_vec3(m.emission());
+        out.metallic_factor = m.metallic_factor;
+        out.roughness_factor = m.roughness_factor;
+        out.normal_scale = m.normal_scale;
+        out.alpha_cutoff = m.alpha_mode == scene::AlphaMode::blend ? kBlendAsMaskCutoff : m.alpha_cutoff;
+        out.flags = (m.alpha_mode != scene::AlphaMode::opaque ? kAlphaTest : 0u) |
+                    (m.normal_texture != scene::kNoTexture ? kNormalTexture : 0u) |
+                    (m.double_sided ? kDoubleSided : 0u);
+    }
+    g.materials_ = Buffer::create(context, materials.size() * sizeof(vs::SceneMaterial),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "scene materials");
+    g.materials_.upload(materials);
+
+    g.images_.reserve(scene.images.size());
+    for (size_t i = 0; i < scene.images.size(); ++i) {
+        g.images_.push_back(TextureImage::create(context, scene.images[i], options.mipmaps, scene.images[i].name));
+    }
+    g.defaults_[0] = TextureImage::create(context, solid_image("default white", 255, 255, 255, true, true), false);
+    g.defaults_[1] = TextureImage::create(context, solid_image("default normal", 128, 128, 255, false, true), false);
+
+    g.samplers_.push_back(
+        create_sampler(context, {scene::Wrap::clamp_to_edge, scene::Wrap::clamp_to_edge, scene::Filter::nearest,
+                                 scene::Filter::nearest, scene::MipmapMode::none}));
+    context.set_name(g.samplers_.back(), "default texture sampler");
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t, uint32_t, uint32_t>, VkSampler> samplers;
+    auto sampler_for = [&](const scene::Sampler& s) {
+        const auto key = std::make_tuple(uint32_t(s.wrap_s), uint32_t(s.wrap_t), uint32_t(s.mag_filter),
+                                         uint32_t(s.min_filter), uint32_t(s.mipmap_mode));
+        auto found = samplers.find(key);
+        if (found != samplers.end()) return found->second;
+        g.samplers_.push_back(create_sampler(context, s));
+        samplers.emplace(key, g.samplers_.back());
+        return g.samplers_.back();
+    };
+
+    constexpr VkImageLayout layout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+    // A texture's image through the view its use calls for; the default when there is none.
+    auto bind = [&](int32_t texture, bool srgb, const TextureImage& fallback, const char* use, size_t material) {
+        if (texture == scene::kNoTexture) {
+            return VkDescriptorImageInfo{g.samplers_[0], srgb ? fallback.srgb_view() : fallback.unorm_view(), layout};
+        }
+        if (texture < 0 || size_t(texture) >= scene.textures.size()) {
+            throw Error("vplkit: " + what + ": material " + std::to_string(material) + " (" +
+                        scene.materials[material].name + ") uses texture " + std::to_string(texture) + " of " +
+                        std::to_string(scene.textures.size()));
+        }
+        const scene::Texture& t = scene.textures[size_t(texture)];
+        const TextureImage& image = g.images_[t.image];
+        const VkImageView view = srgb ? image.srgb_view() : image.unorm_view();
+        if (!view) {
+            throw Error("vplkit: " + what + ": image '" + image.name() + "' is the " + use + " texture of material '" +
+                        scene.materials[material].name + "' but is not marked as " +
+                        (srgb ? "colour (srgb)" : "data (linear)"));
+        }
+        return VkDescriptorImageInfo{sampler_for(t.sampler), view, layout};
+    };
+    g.material_textures_.resize(scene.materials.size());
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        const scene::Material& m = scene.materials[i];
+        MaterialTextures& out = g.material_textures_[i];
+        out.base_color = bind(m.base_color_texture, true, g.defaults_[0], "base colour", i);
+        out.metallic_roughness = bind(m.metallic_roughness_texture, false, g.defaults_[0], "metallic-roughness", i);
+        out.normal = bind(m.normal_texture, false, g.defaults_[1], "normal", i);
+        // glTF: emission = factor x texture, and a missing texture counts as white (the factor alone).
+        out.emissive = bind(m.emissive_texture, true, g.defaults_[0], "emissive", i);
+    }
+    return g;
 }
 
-GpuScene::~GpuScene() { release(); }
+GpuScene::~GpuScene() {
+    release();
+}
 
-GpuScene::GpuScene(GpuScene&& other) noexcept { *this = std::move(other); }
+GpuScene::GpuScene(GpuScene&& other) noexcept {
+    *this = std::move(other);
+}
 
 GpuScene& GpuScene::operator=(GpuScene&& other) noexcept {
-  if (this != &other) {
-    release();
-    context_ = std::exchange(other.context_, nullptr);
-    vertices_ = std::move(other.vertices_);
-    indices_ = std::move(other.indices_);
-    materials_ = std::move(other.materials_);
-    draws_ = std::move(other.draws_);
-    images_ = std::move(other.images_);
-    defaults_ = std::move(other.defaults_);
-    samplers_ = std::exchange(other.samplers_, {});
-    material_textures_ = std::move(other.material_textures_);
-    bounds_ = other.bounds_;
-    triangle_count_ = std::exchange(other.triangle_count_, 0);
-    vertex_count_ = std::exchange(other.vertex_count_, 0);
-  }
-  return *this;
+    if (this != &other) {
+        release();
+        context_ = std::exchange(other.context_, nullptr);
+        vertices_ = std::move(other.vertices_);
+        indices_ = std::move(other.indices_);
+        materials_ = std::move(other.materials_);
+        draws_ = std::move(other.draws_);
+        images_ = std::move(other.images_);
+        defaults_ = std::move(other.defaults_);
+        samplers_ = std::exchange(other.samplers_, {});
+        material_textures_ = std::move(other.material_textures_);
+        bounds_ = other.bounds_;
+        triangle_count_ = std::exchange(other.triangle_count_, 0);
+        vertex_count_ = std::exchange(other.vertex_count_, 0);
+    }
+    return *this;
 }
 
 void GpuScene::release() {
-  if (!context_) return;
-  for (VkSampler sampler : samplers_) vkDestroySampler(context_->device(), sampler, nullptr);
-  samplers_.clear();
-  context_ = nullptr;
+    if (!context_) return;
+    for (VkSampler sampler : samplers_) vkDestroySampler(context_->device(), sampler, nullptr);
+    samplers_.clear();
+    context_ = nullptr;
 }
 
 }  // namespace vplkit

@@ -50,9 +50,9 @@ void write_atomically(const std::filesystem::path& path, const std::function<boo
 void check_size(const char* what, const std::filesystem::path& path, uint32_t width, uint32_t height, size_t got,
                 size_t per_pixel) {
     if (width == 0 || height == 0 || got != size_t(width) * height * per_pixel) {
-        throw Error(std::string(what) + " " + path.string() + ": " + std::to_string(width) + "x" + std::to_string(height) +
-                    " image needs " + std::to_string(size_t(width) * height * per_pixel) + " values, got " +
-                    std::to_string(got));
+        throw Error(std::string(what) + " " + path.string() + ": " + std::to_string(width) + "x" +
+                    std::to_string(height) + " image needs " + std::to_string(size_t(width) * height * per_pixel) +
+                    " values, got " + std::to_string(got));
     }
 }
 
@@ -72,7 +72,8 @@ void write_pfm(const std::filesystem::path& path, uint32_t width, uint32_t heigh
         std::ofstream out(file, std::ios::binary | std::ios::trunc);
         out << "PF\n" << width << ' ' << height << "\n-1.0\n";
         for (uint32_t row = height; row-- > 0;) {  // PFM stores the bottom row first
-            out.write(reinterpret_cast<const char*>(rgb.data() + size_t(row) * width * 3), std::streamsize(width) * 3 * 4);
+            out.write(reinterpret_cast<const char*>(rgb.data() + size_t(row) * width * 3),
+                      std::streamsize(width) * 3 * 4);
         }
         return bool(out.flush());
     });
@@ -96,7 +97,8 @@ PfmImage read_pfm(const std::filesystem::path& path) {
     std::vector<float> file_order(size_t(image.width) * image.height * channels);
     in.read(reinterpret_cast<char*>(file_order.data()), std::streamsize(file_order.size() * 4));
     if (in.gcount() != std::streamsize(file_order.size() * 4)) {
-        throw Error(path.string() + " is truncated: expected " + std::to_string(file_order.size() * 4) + " bytes of pixels");
+        throw Error(path.string() + " is truncated: expected " + std::to_string(file_order.size() * 4) +
+                    " bytes of pixels");
     }
     const bool big_endian = scale > 0.0;
     image.rgb.resize(size_t(image.width) * image.height * 3);

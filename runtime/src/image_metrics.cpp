@@ -28,8 +28,8 @@ void check_finite(const char* metric, const char* which, std::span<const float> 
 }
 
 // The checks every metric makes. width == 0: the caller has no size, only the value counts.
-void check_images(const char* metric, std::span<const float> test, std::span<const float> reference,
-                  uint32_t width = 0, uint32_t height = 0) {
+void check_images(const char* metric, std::span<const float> test, std::span<const float> reference, uint32_t width = 0,
+                  uint32_t height = 0) {
     if (width != 0 && size_t(width) * height * 3 != reference.size()) {
         throw Error(std::string(metric) + ": a " + std::to_string(width) + "x" + std::to_string(height) +
                     " image has " + std::to_string(size_t(width) * height * 3) + " values, the reference has " +
@@ -74,9 +74,8 @@ std::vector<double> gaussian_weights(uint32_t size) {
 
 // Adds one channel's SSIM per valid window to `map`. The weighted moments mu_x, mu_y, E[x^2],
 // E[y^2], E[xy] come from a horizontal pass over every row, then a vertical one over valid rows.
-void add_channel_ssim(std::span<const float> test, std::span<const float> reference, uint32_t channel,
-                      uint32_t width, uint32_t height, const std::vector<double>& weights, double c1, double c2,
-                      SsimMap& map) {
+void add_channel_ssim(std::span<const float> test, std::span<const float> reference, uint32_t channel, uint32_t width,
+                      uint32_t height, const std::vector<double>& weights, double c1, double c2, SsimMap& map) {
     const uint32_t n = uint32_t(weights.size());
     const size_t row_pass_size = size_t(map.width) * height;
     std::vector<double> row_x(row_pass_size), row_y(row_pass_size), row_xx(row_pass_size), row_yy(row_pass_size),

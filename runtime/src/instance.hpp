@@ -8,8 +8,8 @@ namespace vplkit::detail {
 struct ValidationSink;
 
 struct InstanceResult {
-  VkInstance instance = VK_NULL_HANDLE;
-  bool debug_utils = false;  // VK_EXT_debug_utils enabled (names, labels, messenger)
+    VkInstance instance = VK_NULL_HANDLE;
+    bool debug_utils = false;  // VK_EXT_debug_utils enabled (names, labels, messenger)
 };
 
 // `sink` non-null = validation: enables VK_LAYER_KHRONOS_validation (Error when it is not

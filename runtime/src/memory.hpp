@@ -14,8 +14,8 @@ class Context;
 namespace vplkit::detail {
 
 struct Allocation {
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  VkMemoryPropertyFlags properties = 0;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkMemoryPropertyFlags properties = 0;
 };
 
 // Allocates memory for `requirements` suited to `use`; throws Error naming `what` when no

@@ -8,22 +8,38 @@ namespace vplkit {
 
 const char* stage_name(FrameStage stage) {
     switch (stage) {
-        case FrameStage::gbuffer: return "gbuffer";
-        case FrameStage::direct_light: return "direct light";
-        case FrameStage::direct_emissive: return "direct emissive";
-        case FrameStage::vpl_paths: return "vpl paths";
-        case FrameStage::brsm_vpls: return "brsm vpls";
-        case FrameStage::vpl_sort: return "vpl sort";
-        case FrameStage::light_tree: return "light tree";
-        case FrameStage::sst: return "sst";
-        case FrameStage::gi_downsample: return "gi downsample";
-        case FrameStage::gi_exact: return "gi exact";
-        case FrameStage::gi_sst: return "gi sst";
-        case FrameStage::gi_rtslc: return "gi rtslc";
-        case FrameStage::gi_hybrid: return "gi hybrid";
-        case FrameStage::gi_upsample: return "gi upsample";
-        case FrameStage::compose: return "compose";
-        case FrameStage::tonemap: return "tonemap";
+        case FrameStage::gbuffer:
+            return "gbuffer";
+        case FrameStage::direct_light:
+            return "direct light";
+        case FrameStage::direct_emissive:
+            return "direct emissive";
+        case FrameStage::vpl_paths:
+            return "vpl paths";
+        case FrameStage::brsm_vpls:
+            return "brsm vpls";
+        case FrameStage::vpl_sort:
+            return "vpl sort";
+        case FrameStage::light_tree:
+            return "light tree";
+        case FrameStage::sst:
+            return "sst";
+        case FrameStage::gi_downsample:
+            return "gi downsample";
+        case FrameStage::gi_exact:
+            return "gi exact";
+        case FrameStage::gi_sst:
+            return "gi sst";
+        case FrameStage::gi_rtslc:
+            return "gi rtslc";
+        case FrameStage::gi_hybrid:
+            return "gi hybrid";
+        case FrameStage::gi_upsample:
+            return "gi upsample";
+        case FrameStage::compose:
+            return "compose";
+        case FrameStage::tonemap:
+            return "tonemap";
     }
     return "?";
 }
@@ -31,25 +47,39 @@ const char* stage_name(FrameStage stage) {
 bool stage_owns_pass(FrameStage stage, const std::string& pass) {
     auto starts = [&](const char* prefix) { return pass.rfind(prefix, 0) == 0; };
     switch (stage) {
-        case FrameStage::gbuffer: return pass == "gbuffer";
-        case FrameStage::direct_light: return pass == "direct light" || pass == "indirect clear";
-        case FrameStage::direct_emissive: return pass == "direct emissive";
-        case FrameStage::vpl_paths: return pass == "vpl count clear" || pass == "trace vpls";
+        case FrameStage::gbuffer:
+            return pass == "gbuffer";
+        case FrameStage::direct_light:
+            return pass == "direct light" || pass == "indirect clear";
+        case FrameStage::direct_emissive:
+            return pass == "direct emissive";
+        case FrameStage::vpl_paths:
+            return pass == "vpl count clear" || pass == "trace vpls";
         case FrameStage::brsm_vpls:
             return starts("shadow map ") || starts("brsm ") || pass == "importance mips" || pass == "warp samples";
         case FrameStage::vpl_sort:
             return pass == "vpl bounds clear" || pass == "vpl bounds" || pass == "morton keys" || pass == "sort" ||
                    pass == "gather leaves";
-        case FrameStage::light_tree: return pass == "light tree leaves" || pass == "light tree levels";
-        case FrameStage::sst: return pass == "sst clear counters" || pass == "build sst";
-        case FrameStage::gi_downsample: return pass == "gbuffer downsample";
-        case FrameStage::gi_exact: return starts("exact gi");
-        case FrameStage::gi_sst: return pass == "sst gi" || pass == "gi counters clear";
-        case FrameStage::gi_rtslc: return starts("rtslc ") || pass == "gi counters clear";
-        case FrameStage::gi_hybrid: return starts("hybrid ") || pass == "gi counters clear";
-        case FrameStage::gi_upsample: return pass == "upsample clear" || pass == "upsample";
-        case FrameStage::compose: return pass == "compose";
-        case FrameStage::tonemap: return starts("tonemap");
+        case FrameStage::light_tree:
+            return pass == "light tree leaves" || pass == "light tree levels";
+        case FrameStage::sst:
+            return pass == "sst clear counters" || pass == "build sst";
+        case FrameStage::gi_downsample:
+            return pass == "gbuffer downsample";
+        case FrameStage::gi_exact:
+            return starts("exact gi");
+        case FrameStage::gi_sst:
+            return pass == "sst gi" || pass == "gi counters clear";
+        case FrameStage::gi_rtslc:
+            return starts("rtslc ") || pass == "gi counters clear";
+        case FrameStage::gi_hybrid:
+            return starts("hybrid ") || pass == "gi counters clear";
+        case FrameStage::gi_upsample:
+            return pass == "upsample clear" || pass == "upsample";
+        case FrameStage::compose:
+            return pass == "compose";
+        case FrameStage::tonemap:
+            return starts("tonemap");
     }
     return false;
 }
@@ -110,12 +140,16 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool emissive = !scene.emissive_triangles.empty();
     const bool lit = punctual || emissive;
     const bool indirect = settings.method != GiMethod::none || settings.vpls_only;
-    const bool sampled = settings.method == GiMethod::sst || settings.method == GiMethod::rtslc ||
-                         settings.method == GiMethod::hybrid;
+    const bool sampled =
+        settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
     const bool half = settings.half_resolution_gi && settings.method != GiMethod::none && !settings.vpls_only;
-    auto add = [&plan](FrameStage stage, bool runs, std::string reason) { plan.stages.push_back({stage, runs, std::move(reason)}); };
+    auto add = [&plan](FrameStage stage, bool runs, std::string reason) {
+        plan.stages.push_back({stage, runs, std::move(reason)});
+    };
 
-    if (!lit) plan.notes.push_back("the scene has no light (no punctual light, no emissive triangle): the image would be black");
+    if (!lit)
+        plan.notes.push_back(
+            "the scene has no light (no punctual light, no emissive triangle): the image would be black");
 
     // Which VPLs, if any.
     std::string source_reason;
@@ -146,8 +180,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool reads_sst = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
     const bool needs_light_tree = (reads_light_tree || (force && sampled)) && !settings.vpls_only;
     const bool needs_sst = (reads_sst || (force && sampled)) && !settings.vpls_only;
-    plan.reuse_trees = plan.reuse_vpls && previous.tree_key == plan.tree_key && (!needs_light_tree || previous.light_tree) &&
-                       (!needs_sst || previous.sst);
+    plan.reuse_trees = plan.reuse_vpls && previous.tree_key == plan.tree_key &&
+                       (!needs_light_tree || previous.light_tree) && (!needs_sst || previous.sst);
 
     add(FrameStage::gbuffer, true, "every frame: the surfaces the camera sees");
     add(FrameStage::direct_light, true,
@@ -155,7 +189,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                  : "no punctual light: emission and background only");
     add(FrameStage::direct_emissive, emissive || force,
         emissive ? std::to_string(scene.emissive_triangles.size()) + " emissive triangles"
-                 : force ? "forced on (--all-stages); no emissive triangle" : "no emissive triangle");
+        : force  ? "forced on (--all-stages); no emissive triangle"
+                 : "no emissive triangle");
 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
     const bool make_vpls = indirect && lit && !plan.reuse_vpls;
@@ -163,7 +198,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         if (!indirect) return "direct light only (--method direct): no VPLs";
         if (!lit) return "no light to place VPLs from";
         if (plan.vpl_source != source) {
-            return plan.vpl_source == VplSource::brsm ? "BRSM places this frame's VPLs" : "light paths place this frame's VPLs";
+            return plan.vpl_source == VplSource::brsm ? "BRSM places this frame's VPLs"
+                                                      : "light paths place this frame's VPLs";
         }
         if (plan.reuse_vpls) return reused;
         return source_reason;
@@ -191,11 +227,16 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::sst, build_trees && needs_sst, tree_reason(reads_sst, needs_sst, "the SST"));
 
     const bool gi = settings.method != GiMethod::none && !settings.vpls_only && lit;
-    const std::string no_gi = settings.method == GiMethod::none ? "direct light only" : settings.vpls_only ? "VPLs only" : "no light";
+    const std::string no_gi = settings.method == GiMethod::none ? "direct light only"
+                              : settings.vpls_only              ? "VPLs only"
+                                                                : "no light";
     add(FrameStage::gi_downsample, gi && half,
-        !gi ? no_gi + ": no indirect light" : half ? "GI at half resolution" : "GI resolution equals the output: no half G-buffer");
-    for (auto [stage, method] : {std::pair{FrameStage::gi_exact, GiMethod::exact}, std::pair{FrameStage::gi_sst, GiMethod::sst},
-                                 std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid}}) {
+        !gi    ? no_gi + ": no indirect light"
+        : half ? "GI at half resolution"
+               : "GI resolution equals the output: no half G-buffer");
+    for (auto [stage, method] :
+         {std::pair{FrameStage::gi_exact, GiMethod::exact}, std::pair{FrameStage::gi_sst, GiMethod::sst},
+          std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid}}) {
         const bool chosen = settings.method == method;
         std::string reason = std::string("--method ") + gi_method_name(settings.method);
         if (chosen) {
@@ -206,7 +247,9 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         add(stage, gi && chosen, reason);
     }
     add(FrameStage::gi_upsample, gi && half,
-        !gi ? no_gi + ": no indirect light" : half ? "GI at half resolution" : "GI resolution equals the output: no upsampling");
+        !gi    ? no_gi + ": no indirect light"
+        : half ? "GI at half resolution"
+               : "GI resolution equals the output: no upsampling");
     add(FrameStage::compose, true, "every frame: direct + indirect");
     add(FrameStage::tonemap, true, "every frame: the picture");
     return plan;

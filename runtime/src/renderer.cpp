@@ -45,7 +45,9 @@ std::vector<float> rgb_of(Image& image) {
     return rgb;
 }
 
-void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) { all.insert(all.end(), more.begin(), more.end()); }
+void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
+    all.insert(all.end(), more.begin(), more.end());
+}
 
 }  // namespace
 

@@ -34,11 +34,16 @@ constexpr float kGiSimilarityDistanceFraction = 0.1f;
 
 const char* gi_method_name(GiMethod method) {
     switch (method) {
-        case GiMethod::none: return "direct";
-        case GiMethod::exact: return "exact";
-        case GiMethod::sst: return "sst";
-        case GiMethod::rtslc: return "rtslc";
-        case GiMethod::hybrid: return "hybrid";
+        case GiMethod::none:
+            return "direct";
+        case GiMethod::exact:
+            return "exact";
+        case GiMethod::sst:
+            return "sst";
+        case GiMethod::rtslc:
+            return "rtslc";
+        case GiMethod::hybrid:
+            return "hybrid";
     }
     return "?";
 }
@@ -73,7 +78,9 @@ GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity
     return o;
 }
 
-void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) { all.insert(all.end(), more.begin(), more.end()); }
+void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
+    all.insert(all.end(), more.begin(), more.end());
+}
 
 }  // namespace
 
@@ -83,7 +90,8 @@ void validate_gi_settings(const RenderSettings& settings) {
     if (settings.method == GiMethod::sst) stages::validate(o.sst);
     if (settings.method == GiMethod::rtslc) stages::validate(o.rtslc);
     if (settings.method == GiMethod::hybrid) stages::validate(o.hybrid);
-    if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) || settings.sst.sigma_max < 0.0f) {
+    if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) ||
+        settings.sst.sigma_max < 0.0f) {
         throw Error("render: nu_min must be finite and sigma_max finite and >= 0");
     }
     if (settings.sigma_max_scene_fraction &&
@@ -132,8 +140,8 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     if (settings.method == GiMethod::exact) {
         stages::ExactGiOptions options;
         options.progress = settings.progress;
-        const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh_, vpls.vpls, vpls.count, view.position,
-                                                    gi_target, options);
+        const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh_, vpls.vpls, vpls.count,
+                                                    view.position, gi_target, options);
         out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
         out.exact_gi_wall_ms = result.wall_ms;
         out.dropped_pixels = result.counts.dropped_pixels;
@@ -162,24 +170,26 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
                 break;
             case GiMethod::rtslc:
                 rtslc_scratch = stages::RtslcScratch::create(context_, w, h, rtslc_options);
-                stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target, counters,
-                                         rtslc_options, *rtslc_scratch);
+                stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
+                                         counters, rtslc_options, *rtslc_scratch);
                 break;
             case GiMethod::hybrid:
                 hybrid_cuts = stages::HybridCuts::create(context_, w, h, hybrid_options);
                 stages::add_hybrid_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
                                              counters, *hybrid_cuts, hybrid_options);
                 break;
-            default: throw Error("render: no indirect-light method to run");
+            default:
+                throw Error("render: no indirect-light method to run");
         }
         passes.run(context_);
         append(out.timings, passes.timings());
         out.gi_counts = stages::read_gi_counters(counters);
         out.dropped_pixels = out.gi_counts.dropped_pixels;
         if (out.gi_counts.cut_short > 0) {
-            throw Error(std::string(gi_method_name(settings.method)) + ": the driver ended " +
-                        std::to_string(out.gi_counts.cut_short) +
-                        " invocations early (a loop iteration limit): the image would be wrong; use fewer samples per pixel");
+            throw Error(
+                std::string(gi_method_name(settings.method)) + ": the driver ended " +
+                std::to_string(out.gi_counts.cut_short) +
+                " invocations early (a loop iteration limit): the image would be wrong; use fewer samples per pixel");
         }
         if (out.gi_counts.dropped_samples > 0) {
             out.notes.push_back(std::to_string(out.gi_counts.dropped_samples) + " samples in " +

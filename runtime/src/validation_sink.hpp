@@ -12,8 +12,8 @@
 namespace vplkit::detail {
 
 struct ValidationSink {
-  std::function<void(const ValidationMessage&)> callback;
-  std::atomic<uint64_t> count{0};
+    std::function<void(const ValidationMessage&)> callback;
+    std::atomic<uint64_t> count{0};
 };
 
 // Warnings and errors of every type (general, validation, performance) go to `sink`.

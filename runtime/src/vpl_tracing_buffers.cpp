@@ -25,9 +25,13 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double channel_sum(const glm::dvec3& v) { return v.x + v.y + v.z; }
+double channel_sum(const glm::dvec3& v) {
+    return v.x + v.y + v.z;
+}
 
-double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double srgb_to_linear(double c) {
+    return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
 
 // Mean texel of an image: RGB decoded from sRGB (colour data), or the plain channels (A unused).
 glm::dvec3 mean_texel(const scene::Image& image, bool srgb) {
@@ -179,8 +183,8 @@ VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOpti
     out.vpls = Buffer::create(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpls");
     out.bounces = Buffer::create(context, needed.bounces_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
                                  "vpl bounces");
-    out.count = Buffer::create(context, needed.count_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
-                               "vpl count");
+    out.count =
+        Buffer::create(context, needed.count_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpl count");
     return out;
 }
 

@@ -40,7 +40,7 @@
 
 namespace {
 
-constexpr uint32_t kSize = 48;      // image width and height
+constexpr uint32_t kSize = 48;  // image width and height
 constexpr uint32_t kVplCount = 500;
 constexpr float kAlbedo = 0.8f;
 constexpr double kPi = 3.14159265358979;
@@ -65,8 +65,8 @@ Scene make_scene() {
         for (uint32_t x = 0; x < kSize; ++x) {
             const float px = -1.0f + 2.0f * (x + 0.5f) / kSize;
             const float pz = -1.0f + 2.0f * (y + 0.5f) / kSize;
-            s.position.push_back({px, 0.0f, pz, 1.0f});           // w = 1: a surface was drawn
-            s.normal.push_back({0.0f, 1.0f, 0.0f, -1.0f});        // w = roughness; < 0: pure Lambert
+            s.position.push_back({px, 0.0f, pz, 1.0f});              // w = 1: a surface was drawn
+            s.normal.push_back({0.0f, 1.0f, 0.0f, -1.0f});           // w = roughness; < 0: pure Lambert
             s.geometric_normal.push_back({0.0f, 1.0f, 0.0f, 0.0f});  // w = metallic
             for (float c : {kAlbedo, kAlbedo, kAlbedo, 1.0f}) s.albedo.push_back(half(c));
         }
@@ -104,7 +104,9 @@ glm::dvec3 reference_mean(const Scene& s, float scene_scale) {
     return sum / double(s.position.size());
 }
 
-vplkit::BufferView view(const dropin::HostBuffer& b, const char* name) { return {b.buffer, 0, b.size, name}; }
+vplkit::BufferView view(const dropin::HostBuffer& b, const char* name) {
+    return {b.buffer, 0, b.size, name};
+}
 vplkit::ImageView view(const dropin::StorageImage& i, const char* name) {
     return {i.image, i.view, i.format, i.width, i.height, name};  // no layout pointer: it is GENERAL throughout
 }
@@ -171,10 +173,10 @@ int main() {
 
         // The kit's stages, appended to a StepList over the renderer's handles...
         vplkit::StepList steps;
-        vplkit::stages::add_vpl_key_passes(kit, steps, {view(vpls, "vpls"), view(bounds, "bounds"),
-                                                        view(keys, "keys"), view(values, "values")}, n);
-        vplkit::stages::RadixSorter sorter(kit, n, {view(sort_keys, "sort keys"), view(sort_values, "sort values"),
-                                                    view(sort_counts, "sort counts")});
+        vplkit::stages::add_vpl_key_passes(
+            kit, steps, {view(vpls, "vpls"), view(bounds, "bounds"), view(keys, "keys"), view(values, "values")}, n);
+        vplkit::stages::RadixSorter sorter(
+            kit, n, {view(sort_keys, "sort keys"), view(sort_values, "sort values"), view(sort_counts, "sort counts")});
         sorter.add_pass(steps, view(keys, "keys"), view(values, "values"), n);
         vplkit::stages::add_gather_leaves_pass(kit, steps, view(vpls, "vpls"), view(values, "values"),
                                                view(leaf_buffer, "leaves"), n);
@@ -188,13 +190,13 @@ int main() {
         gbuffer.geometric_normal = view(geometric_normal, "geometric normal");
         gbuffer.albedo = view(albedo, "albedo");
         const vplkit::stages::BvhBuffers bvh_views{view(bvh_nodes, "bvh nodes"), view(bvh_triangles, "bvh triangles"),
-                                                  uint32_t(bvh.nodes.size()), uint32_t(bvh.triangles.size()),
-                                                  bvh.scene_scale};
+                                                   uint32_t(bvh.nodes.size()), uint32_t(bvh.triangles.size()),
+                                                   bvh.scene_scale};
         // hybrid reads only the leaves and the SST; the light tree view is rtslc's (any buffer will do).
         const vplkit::stages::VplTreeBuffers trees{n, leaves, view(leaf_buffer, "leaves"), view(sst_nodes, "sst"),
-                                                  view(sst_nodes, "sst")};
+                                                   view(sst_nodes, "sst")};
         const vplkit::stages::HybridCutBuffers cuts{cut_needs.blocks_x, cut_needs.blocks_y, cut_needs.cut_size,
-                                                   view(cut_blocks, "cut blocks"), view(cut_nodes, "cuts")};
+                                                    view(cut_blocks, "cut blocks"), view(cut_nodes, "cuts")};
         vplkit::stages::add_hybrid_gi_passes(kit, steps, gbuffer, bvh_views, trees, glm::vec3(0.0f, 3.0f, 0.0f),
                                              view(indirect, "indirect"), view(counters, "gi counters"), cuts, hybrid);
 
@@ -227,14 +229,15 @@ int main() {
         double worst = 0.0;
         for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(mean[c] / expected[c] - 1.0));
         const bool ok = worst <= 0.05;
-        std::printf("dropin: %s, %u VPLs, %ux%u hybrid GI at %u spp: mean indirect (%.5f, %.5f, %.5f), CPU sum "
-                    "(%.5f, %.5f, %.5f), worst channel %.1f%% (tolerance 5%%), dropin.png written: %s\n",
-                    gpu.name.c_str(), n, kSize, kSize, hybrid.samples_per_pixel, mean.x, mean.y, mean.z, expected.x,
-                    expected.y, expected.z, 100.0 * worst, ok ? "ok" : "FAILED");
+        std::printf(
+            "dropin: %s, %u VPLs, %ux%u hybrid GI at %u spp: mean indirect (%.5f, %.5f, %.5f), CPU sum "
+            "(%.5f, %.5f, %.5f), worst channel %.1f%% (tolerance 5%%), dropin.png written: %s\n",
+            gpu.name.c_str(), n, kSize, kSize, hybrid.samples_per_pixel, mean.x, mean.y, mean.z, expected.x, expected.y,
+            expected.z, 100.0 * worst, ok ? "ok" : "FAILED");
 
-        for (dropin::HostBuffer* b : {&vpls, &bounds, &keys, &values, &sort_keys, &sort_values, &sort_counts,
-                                      &leaf_buffer, &sst_nodes, &sst_counters, &bvh_nodes, &bvh_triangles, &counters,
-                                      &cut_blocks, &cut_nodes, &readback}) {
+        for (dropin::HostBuffer* b :
+             {&vpls, &bounds, &keys, &values, &sort_keys, &sort_values, &sort_counts, &leaf_buffer, &sst_nodes,
+              &sst_counters, &bvh_nodes, &bvh_triangles, &counters, &cut_blocks, &cut_nodes, &readback}) {
             b->destroy(gpu);
         }
         for (dropin::HostBuffer& b : uploads) b.destroy(gpu);

@@ -7,7 +7,8 @@
 namespace dropin {
 
 void check(VkResult result, const char* call) {
-    if (result != VK_SUCCESS) throw std::runtime_error(std::string(call) + " failed: VkResult " + std::to_string(result));
+    if (result != VK_SUCCESS)
+        throw std::runtime_error(std::string(call) + " failed: VkResult " + std::to_string(result));
 }
 
 namespace {
@@ -185,8 +186,8 @@ HostBuffer HostBuffer::create(const Gpu& gpu, VkDeviceSize size, VkBufferUsageFl
     vkGetBufferMemoryRequirements(gpu.device, b.buffer, &needs);
     VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     allocate.allocationSize = needs.size;
-    allocate.memoryTypeIndex =
-        memory_type(gpu, needs.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    allocate.memoryTypeIndex = memory_type(gpu, needs.memoryTypeBits,
+                                           VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     DROPIN_CHECK(vkAllocateMemory(gpu.device, &allocate, nullptr, &b.memory));
     DROPIN_CHECK(vkBindBufferMemory(gpu.device, b.buffer, b.memory, 0));
     DROPIN_CHECK(vkMapMemory(gpu.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));

@@ -13,21 +13,21 @@ namespace vplkit::cli {
 
 // One measured configuration.
 struct BenchPoint {
-    std::string method;      // sst, rtslc, hybrid
-    std::string sweep;       // which knob this point varies: spp, block, resolution, interleave, mock, vpls
+    std::string method;  // sst, rtslc, hybrid
+    std::string sweep;   // which knob this point varies: spp, block, resolution, interleave, mock, vpls
     unsigned spp = 0;
-    unsigned block = 0;      // rtslc, hybrid
-    unsigned interleave = 1; // rtslc
-    bool half = false;       // GI at half resolution
-    bool mock_cuts = true;   // hybrid
-    unsigned vpls = 0;       // VPLs placed
+    unsigned block = 0;       // rtslc, hybrid
+    unsigned interleave = 1;  // rtslc
+    bool half = false;        // GI at half resolution
+    bool mock_cuts = true;    // hybrid
+    unsigned vpls = 0;        // VPLs placed
 
     // Times (GPU timestamps), median over the timed frames, and the spread (min, max).
     double frame_ms = 0, frame_min_ms = 0, frame_max_ms = 0;  // every pass of the frame
-    double gi_ms = 0;      // the method's sampling passes (with down/upsampling at half resolution)
-    double trees_ms = 0;   // keys, sort, leaves, light tree, SST
-    double vpls_ms = 0;    // VPL generation (shadow maps, BRSM or light paths)
-    unsigned frames = 0;   // timed frames
+    double gi_ms = 0;     // the method's sampling passes (with down/upsampling at half resolution)
+    double trees_ms = 0;  // keys, sort, leaves, light tree, SST
+    double vpls_ms = 0;   // VPL generation (shadow maps, BRSM or light paths)
+    unsigned frames = 0;  // timed frames
     struct StageTime {
         std::string name;  // a pass name (passes of one name in a frame summed)
         double median_ms = 0, min_ms = 0, max_ms = 0;
@@ -40,22 +40,22 @@ struct BenchPoint {
     double levels_per_traversal = 0;
     unsigned mock_cut_pixels = 0;
     unsigned dropped_samples = 0;
-    std::string image;     // the frame, relative to the output folder
+    std::string image;          // the frame, relative to the output folder
     std::string label() const;  // e.g. "hybrid 8 spp k8 half"
 };
 
 struct BenchRun {
-    std::string scene;          // set-up name
-    std::string device;         // name and type
+    std::string scene;   // set-up name
+    std::string device;  // name and type
     unsigned width = 0, height = 0;
-    std::string vpl_source;     // ir, brsm
+    std::string vpl_source;  // ir, brsm
     unsigned vpl_budget = 0;
     unsigned seed = 0;
-    double exact_wall_ms = 0;   // ground truth: host wall clock (0 when it came from the cache)
+    double exact_wall_ms = 0;  // ground truth: host wall clock (0 when it came from the cache)
     bool exact_cached = false;
-    std::string exact_image;    // relative to the output folder
+    std::string exact_image;  // relative to the output folder
     std::vector<BenchPoint> points;
-    double target_ms = 0;       // the equal-time target (frame time)
+    double target_ms = 0;              // the equal-time target (frame time)
     std::vector<std::string> skipped;  // points the device could not run, with the reason
 };
 

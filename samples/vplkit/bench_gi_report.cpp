@@ -57,7 +57,9 @@ const BenchPoint* base_point(const BenchRun& run, const std::string& method, uns
 }
 
 // The points of the accuracy-vs-time comparison: every point at the run's VPL budget.
-bool comparable(const BenchPoint& p) { return p.sweep != "vpls"; }
+bool comparable(const BenchPoint& p) {
+    return p.sweep != "vpls";
+}
 
 // Points no other point beats in both frame time and RMSE.
 std::vector<const BenchPoint*> pareto_front(const BenchRun& run) {
@@ -74,23 +76,28 @@ std::vector<const BenchPoint*> pareto_front(const BenchRun& run) {
         }
         if (!dominated) front.push_back(&p);
     }
-    std::sort(front.begin(), front.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->frame_ms < b->frame_ms; });
+    std::sort(front.begin(), front.end(),
+              [](const BenchPoint* a, const BenchPoint* b) { return a->frame_ms < b->frame_ms; });
     return front;
 }
 
-void write_file(const std::filesystem::path& path, const std::string& text) { write_csv(path.string(), text); }
+void write_file(const std::filesystem::path& path, const std::string& text) {
+    write_csv(path.string(), text);
+}
 
 std::string csv(const BenchRun& run) {
     std::ostringstream s;
     s << "scene,device,width,height,method,sweep,spp,block,interleave,half,mock_cuts,vpls,frames,frame_ms,frame_min_ms,"
-         "frame_max_ms,gi_ms,trees_ms,vpls_ms,rmse,ssim,relmse,levels_per_traversal,mock_cut_pixels,dropped_samples,image\n";
+         "frame_max_ms,gi_ms,trees_ms,vpls_ms,rmse,ssim,relmse,levels_per_traversal,mock_cut_pixels,dropped_samples,"
+         "image\n";
     s.precision(9);
     for (const BenchPoint& p : run.points) {
-        s << run.scene << ",\"" << run.device << "\"," << run.width << ',' << run.height << ',' << p.method << ',' << p.sweep
-          << ',' << p.spp << ',' << p.block << ',' << p.interleave << ',' << (p.half ? 1 : 0) << ',' << (p.mock_cuts ? 1 : 0)
-          << ',' << p.vpls << ',' << p.frames << ',' << p.frame_ms << ',' << p.frame_min_ms << ',' << p.frame_max_ms << ','
-          << p.gi_ms << ',' << p.trees_ms << ',' << p.vpls_ms << ',' << p.rmse << ',' << p.ssim << ',' << p.relmse << ','
-          << p.levels_per_traversal << ',' << p.mock_cut_pixels << ',' << p.dropped_samples << ',' << p.image << '\n';
+        s << run.scene << ",\"" << run.device << "\"," << run.width << ',' << run.height << ',' << p.method << ','
+          << p.sweep << ',' << p.spp << ',' << p.block << ',' << p.interleave << ',' << (p.half ? 1 : 0) << ','
+          << (p.mock_cuts ? 1 : 0) << ',' << p.vpls << ',' << p.frames << ',' << p.frame_ms << ',' << p.frame_min_ms
+          << ',' << p.frame_max_ms << ',' << p.gi_ms << ',' << p.trees_ms << ',' << p.vpls_ms << ',' << p.rmse << ','
+          << p.ssim << ',' << p.relmse << ',' << p.levels_per_traversal << ',' << p.mock_cut_pixels << ','
+          << p.dropped_samples << ',' << p.image << '\n';
     }
     return s.str();
 }
@@ -99,27 +106,30 @@ std::string json(const BenchRun& run) {
     std::ostringstream s;
     s.precision(9);
     s << "{\n  \"scene\": " << json_string(run.scene) << ",\n  \"device\": " << json_string(run.device)
-      << ",\n  \"width\": " << run.width << ",\n  \"height\": " << run.height << ",\n  \"vpl_source\": "
-      << json_string(run.vpl_source) << ",\n  \"vpl_budget\": " << run.vpl_budget << ",\n  \"seed\": " << run.seed
-      << ",\n  \"exact_wall_ms\": " << run.exact_wall_ms << ",\n  \"exact_cached\": " << (run.exact_cached ? "true" : "false")
-      << ",\n  \"relmse_epsilon\": " << kRelativeMseEpsilon << ",\n  \"target_ms\": " << run.target_ms << ",\n  \"points\": [\n";
+      << ",\n  \"width\": " << run.width << ",\n  \"height\": " << run.height
+      << ",\n  \"vpl_source\": " << json_string(run.vpl_source) << ",\n  \"vpl_budget\": " << run.vpl_budget
+      << ",\n  \"seed\": " << run.seed << ",\n  \"exact_wall_ms\": " << run.exact_wall_ms
+      << ",\n  \"exact_cached\": " << (run.exact_cached ? "true" : "false")
+      << ",\n  \"relmse_epsilon\": " << kRelativeMseEpsilon << ",\n  \"target_ms\": " << run.target_ms
+      << ",\n  \"points\": [\n";
     for (size_t i = 0; i < run.points.size(); ++i) {
         const BenchPoint& p = run.points[i];
-        s << "    {\"method\": " << json_string(p.method) << ", \"sweep\": " << json_string(p.sweep) << ", \"spp\": " << p.spp
-          << ", \"block\": " << p.block << ", \"interleave\": " << p.interleave << ", \"half\": " << (p.half ? "true" : "false")
-          << ", \"mock_cuts\": " << (p.mock_cuts ? "true" : "false") << ", \"vpls\": " << p.vpls << ", \"frames\": " << p.frames
-          << ", \"frame_ms\": " << p.frame_ms << ", \"frame_min_ms\": " << p.frame_min_ms << ", \"frame_max_ms\": "
-          << p.frame_max_ms << ", \"gi_ms\": " << p.gi_ms << ", \"trees_ms\": " << p.trees_ms << ", \"vpls_ms\": " << p.vpls_ms
+        s << "    {\"method\": " << json_string(p.method) << ", \"sweep\": " << json_string(p.sweep)
+          << ", \"spp\": " << p.spp << ", \"block\": " << p.block << ", \"interleave\": " << p.interleave
+          << ", \"half\": " << (p.half ? "true" : "false") << ", \"mock_cuts\": " << (p.mock_cuts ? "true" : "false")
+          << ", \"vpls\": " << p.vpls << ", \"frames\": " << p.frames << ", \"frame_ms\": " << p.frame_ms
+          << ", \"frame_min_ms\": " << p.frame_min_ms << ", \"frame_max_ms\": " << p.frame_max_ms
+          << ", \"gi_ms\": " << p.gi_ms << ", \"trees_ms\": " << p.trees_ms << ", \"vpls_ms\": " << p.vpls_ms
           << ", \"rmse\": " << p.rmse << ", \"ssim\": " << p.ssim << ", \"relmse\": " << p.relmse
           << ", \"levels_per_traversal\": " << p.levels_per_traversal << ", \"mock_cut_pixels\": " << p.mock_cut_pixels
-          << ", \"dropped_samples\": " << p.dropped_samples << ", \"image\": " << json_string(p.image) << ", \"stages\": [";
+          << ", \"dropped_samples\": " << p.dropped_samples << ", \"image\": " << json_string(p.image)
+          << ", \"stages\": [";
         for (size_t k = 0; k < p.stages.size(); ++k) {
             const BenchPoint::StageTime& t = p.stages[k];
             s << (k ? ", " : "") << "{\"name\": " << json_string(t.name) << ", \"median_ms\": " << t.median_ms
               << ", \"min_ms\": " << t.min_ms << ", \"max_ms\": " << t.max_ms << "}";
         }
-        s << "]}"
-          << (i + 1 < run.points.size() ? ",\n" : "\n");
+        s << "]}" << (i + 1 < run.points.size() ? ",\n" : "\n");
     }
     s << "  ]\n}\n";
     return s.str();
@@ -198,7 +208,8 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         for (const char* m : {"rtslc", "hybrid"}) {
             std::vector<const BenchPoint*> points = select(run, m, "block");
             if (const BenchPoint* p = base_point(run, m, 8)) points.push_back(p);
-            std::sort(points.begin(), points.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->block < b->block; });
+            std::sort(points.begin(), points.end(),
+                      [](const BenchPoint* a, const BenchPoint* b) { return a->block < b->block; });
             Series series;
             series.name = m;
             for (const BenchPoint* p : points) {
@@ -219,7 +230,8 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         plot.log_y = true;
         std::vector<const BenchPoint*> points = select(run, "hybrid", "vpls");
         if (const BenchPoint* p = base_point(run, "hybrid", 8)) points.push_back(p);
-        std::sort(points.begin(), points.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->vpls < b->vpls; });
+        std::sort(points.begin(), points.end(),
+                  [](const BenchPoint* a, const BenchPoint* b) { return a->vpls < b->vpls; });
         Series trees{"trees (keys, sort, leaves, light tree, SST)"}, vpls{"VPL generation"}, gi{"hybrid GI, 8 spp"};
         for (const BenchPoint* p : points) {
             for (Series* s : {&trees, &vpls, &gi}) s->x.push_back(p->vpls);
@@ -244,13 +256,14 @@ void write_equal_time_images(const std::filesystem::path& folder, const BenchRun
 }
 
 std::string row(const BenchPoint& p) {
-    return "| " + p.label() + " | " + fixed(p.frame_ms, 1) + " (" + fixed(p.frame_min_ms, 1) + "-" + fixed(p.frame_max_ms, 1) +
-           ") | " + fixed(p.gi_ms, 1) + " | " + fixed(p.rmse, 4) + " | " + fixed(p.ssim, 4) + " | " + fixed(p.relmse, 4) +
-           " | " + fixed(p.levels_per_traversal, 2) + " |\n";
+    return "| " + p.label() + " | " + fixed(p.frame_ms, 1) + " (" + fixed(p.frame_min_ms, 1) + "-" +
+           fixed(p.frame_max_ms, 1) + ") | " + fixed(p.gi_ms, 1) + " | " + fixed(p.rmse, 4) + " | " + fixed(p.ssim, 4) +
+           " | " + fixed(p.relmse, 4) + " | " + fixed(p.levels_per_traversal, 2) + " |\n";
 }
 
 const char* const kTableHead =
-    "| point | frame ms (min-max) | GI ms | RMSE | SSIM | relMSE | levels |\n| --- | --- | --- | --- | --- | --- | --- |\n";
+    "| point | frame ms (min-max) | GI ms | RMSE | SSIM | relMSE | levels |\n| --- | --- | --- | --- | --- | --- | --- "
+    "|\n";
 
 }  // namespace
 
@@ -270,7 +283,8 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     md << "# vplkit bench: " << run.scene << "\n\n"
        << "Device: " << run.device << ". Image " << run.width << "x" << run.height << ", " << run.vpl_source
        << " VPLs (budget " << run.vpl_budget << "), seed " << run.seed << ". Ground truth: `exact`, every VPL at every "
-       << "pixel with a shadow ray" << (run.exact_cached ? " (from the cache)" : ", " + fixed(run.exact_wall_ms / 1000.0, 1) + " s")
+       << "pixel with a shadow ray"
+       << (run.exact_cached ? " (from the cache)" : ", " + fixed(run.exact_wall_ms / 1000.0, 1) + " s")
        << ". Times are GPU timestamps, the median of the timed frames (min-max in brackets); RMSE and SSIM "
        << "(11x11 Gaussian windows, L = 1) are of the tonemapped frames (sRGB / 255), relMSE of the linear radiance "
        << "(epsilon " << kRelativeMseEpsilon << ").\n\n"
@@ -280,7 +294,8 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
        << "leaf: the thesis' sec. 7.1 protocol, where rtslc and hybrid differ only in the traversal).\n\n";
 
     md << "## Equal time (thesis Fig. 7.1)\n\nEach method at the point whose frame time is closest to "
-       << fixed(run.target_ms, 1) << " ms.\n\n" << kTableHead;
+       << fixed(run.target_ms, 1) << " ms.\n\n"
+       << kTableHead;
     for (const BenchPoint* p : same_time) md << row(*p);
     md << "\n| exact | ";
     for (const BenchPoint* p : same_time) md << p->method << " | " << p->method << " x10 difference | ";
@@ -288,7 +303,8 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     for (size_t i = 0; i < same_time.size(); ++i) md << " --- | --- |";
     md << "\n| ![exact](" << run.exact_image << ") | ";
     for (const BenchPoint* p : same_time) {
-        md << "![" << p->label() << "](" << p->image << ") | ![difference](images/equal_time_" << p->method << "_diff.png) | ";
+        md << "![" << p->label() << "](" << p->image << ") | ![difference](images/equal_time_" << p->method
+           << "_diff.png) | ";
     }
     md << "\n\nPer-stage GPU time of these points (ms, median of the timed frames, min-max):\n\n| stage |";
     for (const BenchPoint* p : same_time) md << " " << p->label() << " |";
@@ -297,47 +313,55 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     std::vector<std::string> stage_names;
     for (const BenchPoint* p : same_time) {
         for (const auto& t : p->stages) {
-            if (std::find(stage_names.begin(), stage_names.end(), t.name) == stage_names.end()) stage_names.push_back(t.name);
+            if (std::find(stage_names.begin(), stage_names.end(), t.name) == stage_names.end())
+                stage_names.push_back(t.name);
         }
     }
     for (const std::string& name : stage_names) {
         md << "\n| " << name << " |";
         for (const BenchPoint* p : same_time) {
-            const auto it = std::find_if(p->stages.begin(), p->stages.end(), [&](const auto& t) { return t.name == name; });
-            md << " " << (it == p->stages.end() ? std::string("-")
-                                                 : fixed(it->median_ms, 2) + " (" + fixed(it->min_ms, 2) + "-" + fixed(it->max_ms, 2) + ")")
+            const auto it =
+                std::find_if(p->stages.begin(), p->stages.end(), [&](const auto& t) { return t.name == name; });
+            md << " "
+               << (it == p->stages.end()
+                       ? std::string("-")
+                       : fixed(it->median_ms, 2) + " (" + fixed(it->min_ms, 2) + "-" + fixed(it->max_ms, 2) + ")")
                << " |";
         }
     }
     md << "\n\n## RMSE vs frame time (Fig. 7.3)\n\n![RMSE vs frame time](rmse_vs_time.png)\n\n"
        << "![RMSE vs GI time](rmse_vs_gi_time.png)\n\nThe Pareto front by frame time (ringed): ";
-    for (const BenchPoint* p : pareto_front(run)) md << p->label() << " (" << fixed(p->frame_ms, 1) << " ms, " << fixed(p->rmse, 4) << "); ";
+    for (const BenchPoint* p : pareto_front(run))
+        md << p->label() << " (" << fixed(p->frame_ms, 1) << " ms, " << fixed(p->rmse, 4) << "); ";
     md << "\n\n" << kTableHead;
     for (const char* m : kMethods) {
         for (const BenchPoint* p : select(run, m, "spp")) md << row(*p);
     }
     md << "\n## Tree levels per traversal (Fig. 7.2)\n\n![levels](levels.png)\n\n"
-       << "## Cut block size (Fig. 7.5)\n\n![block size vs RMSE](block_size_rmse.png) ![block size vs time](block_size_time.png)\n\n"
+       << "## Cut block size (Fig. 7.5)\n\n![block size vs RMSE](block_size_rmse.png) ![block size vs "
+          "time](block_size_time.png)\n\n"
        << kTableHead;
     for (const char* m : {"rtslc", "hybrid"}) {
         for (const BenchPoint* p : select(run, m, "block")) md << row(*p);
     }
     md << "\n## Mock cuts (ch. 7.3)\n\nHybrid with the mock cut where no neighbouring block is alike, against root "
        << "traversals there instead (mock-cut pixels: where no block was alike).\n\n"
-       << "| spp | mock cuts: RMSE | frame ms | root traversals: RMSE | frame ms | pixels |\n| --- | --- | --- | --- | --- | --- |\n";
+       << "| spp | mock cuts: RMSE | frame ms | root traversals: RMSE | frame ms | pixels |\n| --- | --- | --- | --- | "
+          "--- | --- |\n";
     for (const BenchPoint* p : select(run, "hybrid", "mock")) {
         if (const BenchPoint* with = base_point(run, "hybrid", p->spp)) {
-            md << "| " << p->spp << " | " << fixed(with->rmse, 4) << " | " << fixed(with->frame_ms, 1) << " | " << fixed(p->rmse, 4)
-               << " | " << fixed(p->frame_ms, 1) << " | " << with->mock_cut_pixels << " |\n";
+            md << "| " << p->spp << " | " << fixed(with->rmse, 4) << " | " << fixed(with->frame_ms, 1) << " | "
+               << fixed(p->rmse, 4) << " | " << fixed(p->frame_ms, 1) << " | " << with->mock_cut_pixels << " |\n";
         }
     }
-    md << "\n## Upsampling (table 7.2)\n\nGI at full resolution against half resolution with joint bilateral upsampling.\n\n"
+    md << "\n## Upsampling (table 7.2)\n\nGI at full resolution against half resolution with joint bilateral "
+          "upsampling.\n\n"
        << "| method | spp | full: RMSE | GI ms | half: RMSE | GI ms |\n| --- | --- | --- | --- | --- | --- |\n";
     for (const char* m : {"rtslc", "hybrid"}) {
         for (const BenchPoint* p : select(run, m, "resolution")) {
             if (const BenchPoint* full = base_point(run, m, p->spp)) {
-                md << "| " << m << " | " << p->spp << " | " << fixed(full->rmse, 4) << " | " << fixed(full->gi_ms, 1) << " | "
-                   << fixed(p->rmse, 4) << " | " << fixed(p->gi_ms, 1) << " |\n";
+                md << "| " << m << " | " << p->spp << " | " << fixed(full->rmse, 4) << " | " << fixed(full->gi_ms, 1)
+                   << " | " << fixed(p->rmse, 4) << " | " << fixed(p->gi_ms, 1) << " |\n";
             }
         }
     }
@@ -349,7 +373,8 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     if (const BenchPoint* p = base_point(run, "hybrid", 8)) counts.push_back(p);
     std::sort(counts.begin(), counts.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->vpls < b->vpls; });
     for (const BenchPoint* p : counts) {
-        md << "| " << p->vpls << " | " << fixed(p->vpls_ms, 1) << " | " << fixed(p->trees_ms, 1) << " | " << fixed(p->gi_ms, 1) << " |\n";
+        md << "| " << p->vpls << " | " << fixed(p->vpls_ms, 1) << " | " << fixed(p->trees_ms, 1) << " | "
+           << fixed(p->gi_ms, 1) << " |\n";
     }
     if (!run.skipped.empty()) {
         md << "\n## Skipped points\n\n";

@@ -12,31 +12,31 @@ namespace vplkit::cli {
 
 // A mistake on the command line: main prints "vplkit: <message>", the usage, and exits 2.
 struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+    using std::runtime_error::runtime_error;
 };
 
 // A subcommand's arguments. Take what the command understands, then call finish(): anything
 // left over is an unknown option or a surplus argument, reported as a UsageError.
 class Args {
- public:
-  Args(std::string command, std::vector<std::string> args) : command_(std::move(command)), args_(std::move(args)) {}
+public:
+    Args(std::string command, std::vector<std::string> args) : command_(std::move(command)), args_(std::move(args)) {}
 
-  // --name (or -short): true when present.
-  bool flag(std::string_view name, std::string_view short_name = {});
-  // --name VALUE or --name=VALUE.
-  std::optional<std::string> value(std::string_view name);
-  // The next argument that is not an option.
-  std::optional<std::string> positional();
-  // Refuses what is left: an option already read ("given more than once"; the options read in
-  // a loop, such as --sun, take every occurrence), an unknown option, or an extra argument.
-  void finish() const;
+    // --name (or -short): true when present.
+    bool flag(std::string_view name, std::string_view short_name = {});
+    // --name VALUE or --name=VALUE.
+    std::optional<std::string> value(std::string_view name);
+    // The next argument that is not an option.
+    std::optional<std::string> positional();
+    // Refuses what is left: an option already read ("given more than once"; the options read in
+    // a loop, such as --sun, take every occurrence), an unknown option, or an extra argument.
+    void finish() const;
 
-  const std::string& command() const { return command_; }
+    const std::string& command() const { return command_; }
 
- private:
-  std::string command_;
-  std::vector<std::string> args_;
-  std::vector<std::string> read_;  // the options flag() and value() found
+private:
+    std::string command_;
+    std::vector<std::string> args_;
+    std::vector<std::string> read_;  // the options flag() and value() found
 };
 
 // A whole number from 1 to max, or a UsageError naming the option and the text.
@@ -48,10 +48,10 @@ std::vector<uint32_t> parse_whole_number_list(const std::string& option, const s
 
 // One subcommand: `run` returns the exit code (0 ok, 1 failure); a UsageError means exit 2.
 struct Command {
-  const char* name;
-  const char* summary;  // one line for `vplkit --help`
-  const char* usage;    // `vplkit <name> --help`
-  int (*run)(Args& args);
+    const char* name;
+    const char* summary;  // one line for `vplkit --help`
+    const char* usage;    // `vplkit <name> --help`
+    int (*run)(Args& args);
 };
 
 }  // namespace vplkit::cli

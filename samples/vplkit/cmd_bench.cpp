@@ -87,8 +87,6 @@ const char* const kBenchUsage =
 
 namespace {
 
-
-
 // The last run's keys must be ascending and its values a permutation of 0..count-1: a benchmark
 // of a wrong result is worth nothing.
 void check_sorted(const Buffer& keys, const Buffer& values, uint32_t count) {
@@ -100,7 +98,8 @@ void check_sorted(const Buffer& keys, const Buffer& values, uint32_t count) {
     std::vector<bool> seen(count, false);
     for (uint32_t i = 0; i < count; ++i) {
         if (v[i] >= count || seen[v[i]] || (k[i] & (stages::kMaxKeyedVpls - 1)) != v[i]) {
-            throw Error("bench sort: sorted values are not the VPL indices of their keys (at " + std::to_string(i) + ")");
+            throw Error("bench sort: sorted values are not the VPL indices of their keys (at " + std::to_string(i) +
+                        ")");
         }
         seen[v[i]] = true;
     }

@@ -100,8 +100,10 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
         p.vpls = vpls;
         points.push_back(p);
     };
-    const std::vector<unsigned> spps = quick ? std::vector<unsigned>{1, 4} : std::vector<unsigned>{1, 2, 4, 8, 16, 32, 64};
-    const std::vector<unsigned> blocks = quick ? std::vector<unsigned>{4, 8} : std::vector<unsigned>{1, 2, 4, 8, 16, 32};
+    const std::vector<unsigned> spps =
+        quick ? std::vector<unsigned>{1, 4} : std::vector<unsigned>{1, 2, 4, 8, 16, 32, 64};
+    const std::vector<unsigned> blocks =
+        quick ? std::vector<unsigned>{4, 8} : std::vector<unsigned>{1, 2, 4, 8, 16, 32};
     const std::vector<unsigned> some = quick ? std::vector<unsigned>{4} : std::vector<unsigned>{4, 8, 16, 32};
     // hybrid-lightcuts: hybrid's cuts and blending with rtslc's traversal (seed 000 sec. 7.1).
     for (const char* m : {"sst", "rtslc", "hybrid", "hybrid-lightcuts"}) {
@@ -117,8 +119,8 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
     }
     for (unsigned spp : some) add("rtslc", "interleave", spp, 8, 2, false, true, vpl_budget);
     for (unsigned spp : some) add("hybrid", "mock", spp, 8, 1, false, false, vpl_budget);
-    const std::vector<unsigned> counts = quick ? std::vector<unsigned>{vpl_budget * 4}
-                                               : std::vector<unsigned>{1024, 16384, 65536, 262144, 1048576};
+    const std::vector<unsigned> counts =
+        quick ? std::vector<unsigned>{vpl_budget * 4} : std::vector<unsigned>{1024, 16384, 65536, 262144, 1048576};
     for (unsigned n : counts) {
         if (n != vpl_budget) add("hybrid", "vpls", 8, 8, 1, false, true, n);
     }
@@ -140,7 +142,9 @@ bool is_gi_pass(const std::string& pass) {
 bool is_tree_pass(const std::string& pass) {
     return owned_by(pass, {FrameStage::vpl_sort, FrameStage::light_tree, FrameStage::sst});
 }
-bool is_vpl_pass(const std::string& pass) { return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls}); }
+bool is_vpl_pass(const std::string& pass) {
+    return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls});
+}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -149,7 +153,7 @@ double median(std::vector<double> v) {
 }
 
 class Progress {
- public:
+public:
     explicit Progress(size_t total) : total_(total), terminal_(isatty(fileno(stderr))) {}
     void show(size_t done, const std::string& what) {
         const int width = 30;
@@ -164,7 +168,7 @@ class Progress {
         std::fflush(stderr);
     }
 
- private:
+private:
     size_t total_;
     bool terminal_;
 };
@@ -206,7 +210,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     uint32_t frames = quick ? 2 : 3;
     if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 100);
     std::optional<std::string> source = args.value("--vpl-source");
-    if (source && *source != "ir" && *source != "brsm") throw UsageError("--vpl-source expects ir or brsm, got '" + *source + "'");
+    if (source && *source != "ir" && *source != "brsm")
+        throw UsageError("--vpl-source expects ir or brsm, got '" + *source + "'");
     uint32_t vpl_budget = quick ? 256 : 4096;
     if (auto text = args.value("--vpls")) vpl_budget = parse_whole_number("--vpls", *text, 1u << 20);
     uint32_t seed = 0;
@@ -215,8 +220,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     if (auto text = args.value("--target-ms")) target_ms = parse_whole_number("--target-ms", *text, 1u << 30);
     // --scene takes a set-up name or a .gltf/.glb file, as render does; a file brings its own
     // camera (--camera N) and lights, plus --sun and --point.
-    const bool is_file = scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") ||
-                         scene_name.ends_with(".glb");
+    const bool is_file =
+        scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") || scene_name.ends_with(".glb");
     std::optional<uint32_t> camera;
     if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
     std::vector<scene::Light> extra_lights;
@@ -234,8 +239,10 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             const size_t comma = std::min(text->find(',', start), text->size());
             const std::string name = text->substr(start, comma - start);
             if (std::find(known.begin(), known.end(), name) == known.end()) {
-                throw UsageError("--sweeps expects a comma-separated list of spp, block, resolution, interleave, mock, "
-                                 "vpls, got '" + *text + "'");
+                throw UsageError(
+                    "--sweeps expects a comma-separated list of spp, block, resolution, interleave, mock, "
+                    "vpls, got '" +
+                    *text + "'");
             }
             sweeps.push_back(name);
             start = comma + 1;
@@ -262,7 +269,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     auto context = Context::create(context_options);
     const DeviceInfo& device = context->info();
     std::printf("device: %s (%s): %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
-    const bool cpu = device.type_name.find("CPU") != std::string::npos || device.type_name.find("cpu") != std::string::npos;
+    const bool cpu =
+        device.type_name.find("CPU") != std::string::npos || device.type_name.find("cpu") != std::string::npos;
     RenderSettings base;
     base.width = width.value_or(quick ? 48 : cpu ? 320 : 1280);
     base.height = height.value_or(quick ? 27 : cpu ? 180 : 720);
@@ -271,7 +279,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
                              : (scene.lights.empty() ? VplSource::ir : VplSource::brsm);
     base.vpl_paths = vpl_budget;
     base.brsm.vpl_count = vpl_budget;
-    base.reuse_static_work = false;  // every timed frame places its VPLs and builds its tree
+    base.reuse_static_work = false;        // every timed frame places its VPLs and builds its tree
     if (quick) base.rsm_resolution = 128;  // BRSM's shadow maps dominate a tiny frame otherwise
     Renderer renderer(*context, scene);
 
@@ -313,7 +321,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             };
             const auto start = std::chrono::steady_clock::now();
             const RenderedImage image = renderer.render(scene.camera(), s);
-            run.exact_wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+            run.exact_wall_ms =
+                std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
             if (image.non_finite_pixels > 0) throw Error("bench: the ground truth has non-finite pixels");
             write_png(truth.png, image.width, image.height, image.rgba8);
             write_pfm(pfm, image.width, image.height, image.radiance);
@@ -323,7 +332,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             std::printf("ground truth: %u VPLs, %.1f s (host wall clock), cached as %s\n", image.vpl_count,
                         run.exact_wall_ms / 1000.0, pfm.string().c_str());
         }
-        std::filesystem::copy_file(truth.png, out / "images" / "exact.png", std::filesystem::copy_options::overwrite_existing);
+        std::filesystem::copy_file(truth.png, out / "images" / "exact.png",
+                                   std::filesystem::copy_options::overwrite_existing);
         run.exact_image = "images/exact.png";
     }
 
@@ -346,7 +356,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         s.mock_cuts = p.mock_cuts;
         if (p.method == "hybrid-lightcuts") s.hybrid_traversal = vplkit::stages::HybridTraversal::lightcuts;
         // Light paths leave up to one VPL per bounce: aim the path count at the VPL count.
-        s.vpl_paths = base.vpl_source == VplSource::ir && p.sweep == "vpls" ? std::max(1u, p.vpls / base.vpl_bounces) : p.vpls;
+        s.vpl_paths =
+            base.vpl_source == VplSource::ir && p.sweep == "vpls" ? std::max(1u, p.vpls / base.vpl_bounces) : p.vpls;
         s.brsm.vpl_count = p.vpls;
         std::vector<double> frame_ms, gi_ms, trees_ms, vpls_ms;
         std::vector<std::string> stage_names;
@@ -369,9 +380,12 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
                 if (this_frame.count(t.name) == 0 && stage_ms.count(t.name) == 0) stage_names.push_back(t.name);
                 this_frame[t.name] += t.gpu_ms;
                 total += t.gpu_ms;
-                if (is_gi_pass(t.name)) gi += t.gpu_ms;
-                else if (is_tree_pass(t.name)) trees += t.gpu_ms;
-                else if (is_vpl_pass(t.name)) vpls += t.gpu_ms;
+                if (is_gi_pass(t.name))
+                    gi += t.gpu_ms;
+                else if (is_tree_pass(t.name))
+                    trees += t.gpu_ms;
+                else if (is_vpl_pass(t.name))
+                    vpls += t.gpu_ms;
             }
             for (const auto& [name, ms] : this_frame) stage_ms[name].push_back(ms);
             frame_ms.push_back(total);
@@ -395,7 +409,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         p.vpls_ms = median(vpls_ms);
         for (const std::string& name : stage_names) {
             const std::vector<double>& v = stage_ms[name];
-            p.stages.push_back({name, median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())});
+            p.stages.push_back(
+                {name, median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())});
         }
         p.vpls = image.vpl_count;
         const std::vector<float> rgb = unit_rgb(image.rgba8);
@@ -412,7 +427,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     }
     progress.show(points.size(), "done");
 
-    points.erase(std::remove_if(points.begin(), points.end(), [](const BenchPoint& p) { return p.frames == 0; }), points.end());
+    points.erase(std::remove_if(points.begin(), points.end(), [](const BenchPoint& p) { return p.frames == 0; }),
+                 points.end());
     run.points = std::move(points);
     run.target_ms = target_ms;
     if (run.target_ms <= 0) {
@@ -426,7 +442,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     for (const char* m : {"sst", "rtslc", "hybrid", "hybrid-lightcuts"}) {
         const BenchPoint* best = nullptr;
         for (const BenchPoint& p : run.points) {
-            if (p.method == m && p.sweep != "vpls" && p.frame_ms <= run.target_ms && (!best || p.rmse < best->rmse)) best = &p;
+            if (p.method == m && p.sweep != "vpls" && p.frame_ms <= run.target_ms && (!best || p.rmse < best->rmse))
+                best = &p;
         }
         if (best) {
             std::printf("  %-16s %.4f  (%s, %.1f ms)\n", m, best->rmse, best->label().c_str(), best->frame_ms);

@@ -36,7 +36,6 @@
 
 namespace vplkit::cli {
 
-
 namespace {
 
 // Both roots must hold all the flux (within float summation error): a benchmark of a wrong
@@ -96,17 +95,20 @@ int run_bench_tree(Args& args) {
         const auto vpls = surfaces ? surface_vpls(*surfaces, count, count) : random_vpls(count, count);
         const uint32_t leaves = stages::leaf_count(count);
         constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-        auto vpl_buffer = Buffer::create(*context, uint64_t(count) * sizeof(shaders::Vpl), storage, MemoryUse::device, "vpls");
+        auto vpl_buffer =
+            Buffer::create(*context, uint64_t(count) * sizeof(shaders::Vpl), storage, MemoryUse::device, "vpls");
         auto bounds = Buffer::create(*context, stages::kVplBoundsBytes, storage, MemoryUse::device, "vpl bounds");
         auto keys = Buffer::create(*context, uint64_t(count) * 8, storage, MemoryUse::device, "vpl keys");
         auto values = Buffer::create(*context, uint64_t(count) * 4, storage, MemoryUse::device, "vpl key values");
-        auto leaf_buffer = Buffer::create(*context, uint64_t(leaves) * sizeof(shaders::Vpl), storage, MemoryUse::device, "leaves");
-        auto light_tree = Buffer::create(*context, uint64_t(stages::light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
-                                         storage, MemoryUse::device, "light tree");
+        auto leaf_buffer =
+            Buffer::create(*context, uint64_t(leaves) * sizeof(shaders::Vpl), storage, MemoryUse::device, "leaves");
+        auto light_tree =
+            Buffer::create(*context, uint64_t(stages::light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
+                           storage, MemoryUse::device, "light tree");
         auto sst = Buffer::create(*context, uint64_t(stages::sst_node_count(count)) * sizeof(shaders::SstNode), storage,
                                   MemoryUse::device, "sst");
-        auto counters = Buffer::create(*context, uint64_t(stages::sst_counter_count(count)) * 4, storage, MemoryUse::device,
-                                       "sst counters");
+        auto counters = Buffer::create(*context, uint64_t(stages::sst_counter_count(count)) * 4, storage,
+                                       MemoryUse::device, "sst counters");
         vpl_buffer.upload(vpls);
 
         stages::KeyValueSorter sorter(*context, count, sort_options);
@@ -122,8 +124,9 @@ int run_bench_tree(Args& args) {
 
         for (const StageStats& s : stats) {
             std::printf("%10u  %-22s %10.3f %10.3f %10.3f\n", count, s.stage.c_str(), s.median_ms, s.min_ms, s.max_ms);
-            csv << '"' << device.name << "\"," << source << ',' << stages::sort_algorithm_name(sort_options.algorithm) << ','
-                << count << ',' << s.stage << ',' << runs << ',' << s.median_ms << ',' << s.min_ms << ',' << s.max_ms << '\n';
+            csv << '"' << device.name << "\"," << source << ',' << stages::sort_algorithm_name(sort_options.algorithm)
+                << ',' << count << ',' << s.stage << ',' << runs << ',' << s.median_ms << ',' << s.min_ms << ','
+                << s.max_ms << '\n';
         }
     }
     if (csv_path) {

@@ -66,7 +66,9 @@ struct Values {
     std::vector<float> rgb;
 };
 
-std::string size_text(const Values& image) { return std::to_string(image.width) + "x" + std::to_string(image.height); }
+std::string size_text(const Values& image) {
+    return std::to_string(image.width) + "x" + std::to_string(image.height);
+}
 
 bool is_png_name(const std::string& path) {
     std::string extension = std::filesystem::path(path).extension().string();
@@ -117,8 +119,8 @@ int run_compare(Args& args) {
     const Values test = read_values(*test_path, png);
     const Values reference = read_values(*reference_path, png);
     if (test.width != reference.width || test.height != reference.height) {
-        throw Error("compare: " + *test_path + " is " + size_text(test) + ", the reference " + *reference_path + " is " +
-                    size_text(reference) + "; the images must be the same size");
+        throw Error("compare: " + *test_path + " is " + size_text(test) + ", the reference " + *reference_path +
+                    " is " + size_text(reference) + "; the images must be the same size");
     }
     std::printf("test:          %s (%s)\n", test_path->c_str(), size_text(test).c_str());
     std::printf("reference:     %s (%s)\n", reference_path->c_str(), size_text(reference).c_str());
@@ -161,7 +163,8 @@ int run_compare(Args& args) {
     }
 
     if (diff_path) {
-        const std::vector<uint8_t> rgba = difference_image_rgba8(test.rgb, reference.rgb, test.width, test.height, scale);
+        const std::vector<uint8_t> rgba =
+            difference_image_rgba8(test.rgb, reference.rgb, test.width, test.height, scale);
         write_png(*diff_path, test.width, test.height, rgba);
         // The same picture for both inputs: the difference of the values the metrics saw, sRGB-encoded
         // for display. For PNG input those values are already sRGB, so this encodes them a second

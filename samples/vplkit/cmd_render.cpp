@@ -163,7 +163,8 @@ std::vector<std::pair<std::string, double>> by_stage(const std::vector<PassTimin
 }
 
 // Each stage's median over frames (the stages of the first frame, in its order).
-std::vector<std::pair<std::string, double>> median_stages(const std::vector<std::vector<std::pair<std::string, double>>>& frames) {
+std::vector<std::pair<std::string, double>> median_stages(
+    const std::vector<std::vector<std::pair<std::string, double>>>& frames) {
     std::vector<std::pair<std::string, double>> out;
     for (const auto& [name, ms] : frames.front()) {
         std::vector<double> values;
@@ -207,7 +208,8 @@ int render_or_plan(Args& args, bool plan_only) {
     RenderSettings settings;
     if (auto text = args.value("--exposure")) settings.exposure = parse_exposure(*text);
     if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
-    if (auto text = args.value("--emissive-samples")) settings.emissive_samples = parse_whole_number("--emissive-samples", *text, 65536);
+    if (auto text = args.value("--emissive-samples"))
+        settings.emissive_samples = parse_whole_number("--emissive-samples", *text, 65536);
     if (auto text = args.value("--method")) {
         bool known = false;
         for (GiMethod m : {GiMethod::none, GiMethod::exact, GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid}) {
@@ -218,8 +220,8 @@ int render_or_plan(Args& args, bool plan_only) {
         }
         if (!known) throw UsageError("--method expects direct, exact, sst, rtslc or hybrid, got '" + *text + "'");
     }
-    const bool sampled = settings.method == GiMethod::sst || settings.method == GiMethod::rtslc ||
-                         settings.method == GiMethod::hybrid;
+    const bool sampled =
+        settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
     const bool blocked = settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
     const bool substitutes = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
     if (auto text = args.value("--spp")) {
@@ -257,16 +259,22 @@ int render_or_plan(Args& args, bool plan_only) {
     }
     if (auto text = args.value("--gi-resolution")) {
         if (settings.method == GiMethod::none) throw UsageError("--gi-resolution needs an indirect-light --method");
-        if (*text == "half") settings.half_resolution_gi = true;
-        else if (*text != "full") throw UsageError("--gi-resolution expects full or half, got '" + *text + "'");
+        if (*text == "half")
+            settings.half_resolution_gi = true;
+        else if (*text != "full")
+            throw UsageError("--gi-resolution expects full or half, got '" + *text + "'");
     }
     bool vpl_options_given = false;
     if (auto text = args.value("--vpl-source")) {
         vpl_options_given = true;
-        if (*text == "ir") settings.vpl_source = VplSource::ir;
-        else if (*text == "brsm") settings.vpl_source = VplSource::brsm;
-        else if (*text == "auto") settings.vpl_source = VplSource::automatic;
-        else throw UsageError("--vpl-source expects ir, brsm or auto, got '" + *text + "'");
+        if (*text == "ir")
+            settings.vpl_source = VplSource::ir;
+        else if (*text == "brsm")
+            settings.vpl_source = VplSource::brsm;
+        else if (*text == "auto")
+            settings.vpl_source = VplSource::automatic;
+        else
+            throw UsageError("--vpl-source expects ir, brsm or auto, got '" + *text + "'");
     }
     const bool brsm = settings.vpl_source == VplSource::brsm;
     if (auto text = args.value("--vpls")) {
@@ -292,7 +300,8 @@ int render_or_plan(Args& args, bool plan_only) {
     settings.vpls_only = args.flag("--vpls-only");
     bool lambertian = false;
     if (auto text = args.value("--brdf")) {
-        if (*text != "gltf" && *text != "lambert") throw UsageError("--brdf expects gltf or lambert, got '" + *text + "'");
+        if (*text != "gltf" && *text != "lambert")
+            throw UsageError("--brdf expects gltf or lambert, got '" + *text + "'");
         lambertian = *text == "lambert";
     }
     settings.force_all_stages = args.flag("--all-stages");
@@ -300,11 +309,13 @@ int render_or_plan(Args& args, bool plan_only) {
     uint32_t frames = 1;
     if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
     if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
-        throw UsageError("--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
-                         "or --vpls-only (direct light uses no VPLs)");
+        throw UsageError(
+            "--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
+            "or --vpls-only (direct light uses no VPLs)");
     }
     if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
-        throw UsageError("--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
+        throw UsageError(
+            "--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
     }
     args.finish();
     // A sampling option the method refuses (e.g. an interleave that does not divide the block)
@@ -325,7 +336,8 @@ int render_or_plan(Args& args, bool plan_only) {
     load_options.camera = camera;
     scene::Scene scene;
     std::string described;
-    const bool is_file = scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
+    const bool is_file =
+        scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
     if (is_file) {
         scene = scene::load_gltf(scene_arg, load_options);
         described = scene_arg;
@@ -347,7 +359,8 @@ int render_or_plan(Args& args, bool plan_only) {
     if (plan_only) {
         // No device work: the plan is a function of the scene and the settings.
         std::printf("scene: %s: %zu triangles, %zu materials, %zu lights, %zu emissive triangles\n", described.c_str(),
-                    scene.triangle_count(), scene.materials.size(), scene.lights.size(), scene.emissive_triangles.size());
+                    scene.triangle_count(), scene.materials.size(), scene.lights.size(),
+                    scene.emissive_triangles.size());
         std::printf("method: %s, %ux%u\n", gi_method_name(settings.method), settings.width, settings.height);
         const FramePlan plan = plan_frame(scene, settings, "");
         std::printf("%s\n%s", plan.summary().c_str(), plan.describe().c_str());
@@ -386,9 +399,10 @@ int render_or_plan(Args& args, bool plan_only) {
     for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
     const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
     if (made_vpls && image.vpl_source == VplSource::brsm) {
-        std::printf("%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
-                    settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
-                    settings.brsm.samples_per_texel, settings.brsm.defensive_fraction);
+        std::printf(
+            "%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
+            settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
+            settings.brsm.samples_per_texel, settings.brsm.defensive_fraction);
     } else if (made_vpls) {
         std::printf("%s: %u VPLs from %u light paths x %u bounces\n", settings.vpls_only ? "vpls" : "indirect",
                     image.vpl_count, settings.vpl_paths, settings.vpl_bounces);
@@ -464,7 +478,11 @@ int render_or_plan(Args& args, bool plan_only) {
 
 }  // namespace
 
-int run_render(Args& args) { return render_or_plan(args, false); }
-int run_plan(Args& args) { return render_or_plan(args, true); }
+int run_render(Args& args) {
+    return render_or_plan(args, false);
+}
+int run_plan(Args& args) {
+    return render_or_plan(args, true);
+}
 
 }  // namespace vplkit::cli

@@ -20,66 +20,67 @@ using vplkit::cli::UsageError;
 const Command kCommands[] = {
     {"info", "list the Vulkan devices, the one vplkit picks and why, and its features", vplkit::cli::kInfoUsage,
      vplkit::cli::run_info},
-    {"render", "render a scene (set-up name or glTF file) to a PNG, with per-stage GPU times", vplkit::cli::kRenderUsage,
-     vplkit::cli::run_render},
+    {"render", "render a scene (set-up name or glTF file) to a PNG, with per-stage GPU times",
+     vplkit::cli::kRenderUsage, vplkit::cli::run_render},
     {"plan", "the stages a frame of a scene would run and why (render's options; no device work)",
      vplkit::cli::kPlanUsage, vplkit::cli::run_plan},
-    {"bench", "GPU timings of the kit's stages (sort, tree; gi --scene NAME: accuracy vs time of every method)", vplkit::cli::kBenchUsage,
-     vplkit::cli::run_bench},
+    {"bench", "GPU timings of the kit's stages (sort, tree; gi --scene NAME: accuracy vs time of every method)",
+     vplkit::cli::kBenchUsage, vplkit::cli::run_bench},
     {"compare", "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
      vplkit::cli::kCompareUsage, vplkit::cli::run_compare},
 };
 
 void print_usage(std::FILE* out) {
-  std::fprintf(out, "usage: vplkit <command> [options]\n\ncommands:\n");
-  for (const Command& c : kCommands) std::fprintf(out, "  %-8s %s\n", c.name, c.summary);
-  std::fprintf(out,
-               "\n'vplkit <command> --help' shows a command's options.\n"
-               "environment: VPLKIT_DEVICE=auto|gpu|cpu|<index>|<name part> picks the device when no --device is given\n");
+    std::fprintf(out, "usage: vplkit <command> [options]\n\ncommands:\n");
+    for (const Command& c : kCommands) std::fprintf(out, "  %-8s %s\n", c.name, c.summary);
+    std::fprintf(
+        out,
+        "\n'vplkit <command> --help' shows a command's options.\n"
+        "environment: VPLKIT_DEVICE=auto|gpu|cpu|<index>|<name part> picks the device when no --device is given\n");
 }
 
 const Command* find_command(const std::string& name) {
-  for (const Command& c : kCommands) {
-    if (name == c.name) return &c;
-  }
-  return nullptr;
+    for (const Command& c : kCommands) {
+        if (name == c.name) return &c;
+    }
+    return nullptr;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> args(argv + 1, argv + argc);
-  if (args.empty()) {
-    std::fprintf(stderr, "vplkit: no command given\n");
-    print_usage(stderr);
-    return 2;
-  }
-  const std::string name = args.front();
-  if (name == "--help" || name == "-h" || name == "help") {
-    print_usage(stdout);
-    return 0;
-  }
-  const Command* command = find_command(name);
-  if (!command) {
-    std::fprintf(stderr, "vplkit: unknown %s '%s'\n", name.rfind('-', 0) == 0 ? "option" : "command", name.c_str());
-    print_usage(stderr);
-    return 2;
-  }
-  Args command_args(name, std::vector<std::string>(args.begin() + 1, args.end()));
-  try {
-    if (command_args.flag("--help", "-h")) {
-      std::fputs(command->usage, stdout);
-      return 0;
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+        std::fprintf(stderr, "vplkit: no command given\n");
+        print_usage(stderr);
+        return 2;
     }
-    return command->run(command_args);
-  } catch (const UsageError& e) {
-    std::fprintf(stderr, "vplkit: %s\n", e.what());
-    std::fputs(command->usage, stderr);
-    return 2;
-  } catch (const std::exception& e) {
-    // Runtime errors already start with "vplkit: ".
-    const std::string text = e.what();
-    std::fprintf(stderr, "%s%s\n", text.rfind("vplkit: ", 0) == 0 ? "" : "vplkit: ", text.c_str());
-    return 1;
-  }
+    const std::string name = args.front();
+    if (name == "--help" || name == "-h" || name == "help") {
+        print_usage(stdout);
+        return 0;
+    }
+    const Command* command = find_command(name);
+    if (!command) {
+        std::fprintf(stderr, "vplkit: unknown %s '%s'\n", name.rfind('-', 0) == 0 ? "option" : "command", name.c_str());
+        print_usage(stderr);
+        return 2;
+    }
+    Args command_args(name, std::vector<std::string>(args.begin() + 1, args.end()));
+    try {
+        if (command_args.flag("--help", "-h")) {
+            std::fputs(command->usage, stdout);
+            return 0;
+        }
+        return command->run(command_args);
+    } catch (const UsageError& e) {
+        std::fprintf(stderr, "vplkit: %s\n", e.what());
+        std::fputs(command->usage, stderr);
+        return 2;
+    } catch (const std::exception& e) {
+        // Runtime errors already start with "vplkit: ".
+        const std::string text = e.what();
+        std::fprintf(stderr, "%s%s\n", text.rfind("vplkit: ", 0) == 0 ? "" : "vplkit: ", text.c_str());
+        return 1;
+    }
 }

@@ -24,9 +24,9 @@ constexpr int text_height = int(font::glyph_height) * text_scale;
 constexpr int cap_height = (int(font::glyph_height) - 1) * text_scale;
 constexpr int line_spacing = int(font::line_height) * text_scale;
 
-constexpr int margin = 12;       // between the picture's edge and anything drawn
-constexpr int tick_length = 6;   // outward from the frame
-constexpr int label_gap = 4;     // between a tick and its label
+constexpr int margin = 12;      // between the picture's edge and anything drawn
+constexpr int tick_length = 6;  // outward from the frame
+constexpr int label_gap = 4;    // between a tick and its label
 constexpr int marker_radius = 4;
 constexpr int ring_inner = 7, ring_outer = 9;
 
@@ -51,12 +51,18 @@ constexpr std::array<Rgb, 7> palette{{
 }};
 
 enum class Shape { circle, square, diamond, triangle };
-Shape series_shape(size_t i) { return Shape(i % 4); }
+Shape series_shape(size_t i) {
+    return Shape(i % 4);
+}
 
-bool finite(double v) { return std::isfinite(v); }
+bool finite(double v) {
+    return std::isfinite(v);
+}
 
 // A 1-2-5 value: multiplier 1, 2 or 5, times 10^exponent.
-double nice_value(int multiplier, int exponent) { return multiplier * std::pow(10.0, exponent); }
+double nice_value(int multiplier, int exponent) {
+    return multiplier * std::pow(10.0, exponent);
+}
 
 // The largest 1-2-5 value <= v (v > 0), and the smallest >= v. The tolerance keeps a value that is
 // a 1-2-5 value up to rounding where it is.
@@ -124,7 +130,9 @@ double axis_fraction(const AxisRange& axis, double v) {
     return (v - axis.lo) / (axis.hi - axis.lo);
 }
 
-bool placeable_on(const AxisRange& axis, double v) { return finite(v) && (!axis.log || v > 0); }
+bool placeable_on(const AxisRange& axis, double v) {
+    return finite(v) && (!axis.log || v > 0);
+}
 
 std::vector<double> ticks_for(const AxisRange& axis) {
     return axis.log ? log_ticks(axis.lo, axis.hi) : linear_ticks(axis.lo, axis.hi);
@@ -147,7 +155,9 @@ bool minor_grid_helps(const AxisRange& axis, const std::vector<double>& ticks) {
     });
 }
 
-int to_int(double pixel) { return int(std::lround(std::clamp(pixel, -1e6, 1e6))); }
+int to_int(double pixel) {
+    return int(std::lround(std::clamp(pixel, -1e6, 1e6)));
+}
 
 void draw_marker(Canvas& canvas, int cx, int cy, Shape shape, Rgb colour) {
     const int r = marker_radius;
@@ -155,11 +165,19 @@ void draw_marker(Canvas& canvas, int cx, int cy, Shape shape, Rgb colour) {
         for (int dx = -r; dx <= r; ++dx) {
             bool inside = false;
             switch (shape) {
-                case Shape::circle: inside = dx * dx + dy * dy <= r * r + r; break;
-                case Shape::square: inside = std::abs(dx) <= r - 1 && std::abs(dy) <= r - 1; break;
-                case Shape::diamond: inside = std::abs(dx) + std::abs(dy) <= r + 1; break;
+                case Shape::circle:
+                    inside = dx * dx + dy * dy <= r * r + r;
+                    break;
+                case Shape::square:
+                    inside = std::abs(dx) <= r - 1 && std::abs(dy) <= r - 1;
+                    break;
+                case Shape::diamond:
+                    inside = std::abs(dx) + std::abs(dy) <= r + 1;
+                    break;
                 // Apex at the top, base on the bottom row: the half width grows by one every row.
-                case Shape::triangle: inside = 2 * std::abs(dx) <= dy + r + 1; break;
+                case Shape::triangle:
+                    inside = 2 * std::abs(dx) <= dy + r + 1;
+                    break;
             }
             if (inside) canvas.set(cx + dx, cy + dy, colour);
         }
@@ -274,7 +292,9 @@ void draw_legend(Canvas& canvas, const PlotSpec& spec, const PlotAxes& axes) {
 
 }  // namespace
 
-Rgb series_colour(size_t i) { return palette[i % palette.size()]; }
+Rgb series_colour(size_t i) {
+    return palette[i % palette.size()];
+}
 
 std::vector<PointRef> pareto_front(const std::vector<Series>& series) {
     struct Point {
@@ -285,7 +305,8 @@ std::vector<PointRef> pareto_front(const std::vector<Series>& series) {
     for (size_t s = 0; s < series.size(); ++s) {
         const size_t n = std::min(series[s].x.size(), series[s].y.size());
         for (size_t i = 0; i < n; ++i) {
-            if (finite(series[s].x[i]) && finite(series[s].y[i])) points.push_back({series[s].x[i], series[s].y[i], {s, i}});
+            if (finite(series[s].x[i]) && finite(series[s].y[i]))
+                points.push_back({series[s].x[i], series[s].y[i], {s, i}});
         }
     }
     // By x, then y: a point is on the front when its y is below every y met before it at a smaller
@@ -404,7 +425,8 @@ PlotAxes PlotAxes::fit(const PlotSpec& spec) {
 
     int y_label_width = 0;
     for (size_t i = 0; i < axes.y_ticks.size(); ++i) {
-        y_label_width = std::max(y_label_width, text_width(format_tick(axes.y_ticks[i], label_step(axes.y, axes.y_ticks, i))));
+        y_label_width =
+            std::max(y_label_width, text_width(format_tick(axes.y_ticks[i], label_step(axes.y, axes.y_ticks, i))));
     }
     int last_x_label_width = 0;
     if (!axes.x_ticks.empty()) {
@@ -424,7 +446,9 @@ PlotAxes PlotAxes::fit(const PlotSpec& spec) {
     return axes;
 }
 
-bool PlotAxes::placeable(double px, double py) const { return placeable_on(x, px) && placeable_on(y, py); }
+bool PlotAxes::placeable(double px, double py) const {
+    return placeable_on(x, px) && placeable_on(y, py);
+}
 
 PlotAxes::Pixel PlotAxes::to_pixel(double px, double py) const {
     return {area.left + axis_fraction(x, px) * (area.right - area.left),
@@ -456,7 +480,8 @@ void Canvas::set(int x, int y, Rgb colour) {
 
 void Canvas::fill_rect(int x0, int y0, int x1, int y1, Rgb colour) {
     for (int y = std::max(std::min(y0, y1), 0); y <= std::min(std::max(y0, y1), int(height_) - 1); ++y) {
-        for (int x = std::max(std::min(x0, x1), 0); x <= std::min(std::max(x0, x1), int(width_) - 1); ++x) set(x, y, colour);
+        for (int x = std::max(std::min(x0, x1), 0); x <= std::min(std::max(x0, x1), int(width_) - 1); ++x)
+            set(x, y, colour);
     }
 }
 
@@ -494,7 +519,9 @@ void draw_text(Canvas& canvas, int x, int y, std::string_view text, Rgb colour, 
     }
 }
 
-int text_width(std::string_view text, int scale) { return int(text.size()) * int(font::advance) * scale; }
+int text_width(std::string_view text, int scale) {
+    return int(text.size()) * int(font::advance) * scale;
+}
 
 std::vector<uint8_t> render_plot(const PlotSpec& spec) {
     check_spec(spec);
@@ -526,7 +553,8 @@ std::vector<uint8_t> render_plot(const PlotSpec& spec) {
         canvas.line(px, area.top, px, area.bottom, grid_colour);
         canvas.line(px, area.bottom, px, area.bottom + tick_length, frame_colour);
         const std::string label = format_tick(axes.x_ticks[i], label_step(axes.x, axes.x_ticks, i));
-        draw_text(canvas, px - text_width(label) / 2 + text_scale / 2, area.bottom + tick_length + label_gap, label, ink);
+        draw_text(canvas, px - text_width(label) / 2 + text_scale / 2, area.bottom + tick_length + label_gap, label,
+                  ink);
     }
     for (size_t i = 0; i < axes.y_ticks.size(); ++i) {
         const int py = to_int(axes.to_pixel(axes.x.lo, axes.y_ticks[i]).y);
@@ -534,7 +562,8 @@ std::vector<uint8_t> render_plot(const PlotSpec& spec) {
         canvas.line(area.left - tick_length, py, area.left, py, frame_colour);
         const std::string label = format_tick(axes.y_ticks[i], label_step(axes.y, axes.y_ticks, i));
         // Right-aligned; the blank column ending the last cell is not part of the label.
-        draw_text(canvas, area.left - tick_length - label_gap - text_width(label) + text_scale, py - cap_height / 2, label, ink);
+        draw_text(canvas, area.left - tick_length - label_gap - text_width(label) + text_scale, py - cap_height / 2,
+                  label, ink);
     }
     draw_rect_outline(canvas, area.left, area.top, area.right, area.bottom, frame_colour);
 

@@ -25,10 +25,10 @@ struct Rgb {
 };
 
 struct Series {
-    std::string name;         // its legend entry
+    std::string name;          // its legend entry
     std::vector<double> x, y;  // the same length (render_plot throws vplkit::Error otherwise)
-    bool lines = true;        // join consecutive points
-    bool markers = true;      // a filled marker at each point
+    bool lines = true;         // join consecutive points
+    bool markers = true;       // a filled marker at each point
 };
 
 // A point of a plot: `index` into series[series].x and .y.
@@ -78,7 +78,7 @@ struct PixelRect {
 };
 
 class PlotAxes {
-  public:
+public:
     // The ranges of the spec's points that can be placed, padded by 5% of their span on each side
     // (of their decades on a log axis, whose ends then move out to the next 1-2-5 value); a
     // single value, or all equal, gets a range around it. Without data: 0..1, or 1..10 when log.
@@ -101,7 +101,7 @@ class PlotAxes {
 
 // An RGBA8 picture, rows top to bottom, every alpha 255.
 class Canvas {
-  public:
+public:
     Canvas(uint32_t width, uint32_t height, Rgb background);
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -114,7 +114,7 @@ class Canvas {
     const std::vector<uint8_t>& rgba() const { return rgba_; }
     std::vector<uint8_t> take_rgba() { return std::move(rgba_); }
 
-  private:
+private:
     uint32_t width_, height_;
     std::vector<uint8_t> rgba_;
 };

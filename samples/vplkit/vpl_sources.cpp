@@ -44,9 +44,9 @@ std::vector<shaders::Vpl> surface_vpls(const scene::Scene& scene, uint32_t count
     std::vector<shaders::Vpl> vpls(count);
     for (shaders::Vpl& vpl : vpls) {
         const double pick = unit(rng) * total;
-        const size_t t = std::min(size_t(std::lower_bound(cumulative_area.begin(), cumulative_area.end(), pick) -
-                                         cumulative_area.begin()),
-                                  triangles - 1);
+        const size_t t = std::min(
+            size_t(std::lower_bound(cumulative_area.begin(), cumulative_area.end(), pick) - cumulative_area.begin()),
+            triangles - 1);
         const glm::vec3 a = scene.vertices[scene.indices[3 * t]].position;
         const glm::vec3 b = scene.vertices[scene.indices[3 * t + 1]].position;
         const glm::vec3 c = scene.vertices[scene.indices[3 * t + 2]].position;

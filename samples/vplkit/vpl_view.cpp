@@ -39,9 +39,11 @@ VplView draw_vpl_view(const RenderedImage& image, const glm::mat4& view_projecti
             // Surfaces in shadow would be black: a faint shading by their facing (normal from the
             // G-buffer positions' differences) keeps the geometry readable there.
             if (x + 1 < w && y + 1 < h && covered(x, y) && covered(x + 1, y) && covered(x, y + 1)) {
-                const glm::vec3 n = glm::cross(position(x + 1, y) - position(x, y), position(x, y + 1) - position(x, y));
+                const glm::vec3 n =
+                    glm::cross(position(x + 1, y) - position(x, y), position(x, y + 1) - position(x, y));
                 const glm::vec3 to_eye = eye - position(x, y);
-                const float facing = std::abs(glm::dot(n, to_eye)) / std::max(1e-30f, glm::length(n) * glm::length(to_eye));
+                const float facing =
+                    std::abs(glm::dot(n, to_eye)) / std::max(1e-30f, glm::length(n) * glm::length(to_eye));
                 if (std::isfinite(facing)) grey = std::max(grey, 16.0f + 40.0f * facing);
             }
             const auto g8 = uint8_t(std::lround(std::min(grey, 255.0f)));
@@ -65,7 +67,8 @@ VplView draw_vpl_view(const RenderedImage& image, const glm::mat4& view_projecti
         const int x = int(px), y = int(py);
         const float* g = &image.gbuffer_position[(size_t(y) * w + x) * 4];
         const float vpl_distance = glm::length(vpl.position - eye);
-        const bool hidden = g[3] > 0.5f && glm::length(glm::vec3(g[0], g[1], g[2]) - eye) < vpl_distance * (1.0f - kSurfaceTolerance);
+        const bool hidden =
+            g[3] > 0.5f && glm::length(glm::vec3(g[0], g[1], g[2]) - eye) < vpl_distance * (1.0f - kSurfaceTolerance);
         const float peak = std::max({vpl.flux.x, vpl.flux.y, vpl.flux.z});
         const glm::vec3 colour = peak > 0.0f && std::isfinite(peak) ? vpl.flux / peak : glm::vec3(1.0f, 0.0f, 1.0f);
         if (hidden) {

@@ -42,7 +42,8 @@ void check_options(const Device& device, uint32_t count, const BitonicSortOption
     const uint64_t shared_bytes = uint64_t(size) * 2 * (sizeof(uint64_t) + sizeof(uint32_t));
     if (shared_bytes > device.limits().max_shared_memory_bytes) {
         throw Error("bitonic sort: workgroup size " + std::to_string(size) + " needs " + std::to_string(shared_bytes) +
-                    " bytes of shared memory; the device has " + std::to_string(device.limits().max_shared_memory_bytes));
+                    " bytes of shared memory; the device has " +
+                    std::to_string(device.limits().max_shared_memory_bytes));
     }
     const uint64_t padded = std::bit_ceil(uint64_t(count));
     const uint64_t groups = padded / 2 / size;
@@ -130,8 +131,8 @@ void record_bitonic_sort(Device& device, VkCommandBuffer cmd, const BufferView& 
         });
 }
 
-void add_bitonic_sort_pass(Device& device, StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
-                           const BitonicSortOptions& options) {
+void add_bitonic_sort_pass(Device& device, StepList& passes, const BufferView& keys, const BufferView& values,
+                           uint32_t count, const BitonicSortOptions& options) {
     if (count > 1) {
         check_options(device, count, options);  // fail now, not in the middle of recording
     }

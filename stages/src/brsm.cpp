@@ -21,9 +21,13 @@ namespace {
 constexpr uint32_t kMaxSamplesPerTexel = 1024;
 constexpr uint32_t kMaxFilterRadius = 8;
 
-[[noreturn]] void bad_option(const std::string& what) { throw Error("BRSM: " + what); }
+[[noreturn]] void bad_option(const std::string& what) {
+    throw Error("BRSM: " + what);
+}
 
-bool in_open_range(float v, float lo, float hi) { return std::isfinite(v) && v > lo && v < hi; }
+bool in_open_range(float v, float lo, float hi) {
+    return std::isfinite(v) && v > lo && v < hi;
+}
 
 }  // namespace
 
@@ -37,7 +41,8 @@ void validate(const BrsmOptions& o) {
     if (!in_open_range(o.max_radius, o.core_radius, INFINITY)) bad_option("max_radius must be above core_radius");
     if (!in_open_range(o.filter_sigma, 0.0f, INFINITY)) bad_option("filter_sigma must be a positive number");
     if (o.filter_radius > kMaxFilterRadius) {
-        bad_option("filter_radius " + std::to_string(o.filter_radius) + " is above " + std::to_string(kMaxFilterRadius));
+        bad_option("filter_radius " + std::to_string(o.filter_radius) + " is above " +
+                   std::to_string(kMaxFilterRadius));
     }
     if (!std::isfinite(o.similarity_min_cos) || o.similarity_min_cos < -1.0f || o.similarity_min_cos >= 1.0f) {
         bad_option("similarity_min_cos must be in [-1, 1)");
@@ -85,24 +90,24 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     contribution_push.core_radius = options.core_radius * scene_scale;
     contribution_push.max_radius = options.max_radius * scene_scale;
     contribution_push.scene_scale = scene_scale;
-    passes.add("brsm contribution",
-               {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(gbuffer.position),
-                Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
-                Use::write(light.contribution), Use::write(light.flux_mips)},
-               [&contribution, rsm_position, rsm_normal, rsm_flux, gbuffer, light, contribution_push](VkCommandBuffer cmd) {
-                   shaders::brsm_contribution::Bindings b;
-                   b.rsm_position = rsm_position.descriptor();
-                   b.rsm_normal = rsm_normal.descriptor();
-                   b.rsm_flux = rsm_flux.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
-                   b.contribution = light.contribution.descriptor();
-                   b.flux_luminance = light.flux_mips.descriptor();
-                   contribution.dispatch(cmd, b, contribution_push, contribution_push.map_size,
-                                         contribution_push.map_size);
-               });
+    passes.add(
+        "brsm contribution",
+        {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(gbuffer.position),
+         Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
+         Use::write(light.contribution), Use::write(light.flux_mips)},
+        [&contribution, rsm_position, rsm_normal, rsm_flux, gbuffer, light, contribution_push](VkCommandBuffer cmd) {
+            shaders::brsm_contribution::Bindings b;
+            b.rsm_position = rsm_position.descriptor();
+            b.rsm_normal = rsm_normal.descriptor();
+            b.rsm_flux = rsm_flux.descriptor();
+            b.gbuffer_position = gbuffer.position.descriptor();
+            b.gbuffer_normal = gbuffer.normal.descriptor();
+            b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+            b.gbuffer_albedo = gbuffer.albedo.descriptor();
+            b.contribution = light.contribution.descriptor();
+            b.flux_luminance = light.flux_mips.descriptor();
+            contribution.dispatch(cmd, b, contribution_push, contribution_push.map_size, contribution_push.map_size);
+        });
 
     shaders::brsm_filter::Spec filter_spec;
     filter_spec.kFilterRadius = int32_t(options.filter_radius);
@@ -113,8 +118,8 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     filter_push.min_cos = options.similarity_min_cos;
     filter_push.max_distance = options.similarity_max_distance * scene_scale;
     passes.add("brsm filter",
-               {Use::read(map.position), Use::read(map.normal), Use::read(light.contribution), Use::read(light.flux_mips),
-                Use::write(light.contribution_mips)},
+               {Use::read(map.position), Use::read(map.normal), Use::read(light.contribution),
+                Use::read(light.flux_mips), Use::write(light.contribution_mips)},
                [&filter, rsm_position, rsm_normal, light, filter_push](VkCommandBuffer cmd) {
                    shaders::brsm_filter::Bindings b;
                    b.rsm_position = rsm_position.descriptor();
@@ -143,28 +148,29 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
                    importance.dispatch(cmd, b, importance_push, importance_push.texel_count);
                });
     add_importance_mip_levels_pass(device, passes, light.importance_mips, size);
-    add_warp_samples_pass(device, passes, light.importance_mips, light.samples, light.warp_count, size,
-                          light.vpl_share, seed);
+    add_warp_samples_pass(device, passes, light.importance_mips, light.samples, light.warp_count, size, light.vpl_share,
+                          seed);
 
     const auto& vpls = device.pipeline<shaders::brsm_vpls::Pipeline>();
     shaders::brsm_vpls::Push vpls_push{};
     vpls_push.sample_count = light.vpl_share;
     vpls_push.map_size = size;
     vpls_push.capacity = output.capacity;
-    passes.add("brsm vpls",
-               {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(light.samples),
-                Use::read(light.warp_count), Use::read(output.count), Use::write(output.vpls)},
-               [&vpls, rsm_position, rsm_normal, rsm_flux, light, vpl_buffer, vpl_count, vpls_push](VkCommandBuffer cmd) {
-                   shaders::brsm_vpls::Bindings b;
-                   b.rsm_position = rsm_position.descriptor();
-                   b.rsm_normal = rsm_normal.descriptor();
-                   b.rsm_flux = rsm_flux.descriptor();
-                   b.samples = light.samples.descriptor();
-                   b.warp = light.warp_count.descriptor();
-                   b.vpl_count = vpl_count.descriptor();
-                   b.vpls = vpl_buffer.descriptor();
-                   vpls.dispatch(cmd, b, vpls_push, vpls_push.sample_count);
-               });
+    passes.add(
+        "brsm vpls",
+        {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(light.samples),
+         Use::read(light.warp_count), Use::read(output.count), Use::write(output.vpls)},
+        [&vpls, rsm_position, rsm_normal, rsm_flux, light, vpl_buffer, vpl_count, vpls_push](VkCommandBuffer cmd) {
+            shaders::brsm_vpls::Bindings b;
+            b.rsm_position = rsm_position.descriptor();
+            b.rsm_normal = rsm_normal.descriptor();
+            b.rsm_flux = rsm_flux.descriptor();
+            b.samples = light.samples.descriptor();
+            b.warp = light.warp_count.descriptor();
+            b.vpl_count = vpl_count.descriptor();
+            b.vpls = vpl_buffer.descriptor();
+            vpls.dispatch(cmd, b, vpls_push, vpls_push.sample_count);
+        });
 
     const auto& count = device.pipeline<shaders::brsm_vpl_count::Pipeline>();
     shaders::brsm_vpl_count::Push count_push{};
@@ -188,8 +194,8 @@ void add_brsm_count_clear_pass(StepList& passes, const BrsmOutputViews& output) 
 }
 
 void add_brsm_light_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
-                           const ShadowMapViews& map, size_t light_index, float scene_scale,
-                           const BrsmOptions& options, const BrsmOutputViews& output) {
+                           const ShadowMapViews& map, size_t light_index, float scene_scale, const BrsmOptions& options,
+                           const BrsmOutputViews& output) {
     validate(options);
     if (light_index >= output.lights.size()) {
         throw Error("BRSM: light " + std::to_string(light_index) + ", but the output was created for " +

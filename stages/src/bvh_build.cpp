@@ -128,8 +128,9 @@ public:
             const glm::vec3 extent = centroids.hi - centroids.lo;
             axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
             mid = begin + count / 2;
-            std::nth_element(primitives_.begin() + begin, primitives_.begin() + mid, primitives_.begin() + end,
-                             [axis](const Primitive& a, const Primitive& b) { return a.centroid[axis] < b.centroid[axis]; });
+            std::nth_element(
+                primitives_.begin() + begin, primitives_.begin() + mid, primitives_.begin() + end,
+                [axis](const Primitive& a, const Primitive& b) { return a.centroid[axis] < b.centroid[axis]; });
         }
         sah_sum_ += area * options_.traversal_cost;
         build(begin, mid, depth + 1);  // lands at index + 1
@@ -209,8 +210,8 @@ private:
                 }
                 // Area 0 (a node of coplanar, collinear boxes cannot happen for non-degenerate
                 // triangles, but stays defined): count-weighted cost.
-                const double children = inv_area > 0.0 ? (left.area() * left_count + right_cost[i + 1]) * inv_area
-                                                        : double(count);
+                const double children =
+                    inv_area > 0.0 ? (left.area() * left_count + right_cost[i + 1]) * inv_area : double(count);
                 const double cost = options_.traversal_cost + options_.triangle_cost * children;
                 if (!best.found || cost < best.cost) {
                     best = {true, axis, i, cost};
@@ -221,8 +222,9 @@ private:
     }
 
     uint32_t partition(uint32_t begin, uint32_t end, const Split& split, const Box& centroids) {
-        auto middle = std::partition(primitives_.begin() + begin, primitives_.begin() + end,
-                                     [&](const Primitive& p) { return bin_of(p.centroid, split.axis, centroids) <= split.bin; });
+        auto middle = std::partition(primitives_.begin() + begin, primitives_.begin() + end, [&](const Primitive& p) {
+            return bin_of(p.centroid, split.axis, centroids) <= split.bin;
+        });
         return uint32_t(middle - primitives_.begin());
     }
 

@@ -62,7 +62,8 @@ void* Device::cached_pipeline(std::type_index type, std::string key, const std::
     void* pipeline = nullptr;
     const VkResult result = create(&pipeline);
     if (result != VK_SUCCESS) {
-        throw Error("vplkit: creating the pipeline " + demangle(type.name()) + " failed: " + result_name(result), result);
+        throw Error("vplkit: creating the pipeline " + demangle(type.name()) + " failed: " + result_name(result),
+                    result);
     }
     pipelines_.emplace(std::make_pair(type, std::move(key)), PipelineEntry{pipeline, destroy});
     return pipeline;

@@ -19,27 +19,28 @@ void add_direct_emissive_pass(Device& device, StepList& passes, const GbufferVie
     // at all is the effects planner's decision (planner.hpp), not this function's.
     const auto& pipeline = device.pipeline<shaders::direct_emissive::Pipeline>();
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-    passes.add("direct emissive",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(emitters.triangles),
-                Use::read_write(radiance)},
-               [&pipeline, gbuffer, bvh, emitters, params, radiance](VkCommandBuffer cmd) {
-                   shaders::direct_emissive::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
-                   b.emitters = emitters.triangles.descriptor();
-                   b.radiance = radiance.descriptor();
-                   shaders::direct_emissive::Push push{};
-                   push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
-                   push.emitter_count = emitters.count;
-                   push.samples = params.samples;
-                   push.seed = params.seed;
-                   pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
-               });
+    passes.add(
+        "direct emissive",
+        {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
+         Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(emitters.triangles),
+         Use::read_write(radiance)},
+        [&pipeline, gbuffer, bvh, emitters, params, radiance](VkCommandBuffer cmd) {
+            shaders::direct_emissive::Bindings b;
+            b.bvh_nodes = bvh.nodes.descriptor();
+            b.bvh_triangles = bvh.triangles.descriptor();
+            b.gbuffer_position = gbuffer.position.descriptor();
+            b.gbuffer_normal = gbuffer.normal.descriptor();
+            b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+            b.gbuffer_albedo = gbuffer.albedo.descriptor();
+            b.emitters = emitters.triangles.descriptor();
+            b.radiance = radiance.descriptor();
+            shaders::direct_emissive::Push push{};
+            push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
+            push.emitter_count = emitters.count;
+            push.samples = params.samples;
+            push.seed = params.seed;
+            pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
+        });
 }
 
 }  // namespace vplkit::stages

@@ -9,7 +9,8 @@
 
 namespace vplkit::stages {
 
-static_assert(kExactGiCountersBytes == sizeof(shaders::ExactGiCounters), "exact_gi.hpp's size is the generated struct's");
+static_assert(kExactGiCountersBytes == sizeof(shaders::ExactGiCounters),
+              "exact_gi.hpp's size is the generated struct's");
 
 namespace {
 

@@ -17,93 +17,95 @@ namespace vert = shaders::gbuffer_raster;
 namespace frag = shaders::gbuffer_shade;
 
 struct GbufferPipelineDescription {
-  static RasterState state() {
-    RasterState s;
-    s.color_formats = {kGbufferPositionFormat, kGbufferNormalFormat, kGbufferGeometricNormalFormat, kGbufferAlbedoFormat,
-                       kGbufferEmissionFormat};
-    s.depth_format = kGbufferDepthFormat;
-    s.cull_mode = VK_CULL_MODE_NONE;  // both sides of every triangle: no holes for GI
-    s.depth_compare = VK_COMPARE_OP_LESS;
-    return s;
-  }
+    static RasterState state() {
+        RasterState s;
+        s.color_formats = {kGbufferPositionFormat, kGbufferNormalFormat, kGbufferGeometricNormalFormat,
+                           kGbufferAlbedoFormat, kGbufferEmissionFormat};
+        s.depth_format = kGbufferDepthFormat;
+        s.cull_mode = VK_CULL_MODE_NONE;  // both sides of every triangle: no holes for GI
+        s.depth_compare = VK_COMPARE_OP_LESS;
+        return s;
+    }
 };
 using GbufferPipeline = RasterPipeline<vert::Module, frag::Module, GbufferPipelineDescription>;
 
 }  // namespace
 
 glm::mat4 vulkan_perspective(float yfov, float aspect, float znear, float zfar) {
-  if (!(yfov > 0.0f && yfov < std::numbers::pi_v<float>)) {
-    throw Error("camera: vertical field of view " + std::to_string(yfov) + " rad is not in (0, pi)");
-  }
-  if (!(aspect > 0.0f) || !std::isfinite(aspect)) throw Error("camera: aspect ratio " + std::to_string(aspect) + " is not positive");
-  if (!(znear > 0.0f) || !std::isfinite(znear)) throw Error("camera: near plane " + std::to_string(znear) + " is not positive");
-  if (!(zfar == 0.0f || (zfar > znear && std::isfinite(zfar)))) {
-    throw Error("camera: far plane " + std::to_string(zfar) + " is neither 0 (infinite) nor beyond the near plane " +
-                std::to_string(znear));
-  }
-  const float f = 1.0f / std::tan(0.5f * yfov);
-  // clip w = distance in front of the eye (-z); clip z = a z + b with depth z/w = 0 at znear and
-  // 1 at zfar: a = -far / (far - near), b = -far near / (far - near); far -> infinity: a = -1, b = -near.
-  const float a = zfar == 0.0f ? -1.0f : -zfar / (zfar - znear);
-  const float b = zfar == 0.0f ? -znear : -zfar * znear / (zfar - znear);
-  glm::mat4 m(0.0f);
-  m[0][0] = f / aspect;
-  m[1][1] = -f;  // Vulkan's clip-space y points down the image
-  m[2][2] = a;
-  m[2][3] = -1.0f;
-  m[3][2] = b;
-  return m;
+    if (!(yfov > 0.0f && yfov < std::numbers::pi_v<float>)) {
+        throw Error("camera: vertical field of view " + std::to_string(yfov) + " rad is not in (0, pi)");
+    }
+    if (!(aspect > 0.0f) || !std::isfinite(aspect))
+        throw Error("camera: aspect ratio " + std::to_string(aspect) + " is not positive");
+    if (!(znear > 0.0f) || !std::isfinite(znear))
+        throw Error("camera: near plane " + std::to_string(znear) + " is not positive");
+    if (!(zfar == 0.0f || (zfar > znear && std::isfinite(zfar)))) {
+        throw Error("camera: far plane " + std::to_string(zfar) +
+                    " is neither 0 (infinite) nor beyond the near plane " + std::to_string(znear));
+    }
+    const float f = 1.0f / std::tan(0.5f * yfov);
+    // clip w = distance in front of the eye (-z); clip z = a z + b with depth z/w = 0 at znear and
+    // 1 at zfar: a = -far / (far - near), b = -far near / (far - near); far -> infinity: a = -1, b = -near.
+    const float a = zfar == 0.0f ? -1.0f : -zfar / (zfar - znear);
+    const float b = zfar == 0.0f ? -znear : -zfar * znear / (zfar - znear);
+    glm::mat4 m(0.0f);
+    m[0][0] = f / aspect;
+    m[1][1] = -f;  // Vulkan's clip-space y points down the image
+    m[2][2] = a;
+    m[2][3] = -1.0f;
+    m[3][2] = b;
+    return m;
 }
 
 void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
                       const GbufferViews& images) {
-  for (const GpuDraw& draw : scene.draws) {
-    if (draw.material >= scene.textures.size()) {
-      throw Error("gbuffer: a draw uses material " + std::to_string(draw.material) + ", but the scene has textures for " +
-                  std::to_string(scene.textures.size()));
+    for (const GpuDraw& draw : scene.draws) {
+        if (draw.material >= scene.textures.size()) {
+            throw Error("gbuffer: a draw uses material " + std::to_string(draw.material) +
+                        ", but the scene has textures for " + std::to_string(scene.textures.size()));
+        }
     }
-  }
-  const GraphicsPipeline& pipeline = device.pipeline<GbufferPipeline>().pipeline;
-  frag::Push push{};
-  std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
-  push.viewer_position = {view.position.x, view.position.y, view.position.z};
-  passes.add("gbuffer",
-             {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
-              Use::read(scene.materials, Stage::fragment), Use::color_attachment(images.position),
-              Use::color_attachment(images.normal), Use::color_attachment(images.geometric_normal),
-              Use::color_attachment(images.albedo), Use::color_attachment(images.emission),
-              Use::depth_attachment(images.depth)},
-             // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-             [&pipeline, scene, images, push](VkCommandBuffer cmd) mutable {
-               const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
-               begin_rendering(cmd, {{images.position, images.normal, images.geometric_normal, images.albedo,
-                                      images.emission},
-                                     {zero, zero, zero, zero, zero},
-                                     images.depth,
-                                     1.0f});
-               pipeline.bind(cmd);
-               vert::Bindings geometry;
-               geometry.scene_vertices = scene.vertices.descriptor();
-               geometry.scene_indices = scene.indices.descriptor();
-               uint32_t bound_material = UINT32_MAX;
-               for (const GpuDraw& draw : scene.draws) {
-                 if (draw.material != bound_material) {
-                   const MaterialTextures& textures = scene.textures[draw.material];
-                   frag::Bindings material;
-                   material.scene_materials = scene.materials.descriptor();
-                   material.base_color_texture = textures.base_color;
-                   material.metallic_roughness_texture = textures.metallic_roughness;
-                   material.normal_texture = textures.normal;
-                   material.emissive_texture = textures.emissive;
-                   pipeline.push_descriptors<vert::Module, frag::Module>(cmd, geometry, material);
-                   push.material = draw.material;
-                   pipeline.push_constants(cmd, push);
-                   bound_material = draw.material;
-                 }
-                 vkCmdDraw(cmd, 3 * draw.triangle_count, 1, 3 * draw.first_triangle, 0);
-               }
-               end_rendering(cmd);
-             });
+    const GraphicsPipeline& pipeline = device.pipeline<GbufferPipeline>().pipeline;
+    frag::Push push{};
+    std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
+    push.viewer_position = {view.position.x, view.position.y, view.position.z};
+    passes.add("gbuffer",
+               {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
+                Use::read(scene.materials, Stage::fragment), Use::color_attachment(images.position),
+                Use::color_attachment(images.normal), Use::color_attachment(images.geometric_normal),
+                Use::color_attachment(images.albedo), Use::color_attachment(images.emission),
+                Use::depth_attachment(images.depth)},
+               // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
+               [&pipeline, scene, images, push](VkCommandBuffer cmd) mutable {
+                   const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
+                   begin_rendering(
+                       cmd, {{images.position, images.normal, images.geometric_normal, images.albedo, images.emission},
+                             {zero, zero, zero, zero, zero},
+                             images.depth,
+                             1.0f});
+                   pipeline.bind(cmd);
+                   vert::Bindings geometry;
+                   geometry.scene_vertices = scene.vertices.descriptor();
+                   geometry.scene_indices = scene.indices.descriptor();
+                   uint32_t bound_material = UINT32_MAX;
+                   for (const GpuDraw& draw : scene.draws) {
+                       if (draw.material != bound_material) {
+                           const MaterialTextures& textures = scene.textures[draw.material];
+                           frag::Bindings material;
+                           material.scene_materials = scene.materials.descriptor();
+                           material.base_color_texture = textures.base_color;
+                           material.metallic_roughness_texture = textures.metallic_roughness;
+                           material.normal_texture = textures.normal;
+                           material.emissive_texture = textures.emissive;
+                           pipeline.push_descriptors<vert::Module, frag::Module>(cmd, geometry, material);
+                           push.material = draw.material;
+                           pipeline.push_constants(cmd, push);
+                           bound_material = draw.material;
+                       }
+                       vkCmdDraw(cmd, 3 * draw.triangle_count, 1, 3 * draw.first_triangle, 0);
+                   }
+                   end_rendering(cmd);
+               });
 }
 
 }  // namespace vplkit::stages

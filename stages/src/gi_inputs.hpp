@@ -31,8 +31,8 @@ void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
 
 // ... and as step uses, followed by `more`.
 inline std::vector<Use> gbuffer_uses(const GbufferViews& gbuffer, std::vector<Use> more) {
-    std::vector<Use> uses = {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal),
-                             Use::read(gbuffer.albedo)};
+    std::vector<Use> uses = {Use::read(gbuffer.position), Use::read(gbuffer.normal),
+                             Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo)};
     uses.insert(uses.end(), more.begin(), more.end());
     return uses;
 }

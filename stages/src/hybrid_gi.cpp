@@ -88,8 +88,8 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
     const auto& gi_pipeline = device.pipeline<shaders::hybrid_gi::Pipeline>(spec);
     passes.add("hybrid gi",
                gbuffer_bvh_uses(gbuffer, bvh,
-                                {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks), Use::read(cuts.cuts),
-                                 Use::write(indirect), Use::read_write(counters)}),
+                                {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks),
+                                 Use::read(cuts.cuts), Use::write(indirect), Use::read_write(counters)}),
                [&gi_pipeline, gbuffer, bvh, trees, cuts, camera, indirect, counters, options](VkCommandBuffer cmd) {
                    shaders::hybrid_gi::Bindings b;
                    bind_bvh(b, bvh);

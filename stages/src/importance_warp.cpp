@@ -39,7 +39,9 @@ uint64_t importance_mip_floats(uint32_t size) {
     return floats;
 }
 
-uint64_t importance_top_offset(uint32_t size) { return importance_mip_floats(size) - 1; }
+uint64_t importance_top_offset(uint32_t size) {
+    return importance_mip_floats(size) - 1;
+}
 
 void add_importance_mips_pass(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
                               uint32_t size) {

@@ -72,9 +72,13 @@ uint32_t light_tree_default_group_levels(const Limits& limits) {
     return limits.cpu ? 1u : 4u;
 }
 
-uint32_t light_tree_leaf_count(uint32_t count) { return leaf_count(count); }  // the leaves gather_leaves pads to
+uint32_t light_tree_leaf_count(uint32_t count) {
+    return leaf_count(count);
+}  // the leaves gather_leaves pads to
 
-uint32_t light_tree_node_count(uint32_t count) { return 2 * light_tree_leaf_count(count) - 1; }
+uint32_t light_tree_node_count(uint32_t count) {
+    return 2 * light_tree_leaf_count(count) - 1;
+}
 
 uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
     if (group_levels == 0 || group_levels > kLightTreeMaxGroupLevels) {
@@ -86,8 +90,8 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
     return dispatches;
 }
 
-void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, uint32_t count,
-                           const LightTreeOptions& options) {
+void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
+                           uint32_t count, const LightTreeOptions& options) {
     check(device, count, options);
     const uint32_t leaf_count = light_tree_leaf_count(count);
     const VkDeviceSize leaf_bytes = VkDeviceSize(leaf_count) * sizeof(shaders::Vpl);
@@ -123,9 +127,9 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
     }
     passes.add("light tree levels", {Use::read_write(nodes)},
                [&levels_pipeline, nodes, leaf_count, node_bytes,
-                group_levels = options.group_levels != 0 ? options.group_levels
-                                                         : light_tree_default_group_levels(device.limits())](
-                   VkCommandBuffer cmd) {
+                group_levels = options.group_levels != 0
+                                   ? options.group_levels
+                                   : light_tree_default_group_levels(device.limits())](VkCommandBuffer cmd) {
                    shaders::light_tree_levels::Bindings bindings;
                    bindings.nodes = nodes.descriptor(0, node_bytes);
                    bool first = true;

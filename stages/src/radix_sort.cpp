@@ -26,7 +26,9 @@ constexpr uint32_t kScanWorkgroupSize = 256;
 // The scatter's rank counters are 16 bits: a tile's positions must fit.
 constexpr uint32_t kMaxTile = 0xffff;
 
-uint64_t ceil_div(uint64_t a, uint64_t b) { return (a + b - 1) / b; }
+uint64_t ceil_div(uint64_t a, uint64_t b) {
+    return (a + b - 1) / b;
+}
 
 uint32_t scan_shared_bytes(uint32_t workgroup_size) {
     // radix.glsl: one value per invocation, one offset per run of 16, the total.
@@ -60,7 +62,9 @@ void check_options(const Limits& info, const RadixSortOptions& options) {
     }
 }
 
-uint32_t scan_workgroup_size(const Limits& limits) { return std::min(kScanWorkgroupSize, limits.max_workgroup_invocations); }
+uint32_t scan_workgroup_size(const Limits& limits) {
+    return std::min(kScanWorkgroupSize, limits.max_workgroup_invocations);
+}
 
 uint32_t tile_count(const RadixSortOptions& options, uint32_t count) {
     return uint32_t(ceil_div(count, uint64_t(options.workgroup_size) * options.items_per_thread));
@@ -125,8 +129,8 @@ RadixSortOptions resolved_options(const Limits& limits, uint32_t max_count, cons
 uint32_t radix_sort_shared_bytes(const RadixSortOptions& options) {
     const uint64_t radix = uint64_t(1) << options.digit_bits;
     const uint64_t bytes = (radix / 2 + 1) * options.workgroup_size * 4  // rank counters, two to a uint, padded
-                           + uint64_t(options.workgroup_size) * 4  // run offsets
-                           + radix * 4                             // digit bases
+                           + uint64_t(options.workgroup_size) * 4        // run offsets
+                           + radix * 4                                   // digit bases
                            + scan_shared_bytes(options.workgroup_size);
     return uint32_t(std::min<uint64_t>(bytes, UINT32_MAX));
 }
@@ -200,7 +204,9 @@ void RadixSorter::init(Device& device, const RadixSortOptions& options) {
     copy_ = &device.pipeline<shaders::radix_copy::Pipeline>(copy_spec);
 }
 
-uint32_t RadixSorter::scan_workgroup_size() const { return stages::scan_workgroup_size(limits_); }
+uint32_t RadixSorter::scan_workgroup_size() const {
+    return stages::scan_workgroup_size(limits_);
+}
 
 uint32_t RadixSorter::dispatch_count(uint32_t count) const {
     if (count <= 1) {
@@ -234,7 +240,8 @@ void RadixSorter::record(VkCommandBuffer cmd, const BufferView& keys, const Buff
     // Exactly the first `count` pairs: a descriptor no larger than the data keeps the sort's
     // reads and writes (and what synchronization validation tracks) to the pairs it sorts.
     const VkDescriptorBufferInfo pairs[2][2] = {
-        {keys.descriptor(0, uint64_t(count) * sizeof(uint64_t)), values.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
+        {keys.descriptor(0, uint64_t(count) * sizeof(uint64_t)),
+         values.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
         {scratch_.keys.descriptor(0, uint64_t(count) * sizeof(uint64_t)),
          scratch_.values.descriptor(0, uint64_t(count) * sizeof(uint32_t))},
     };
@@ -307,7 +314,8 @@ void RadixSorter::record(VkCommandBuffer cmd, const BufferView& keys, const Buff
     }
 }
 
-void RadixSorter::add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name) {
+void RadixSorter::add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
+                           std::string name) {
     if (count > max_count_) {  // fail now, not in the middle of recording
         throw Error("radix sort: " + std::to_string(count) + " pairs, but the sorter was made for at most " +
                     std::to_string(max_count_));

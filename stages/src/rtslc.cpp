@@ -15,7 +15,9 @@ namespace vplkit::stages {
 
 namespace {
 
-[[noreturn]] void refuse(const std::string& what) { throw Error("rtslc: " + what); }
+[[noreturn]] void refuse(const std::string& what) {
+    throw Error("rtslc: " + what);
+}
 
 void check_targets(const GbufferViews& gbuffer, const VplTreeBuffers& trees, const ImageView& indirect,
                    const BufferView& counters, const RtslcOptions& options, const RtslcScratchBuffers& scratch) {
@@ -50,7 +52,8 @@ void validate(const RtslcOptions& options) {
                std::to_string(kRtslcMaxSamplesPerPixel));
     }
     if (options.block_size < 1 || options.block_size > kRtslcMaxBlockSize) {
-        refuse("block_size " + std::to_string(options.block_size) + " is not in 1.." + std::to_string(kRtslcMaxBlockSize));
+        refuse("block_size " + std::to_string(options.block_size) + " is not in 1.." +
+               std::to_string(kRtslcMaxBlockSize));
     }
     if (options.interleave < 1 || options.block_size % options.interleave != 0) {
         refuse("interleave " + std::to_string(options.interleave) + " does not divide block_size " +
@@ -67,8 +70,9 @@ void validate(const RtslcOptions& options) {
     }
     if (options.interleave > 1 &&
         !(std::isfinite(options.similarity_max_distance) && options.similarity_max_distance > 0.0f)) {
-        refuse("similarity_max_distance must be finite and > 0 with interleave > 1 (an absolute distance: scale "
-               "it to the scene)");
+        refuse(
+            "similarity_max_distance must be finite and > 0 with interleave > 1 (an absolute distance: scale "
+            "it to the scene)");
     }
     if (options.slots_per_dispatch < 1) {
         refuse("slots_per_dispatch must be at least 1");
@@ -102,8 +106,8 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>();
     passes.add("rtslc cuts",
                gbuffer_bvh_uses(gbuffer, bvh,
-                                {Use::read(trees.light_tree), Use::write(scratch.cuts), Use::write(scratch.representatives),
-                                 Use::read_write(counters)}),
+                                {Use::read(trees.light_tree), Use::write(scratch.cuts),
+                                 Use::write(scratch.representatives), Use::read_write(counters)}),
                [&cut_pipeline, gbuffer, bvh, trees, scratch, counters, camera, options](VkCommandBuffer cmd) {
                    shaders::rtslc_cut::Bindings b;
                    bind_bvh(b, bvh);

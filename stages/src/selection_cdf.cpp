@@ -33,7 +33,8 @@ std::vector<float> selection_cdf(const std::vector<double>& weights) {
         running += w;
         ones += w > 0.0;
         // The last positive weight takes every remaining step (running / sum may round below 1).
-        const uint64_t now_shared = ones == positive ? uint64_t(shared) : uint64_t(std::floor(shared * (running / sum)));
+        const uint64_t now_shared =
+            ones == positive ? uint64_t(shared) : uint64_t(std::floor(shared * (running / sum)));
         const uint64_t steps = ones + (w > 0.0 ? now_shared : previous_shared);
         if (w > 0.0) previous_shared = now_shared;
         cdf.push_back(float(double(steps) / double(kSelectionSteps)));

@@ -15,14 +15,14 @@ namespace vert = shaders::rsm_raster;
 namespace frag = shaders::rsm_shade;
 
 struct RsmPipelineDescription {
-  static RasterState state() {
-    RasterState s;
-    s.color_formats = {kRsmPositionFormat, kRsmNormalFormat, kRsmFluxFormat};
-    s.depth_format = kShadowDepthFormat;
-    s.cull_mode = VK_CULL_MODE_NONE;  // a surface lit from behind still stops and reflects light
-    s.depth_compare = VK_COMPARE_OP_LESS;
-    return s;
-  }
+    static RasterState state() {
+        RasterState s;
+        s.color_formats = {kRsmPositionFormat, kRsmNormalFormat, kRsmFluxFormat};
+        s.depth_format = kShadowDepthFormat;
+        s.cull_mode = VK_CULL_MODE_NONE;  // a surface lit from behind still stops and reflects light
+        s.depth_compare = VK_COMPARE_OP_LESS;
+        return s;
+    }
 };
 using RsmPipeline = RasterPipeline<vert::Module, frag::Module, RsmPipelineDescription>;
 
@@ -30,60 +30,64 @@ using RsmPipeline = RasterPipeline<vert::Module, frag::Module, RsmPipelineDescri
 
 void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& scene, const ShadowMapViews& map,
                          uint32_t index) {
-  for (const GpuDraw& draw : scene.draws) {
-    if (draw.material >= scene.textures.size()) {
-      throw Error("shadow map: a draw uses material " + std::to_string(draw.material) +
-                  ", but the scene has textures for " + std::to_string(scene.textures.size()));
+    for (const GpuDraw& draw : scene.draws) {
+        if (draw.material >= scene.textures.size()) {
+            throw Error("shadow map: a draw uses material " + std::to_string(draw.material) +
+                        ", but the scene has textures for " + std::to_string(scene.textures.size()));
+        }
     }
-  }
-  const GraphicsPipeline& pipeline = device.pipeline<RsmPipeline>().pipeline;
-  passes.add("shadow map " + std::to_string(index),
-             {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
-              Use::read(scene.materials, Stage::fragment), Use::read(map.light_uniform, Stage::fragment),
-              Use::color_attachment(map.position), Use::color_attachment(map.normal), Use::color_attachment(map.flux),
-              Use::depth_attachment(map.depth)},
-             // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-             [&pipeline, scene, map](VkCommandBuffer cmd) {
-               const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
-               begin_rendering(cmd, {{map.position, map.normal, map.flux}, {zero, zero, zero}, map.depth, 1.0f});
-               pipeline.bind(cmd);
-               vert::Bindings geometry;
-               geometry.scene_vertices = scene.vertices.descriptor();
-               geometry.scene_indices = scene.indices.descriptor();
-               for (const ShadowFace& face : map.faces) {
-                 const VkViewport viewport = {float(face.rect.offset.x), float(face.rect.offset.y),
-                                              float(face.rect.extent.width), float(face.rect.extent.height), 0.0f, 1.0f};
-                 vkCmdSetViewport(cmd, 0, 1, &viewport);
-                 vkCmdSetScissor(cmd, 0, 1, &face.rect);
-                 frag::Push push{};
-                 std::memcpy(&push.view_projection, &face.view_projection, sizeof(push.view_projection));
-                 push.face_origin = {float(face.rect.offset.x), float(face.rect.offset.y)};
-                 uint32_t bound_material = UINT32_MAX;
-                 for (const GpuDraw& draw : scene.draws) {
-                   if (draw.material != bound_material) {
-                     const MaterialTextures& textures = scene.textures[draw.material];
-                     frag::Bindings material;
-                     material.scene_materials = scene.materials.descriptor();
-                     material.base_color_texture = textures.base_color;
-                     material.metallic_roughness_texture = textures.metallic_roughness;
-                     material.normal_texture = textures.normal;
-                     material.emissive_texture = textures.emissive;
-                     material.light = map.light_uniform.descriptor();
-                     pipeline.push_descriptors<vert::Module, frag::Module>(cmd, geometry, material);
-                     push.material = draw.material;
-                     pipeline.push_constants(cmd, push);
-                     bound_material = draw.material;
+    const GraphicsPipeline& pipeline = device.pipeline<RsmPipeline>().pipeline;
+    passes.add("shadow map " + std::to_string(index),
+               {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
+                Use::read(scene.materials, Stage::fragment), Use::read(map.light_uniform, Stage::fragment),
+                Use::color_attachment(map.position), Use::color_attachment(map.normal), Use::color_attachment(map.flux),
+                Use::depth_attachment(map.depth)},
+               // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
+               [&pipeline, scene, map](VkCommandBuffer cmd) {
+                   const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
+                   begin_rendering(cmd, {{map.position, map.normal, map.flux}, {zero, zero, zero}, map.depth, 1.0f});
+                   pipeline.bind(cmd);
+                   vert::Bindings geometry;
+                   geometry.scene_vertices = scene.vertices.descriptor();
+                   geometry.scene_indices = scene.indices.descriptor();
+                   for (const ShadowFace& face : map.faces) {
+                       const VkViewport viewport = {float(face.rect.offset.x),
+                                                    float(face.rect.offset.y),
+                                                    float(face.rect.extent.width),
+                                                    float(face.rect.extent.height),
+                                                    0.0f,
+                                                    1.0f};
+                       vkCmdSetViewport(cmd, 0, 1, &viewport);
+                       vkCmdSetScissor(cmd, 0, 1, &face.rect);
+                       frag::Push push{};
+                       std::memcpy(&push.view_projection, &face.view_projection, sizeof(push.view_projection));
+                       push.face_origin = {float(face.rect.offset.x), float(face.rect.offset.y)};
+                       uint32_t bound_material = UINT32_MAX;
+                       for (const GpuDraw& draw : scene.draws) {
+                           if (draw.material != bound_material) {
+                               const MaterialTextures& textures = scene.textures[draw.material];
+                               frag::Bindings material;
+                               material.scene_materials = scene.materials.descriptor();
+                               material.base_color_texture = textures.base_color;
+                               material.metallic_roughness_texture = textures.metallic_roughness;
+                               material.normal_texture = textures.normal;
+                               material.emissive_texture = textures.emissive;
+                               material.light = map.light_uniform.descriptor();
+                               pipeline.push_descriptors<vert::Module, frag::Module>(cmd, geometry, material);
+                               push.material = draw.material;
+                               pipeline.push_constants(cmd, push);
+                               bound_material = draw.material;
+                           }
+                           vkCmdDraw(cmd, 3 * draw.triangle_count, 1, 3 * draw.first_triangle, 0);
+                       }
                    }
-                   vkCmdDraw(cmd, 3 * draw.triangle_count, 1, 3 * draw.first_triangle, 0);
-                 }
-               }
-               end_rendering(cmd);
-             });
+                   end_rendering(cmd);
+               });
 }
 
 void add_shadow_map_passes(Device& device, StepList& passes, const SceneBuffers& scene,
                            std::span<const ShadowMapViews> maps) {
-  for (size_t i = 0; i < maps.size(); ++i) add_shadow_map_pass(device, passes, scene, maps[i], uint32_t(i));
+    for (size_t i = 0; i < maps.size(); ++i) add_shadow_map_pass(device, passes, scene, maps[i], uint32_t(i));
 }
 
 }  // namespace vplkit::stages

@@ -78,7 +78,8 @@ uint32_t KeyValueSorter::dispatch_count(uint32_t count) const {
     return radix_ ? radix_->dispatch_count(count) : bitonic_sort_dispatch_count(count, bitonic_options(options_));
 }
 
-void KeyValueSorter::record(VkCommandBuffer cmd, const BufferView& keys, const BufferView& values, uint32_t count) const {
+void KeyValueSorter::record(VkCommandBuffer cmd, const BufferView& keys, const BufferView& values,
+                            uint32_t count) const {
     if (radix_) {
         radix_->record(cmd, keys, values, count);
         return;
@@ -87,7 +88,8 @@ void KeyValueSorter::record(VkCommandBuffer cmd, const BufferView& keys, const B
     record_bitonic_sort(*device_, cmd, keys, values, count, bitonic_options(options_));
 }
 
-void KeyValueSorter::add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name) {
+void KeyValueSorter::add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
+                              std::string name) {
     if (radix_) {
         radix_->add_pass(passes, keys, values, count, std::move(name));
         return;

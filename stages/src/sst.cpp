@@ -17,15 +17,16 @@ void check_range(const Device& device, const BufferView& buffer, uint64_t needed
     }
     // The shader binds whole buffers: what it needs must fit one storage-buffer descriptor.
     if (needed > device.limits().max_storage_buffer_range) {
-        throw Error("sst: " + what + " need " + std::to_string(needed) + " bytes, above the device's storage-buffer range of " +
+        throw Error("sst: " + what + " need " + std::to_string(needed) +
+                    " bytes, above the device's storage-buffer range of " +
                     std::to_string(device.limits().max_storage_buffer_range));
     }
 }
 
 }  // namespace
 
-void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, const BufferView& counters,
-                    uint32_t count, const SstOptions& options) {
+void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
+                    const BufferView& counters, uint32_t count, const SstOptions& options) {
     if (count == 0) {
         throw Error("sst: no VPLs (a tree needs at least one)");
     }
@@ -33,8 +34,8 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
         throw Error("sst: " + std::to_string(count) + " VPLs; at most 2^31 leaves fit a 32-bit index");
     }
     if (!std::isfinite(options.nu_min) || !std::isfinite(options.sigma_max) || options.sigma_max < 0.0f) {
-        throw Error("sst: thresholds nu_min = " + std::to_string(options.nu_min) + ", sigma_max = " +
-                    std::to_string(options.sigma_max) + " must be finite and sigma_max >= 0");
+        throw Error("sst: thresholds nu_min = " + std::to_string(options.nu_min) +
+                    ", sigma_max = " + std::to_string(options.sigma_max) + " must be finite and sigma_max >= 0");
     }
     const uint32_t size = options.workgroup_size;
     if (size == 0 || size > device.limits().max_workgroup_invocations || size > device.limits().max_workgroup_size[0]) {
@@ -44,7 +45,8 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     const uint32_t leaves_in_tree = leaf_count(count);
     const uint32_t threads = leaves_in_tree == 1 ? 1u : leaves_in_tree / 2u;
     if ((threads + size - 1) / size > device.limits().max_workgroup_count[0]) {
-        throw Error("sst: " + std::to_string(count) + " VPLs need more workgroups than the device allows in one dispatch (" +
+        throw Error("sst: " + std::to_string(count) +
+                    " VPLs need more workgroups than the device allows in one dispatch (" +
                     std::to_string(device.limits().max_workgroup_count[0]) + "); raise the workgroup size");
     }
     const uint32_t node_count = sst_node_count(count);

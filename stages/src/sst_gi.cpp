@@ -23,8 +23,9 @@ void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbu
     add_gi_counters_clear(passes, counters, "gi counters clear");
     const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>();
     passes.add("sst gi",
-               gbuffer_bvh_uses(gbuffer, bvh,
-                                {Use::read(trees.sst), Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)}),
+               gbuffer_bvh_uses(
+                   gbuffer, bvh,
+                   {Use::read(trees.sst), Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)}),
                [&pipeline, gbuffer, bvh, trees, camera_position, indirect, counters, options](VkCommandBuffer cmd) {
                    shaders::sst_gi::Bindings b;
                    bind_bvh(b, bvh);

@@ -41,9 +41,13 @@ constexpr StageInfo kStages[] = {
      VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_READ_BIT, VK_ACCESS_2_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT},
 };
 
-constexpr bool is_shader_stage(Stage s) { return s == Stage::compute || s == Stage::vertex || s == Stage::fragment; }
+constexpr bool is_shader_stage(Stage s) {
+    return s == Stage::compute || s == Stage::vertex || s == Stage::fragment;
+}
 
-std::string quoted(const std::string& name) { return name.empty() ? "(unnamed)" : "'" + name + "'"; }
+std::string quoted(const std::string& name) {
+    return name.empty() ? "(unnamed)" : "'" + name + "'";
+}
 
 VkImageLayout default_layout(Stage stages, Access access) {
     const bool reads = access != Access::write;
@@ -54,7 +58,8 @@ VkImageLayout default_layout(Stage stages, Access access) {
     }
     if (stages == Stage::color_attachment) return VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
     if (stages == Stage::depth_attachment) {
-        return writes ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+        return writes ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL
+                      : VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
     }
     // Shader access, or a mix of stages: GENERAL is valid for storage and sampled use alike.
     return VK_IMAGE_LAYOUT_GENERAL;
@@ -70,20 +75,25 @@ detail::ResourceAccess translate(const Use& use, const std::string& step) {
     for (const StageInfo& s : kStages) {
         if (!has_stage(use.stages, s.stage)) continue;
         if (writes && s.write == 0) {
-            throw Error("vplkit: pass '" + step + "' writes " + resource + " in the " + s.name + " stage, which only reads");
+            throw Error("vplkit: pass '" + step + "' writes " + resource + " in the " + s.name +
+                        " stage, which only reads");
         }
-        if (use.is_image() && (s.stage == Stage::host || s.stage == Stage::indirect || s.stage == Stage::vertex_input)) {
+        if (use.is_image() &&
+            (s.stage == Stage::host || s.stage == Stage::indirect || s.stage == Stage::vertex_input)) {
             throw Error("vplkit: pass '" + step + "' uses " + resource + " in the " + s.name +
                         " stage, which takes buffers only");
         }
         if (!use.is_image() && (s.stage == Stage::color_attachment || s.stage == Stage::depth_attachment)) {
-            throw Error("vplkit: pass '" + step + "' uses " + resource + " as a " + s.name + ", which takes images only");
+            throw Error("vplkit: pass '" + step + "' uses " + resource + " as a " + s.name +
+                        ", which takes images only");
         }
         out.stages |= s.stages;
-        if (reads) out.read |= s.read | (!use.is_image() && is_shader_stage(s.stage) ? VK_ACCESS_2_UNIFORM_READ_BIT : 0);
+        if (reads)
+            out.read |= s.read | (!use.is_image() && is_shader_stage(s.stage) ? VK_ACCESS_2_UNIFORM_READ_BIT : 0);
         if (writes) out.write |= s.write;
     }
-    if (use.is_image()) out.layout = use.layout != VK_IMAGE_LAYOUT_UNDEFINED ? use.layout : default_layout(use.stages, use.access);
+    if (use.is_image())
+        out.layout = use.layout != VK_IMAGE_LAYOUT_UNDEFINED ? use.layout : default_layout(use.stages, use.access);
     return out;
 }
 
@@ -98,15 +108,24 @@ std::string stage_names(VkPipelineStageFlags2 stages) {
 
 std::string layout_name(VkImageLayout layout) {
     switch (layout) {
-        case VK_IMAGE_LAYOUT_UNDEFINED: return "UNDEFINED";
-        case VK_IMAGE_LAYOUT_GENERAL: return "GENERAL";
-        case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL: return "COLOR_ATTACHMENT_OPTIMAL";
-        case VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL: return "DEPTH_STENCIL_ATTACHMENT_OPTIMAL";
-        case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL: return "DEPTH_STENCIL_READ_ONLY_OPTIMAL";
-        case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL: return "SHADER_READ_ONLY_OPTIMAL";
-        case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL: return "TRANSFER_SRC_OPTIMAL";
-        case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL: return "TRANSFER_DST_OPTIMAL";
-        default: return "layout " + std::to_string(int(layout));
+        case VK_IMAGE_LAYOUT_UNDEFINED:
+            return "UNDEFINED";
+        case VK_IMAGE_LAYOUT_GENERAL:
+            return "GENERAL";
+        case VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL:
+            return "COLOR_ATTACHMENT_OPTIMAL";
+        case VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL:
+            return "DEPTH_STENCIL_ATTACHMENT_OPTIMAL";
+        case VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL:
+            return "DEPTH_STENCIL_READ_ONLY_OPTIMAL";
+        case VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL:
+            return "SHADER_READ_ONLY_OPTIMAL";
+        case VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL:
+            return "TRANSFER_SRC_OPTIMAL";
+        case VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL:
+            return "TRANSFER_DST_OPTIMAL";
+        default:
+            return "layout " + std::to_string(int(layout));
     }
 }
 
@@ -122,7 +141,9 @@ struct MergedUse {
     }
 };
 
-Access merged_kind(Access a, Access b) { return a == b ? a : Access::read_write; }
+Access merged_kind(Access a, Access b) {
+    return a == b ? a : Access::read_write;
+}
 
 std::vector<MergedUse> merge_uses(const std::vector<Use>& uses, const std::string& step) {
     std::vector<MergedUse> merged;
@@ -168,9 +189,15 @@ ResourceUse resource_use(const MergedUse& m, const std::string& step) {
 
 }  // namespace
 
-Use Use::read(const BufferView& buffer, Stage stages) { return {buffer, {}, Access::read, stages}; }
-Use Use::write(const BufferView& buffer, Stage stages) { return {buffer, {}, Access::write, stages}; }
-Use Use::read_write(const BufferView& buffer, Stage stages) { return {buffer, {}, Access::read_write, stages}; }
+Use Use::read(const BufferView& buffer, Stage stages) {
+    return {buffer, {}, Access::read, stages};
+}
+Use Use::write(const BufferView& buffer, Stage stages) {
+    return {buffer, {}, Access::write, stages};
+}
+Use Use::read_write(const BufferView& buffer, Stage stages) {
+    return {buffer, {}, Access::read_write, stages};
+}
 Use Use::read(const ImageView& image, Stage stages, VkImageLayout layout) {
     return {{}, image, Access::read, stages, layout};
 }
@@ -190,8 +217,9 @@ std::string BarrierRecord::describe(const std::vector<std::string>& pass_names) 
     add(hazard_write_after_write, "WAW");
     add(hazard_write_after_read, "WAR");
     add(hazard_layout_transition, "layout");
-    std::string out = "before " + (pass < pass_names.size() ? quoted(pass_names[pass]) : "pass " + std::to_string(pass)) +
-                      ": " + (is_image ? "image " : "buffer ") + quoted(resource) + " " + kinds + " (" +
+    std::string out = "before " +
+                      (pass < pass_names.size() ? quoted(pass_names[pass]) : "pass " + std::to_string(pass)) + ": " +
+                      (is_image ? "image " : "buffer ") + quoted(resource) + " " + kinds + " (" +
                       stage_names(src_stages) + " -> " + stage_names(dst_stages);
     if (is_image && old_layout != new_layout) out += ", " + layout_name(old_layout) + " -> " + layout_name(new_layout);
     return out + ")";
@@ -232,7 +260,9 @@ std::vector<ResourceUse> StepList::exit() const {
     return out;
 }
 
-std::vector<BarrierRecord> StepList::record(VkCommandBuffer cmd) const { return record(cmd, Hooks{}); }
+std::vector<BarrierRecord> StepList::record(VkCommandBuffer cmd) const {
+    return record(cmd, Hooks{});
+}
 
 std::vector<BarrierRecord> StepList::record(VkCommandBuffer cmd, const Hooks& hooks) const {
     std::vector<std::vector<MergedUse>> merged;

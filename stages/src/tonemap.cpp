@@ -14,14 +14,16 @@ void add_tonemap_passes(Device& device, StepList& passes, const ImageView& hdr, 
         throw Error("tonemap: exposure must be a positive finite number, got " + std::to_string(exposure));
     }
     if (hdr.format != VK_FORMAT_R32G32B32A32_SFLOAT || ldr.format != VK_FORMAT_R8G8B8A8_UNORM) {
-        throw Error("tonemap: needs an RGBA32F input and an RGBA8_UNORM output ('" + hdr.name + "' -> '" + ldr.name + "')");
+        throw Error("tonemap: needs an RGBA32F input and an RGBA8_UNORM output ('" + hdr.name + "' -> '" + ldr.name +
+                    "')");
     }
     if (hdr.width != ldr.width || hdr.height != ldr.height) {
         throw Error("tonemap: '" + hdr.name + "' and '" + ldr.name + "' differ in size");
     }
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-    passes.add("tonemap stats clear", {Use::transfer_dst(stats)},
-               [stats](VkCommandBuffer cmd) { vkCmdFillBuffer(cmd, stats.buffer, stats.offset, kTonemapStatsBytes, 0u); });
+    passes.add("tonemap stats clear", {Use::transfer_dst(stats)}, [stats](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, stats.buffer, stats.offset, kTonemapStatsBytes, 0u);
+    });
     const auto& pipeline = device.pipeline<shaders::tonemap::Pipeline>();
     passes.add("tonemap", {Use::read(hdr), Use::write(ldr), Use::read_write(stats)},
                [&pipeline, hdr, ldr, stats, exposure](VkCommandBuffer cmd) {

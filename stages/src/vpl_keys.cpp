@@ -11,7 +11,9 @@ namespace vplkit::stages {
 
 namespace {
 
-bool finite(const shaders::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const shaders::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 std::string format(const shaders::vec3& v) {
     return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
@@ -45,8 +47,10 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
 
     passes.add("vpl bounds clear", {Use::transfer_dst(bounds)}, [bounds](VkCommandBuffer cmd) {
         // An empty box: lo at the largest ordered value, hi at the smallest.
-        vkCmdFillBuffer(cmd, bounds.buffer, bounds.offset + offsetof(shaders::VplBoundsBuffer, lo), 3 * sizeof(uint32_t), 0xffffffffu);
-        vkCmdFillBuffer(cmd, bounds.buffer, bounds.offset + offsetof(shaders::VplBoundsBuffer, hi), 3 * sizeof(uint32_t), 0u);
+        vkCmdFillBuffer(cmd, bounds.buffer, bounds.offset + offsetof(shaders::VplBoundsBuffer, lo),
+                        3 * sizeof(uint32_t), 0xffffffffu);
+        vkCmdFillBuffer(cmd, bounds.buffer, bounds.offset + offsetof(shaders::VplBoundsBuffer, hi),
+                        3 * sizeof(uint32_t), 0u);
     });
 
     const auto& bounds_pipeline = device.pipeline<shaders::vpl_bounds::Pipeline>();

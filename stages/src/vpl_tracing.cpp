@@ -10,8 +10,8 @@ namespace vplkit::stages {
 
 uint32_t vpl_capacity(const VplTracingOptions& options) {
     if (options.paths == 0 || options.max_bounces == 0 || options.max_bounces == std::numeric_limits<uint32_t>::max()) {
-        throw Error("VPL tracing: paths and max_bounces must be at least 1, max_bounces below 2^32 - 1 (got " + std::to_string(options.paths) +
-                    " and " + std::to_string(options.max_bounces) + ")");
+        throw Error("VPL tracing: paths and max_bounces must be at least 1, max_bounces below 2^32 - 1 (got " +
+                    std::to_string(options.paths) + " and " + std::to_string(options.max_bounces) + ")");
     }
     const uint64_t capacity = uint64_t(options.paths) * options.max_bounces;
     if (capacity > std::numeric_limits<uint32_t>::max()) {
@@ -48,10 +48,9 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
 
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     const BufferView count = output.count;
-    passes.add("vpl count clear", {Use::transfer_dst(count)},
-               [count](VkCommandBuffer cmd) {
-                   vkCmdFillBuffer(cmd, count.buffer, count.offset, sizeof(shaders::VplCountBuffer), 0u);
-               });
+    passes.add("vpl count clear", {Use::transfer_dst(count)}, [count](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, count.buffer, count.offset, sizeof(shaders::VplCountBuffer), 0u);
+    });
 
     shaders::trace_vpls::Push push{};
     push.scene_center = {sources.scene_center.x, sources.scene_center.y, sources.scene_center.z};

@@ -42,14 +42,16 @@ int main(int argc, char** argv) {
         auto gbuffer = vplkit::stages::GbufferImages::create(*ctx, w, h);
         const auto view = vplkit::stages::camera_view(scene.camera(), w, h);
         std::vector<vplkit::stages::ShadowMap> maps;
-        for (const auto& light : scene.lights) maps.push_back(vplkit::stages::ShadowMap::create(*ctx, light, gpu.bounds(), kRsmResolution));
+        for (const auto& light : scene.lights)
+            maps.push_back(vplkit::stages::ShadowMap::create(*ctx, light, gpu.bounds(), kRsmResolution));
         vplkit::PassList raster("brsm timing raster");
         vplkit::stages::add_gbuffer_pass(*ctx, raster, gpu, view, gbuffer);
         vplkit::stages::add_shadow_map_passes(*ctx, raster, gpu, maps);
         raster.run(*ctx);
         double shadow_ms = 0;
         for (const auto& t : raster.timings()) shadow_ms += t.name.rfind("shadow map", 0) == 0 ? t.gpu_ms : 0.0;
-        std::printf("G-buffer %ux%u; shadow maps %.3f ms (one run, includes the raster pipelines' first use)\n", w, h, shadow_ms);
+        std::printf("G-buffer %ux%u; shadow maps %.3f ms (one run, includes the raster pipelines' first use)\n", w, h,
+                    shadow_ms);
 
         for (uint32_t n : counts) {
             vplkit::stages::BrsmOptions options;
@@ -64,7 +66,8 @@ int main(int argc, char** argv) {
                 vplkit::stages::add_brsm_passes(*ctx, passes, gbuffer, view, maps, scene_scale, options, out);
                 const auto start = std::chrono::steady_clock::now();
                 passes.run(*ctx);
-                const double wall = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+                const double wall =
+                    std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
                 if (run == 0) continue;  // warm-up: shaders compile at their first dispatch on lavapipe
                 std::map<std::string, double> sums;
                 for (const auto& t : passes.timings()) {
@@ -82,7 +85,8 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "\r%60s\r", "");
             order.push_back("total");
             order.push_back("wall clock (host)");
-            std::printf("%u VPLs (%u placed), medians of %d runs:\n", n, vplkit::stages::download_brsm_vpl_count(out), kRuns);
+            std::printf("%u VPLs (%u placed), medians of %d runs:\n", n, vplkit::stages::download_brsm_vpl_count(out),
+                        kRuns);
             for (const auto& name : order) {
                 auto v = per_stage[name];
                 std::sort(v.begin(), v.end());

@@ -84,11 +84,11 @@ Scene open_box(float scale = 1.0f) {
     const uint32_t green = add_material(s, {0.2f, 0.7f, 0.25f});
     const uint32_t ceiling = add_material(s, {0.6f, 0.6f, 0.6f}, 0.5f);
     auto P = [scale](float x, float y, float z) { return glm::vec3(x, y, z) * scale; };
-    raster_test::add_quad(s, {P(-1, 0, -1), P(-1, 0, 1), P(1, 0, 1), P(1, 0, -1)}, kUv, grey);    // floor, up
+    raster_test::add_quad(s, {P(-1, 0, -1), P(-1, 0, 1), P(1, 0, 1), P(1, 0, -1)}, kUv, grey);     // floor, up
     raster_test::add_quad(s, {P(-1, 2, -1), P(1, 2, -1), P(1, 2, 1), P(-1, 2, 1)}, kUv, ceiling);  // down
-    raster_test::add_quad(s, {P(-1, 0, -1), P(1, 0, -1), P(1, 2, -1), P(-1, 2, -1)}, kUv, grey);  // back, +z
-    raster_test::add_quad(s, {P(-1, 0, -1), P(-1, 2, -1), P(-1, 2, 1), P(-1, 0, 1)}, kUv, red);   // left, +x
-    raster_test::add_quad(s, {P(1, 0, -1), P(1, 0, 1), P(1, 2, 1), P(1, 2, -1)}, kUv, green);     // right, -x
+    raster_test::add_quad(s, {P(-1, 0, -1), P(1, 0, -1), P(1, 2, -1), P(-1, 2, -1)}, kUv, grey);   // back, +z
+    raster_test::add_quad(s, {P(-1, 0, -1), P(-1, 2, -1), P(-1, 2, 1), P(-1, 0, 1)}, kUv, red);    // left, +x
+    raster_test::add_quad(s, {P(1, 0, -1), P(1, 0, 1), P(1, 2, 1), P(1, 2, -1)}, kUv, green);      // right, -x
     finish(s);
     return s;
 }
@@ -127,7 +127,7 @@ Light sun(glm::vec3 direction, float intensity) {
 
 // A scene drawn into a G-buffer and one RSM per light, ready for the BRSM passes.
 class Setup {
- public:
+public:
     Setup(Scene scene, const vplkit::scene::Camera& camera, uint32_t rsm_resolution, uint32_t width = 64,
           uint32_t height = 48)
         : scene_(std::move(scene)),
@@ -187,7 +187,7 @@ class Setup {
     float scene_scale() const { return scene_scale_; }
     std::vector<ShadowMap>& maps() { return maps_; }
 
- private:
+private:
     static ref::Rgba read(vplkit::Image& image) {
         return {image.width(), image.height(), raster_test::download_rgba(image)};
     }
@@ -287,7 +287,8 @@ TEST_CASE("brsm: contributions and flux luminance match a double reference") {
     p.seed = options.seed;
     p.core_radius = double(options.core_radius) * setup.scene_scale();
     p.max_radius = double(options.max_radius) * setup.scene_scale();
-    p.min_distance = std::max(1e-2 * setup.scene_scale(), p.core_radius);  // the clamp at the core (brsm_contribution.comp)
+    p.min_distance =
+        std::max(1e-2 * setup.scene_scale(), p.core_radius);  // the clamp at the core (brsm_contribution.comp)
     const ref::Rsm rsm = setup.rsm(0);
     const auto expected = ref::brsm_contribution(rsm, setup.gbuffer(), p);
     const auto expected_flux = ref::brsm_flux_luminance(rsm, size);
@@ -373,7 +374,7 @@ TEST_CASE("brsm: the importance is the normalized defensive mixture") {
             lit_zero += flux[i] > 0.0f && chain[i] == 0.0f;
         }
         CHECK(failures == 0);
-        CHECK(zero_flux_positive == 0);  // never a VPL where no light is
+        CHECK(zero_flux_positive == 0);   // never a VPL where no light is
         if (a > 0) CHECK(lit_zero == 0);  // every lit texel can be chosen
         CHECK(std::abs(chain.back() - 1.0) <= 1e-5);
     }
@@ -390,7 +391,8 @@ std::array<int, 4> check_vpls_are_their_texels(Setup& setup, uint32_t n) {
     REQUIRE(vpls.size() == n);
     const auto& light = out.lights[0];
     const auto samples = light.samples.download<vplkit::shaders::WarpedSample>(n);
-    const auto importance = light.importance_mips.download<float>(vplkit::stages::importance_mip_floats(light.map_size));
+    const auto importance =
+        light.importance_mips.download<float>(vplkit::stages::importance_mip_floats(light.map_size));
     const double total = importance.back();
     const ref::Rsm rsm = setup.rsm(0);
     const auto triangles = vplkit::scene::triangle_positions(setup.scene());
@@ -418,9 +420,9 @@ std::array<int, 4> check_vpls_are_their_texels(Setup& setup, uint32_t n) {
         double nearest = INFINITY;
         const glm::dvec3 p(v.position.x, v.position.y, v.position.z);
         for (size_t k = 0; k < triangles.size(); k += 3) {
-            nearest = std::min(nearest, ref::point_triangle_distance(p, glm::dvec3(triangles[k]),
-                                                                     glm::dvec3(triangles[k + 1]),
-                                                                     glm::dvec3(triangles[k + 2])));
+            nearest = std::min(nearest,
+                               ref::point_triangle_distance(p, glm::dvec3(triangles[k]), glm::dvec3(triangles[k + 1]),
+                                                            glm::dvec3(triangles[k + 2])));
         }
         CAPTURE(nearest);
         ok = ok && nearest <= 1e-5 * setup.scene_scale();
@@ -452,8 +454,9 @@ TEST_CASE("brsm: a square spot-light map with importance in every quadrant: each
 
 TEST_CASE("brsm: over seeds the VPLs of each light carry its RSM's reflected flux") {
     // Two lights with their shares; with the defensive term, all of each RSM's flux.
-    Setup setup(box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f), spot_light({-0.5f, 1.5f, 0.5f}, {0.3f, -1.0f, -0.4f}, 5.0f)}),
-                box_camera(), 16);
+    Setup setup(
+        box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f), spot_light({-0.5f, 1.5f, 0.5f}, {0.3f, -1.0f, -0.4f}, 5.0f)}),
+        box_camera(), 16);
     check_mean_flux(setup, small_options(400), 24, {setup.rsm_flux_sum(0), setup.rsm_flux_sum(1)});
 
     // Pure BRSM: the flux of the texels it can choose (positive importance) only.
@@ -492,7 +495,8 @@ TEST_CASE("brsm: VPLs go where the camera sees their light") {
         return double(near) / double(vpls.size());
     };
     const double brsm = near_fraction(0.1f), pure = near_fraction(0.0f), flux_only = near_fraction(1.0f);
-    MESSAGE("VPLs at x < -0.2: " << brsm << " (a = 0.1), " << pure << " (a = 0), " << flux_only << " (a = 1, flux only)");
+    MESSAGE("VPLs at x < -0.2: " << brsm << " (a = 0.1), " << pure << " (a = 0), " << flux_only
+                                 << " (a = 1, flux only)");
     CHECK(pure > flux_only + 0.3);
     CHECK(brsm > flux_only + 0.25);
     CHECK(pure >= brsm);
@@ -500,8 +504,9 @@ TEST_CASE("brsm: VPLs go where the camera sees their light") {
 
 TEST_CASE("brsm: a light whose map has no surface places no VPLs and says so") {
     // The spot points out of the open front: its RSM is empty, its importance all zero.
-    Setup setup(box_with({spot_light({0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}, 5.0f), point_light({0.2f, 1.7f, -0.3f}, 3.0f)}),
-                box_camera(), 16);
+    Setup setup(
+        box_with({spot_light({0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}, 5.0f), point_light({0.2f, 1.7f, -0.3f}, 3.0f)}),
+        box_camera(), 16);
     const BrsmOutput out = setup.run(small_options(300));
     const auto counts = vplkit::stages::download_brsm_light_vpl_counts(out);
     REQUIRE(counts.size() == 2);
@@ -534,8 +539,9 @@ TEST_CASE("brsm: the same seed gives the same VPLs and another seed other ones")
 }
 
 TEST_CASE("brsm: light by light gives the same VPLs as all lights at once") {
-    Setup setup(box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f), spot_light({-0.5f, 1.5f, 0.5f}, {0.3f, -1.0f, -0.4f}, 5.0f)}),
-                box_camera(), 16);
+    Setup setup(
+        box_with({point_light({0.2f, 1.7f, -0.3f}, 3.0f), spot_light({-0.5f, 1.5f, 0.5f}, {0.3f, -1.0f, -0.4f}, 5.0f)}),
+        box_camera(), 16);
     BrsmOptions options = small_options(300);
     options.seed = 5;
     const auto together = setup.vpls(setup.run(options));
@@ -607,5 +613,6 @@ TEST_CASE("brsm: invalid options are refused") {
     refused([](BrsmOptions& o) { o.defensive_fraction = 1.5f; });
     refused([](BrsmOptions& o) { o.defensive_fraction = -0.1f; });
     CHECK_NOTHROW(vplkit::stages::validate(BrsmOptions{}));
-    CHECK_THROWS_AS(BrsmOutput::create(vplkit::test::context(), {}, vplkit::scene::Bounds{}, BrsmOptions{}), vplkit::Error);
+    CHECK_THROWS_AS(BrsmOutput::create(vplkit::test::context(), {}, vplkit::scene::Bounds{}, BrsmOptions{}),
+                    vplkit::Error);
 }

@@ -21,8 +21,12 @@ namespace {
 using shaders::BvhHit;
 using shaders::BvhRay;
 
-glm::vec3 to_glm(const shaders::vec3& v) { return {v.x, v.y, v.z}; }
-reference::Double3 to_double(const glm::vec3& v) { return {v.x, v.y, v.z}; }
+glm::vec3 to_glm(const shaders::vec3& v) {
+    return {v.x, v.y, v.z};
+}
+reference::Double3 to_double(const glm::vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
 void add_triangle(Triangles& out, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
     out.push_back(a);
@@ -47,15 +51,15 @@ Triangles random_soup(uint32_t count, uint32_t seed, float size) {
 
 Triangles icosphere(uint32_t levels) {
     const float g = (1.0f + std::sqrt(5.0f)) / 2.0f;
-    std::vector<glm::vec3> vertices = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                                       {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<glm::vec3> vertices = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                                       {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
     for (auto& v : vertices) {
         v = glm::normalize(v);
     }
-    std::vector<std::array<uint32_t, 3>> faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-                                                  {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                                  {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-                                                  {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<std::array<uint32_t, 3>> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                                  {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                                  {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                                  {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (uint32_t level = 0; level < levels; ++level) {
         // Shared midpoints, so that neighbouring faces use the very same float vertex.
         std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
@@ -163,9 +167,10 @@ glm::vec3 random_direction(std::mt19937& rng) {
 std::vector<BvhHit> trace_closest(const GpuBvh& bvh, std::span<const BvhRay> rays) {
     Context& ctx = test::context();
     const uint32_t count = uint32_t(rays.size());
-    auto ray_buffer = Buffer::create(ctx, rays.size_bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "rays");
-    auto hit_buffer = Buffer::create(ctx, count * sizeof(BvhHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
-                                     "hits");
+    auto ray_buffer =
+        Buffer::create(ctx, rays.size_bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "rays");
+    auto hit_buffer =
+        Buffer::create(ctx, count * sizeof(BvhHit), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "hits");
     ray_buffer.upload(rays);
     PassList passes("bvh test closest");
     add_trace_rays_pass(ctx, passes, bvh, ray_buffer, hit_buffer, count, TraceMode::closest_hit);
@@ -176,7 +181,8 @@ std::vector<BvhHit> trace_closest(const GpuBvh& bvh, std::span<const BvhRay> ray
 std::vector<uint32_t> trace_occlusion(const GpuBvh& bvh, std::span<const BvhRay> rays) {
     Context& ctx = test::context();
     const uint32_t count = uint32_t(rays.size());
-    auto ray_buffer = Buffer::create(ctx, rays.size_bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "rays");
+    auto ray_buffer =
+        Buffer::create(ctx, rays.size_bytes(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "rays");
     auto result_buffer = Buffer::create(ctx, count * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                         MemoryUse::device, "occlusion");
     ray_buffer.upload(rays);

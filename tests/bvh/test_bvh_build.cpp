@@ -16,23 +16,27 @@
 
 namespace {
 
-using vplkit::Bvh;
-using vplkit::BvhBuildOptions;
 using vplkit::build_bvh;
+using vplkit::Bvh;
 using vplkit::bvh_is_leaf;
 using vplkit::bvh_leaf_triangles;
+using vplkit::BvhBuildOptions;
+using vplkit::bvh_test::Triangles;
 using vplkit::shaders::BvhNode;
 using vplkit::shaders::vec3;
-using vplkit::bvh_test::Triangles;
 
 bool inside(const vec3& p, const BvhNode& node) {
     return p.x >= node.lo.x && p.y >= node.lo.y && p.z >= node.lo.z && p.x <= node.hi.x && p.y <= node.hi.y &&
            p.z <= node.hi.z;
 }
 
-bool contains(const BvhNode& outer, const BvhNode& inner) { return inside(inner.lo, outer) && inside(inner.hi, outer); }
+bool contains(const BvhNode& outer, const BvhNode& inner) {
+    return inside(inner.lo, outer) && inside(inner.hi, outer);
+}
 
-bool same(const vec3& a, const glm::vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+bool same(const vec3& a, const glm::vec3& b) {
+    return a.x == b.x && a.y == b.y && a.z == b.z;
+}
 
 struct Walk {
     uint32_t nodes_seen = 0;
@@ -223,7 +227,8 @@ TEST_CASE("bvh build: the depth cap holds for a scene SAH would chain deeply") {
 
 TEST_CASE("bvh build: SAH separates distant clusters at the root and beats median splits") {
     Triangles scene = vplkit::bvh_test::transformed(vplkit::bvh_test::random_soup(300, 3, 0.05f), 1.0f, {-50, 0, 0});
-    const Triangles right = vplkit::bvh_test::transformed(vplkit::bvh_test::random_soup(100, 4, 0.05f), 1.0f, {50, 0, 0});
+    const Triangles right =
+        vplkit::bvh_test::transformed(vplkit::bvh_test::random_soup(100, 4, 0.05f), 1.0f, {50, 0, 0});
     scene.insert(scene.end(), right.begin(), right.end());
     const Bvh bvh = build_bvh(scene);
     check_structure(bvh, scene);

@@ -35,14 +35,16 @@ glm::dvec3 to_dvec(const V& v) {
     return {v.x, v.y, v.z};
 }
 
-std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh, const std::vector<ts::SurfaceQuery>& queries) {
+std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh,
+                                                const std::vector<ts::SurfaceQuery>& queries) {
     vplkit::Context& ctx = vplkit::test::context();
     const uint32_t count = uint32_t(queries.size());
-    auto query_buffer = vplkit::Buffer::create(ctx, count * sizeof(ts::SurfaceQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                               vplkit::MemoryUse::device, "surface queries");
-    auto result_buffer = vplkit::Buffer::create(ctx, count * sizeof(ts::SurfaceResult),
-                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device,
-                                                "surface results");
+    auto query_buffer =
+        vplkit::Buffer::create(ctx, count * sizeof(ts::SurfaceQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               vplkit::MemoryUse::device, "surface queries");
+    auto result_buffer =
+        vplkit::Buffer::create(ctx, count * sizeof(ts::SurfaceResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               vplkit::MemoryUse::device, "surface results");
     query_buffer.upload(queries);
     const auto& pipeline = ctx.pipeline<ts::surface_rays::Pipeline>();
     vplkit::PassList passes("surface rays test");
@@ -66,8 +68,9 @@ std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh, const
 std::vector<uint32_t> run_segments(const vplkit::GpuBvh& bvh, const std::vector<ts::SegmentQuery>& queries) {
     vplkit::Context& ctx = vplkit::test::context();
     const uint32_t count = uint32_t(queries.size());
-    auto query_buffer = vplkit::Buffer::create(ctx, count * sizeof(ts::SegmentQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                               vplkit::MemoryUse::device, "segment queries");
+    auto query_buffer =
+        vplkit::Buffer::create(ctx, count * sizeof(ts::SegmentQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               vplkit::MemoryUse::device, "segment queries");
     auto result_buffer = vplkit::Buffer::create(ctx, count * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                                 vplkit::MemoryUse::device, "segment occlusion");
     query_buffer.upload(queries);
@@ -152,7 +155,8 @@ void check_offset(const vplkit::Bvh& bvh, const ts::SurfaceQuery& q, const ts::S
     if (r.scale != bvh.scene_scale || std::fabs(distance - h) > 0.05 * h) {
         ++failures;
         if (failures <= 3) {
-            MESSAGE("offset " << distance << " expected " << h << " (scale " << r.scale << " / " << bvh.scene_scale << ")");
+            MESSAGE("offset " << distance << " expected " << h << " (scale " << r.scale << " / " << bvh.scene_scale
+                              << ")");
         }
     }
 }
@@ -269,8 +273,8 @@ TEST_CASE("bvh offset: an occluder twice the offset away is never missed") {
         // the world origin the gap is 0.3 units over a 1-unit floor: a ray at cosine 0.1
         // travels 3 units sideways before it reaches the ceiling, which must still be there.)
         const float extent = 8.0f * s.scale;
-        const float far = std::max({std::fabs(s.offset.x) + extent, std::fabs(s.offset.y) + extent,
-                                    std::fabs(s.offset.z) + extent});
+        const float far =
+            std::max({std::fabs(s.offset.x) + extent, std::fabs(s.offset.y) + extent, std::fabs(s.offset.z) + extent});
         const float scene_scale = far * (1.0f + vplkit::kBvhBoxPadding);
         const float gap = 2.0f * vplkit::kBvhOriginOffset * scene_scale;
         const float y = s.offset.y + gap;
@@ -380,7 +384,7 @@ TEST_CASE("bvh offset: segments and point-light rays through a plate are blocked
         Triangles scene = vplkit::bvh_test::transformed(vplkit::bvh_test::icosphere(2), s.scale, s.offset);
         const uint32_t sphere_triangles = uint32_t(scene.size() / 3);
         const Triangles plate = {{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0.5f, 0.5f, 0},
-                                 {-0.5f, -0.5f, 0}, {0.5f, 0.5f, 0}, {-0.5f, 0.5f, 0}};
+                                 {-0.5f, -0.5f, 0}, {0.5f, 0.5f, 0},  {-0.5f, 0.5f, 0}};
         const Triangles placed = vplkit::bvh_test::transformed(plate, s.scale, s.offset);
         scene.insert(scene.end(), placed.begin(), placed.end());
         const auto bvh = vplkit::build_bvh(scene);
@@ -414,7 +418,8 @@ TEST_CASE("bvh offset: segments and point-light rays through a plate are blocked
         for (int i = 0; i < 4000; ++i) {
             const uint32_t tp = on_sphere[pick(rng)];
             const glm::vec2 bp = random_b();
-            const glm::dvec3 p = offset_point(surface_point(bvh.triangles[tp], bp), -geometric_normal(bvh.triangles[tp]));
+            const glm::dvec3 p =
+                offset_point(surface_point(bvh.triangles[tp], bp), -geometric_normal(bvh.triangles[tp]));
             ts::SegmentQuery query;
             glm::dvec3 q;
             if (i % 2 == 0) {

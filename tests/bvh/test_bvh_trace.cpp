@@ -18,10 +18,10 @@
 namespace {
 
 using vplkit::kBvhNoHit;
-using vplkit::shaders::BvhHit;
-using vplkit::shaders::BvhRay;
 using vplkit::bvh_test::make_ray;
 using vplkit::bvh_test::Triangles;
+using vplkit::shaders::BvhHit;
+using vplkit::shaders::BvhRay;
 
 // Rays from random points in a box of half-size `spread` around `centre` towards random
 // directions, with tmax random in (0, 6 * spread) so that occlusion has both answers (and a
@@ -195,10 +195,10 @@ TEST_CASE("bvh trace: an axis-parallel ray lying in a box face still finds what 
             quad({x, 0, z}, {x, 0, z + 1}, {x + 1, 0, z + 1}, {x + 1, 0, z});
         }
     }
-    quad({10, 0, 0}, {10, 2, 0}, {10, 2, 8}, {10, 0, 8});        // wall at x = 10, standing on y = 0
-    quad({-2, -2, 0}, {-2, 0, 0}, {-2, 0, 8}, {-2, -2, 8});      // wall at x = -2, hanging below y = 0
-    quad({0, 0, 10}, {0, 2, 10}, {8, 2, 10}, {8, 0, 10});        // wall at z = 10, standing
-    quad({0, -2, -2}, {0, 0, -2}, {8, 0, -2}, {8, -2, -2});      // wall at z = -2, hanging
+    quad({10, 0, 0}, {10, 2, 0}, {10, 2, 8}, {10, 0, 8});    // wall at x = 10, standing on y = 0
+    quad({-2, -2, 0}, {-2, 0, 0}, {-2, 0, 8}, {-2, -2, 8});  // wall at x = -2, hanging below y = 0
+    quad({0, 0, 10}, {0, 2, 10}, {8, 2, 10}, {8, 0, 10});    // wall at z = 10, standing
+    quad({0, -2, -2}, {0, 0, -2}, {8, 0, -2}, {8, -2, -2});  // wall at z = -2, hanging
     const auto bvh = vplkit::build_bvh(scene);
     const auto gpu = vplkit::upload_bvh(vplkit::test::context(), bvh);
 
@@ -206,7 +206,7 @@ TEST_CASE("bvh trace: an axis-parallel ray lying in a box face still finds what 
     std::vector<float> expected_t;
     for (int i = 0; i < 16; ++i) {
         const float u = 0.5f * float(i) + 0.25f;  // 0.25 .. 7.75, off the floor's grid lines
-        const float v = 0.5f * float(i % 8);     // on grid lines too
+        const float v = 0.5f * float(i % 8);      // on grid lines too
         rays.push_back(make_ray({v, 0, u}, {1, 0, 0}, 0.0f, 100.0f));
         expected_t.push_back(10.0f - v);
         rays.push_back(make_ray({v, 0, u}, {-1, -0.0f, 0}, 0.0f, 100.0f));
@@ -273,18 +273,15 @@ TEST_CASE("bvh trace: invalid rays miss and tmax = +infinity is unbounded") {
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     std::vector<BvhRay> rays = {
-        make_ray({0, 0, 1}, {0, 0, 0}, 0.0f, 10.0f),       // no direction
+        make_ray({0, 0, 1}, {0, 0, 0}, 0.0f, 10.0f),        // no direction
         make_ray({0, 0, 1}, {0, 0, -1e-25f}, 0.0f, 10.0f),  // below kBvhMinDirection
-        make_ray({0, 0, 1}, {0, 0, -1}, 2.0f, 2.0f),       // tmin >= tmax
-        make_ray({0, 0, 1}, {0, 0, -1}, 3.0f, 2.0f),
-        make_ray({nan, 0, 1}, {0, 0, -1}, 0.0f, 10.0f),
-        make_ray({0, 0, 1}, {0, nan, -1}, 0.0f, 10.0f),
-        make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, -inf),
-        make_ray({0, 0, 1}, {0, 0, -1}, -inf, 10.0f),
-        make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, nan),
+        make_ray({0, 0, 1}, {0, 0, -1}, 2.0f, 2.0f),        // tmin >= tmax
+        make_ray({0, 0, 1}, {0, 0, -1}, 3.0f, 2.0f),       make_ray({nan, 0, 1}, {0, 0, -1}, 0.0f, 10.0f),
+        make_ray({0, 0, 1}, {0, nan, -1}, 0.0f, 10.0f),    make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, -inf),
+        make_ray({0, 0, 1}, {0, 0, -1}, -inf, 10.0f),      make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, nan),
         make_ray({0, 0, 1}, {0, 0, -1}, nan, 10.0f),
     };
-    rays.push_back(make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, inf));  // +inf: unbounded, valid
+    rays.push_back(make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, inf));    // +inf: unbounded, valid
     rays.push_back(make_ray({0, 0, 1}, {0, 0, -1}, 0.0f, 10.0f));  // a valid one, for contrast
     const auto bvh = vplkit::build_bvh(one);
     const auto gpu = vplkit::upload_bvh(vplkit::test::context(), bvh);

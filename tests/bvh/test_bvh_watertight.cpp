@@ -21,9 +21,9 @@
 namespace {
 
 using vplkit::kBvhNoHit;
-using vplkit::shaders::BvhRay;
 using vplkit::bvh_test::make_ray;
 using vplkit::bvh_test::Triangles;
+using vplkit::shaders::BvhRay;
 
 // Every vertex and every edge midpoint of the mesh, once each.
 std::vector<glm::vec3> vertices_and_edge_midpoints(const Triangles& mesh) {
@@ -81,7 +81,8 @@ TEST_CASE("bvh watertight: rays through the vertices and edges of a grid box fro
     // exactly through its target vertex or edge point, where edge functions are exactly 0.
     const Triangles box = vplkit::bvh_test::grid_box(8);
     const auto targets = vertices_and_edge_midpoints(box);
-    const std::vector<glm::vec3> inside = {{0, 0, 0}, {0.25f, -0.5f, 0.125f}, {-0.75f, 0.625f, 0.5f}, {0.5f, 0.5f, 0.5f}};
+    const std::vector<glm::vec3> inside = {
+        {0, 0, 0}, {0.25f, -0.5f, 0.125f}, {-0.75f, 0.625f, 0.5f}, {0.5f, 0.5f, 0.5f}};
     std::vector<BvhRay> rays;
     std::vector<float> t_expected;
     for (const glm::vec3& target : targets) {

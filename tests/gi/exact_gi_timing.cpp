@@ -49,7 +49,8 @@ int main(int argc, char** argv) {
         for (; i + 1 < argc; i += 2) {
             const std::string key = argv[i], value = argv[i + 1];
             if (key == "--size") {
-                if (std::sscanf(value.c_str(), "%ux%u", &width, &height) != 2) throw vplkit::Error("bad --size " + value);
+                if (std::sscanf(value.c_str(), "%ux%u", &width, &height) != 2)
+                    throw vplkit::Error("bad --size " + value);
             } else if (key == "--vpls") {
                 vpl_count = uint32_t(std::stoul(value));
             } else if (key == "--chunk") {
@@ -90,9 +91,9 @@ int main(int argc, char** argv) {
         std::uniform_real_distribution<double> unit(0.0, 1.0);
         std::vector<vplkit::shaders::Vpl> vpls;
         while (vpls.size() < vpl_count) {
-            const size_t t = std::min(size_t(std::lower_bound(cumulative.begin(), cumulative.end(), unit(rng) * area) -
-                                             cumulative.begin()),
-                                      cumulative.size() - 1);
+            const size_t t = std::min(
+                size_t(std::lower_bound(cumulative.begin(), cumulative.end(), unit(rng) * area) - cumulative.begin()),
+                cumulative.size() - 1);
             const glm::vec3 a = positions[3 * t], b = positions[3 * t + 1], c = positions[3 * t + 2];
             glm::vec3 n = glm::cross(b - a, c - a);
             if (glm::dot(n, n) == 0.0f) continue;
@@ -122,7 +123,8 @@ int main(int argc, char** argv) {
         const auto start = std::chrono::steady_clock::now();
         const auto result = vplkit::stages::render_exact_gi(*ctx, gbuffer, bvh, vpl_buffer, vpl_count, view.position,
                                                             indirect, gi_options);
-        const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        const double wall_ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         const auto texels = indirect.download<std::array<float, 4>>();
         double mean = 0.0;
         for (const auto& t : texels) mean += (t[0] + t[1] + t[2]) / 3.0;
@@ -130,9 +132,11 @@ int main(int argc, char** argv) {
         const uint32_t chunk = vplkit::stages::exact_gi_chunk_size(width, height, gi_options);
         std::printf("scene %s: %zu triangles; %ux%u pixels x %u VPLs in %u dispatches of <= %u VPLs\n", target.c_str(),
                     scene.triangle_count(), width, height, vpl_count, result.dispatches, chunk);
-        std::printf("exact gi: %.1f ms GPU, %.1f ms wall; %.1f ns per (pixel, VPL) pair; mean indirect %.4g; dropped %u pixels, %u contributions\n",
-                    result.gpu_ms, wall_ms, result.gpu_ms * 1e6 / (double(width) * height * vpl_count), mean,
-                    result.counts.dropped_pixels, result.counts.dropped_contributions);
+        std::printf(
+            "exact gi: %.1f ms GPU, %.1f ms wall; %.1f ns per (pixel, VPL) pair; mean indirect %.4g; dropped %u "
+            "pixels, %u contributions\n",
+            result.gpu_ms, wall_ms, result.gpu_ms * 1e6 / (double(width) * height * vpl_count), mean,
+            result.counts.dropped_pixels, result.counts.dropped_contributions);
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "exact_gi_timing: %s\n", e.what());

@@ -62,9 +62,18 @@ Setup floor_setup(float s, uint32_t width = 32, uint32_t height = 24) {
     setup.width = width;
     setup.height = height;
     const float f = 3.0f * s;
-    setup.triangles = {{-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {-f, 0, -f}, {f, 0, f}, {f, 0, -f},
-                       {-0.5f * s, s, -0.5f * s}, {-0.5f * s, s, 0.7f * s}, {0.6f * s, s, 0.7f * s},
-                       {-0.5f * s, s, -0.5f * s}, {0.6f * s, s, 0.7f * s}, {0.6f * s, s, -0.5f * s}};
+    setup.triangles = {{-f, 0, -f},
+                       {-f, 0, f},
+                       {f, 0, f},
+                       {-f, 0, -f},
+                       {f, 0, f},
+                       {f, 0, -f},
+                       {-0.5f * s, s, -0.5f * s},
+                       {-0.5f * s, s, 0.7f * s},
+                       {0.6f * s, s, 0.7f * s},
+                       {-0.5f * s, s, -0.5f * s},
+                       {0.6f * s, s, 0.7f * s},
+                       {0.6f * s, s, -0.5f * s}};
     setup.camera = glm::vec3(0.0f, 3.0f, 4.0f) * s;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -90,25 +99,31 @@ Setup floor_setup(float s, uint32_t width = 32, uint32_t height = 24) {
 std::vector<TestVpl> floor_vpls(float s, float flux_scale) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    auto colour = [&] { return glm::vec3(0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng)) * flux_scale; };
+    auto colour = [&] {
+        return glm::vec3(0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng), 0.5f + 1.5f * unit(rng)) * flux_scale;
+    };
     std::vector<TestVpl> vpls;
     for (int i = 0; i < 20; ++i) {  // ceiling, facing down (slightly tilted)
         vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)) * s,
-                        glm::normalize(glm::vec3(0.3f * (unit(rng) - 0.5f), -1.0f, 0.3f * (unit(rng) - 0.5f))), colour()});
+                        glm::normalize(glm::vec3(0.3f * (unit(rng) - 0.5f), -1.0f, 0.3f * (unit(rng) - 0.5f))),
+                        colour()});
     }
     for (int i = 0; i < 10; ++i) {  // wall at x = -2.9, facing +x; the low ones light the floor at grazing angles
         const float height = i < 4 ? 0.005f + 0.01f * i : 0.1f + 1.4f * unit(rng);
         vpls.push_back({glm::vec3(-2.9f, height, -2.5f + 5.0f * unit(rng)) * s, {1.0f, 0.0f, 0.0f}, colour()});
     }
     for (int i = 0; i < 5; ++i) {  // below the floor, facing up: behind every shading point
-        vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), -0.5f, -2.5f + 5.0f * unit(rng)) * s, {0.0f, 1.0f, 0.0f}, colour()});
+        vpls.push_back(
+            {glm::vec3(-2.5f + 5.0f * unit(rng), -0.5f, -2.5f + 5.0f * unit(rng)) * s, {0.0f, 1.0f, 0.0f}, colour()});
     }
     for (int i = 0; i < 5; ++i) {  // above the floor, facing up: away from every shading point
-        vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 1.5f, -2.5f + 5.0f * unit(rng)) * s, {0.0f, 1.0f, 0.0f}, colour()});
+        vpls.push_back(
+            {glm::vec3(-2.5f + 5.0f * unit(rng), 1.5f, -2.5f + 5.0f * unit(rng)) * s, {0.0f, 1.0f, 0.0f}, colour()});
     }
     for (int i = 0; i < 10; ++i) {  // free, between floor and quad, facing somewhere downwards
         const glm::vec3 n = glm::normalize(glm::vec3(unit(rng) - 0.5f, -0.2f - unit(rng), unit(rng) - 0.5f));
-        vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 0.1f + 0.8f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n, colour()});
+        vpls.push_back(
+            {glm::vec3(-2.5f + 5.0f * unit(rng), 0.1f + 0.8f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n, colour()});
     }
     return vpls;
 }
@@ -193,7 +208,8 @@ Comparison compare(const Setup& setup, const GpuResult& gpu, const std::vector<r
         ++c.compared;
         c.lit += expected[i].radiance[0] > 0.0;
         for (int k = 0; k < 3; ++k) {
-            CHECK(double(t[k]) == doctest::Approx(expected[i].radiance[k]).epsilon(relative).scale(absolute / relative));
+            CHECK(double(t[k]) ==
+                  doctest::Approx(expected[i].radiance[k]).epsilon(relative).scale(absolute / relative));
         }
     }
     CHECK(c.skipped * 20 <= c.compared);
@@ -281,7 +297,8 @@ TEST_CASE("exact gi: a VPL on the shading point and one nearer than the clamp di
         setup.pixels[i].metallic = 0.0f;
         setup.pixels[i].albedo = {0.5f, 0.25f, 1.0f};
     }
-    setup.vpls = {{a, {0.0f, 1.0f, 0.0f}, {1.0f, 2.0f, 3.0f}}, {b + glm::vec3(0, 0.3f * d_min, 0), {0.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 1.0f}}};
+    setup.vpls = {{a, {0.0f, 1.0f, 0.0f}, {1.0f, 2.0f, 3.0f}},
+                  {b + glm::vec3(0, 0.3f * d_min, 0), {0.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 1.0f}}};
     const auto gpu = run_gpu(setup, {}, false);
     const auto expected = run_reference(setup);
     compare(setup, gpu, expected);
@@ -310,11 +327,14 @@ TEST_CASE("exact gi: VPLs behind the surface or facing away give no light") {
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int i = 0; i < 10; ++i) {
         // Behind: below the floor, facing up towards it (and so towards the shading points).
-        setup.vpls.push_back({{-2.5f + 5.0f * unit(rng), -0.2f - unit(rng), -2.5f + 5.0f * unit(rng)}, {0.0f, 1.0f, 0.0f}, {5, 5, 5}});
+        setup.vpls.push_back(
+            {{-2.5f + 5.0f * unit(rng), -0.2f - unit(rng), -2.5f + 5.0f * unit(rng)}, {0.0f, 1.0f, 0.0f}, {5, 5, 5}});
         // Facing away: above the floor, facing up.
-        setup.vpls.push_back({{-2.5f + 5.0f * unit(rng), 0.2f + unit(rng), -2.5f + 5.0f * unit(rng)}, {0.0f, 1.0f, 0.0f}, {5, 5, 5}});
+        setup.vpls.push_back(
+            {{-2.5f + 5.0f * unit(rng), 0.2f + unit(rng), -2.5f + 5.0f * unit(rng)}, {0.0f, 1.0f, 0.0f}, {5, 5, 5}});
         // In front of a tilted shading normal but below the geometric plane: still behind.
-        setup.vpls.push_back({{-2.5f + 5.0f * unit(rng), -0.01f, -2.5f + 5.0f * unit(rng)}, {0.0f, 1.0f, 0.0f}, {5, 5, 5}});
+        setup.vpls.push_back(
+            {{-2.5f + 5.0f * unit(rng), -0.01f, -2.5f + 5.0f * unit(rng)}, {0.0f, 1.0f, 0.0f}, {5, 5, 5}});
     }
     const auto gpu = run_gpu(setup, {}, false);
     for (const Texel& t : gpu.image) {
@@ -418,11 +438,13 @@ TEST_CASE("exact gi: no VPLs leave the image cleared and bad targets are refused
     auto vpls = vplkit::Buffer::create(ctx, 4 * sizeof(vplkit::shaders::Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                        vplkit::MemoryUse::device, "vpls");
     auto counters = vplkit::stages::create_exact_gi_counters(ctx);
-    auto wrong_size = vplkit::Image::create(ctx, 8, 5, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
+    auto wrong_size =
+        vplkit::Image::create(ctx, 8, 5, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
     auto right = vplkit::Image::create(ctx, 8, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "right");
     vplkit::PassList passes;
-    CHECK_THROWS_WITH_AS(vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 4, {}, wrong_size, counters),
-                         doctest::Contains("'small'"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(
+        vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 4, {}, wrong_size, counters),
+        doctest::Contains("'small'"), vplkit::Error);
     CHECK_THROWS_WITH_AS(vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, 5, {}, right, counters),
                          doctest::Contains("fewer than 5 VPLs"), vplkit::Error);
 }
@@ -439,7 +461,8 @@ TEST_CASE("exact gi: a dispatch the driver cuts short is counted and refused") {
     std::mt19937 rng(13);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int i = 0; i < 16384; ++i) {
-        setup.vpls.push_back({{-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)}, {0.0f, -1.0f, 0.0f}, {1e-3f, 1e-3f, 1e-3f}});
+        setup.vpls.push_back(
+            {{-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)}, {0.0f, -1.0f, 0.0f}, {1e-3f, 1e-3f, 1e-3f}});
     }
     const bool lavapipe = ctx.info().name.find("llvmpipe") != std::string::npos;
     vplkit::stages::ExactGiOptions one_dispatch;
@@ -448,7 +471,8 @@ TEST_CASE("exact gi: a dispatch the driver cuts short is counted and refused") {
     CAPTURE(long_run.counts.cut_short);
     if (lavapipe) {
         CHECK(long_run.counts.cut_short == 64);
-        CHECK_THROWS_WITH_AS(run_gpu(setup, one_dispatch, true), doctest::Contains("smaller chunk_size"), vplkit::Error);
+        CHECK_THROWS_WITH_AS(run_gpu(setup, one_dispatch, true), doctest::Contains("smaller chunk_size"),
+                             vplkit::Error);
     } else {
         CHECK(long_run.counts.cut_short == 0);
     }

@@ -25,8 +25,8 @@ int main(int argc, char** argv) {
                                              vplkit::MemoryUse::device, "importance");
     auto mips = vplkit::Buffer::create(*ctx, vplkit::stages::importance_mip_floats(size) * 4,
                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "mips");
-    auto count = vplkit::Buffer::create(*ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device,
-                                        "count");
+    auto count =
+        vplkit::Buffer::create(*ctx, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "count");
     importance.upload(map);
     for (uint32_t n : counts) {
         auto samples = vplkit::Buffer::create(*ctx, uint64_t(n) * sizeof(vplkit::shaders::WarpedSample),
@@ -48,8 +48,8 @@ int main(int argc, char** argv) {
         std::sort(copy_ms.begin(), copy_ms.end());
         std::sort(mip_ms.begin(), mip_ms.end());
         std::sort(warp_ms.begin(), warp_ms.end());
-        std::printf("%ux%u map, %u samples: copy %.3f ms, mips (9 levels) %.3f ms, warp %.3f ms (medians of 5)\n",
-                    size, size, n, copy_ms[2], mip_ms[2], warp_ms[2]);
+        std::printf("%ux%u map, %u samples: copy %.3f ms, mips (9 levels) %.3f ms, warp %.3f ms (medians of 5)\n", size,
+                    size, n, copy_ms[2], mip_ms[2], warp_ms[2]);
     }
     return 0;
 }

@@ -278,8 +278,8 @@ TEST_CASE("bad sizes and zero samples are refused") {
     vplkit::Context& ctx = vplkit::test::context();
     CHECK_THROWS_AS(vplkit::stages::importance_mip_floats(48), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::importance_mip_floats(0), vplkit::Error);
-    auto buffer = vplkit::Buffer::create(ctx, 1 << 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                         vplkit::MemoryUse::device, "any");
+    auto buffer =
+        vplkit::Buffer::create(ctx, 1 << 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "any");
     vplkit::PassList passes("refusals");
     CHECK_THROWS_AS(vplkit::stages::add_importance_mips_pass(ctx, passes, buffer, buffer, 24), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::add_warp_samples_pass(ctx, passes, buffer, buffer, buffer, 16, 0, 1),

@@ -37,8 +37,8 @@
 namespace {
 
 using vplkit::shaders::LightTreeNode;
-using vplkit::shaders::Vpl;
 using vplkit::shaders::vec3;
+using vplkit::shaders::Vpl;
 using RefVpl = vplkit::reference::LightTreeVpl;
 using RefNode = vplkit::reference::LightTreeNode;
 
@@ -47,7 +47,9 @@ constexpr double kUnitRoundoff = 0x1p-24;
 
 enum class BogusData { zero, garbage };
 
-float axis(const vec3& v, int a) { return a == 0 ? v.x : (a == 1 ? v.y : v.z); }
+float axis(const vec3& v, int a) {
+    return a == 0 ? v.x : (a == 1 ? v.y : v.z);
+}
 
 // The leaf array as gather_leaves.comp leaves it: the real VPLs, then bogus slots up to a power
 // of two. Bogus slots hold zeros or, to show they are told by index, bright VPLs far away.
@@ -114,8 +116,8 @@ bool is_empty_box(const LightTreeNode& node) {
 std::string describe(const LightTreeNode& node) {
     return "box [" + std::to_string(node.box_min.x) + " " + std::to_string(node.box_min.y) + " " +
            std::to_string(node.box_min.z) + "] - [" + std::to_string(node.box_max.x) + " " +
-           std::to_string(node.box_max.y) + " " + std::to_string(node.box_max.z) +
-           "] intensity " + std::to_string(node.intensity) + " vpls " + std::to_string(node.vpl_count);
+           std::to_string(node.box_max.y) + " " + std::to_string(node.box_max.z) + "] intensity " +
+           std::to_string(node.intensity) + " vpls " + std::to_string(node.vpl_count);
 }
 
 // Every node against the reference; reports the first few mismatches and how many there were.
@@ -145,7 +147,8 @@ void check_against_reference(const std::vector<LightTreeNode>& gpu, const std::v
             continue;
         }
         for (int a = 0; a < 3; ++a) {
-            if (double(axis(node.box_min, a)) != expected.box_min[a] || double(axis(node.box_max, a)) != expected.box_max[a]) {
+            if (double(axis(node.box_min, a)) != expected.box_min[a] ||
+                double(axis(node.box_max, a)) != expected.box_max[a]) {
                 fail(n, node, "box differs");
                 break;
             }
@@ -226,7 +229,8 @@ void check_invariants(const std::vector<LightTreeNode>& gpu, const std::vector<V
 }
 
 // Builds the tree of `vpls` (bogus slots full of garbage) and checks it every way.
-std::vector<LightTreeNode> check_tree(const std::vector<RefVpl>& vpls, const vplkit::stages::LightTreeOptions& options = {}) {
+std::vector<LightTreeNode> check_tree(const std::vector<RefVpl>& vpls,
+                                      const vplkit::stages::LightTreeOptions& options = {}) {
     const std::vector<Vpl> leaves = make_leaves(vpls, BogusData::garbage);
     std::vector<LightTreeNode> gpu = gpu_tree(leaves, uint32_t(vpls.size()), options);
     check_against_reference(gpu, vpls);
@@ -409,11 +413,11 @@ TEST_CASE("light tree: every group size and workgroup size builds the same tree"
 
 TEST_CASE("light tree: the dispatch schedule") {
     using vplkit::stages::light_tree_dispatch_count;
-    CHECK(light_tree_dispatch_count(1, 4) == 1);          // the root is the leaf
-    CHECK(light_tree_dispatch_count(2, 4) == 2);          // leaves, one group of one level
-    CHECK(light_tree_dispatch_count(65536, 4) == 5);      // 16 levels: 4 groups of 4
-    CHECK(light_tree_dispatch_count(65537, 4) == 6);      // 17 levels: 4 x 4 + 1
-    CHECK(light_tree_dispatch_count(1u << 20, 3) == 8);   // 20 levels: 6 x 3 + 2
+    CHECK(light_tree_dispatch_count(1, 4) == 1);         // the root is the leaf
+    CHECK(light_tree_dispatch_count(2, 4) == 2);         // leaves, one group of one level
+    CHECK(light_tree_dispatch_count(65536, 4) == 5);     // 16 levels: 4 groups of 4
+    CHECK(light_tree_dispatch_count(65537, 4) == 6);     // 17 levels: 4 x 4 + 1
+    CHECK(light_tree_dispatch_count(1u << 20, 3) == 8);  // 20 levels: 6 x 3 + 2
     CHECK(light_tree_dispatch_count(4096, 1) == 13);
     CHECK_THROWS_AS(light_tree_dispatch_count(4096, 0), vplkit::Error);
     CHECK_THROWS_AS(light_tree_dispatch_count(4096, 9), vplkit::Error);

@@ -58,15 +58,14 @@ TEST_CASE("light tree helpers: heap indices and merge reproduce the built tree")
         vplkit::PassList passes("light tree helpers test");
         vplkit::stages::add_light_tree_passes(ctx, passes, leaf_buffer, nodes, count);
         const auto& pipeline = ctx.pipeline<helpers::Pipeline>();
-        passes.add("helpers", {vplkit::Use::read(nodes), vplkit::Use::write(results)},
-                   [&](VkCommandBuffer cmd) {
-                       helpers::Bindings bindings;
-                       bindings.nodes = nodes.descriptor();
-                       bindings.results = results.descriptor();
-                       helpers::Push push{};
-                       push.leaf_count = leaf_count;
-                       pipeline.dispatch(cmd, bindings, push, node_count);
-                   });
+        passes.add("helpers", {vplkit::Use::read(nodes), vplkit::Use::write(results)}, [&](VkCommandBuffer cmd) {
+            helpers::Bindings bindings;
+            bindings.nodes = nodes.descriptor();
+            bindings.results = results.descriptor();
+            helpers::Push push{};
+            push.leaf_count = leaf_count;
+            pipeline.dispatch(cmd, bindings, push, node_count);
+        });
         passes.run(ctx);
         const auto tree = nodes.download<LightTreeNode>(node_count);
         const auto got = results.download<Result>(node_count);

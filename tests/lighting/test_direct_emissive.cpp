@@ -57,7 +57,7 @@ vplkit::scene::Scene make_scene(bool with_plate, bool back_down = false) {
         s.triangle_materials.push_back(material);
         s.triangle_materials.push_back(material);
     };
-    add_quad({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);                      // floor, normal +y
+    add_quad({-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, 0);  // floor, normal +y
     if (back_down) {
         add_quad({-0.5f, 1.5f, 0.5f}, {0.5f, 1.5f, 0.5f}, {0.5f, 1.5f, -0.5f}, {-0.5f, 1.5f, -0.5f}, 1);  // normal +y
     } else {
@@ -82,7 +82,8 @@ Floor make_floor() {
     for (uint32_t y = 0; y < kSize; ++y) {
         for (uint32_t x = 0; x < kSize; ++x) {
             const bool covered = (x + 3 * y) % 5 != 0;
-            f.position.push_back({-1.6f + 3.2f * (x + 0.5f) / kSize, 0.0f, -1.6f + 3.2f * (y + 0.5f) / kSize, covered ? 1.0f : 0.0f});
+            f.position.push_back(
+                {-1.6f + 3.2f * (x + 0.5f) / kSize, 0.0f, -1.6f + 3.2f * (y + 0.5f) / kSize, covered ? 1.0f : 0.0f});
             f.normal.push_back({0, 1, 0, float(kRoughness)});
             f.geometric.push_back({0, 1, 0, 0});
             f.albedo.push_back({glm::packHalf1x16(float(kAlbedo[0])), glm::packHalf1x16(float(kAlbedo[1])),
@@ -116,7 +117,8 @@ Vec3 reference(const Vec3& x, const Vec3& albedo) {
     return sum;
 }
 
-std::vector<Texel> run(const vplkit::scene::Scene& scene, const Floor& floor, uint32_t seed, uint32_t samples, float initial) {
+std::vector<Texel> run(const vplkit::scene::Scene& scene, const Floor& floor, uint32_t seed, uint32_t samples,
+                       float initial) {
     vplkit::Context& ctx = vplkit::test::context();
     auto gbuffer = vplkit::stages::GbufferImages::create(ctx, kSize, kSize);
     gbuffer.position.upload(floor.position);
@@ -125,7 +127,8 @@ std::vector<Texel> run(const vplkit::scene::Scene& scene, const Floor& floor, ui
     gbuffer.albedo.upload(floor.albedo);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
     const auto emitters = vplkit::stages::upload_emitters(ctx, scene);
-    auto radiance = vplkit::Image::create(ctx, kSize, kSize, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
+    auto radiance =
+        vplkit::Image::create(ctx, kSize, kSize, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
     radiance.upload(std::vector<Texel>(kSize * kSize, Texel{initial, initial, initial, 1.0f}));
     vplkit::PassList passes("direct emissive test");
     vplkit::stages::add_direct_emissive_pass(ctx, passes, gbuffer, bvh, emitters, {kCamera, samples, seed}, radiance);
@@ -249,7 +252,8 @@ TEST_CASE("direct emissive: a scene without emitters adds nothing and zero sampl
     CHECK(emitters.count == 0);
     auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 4, 4);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
-    auto radiance = vplkit::Image::create(ctx, 4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
+    auto radiance =
+        vplkit::Image::create(ctx, 4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
     // The pass records (whether it runs is the planner's decision) and leaves the radiance as it was.
     const std::vector<std::array<float, 4>> before(16, {0.25f, 0.5f, 0.75f, 1.0f});
     radiance.upload(before);
@@ -258,6 +262,7 @@ TEST_CASE("direct emissive: a scene without emitters adds nothing and zero sampl
     CHECK(passes.size() == 1);
     passes.run(ctx);
     CHECK(radiance.download<std::array<float, 4>>() == before);
-    CHECK_THROWS_WITH_AS(vplkit::stages::add_direct_emissive_pass(ctx, passes, gbuffer, bvh, emitters, {kCamera, 0, 0}, radiance),
-                         doctest::Contains("at least 1"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(
+        vplkit::stages::add_direct_emissive_pass(ctx, passes, gbuffer, bvh, emitters, {kCamera, 0, 0}, radiance),
+        doctest::Contains("at least 1"), vplkit::Error);
 }

@@ -56,9 +56,19 @@ struct Scene {
 Scene make_scene() {
     Scene s;
     const float f = 3.0f;  // floor y = 0, [-f, f]^2
-    s.triangle_vertices = {{-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {-f, 0, -f}, {f, 0, f}, {f, 0, -f},
+    s.triangle_vertices = {{-f, 0, -f},
+                           {-f, 0, f},
+                           {f, 0, f},
+                           {-f, 0, -f},
+                           {f, 0, f},
+                           {f, 0, -f},
                            // a quad at y = 1 over part of the floor (double-sided occluder)
-                           {-0.5f, 1, -0.5f}, {-0.5f, 1, 0.7f}, {0.6f, 1, 0.7f}, {-0.5f, 1, -0.5f}, {0.6f, 1, 0.7f}, {0.6f, 1, -0.5f}};
+                           {-0.5f, 1, -0.5f},
+                           {-0.5f, 1, 0.7f},
+                           {0.6f, 1, 0.7f},
+                           {-0.5f, 1, -0.5f},
+                           {0.6f, 1, 0.7f},
+                           {0.6f, 1, -0.5f}};
     vplkit::scene::Light sun;
     sun.type = vplkit::scene::LightType::directional;
     sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
@@ -115,7 +125,7 @@ TEST_CASE("direct light: emission and three kinds of light with BVH shadows matc
             // Shading normals tilted up to ~35 degrees (a normal map), geometric normal straight up.
             glm::vec3 n = glm::normalize(glm::vec3(0.7f * (unit(rng) - 0.5f), 1.0f, 0.7f * (unit(rng) - 0.5f)));
             p.position = {px, 0.0f, pz, 1.0f};
-            p.normal = {n.x, n.y, n.z, unit(rng)};        // w: roughness in [0, 1] (0 hits the alpha clamp)
+            p.normal = {n.x, n.y, n.z, unit(rng)};  // w: roughness in [0, 1] (0 hits the alpha clamp)
             p.geometric = {0.0f, 1.0f, 0.0f, unit(rng) < 0.3f ? 1.0f : 0.0f};  // w: metallic
             p.albedo = from_half(to_half({unit(rng), unit(rng), unit(rng), 1.0f}));
             p.emission = from_half(to_half((x * 7 + y) % 13 == 0 ? Texel{0.5f, 0.25f, 0.0f, 0.0f} : Texel{0, 0, 0, 0}));
@@ -192,8 +202,8 @@ TEST_CASE("direct light: emission and three kinds of light with BVH shadows matc
                 continue;
             }
             ++lit;
-            const Vec3 f = vplkit::reference::gltf_brdf(n, wo, s.wi, {p.albedo[0], p.albedo[1], p.albedo[2]}, p.normal[3],
-                                                        p.geometric[3]);
+            const Vec3 f = vplkit::reference::gltf_brdf(n, wo, s.wi, {p.albedo[0], p.albedo[1], p.albedo[2]},
+                                                        p.normal[3], p.geometric[3]);
             for (int c = 0; c < 3; ++c) expected[c] += f[c] * s.irradiance[c] * cos_theta;
         }
         if (near_edge) {
@@ -217,7 +227,8 @@ TEST_CASE("direct light: lights with bad values are refused by name") {
     light.name = "lamp";
     light.intensity = -1.0f;
     std::vector<vplkit::scene::Light> lights = {light};
-    CHECK_THROWS_WITH_AS(vplkit::stages::upload_lights(ctx, lights), doctest::Contains("light 0 ('lamp')"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::stages::upload_lights(ctx, lights), doctest::Contains("light 0 ('lamp')"),
+                         vplkit::Error);
     auto none = vplkit::stages::upload_lights(ctx, {});
     CHECK(none.count == 0);
 }

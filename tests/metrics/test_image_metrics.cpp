@@ -44,7 +44,9 @@ std::vector<float> noise_image(uint32_t width, uint32_t height) {
     return rgb;
 }
 
-double ssim_constants_c(double k, double dynamic_range) { return (k * dynamic_range) * (k * dynamic_range); }
+double ssim_constants_c(double k, double dynamic_range) {
+    return (k * dynamic_range) * (k * dynamic_range);
+}
 
 }  // namespace
 
@@ -80,17 +82,20 @@ TEST_CASE("relative MSE on two pixels") {
     const std::vector<float> test = {0.5f, 0.5f, 0.5f, 1, 2, 4};
     const std::vector<float> reference = {0, 0, 0, 1, 2, 3};
     CHECK(vplkit::kRelativeMseEpsilon == 1e-2);
-    CHECK(vplkit::relative_mse(test, reference) == doctest::Approx((3 * 0.25 / 0.01 + 1.0 / 9.01) / 6.0).epsilon(1e-14));
+    CHECK(vplkit::relative_mse(test, reference) ==
+          doctest::Approx((3 * 0.25 / 0.01 + 1.0 / 9.01) / 6.0).epsilon(1e-14));
     CHECK(vplkit::relative_mse(test, reference, 0.25) == doctest::Approx((3.0 + 1.0 / 9.25) / 6.0).epsilon(1e-14));
     // Not symmetric: the denominator is the reference's.
-    CHECK(vplkit::relative_mse(reference, test) == doctest::Approx((3 * 0.25 / 0.26 + 1.0 / 16.01) / 6.0).epsilon(1e-14));
+    CHECK(vplkit::relative_mse(reference, test) ==
+          doctest::Approx((3 * 0.25 / 0.26 + 1.0 / 16.01) / 6.0).epsilon(1e-14));
 }
 
 TEST_CASE("SSIM of constant images is the luminance term alone") {
     // Both variances and the covariance are 0, so the structure term is C2 / C2.
     for (const double dynamic_range : {1.0, 4.0}) {
         const double c1 = ssim_constants_c(0.01, dynamic_range);
-        for (const auto& [a, b] : {std::pair{0.25f, 0.75f}, std::pair{0.0f, 0.5f}, std::pair{0.9f, 0.1f}, std::pair{0.0f, 0.0f}}) {
+        for (const auto& [a, b] :
+             {std::pair{0.25f, 0.75f}, std::pair{0.0f, 0.5f}, std::pair{0.9f, 0.1f}, std::pair{0.0f, 0.0f}}) {
             CAPTURE(dynamic_range);
             CAPTURE(a);
             CAPTURE(b);
@@ -195,7 +200,8 @@ TEST_CASE("SSIM falls as noise grows") {
     for (uint32_t y = 0; y < height; ++y) {
         for (uint32_t x = 0; x < width; ++x) {
             for (uint32_t c = 0; c < 3; ++c) {
-                clean[(size_t(y) * width + x) * 3 + c] = 0.2f + 0.6f * float(x + c) / float(width + 2) * float(y + 1) / float(height);
+                clean[(size_t(y) * width + x) * 3 + c] =
+                    0.2f + 0.6f * float(x + c) / float(width + 2) * float(y + 1) / float(height);
             }
         }
     }
@@ -246,10 +252,10 @@ TEST_CASE("difference picture: |t - r| times the scale, clamped, sRGB encoded") 
     // Pixel 0: no difference. Pixel 1: 3/64 x 10 = 0.46875 -> sRGB 0.71439 -> 182. Pixel 2: a
     // difference of 0.5 is clamped to white. Pixel 3: 1/512 x 10 = 0.01953125 -> sRGB 0.14967 -> 38,
     // the reference larger than the test (the absolute value).
-    const std::vector<float> test = {0.25f, 0.25f, 0.25f, 0.25f + 3.0f / 64.0f, 0.25f, 0.25f,
-                                     0.0f, 0.0f, 1.0f, 0.5f, 0.5f, 0.5f};
-    const std::vector<float> reference = {0.25f, 0.25f, 0.25f, 0.25f, 0.25f, 0.25f,
-                                          0.0f, 0.0f, 0.5f, 0.5f, 0.5f + 1.0f / 512.0f, 0.5f};
+    const std::vector<float> test = {0.25f, 0.25f, 0.25f, 0.25f + 3.0f / 64.0f, 0.25f, 0.25f, 0.0f, 0.0f, 1.0f,
+                                     0.5f,  0.5f,  0.5f};
+    const std::vector<float> reference = {
+        0.25f, 0.25f, 0.25f, 0.25f, 0.25f, 0.25f, 0.0f, 0.0f, 0.5f, 0.5f, 0.5f + 1.0f / 512.0f, 0.5f};
     const std::vector<uint8_t> rgba = vplkit::difference_image_rgba8(test, reference, 2, 2);
     const std::vector<uint8_t> expected = {0, 0, 0, 255, 182, 0, 0, 255, 0, 0, 255, 255, 0, 38, 0, 255};
     CHECK(rgba == expected);
@@ -262,7 +268,8 @@ TEST_CASE("metrics refuse mismatched, empty and non-finite images") {
     const std::vector<float> two_pixels = {0, 0, 0, 1, 1, 1};
     const std::vector<float> three_pixels = {0, 0, 0, 1, 1, 1, 2, 2, 2};
     CHECK_THROWS_WITH_AS(vplkit::rmse(two_pixels, three_pixels), doctest::Contains("differ in size"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(vplkit::relative_mse(three_pixels, two_pixels), doctest::Contains("differ in size"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::relative_mse(three_pixels, two_pixels), doctest::Contains("differ in size"),
+                         vplkit::Error);
     CHECK_THROWS_WITH_AS(vplkit::rmse({}, {}), doctest::Contains("empty"), vplkit::Error);
     CHECK_THROWS_WITH_AS(vplkit::rmse(std::vector<float>{1, 2}, std::vector<float>{1, 2}),
                          doctest::Contains("not a whole number of RGB pixels"), vplkit::Error);
@@ -290,7 +297,8 @@ TEST_CASE("metrics refuse mismatched, empty and non-finite images") {
     // Parameters out of range.
     CHECK_THROWS_WITH_AS(vplkit::relative_rmse(good, constant_image(width, height, 0.0f)),
                          doctest::Contains("relative to a positive mean"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(vplkit::relative_mse(good, good, 0.0), doctest::Contains("epsilon must be positive"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::relative_mse(good, good, 0.0), doctest::Contains("epsilon must be positive"),
+                         vplkit::Error);
     CHECK_THROWS_WITH_AS(vplkit::ssim(good, good, width, height, {.dynamic_range = 0.0}),
                          doctest::Contains("needs dynamic_range, k1 and k2 positive"), vplkit::Error);
     CHECK_THROWS_WITH_AS(vplkit::ssim(good, good, width, height, {.k1 = 0.0}),

@@ -31,12 +31,11 @@ using vplkit::VplSource;
 constexpr const char* kCornellPoint = VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf";
 constexpr const char* kCornellEmissive = VPLKIT_SOURCE_DIR "/scenes/cornell_emissive/cornell_emissive.gltf";
 
-const FrameStage kAllStages[] = {FrameStage::gbuffer,       FrameStage::direct_light, FrameStage::direct_emissive,
-                                 FrameStage::vpl_paths,     FrameStage::brsm_vpls,    FrameStage::vpl_sort,
-                                 FrameStage::light_tree,    FrameStage::sst,          FrameStage::gi_downsample,
-                                 FrameStage::gi_exact,      FrameStage::gi_sst,       FrameStage::gi_rtslc,
-                                 FrameStage::gi_hybrid,     FrameStage::gi_upsample,  FrameStage::compose,
-                                 FrameStage::tonemap};
+const FrameStage kAllStages[] = {
+    FrameStage::gbuffer,       FrameStage::direct_light, FrameStage::direct_emissive, FrameStage::vpl_paths,
+    FrameStage::brsm_vpls,     FrameStage::vpl_sort,     FrameStage::light_tree,      FrameStage::sst,
+    FrameStage::gi_downsample, FrameStage::gi_exact,     FrameStage::gi_sst,          FrameStage::gi_rtslc,
+    FrameStage::gi_hybrid,     FrameStage::gi_upsample,  FrameStage::compose,         FrameStage::tonemap};
 
 std::set<FrameStage> running(const FramePlan& plan) {
     std::set<FrameStage> out;
@@ -101,7 +100,9 @@ TEST_CASE("planner: a scene without light runs no lighting stage and says the im
     CHECK_THROWS_AS(vplkit::Renderer(vplkit::test::context(), scene), vplkit::Error);
 }
 
-TEST_CASE("planner: emissive light only with emitters - each method builds only its own tree - resampling only at half resolution") {
+TEST_CASE(
+    "planner: emissive light only with emitters - each method builds only its own tree - resampling only at half "
+    "resolution") {
     const auto point = vplkit::scene::load_gltf(kCornellPoint);
     const auto emissive = vplkit::scene::load_gltf(kCornellEmissive);
     REQUIRE(point.emissive_triangles.empty());
@@ -110,7 +111,8 @@ TEST_CASE("planner: emissive light only with emitters - each method builds only 
     CHECK(vplkit::plan_frame(emissive, small(GiMethod::none), "v").runs(FrameStage::direct_emissive));
 
     const auto direct = running(vplkit::plan_frame(point, small(GiMethod::none), "v"));
-    CHECK(direct == std::set<FrameStage>{FrameStage::gbuffer, FrameStage::direct_light, FrameStage::compose, FrameStage::tonemap});
+    CHECK(direct == std::set<FrameStage>{FrameStage::gbuffer, FrameStage::direct_light, FrameStage::compose,
+                                         FrameStage::tonemap});
 
     const auto exact = running(vplkit::plan_frame(point, small(GiMethod::exact), "v"));
     CHECK(exact.count(FrameStage::vpl_paths) == 1);
@@ -209,8 +211,8 @@ TEST_CASE("planner: a static frame rendered twice rebuilds no VPLs and no tree t
         CHECK(second.reused_trees);
         for (const auto& t : second.timings) {
             CAPTURE(t.name);
-            for (FrameStage stage : {FrameStage::vpl_paths, FrameStage::brsm_vpls, FrameStage::vpl_sort, FrameStage::sst,
-                                     FrameStage::light_tree}) {
+            for (FrameStage stage : {FrameStage::vpl_paths, FrameStage::brsm_vpls, FrameStage::vpl_sort,
+                                     FrameStage::sst, FrameStage::light_tree}) {
                 CHECK(!vplkit::stage_owns_pass(stage, t.name));
             }
         }

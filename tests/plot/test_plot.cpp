@@ -34,7 +34,7 @@ namespace {
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr Rgb white{255, 255, 255};
-constexpr Rgb ink{20, 20, 20};           // plot.cpp's text and ring colour
+constexpr Rgb ink{20, 20, 20};            // plot.cpp's text and ring colour
 constexpr Rgb faint_text{130, 130, 130};  // plot.cpp's "no data"
 
 Rgb pixel_at(const std::vector<uint8_t>& rgba, uint32_t width, int x, int y) {
@@ -59,7 +59,9 @@ void check_ticks(const std::vector<double>& ticks, const std::vector<double>& ex
     for (size_t i = 0; i < ticks.size(); ++i) CHECK(ticks[i] == doctest::Approx(expected[i]).epsilon(1e-12));
 }
 
-std::filesystem::path out_dir() { return VPLKIT_PLOT_OUT_DIR; }
+std::filesystem::path out_dir() {
+    return VPLKIT_PLOT_OUT_DIR;
+}
 
 }  // namespace
 
@@ -156,7 +158,8 @@ TEST_CASE("markers have their series' colour at their data position on log axes"
     const double mid_x = std::sqrt(axes.x.lo * axes.x.hi), mid_y = std::sqrt(axes.y.lo * axes.y.hi);
     CHECK(axes.to_pixel(mid_x, mid_y).x == doctest::Approx((axes.area.left + axes.area.right) / 2.0));
     CHECK(axes.to_pixel(mid_x, mid_y).y == doctest::Approx((axes.area.top + axes.area.bottom) / 2.0));
-    CHECK(axes.to_pixel(100, 1).x - axes.to_pixel(10, 1).x == doctest::Approx(axes.to_pixel(1000, 1).x - axes.to_pixel(100, 1).x));
+    CHECK(axes.to_pixel(100, 1).x - axes.to_pixel(10, 1).x ==
+          doctest::Approx(axes.to_pixel(1000, 1).x - axes.to_pixel(100, 1).x));
 
     const std::vector<uint8_t> rgba = render_plot(spec);
     for (size_t i = 0; i < 3; ++i) {
@@ -249,7 +252,8 @@ TEST_CASE("a single point or equal values give a valid range") {
 TEST_CASE("NaN and infinite values and non-positive values on log axes are skipped") {
     PlotSpec spec;
     spec.log_y = true;
-    spec.series.push_back({"mixed", {0, 1, 2, 3, 4, 5, not_a_number, 7}, {1, not_a_number, infinity, -infinity, -1, 0, 5, 10}});
+    spec.series.push_back(
+        {"mixed", {0, 1, 2, 3, 4, 5, not_a_number, 7}, {1, not_a_number, infinity, -infinity, -1, 0, 5, 10}});
     spec.highlight = {{0, 1}, {0, 4}, {0, 7}, {3, 0}, {0, 99}};  // skipped points, one drawable, bad references
     spec.highlight_label = "ringed";
     const PlotAxes axes = PlotAxes::fit(spec);
@@ -370,7 +374,8 @@ TEST_CASE("every glyph renders inside its cell and differs from every other") {
             }
         }
         for (uint32_t y = uint32_t(cell_h); y < uint32_t(2 * cell_h); ++y) {
-            for (uint32_t x = uint32_t(cell_w); x < uint32_t(2 * cell_w); ++x) picture.push_back(canvas.pixel(x, y) == ink);
+            for (uint32_t x = uint32_t(cell_w); x < uint32_t(2 * cell_w); ++x)
+                picture.push_back(canvas.pixel(x, y) == ink);
         }
         if (c == ' ') {
             CHECK(inked == 0);
@@ -406,7 +411,8 @@ TEST_CASE("text width is the number of characters times the advance") {
     // The first and the third W are the same picture, two advances apart.
     const uint32_t two_advances = 2 * font::advance * 2;
     for (uint32_t y = 0; y < canvas.height(); ++y) {
-        for (uint32_t x = 10; x < 10 + font::advance * 2; ++x) CHECK(canvas.pixel(x, y) == canvas.pixel(x + two_advances, y));
+        for (uint32_t x = 10; x < 10 + font::advance * 2; ++x)
+            CHECK(canvas.pixel(x, y) == canvas.pixel(x + two_advances, y));
     }
 }
 

@@ -41,8 +41,8 @@ TEST_CASE("radix sort: 2^16 + 1 pairs") {
 }
 
 TEST_CASE("radix sort: duplicate keys keep their input order") {
-    check_radix(random_pairs(3000, 5, 11));         // six distinct keys
-    check_radix(random_pairs(5000, 3, 12, 40));     // four distinct keys, all in one high digit
+    check_radix(random_pairs(3000, 5, 11));      // six distinct keys
+    check_radix(random_pairs(5000, 3, 12, 40));  // four distinct keys, all in one high digit
 }
 
 TEST_CASE("radix sort: all keys equal leaves every pair in place") {
@@ -115,8 +115,8 @@ TEST_CASE("radix sort: workgroup shapes") {
     struct Shape {
         uint32_t workgroup_size, items_per_thread, digit_bits, count;
     };
-    for (Shape shape : {Shape{32, 2, 8, 65537}, Shape{48, 3, 8, 10000}, Shape{20, 1, 8, 3001},
-                        Shape{256, 16, 4, 9000}, Shape{8, 4000, 8, 70001}}) {
+    for (Shape shape : {Shape{32, 2, 8, 65537}, Shape{48, 3, 8, 10000}, Shape{20, 1, 8, 3001}, Shape{256, 16, 4, 9000},
+                        Shape{8, 4000, 8, 70001}}) {
         CAPTURE(shape.workgroup_size);
         CAPTURE(shape.items_per_thread);
         CAPTURE(shape.digit_bits);
@@ -174,7 +174,7 @@ TEST_CASE("radix sort: the dispatch schedule") {
     CHECK(sorter.dispatch_count(4 * 4096) == 8 * 3);
     CHECK(sorter.dispatch_count(4 * 4096 + 1) == 8 * 5);  // 5 tiles: two chunks
     CHECK(sorter.dispatch_count(1u << 20) == 8 * 5);      // 256 tiles: 64 chunks
-    options.key_bits = 20;  // 3 passes and the copy back
+    options.key_bits = 20;                                // 3 passes and the copy back
     CHECK(vplkit::stages::RadixSorter(ctx, 100, options).dispatch_count(100) == 3 * 3 + 1);
     CHECK(vplkit::stages::radix_sort_pass_count(options) == 3);
 }
@@ -197,8 +197,7 @@ TEST_CASE("radix sort: bad options and counts are refused with the reason") {
                          vplkit::Error);
     options = {};
     options.key_bits = 0;
-    CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("key_bits 0"),
-                         vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("key_bits 0"), vplkit::Error);
     options.key_bits = 65;
     CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("key_bits 65"),
                          vplkit::Error);
@@ -209,8 +208,7 @@ TEST_CASE("radix sort: bad options and counts are refused with the reason") {
                          vplkit::Error);
     options = {};
     options.items_per_thread = 4096;  // 32 x 4096: a tile past the 16-bit rank counters
-    CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("16 bits"),
-                         vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("16 bits"), vplkit::Error);
     options = {};
     options.workgroup_size = 0;
     CHECK_THROWS_WITH_AS(vplkit::stages::RadixSorter(ctx, 10, options), doctest::Contains("workgroup size 0"),

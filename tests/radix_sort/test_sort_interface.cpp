@@ -115,8 +115,8 @@ TEST_CASE("sort interface: bad options and counts are refused before anything ru
         vplkit::stages::KeyValueSorter sorter(ctx, 10, bitonic);
         DeviceBuffers buffers = upload(random_pairs(10, 5, 1));
         vplkit::PassList passes;
-        CHECK_THROWS_WITH_AS(sorter.add_pass(passes, buffers.keys, buffers.values, 10), doctest::Contains("power of two"),
-                             vplkit::Error);
+        CHECK_THROWS_WITH_AS(sorter.add_pass(passes, buffers.keys, buffers.values, 10),
+                             doctest::Contains("power of two"), vplkit::Error);
         CHECK(passes.size() == 0);
     }
     for (SortAlgorithm algorithm : {SortAlgorithm::bitonic, SortAlgorithm::radix}) {

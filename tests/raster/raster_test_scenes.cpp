@@ -118,26 +118,31 @@ Scene gbuffer_scene(float scale) {
     s.materials = {wall, textured, emissive, mask, mapped};
 
     // 0: the wall behind everything, with tilted vertex normals (interpolated, then normalized).
-    add_quad(s, {glm::vec3(-1.5f, 1.5f, -1.0f), glm::vec3(-1.5f, -1.5f, -1.0f), glm::vec3(1.5f, -1.5f, -1.0f),
-                 glm::vec3(1.5f, 1.5f, -1.0f)},
+    add_quad(s,
+             {glm::vec3(-1.5f, 1.5f, -1.0f), glm::vec3(-1.5f, -1.5f, -1.0f), glm::vec3(1.5f, -1.5f, -1.0f),
+              glm::vec3(1.5f, 1.5f, -1.0f)},
              kUvTlBlBrTr, 0,
              std::array<glm::vec3, 4>{glm::vec3(-0.3f, 0.2f, 1.0f), glm::vec3(-0.2f, -0.3f, 1.0f),
                                       glm::vec3(0.3f, -0.1f, 1.0f), glm::vec3(0.1f, 0.3f, 1.0f)});
     // 1: textured quad facing the camera.
-    add_quad(s, {glm::vec3(-1.2f, 1.2f, 0.0f), glm::vec3(-1.2f, 0.1f, 0.0f), glm::vec3(-0.1f, 0.1f, 0.0f),
-                 glm::vec3(-0.1f, 1.2f, 0.0f)},
+    add_quad(s,
+             {glm::vec3(-1.2f, 1.2f, 0.0f), glm::vec3(-1.2f, 0.1f, 0.0f), glm::vec3(-0.1f, 0.1f, 0.0f),
+              glm::vec3(-0.1f, 1.2f, 0.0f)},
              kUvTlBlBrTr, 1);
     // 2: single-sided quad seen from behind (its front faces -z): drawn, normals turned to the eye.
-    add_quad(s, {glm::vec3(0.2f, 1.1f, 0.2f), glm::vec3(1.1f, 1.1f, 0.2f), glm::vec3(1.1f, 0.2f, 0.2f),
-                 glm::vec3(0.2f, 0.2f, 0.2f)},
+    add_quad(s,
+             {glm::vec3(0.2f, 1.1f, 0.2f), glm::vec3(1.1f, 1.1f, 0.2f), glm::vec3(1.1f, 0.2f, 0.2f),
+              glm::vec3(0.2f, 0.2f, 0.2f)},
              {glm::vec2(0, 0), glm::vec2(1, 0), glm::vec2(1, 1), glm::vec2(0, 1)}, 2);
     // 3: alpha-masked quad in front of the tilted one (its holes show what is behind).
-    add_quad(s, {glm::vec3(-1.0f, -0.2f, 0.5f), glm::vec3(-1.0f, -1.1f, 0.5f), glm::vec3(0.4f, -1.1f, 0.5f),
-                 glm::vec3(0.4f, -0.2f, 0.5f)},
+    add_quad(s,
+             {glm::vec3(-1.0f, -0.2f, 0.5f), glm::vec3(-1.0f, -1.1f, 0.5f), glm::vec3(0.4f, -1.1f, 0.5f),
+              glm::vec3(0.4f, -0.2f, 0.5f)},
              kUvTlBlBrTr, 3);
     // 4: tilted normal-mapped quad (perspective-correct interpolation moves its texel borders).
-    add_quad(s, {glm::vec3(0.1f, -0.2f, 0.3f), glm::vec3(0.1f, -1.2f, 0.3f), glm::vec3(1.2f, -1.2f, -0.5f),
-                 glm::vec3(1.2f, -0.2f, -0.5f)},
+    add_quad(s,
+             {glm::vec3(0.1f, -0.2f, 0.3f), glm::vec3(0.1f, -1.2f, 0.3f), glm::vec3(1.2f, -1.2f, -0.5f),
+              glm::vec3(1.2f, -0.2f, -0.5f)},
              kUvTlBlBrTr, 4);
     for (Vertex& v : s.vertices) v.position *= scale;
     finish(s);
@@ -153,8 +158,9 @@ Scene floor_scene(float half, glm::vec3 albedo) {
     m.metallic_factor = 0.0f;
     s.materials = {m};
     // Counter-clockwise seen from +y.
-    add_quad(s, {glm::vec3(-half, 0.0f, -half), glm::vec3(-half, 0.0f, half), glm::vec3(half, 0.0f, half),
-                 glm::vec3(half, 0.0f, -half)},
+    add_quad(s,
+             {glm::vec3(-half, 0.0f, -half), glm::vec3(-half, 0.0f, half), glm::vec3(half, 0.0f, half),
+              glm::vec3(half, 0.0f, -half)},
              kUvTlBlBrTr, 0);
     finish(s);
     return s;

@@ -39,7 +39,8 @@ int main(int argc, char** argv) {
     try {
         if (argc < 2) {
             std::fprintf(stderr,
-                         "usage: raster_timing SCENE.gltf|SETUP [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] [--runs K] [--dump DIR]\n");
+                         "usage: raster_timing SCENE.gltf|SETUP [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] "
+                         "[--runs K] [--dump DIR]\n");
             return 2;
         }
         const std::string target = argv[1];
@@ -50,7 +51,8 @@ int main(int argc, char** argv) {
         for (int i = 2; i + 1 < argc; i += 2) {
             const std::string key = argv[i], value = argv[i + 1];
             if (key == "--size") {
-                if (std::sscanf(value.c_str(), "%ux%u", &width, &height) != 2) throw vplkit::Error("bad --size " + value);
+                if (std::sscanf(value.c_str(), "%ux%u", &width, &height) != 2)
+                    throw vplkit::Error("bad --size " + value);
             } else if (key == "--rsm") {
                 rsm = uint32_t(std::stoul(value));
             } else if (key == "--sun") {
@@ -70,7 +72,8 @@ int main(int argc, char** argv) {
         const bool is_file = target.ends_with(".gltf") || target.ends_with(".glb");
         std::optional<vplkit::scene::Setup> setup;
         if (!is_file) {
-            const auto setups = vplkit::scene::load_setups(std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/setups.txt");
+            const auto setups =
+                vplkit::scene::load_setups(std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/setups.txt");
             setup = setups.find(target);
         }
         const auto t0 = std::chrono::steady_clock::now();
@@ -139,7 +142,8 @@ int main(int argc, char** argv) {
             for (size_t i = 0; i < rgba.size() / 4; ++i) {
                 for (int c = 0; c < 3; ++c) {
                     const float linear = std::clamp(glm::unpackHalf1x16(halves[4 * i + c]), 0.0f, 1.0f);
-                    const float encoded = linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
+                    const float encoded =
+                        linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
                     rgba[4 * i + c] = uint8_t(encoded * 255.0f + 0.5f);
                 }
             }

@@ -97,8 +97,8 @@ TEST_CASE("gbuffer: a small scene matches a CPU rasterization at pixel centres")
         camera.zfar = 10.0f * scale;
         const auto view = vplkit::stages::camera_view(camera, width, height);
         const GbufferRead got = render(ctx, scene, view, width, height);
-        const auto expected =
-            vplkit::reference::rasterize_gbuffer(scene, glm::dmat4(view.view_projection), glm::dvec3(view.position), width, height);
+        const auto expected = vplkit::reference::rasterize_gbuffer(scene, glm::dmat4(view.view_projection),
+                                                                   glm::dvec3(view.position), width, height);
 
         int compared = 0, background = 0;
         std::array<int, 5> per_material{};
@@ -160,7 +160,8 @@ TEST_CASE("gbuffer: the in-repo Cornell box gives a sane G-buffer") {
         }
         REQUIRE(p.w == 1.0f);
         ++covered;
-        for (const glm::vec4* v : {&got.position[i], &got.normal[i], &got.geometric_normal[i], &got.albedo[i], &got.emission[i]}) {
+        for (const glm::vec4* v :
+             {&got.position[i], &got.normal[i], &got.geometric_normal[i], &got.albedo[i], &got.emission[i]}) {
             CHECK((std::isfinite(v->x) && std::isfinite(v->y) && std::isfinite(v->z) && std::isfinite(v->w)));
         }
         CHECK(std::abs(glm::length(glm::vec3(got.normal[i])) - 1.0f) < 1e-4f);

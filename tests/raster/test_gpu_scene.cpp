@@ -33,7 +33,8 @@ TEST_CASE("gpu scene: buffers hold the scene as it is and materials carry their 
     REQUIRE(gpu.vertex_count() == scene.vertices.size());
     REQUIRE(gpu.triangle_count() == scene.indices.size() / 3);
     const auto vertices = gpu.vertices().download<vplkit::scene::Vertex>(scene.vertices.size());
-    CHECK(std::memcmp(vertices.data(), scene.vertices.data(), scene.vertices.size() * sizeof(vplkit::scene::Vertex)) == 0);
+    CHECK(std::memcmp(vertices.data(), scene.vertices.data(), scene.vertices.size() * sizeof(vplkit::scene::Vertex)) ==
+          0);
     CHECK(gpu.indices().download<uint32_t>(scene.indices.size()) == scene.indices);
 
     const auto materials = gpu.materials().download<vplkit::shaders::SceneMaterial>(scene.materials.size());
@@ -79,8 +80,8 @@ TEST_CASE("gpu scene: mip levels are 2x2 box averages in linear light for sRGB t
     image.name = "mip test";
     image.width = 4;
     image.height = 2;
-    image.rgba = {10, 200, 0, 255, 250, 30, 128, 0, 60, 60, 60, 255, 0, 0, 0, 255,
-                  90, 100, 255, 255, 20, 220, 64, 128, 255, 255, 255, 255, 128, 64, 32, 0};
+    image.rgba = {10, 200, 0,   255, 250, 30,  128, 0,   60,  60,  60,  255, 0,   0,  0,  255,
+                  90, 100, 255, 255, 20,  220, 64,  128, 255, 255, 255, 255, 128, 64, 32, 0};
     for (bool srgb : {true, false}) {
         CAPTURE(srgb);
         image.srgb = srgb;
@@ -98,7 +99,9 @@ TEST_CASE("gpu scene: mip levels are 2x2 box averages in linear light for sRGB t
         auto decode = [&](uint8_t code, int channel) {
             return (srgb && channel < 3) ? vplkit::reference::srgb_to_linear(code) : code / 255.0;
         };
-        auto encode = [&](double value, int channel) { return (srgb && channel < 3) ? linear_to_srgb_code(value) : value * 255.0; };
+        auto encode = [&](double value, int channel) {
+            return (srgb && channel < 3) ? linear_to_srgb_code(value) : value * 255.0;
+        };
         for (int c = 0; c < 4; ++c) {
             CAPTURE(c);
             double whole = 0.0;
@@ -140,7 +143,8 @@ TEST_CASE("gpu scene: an inconsistent scene is refused with a message naming the
         auto scene = raster_test::gbuffer_scene();
         scene.images[0].srgb = false;  // the base colour image would need an sRGB view
         scene.images[0].linear = true;
-        CHECK_THROWS_WITH_AS(vplkit::GpuScene::create(ctx, scene), doctest::Contains("not marked as colour"), vplkit::Error);
+        CHECK_THROWS_WITH_AS(vplkit::GpuScene::create(ctx, scene), doctest::Contains("not marked as colour"),
+                             vplkit::Error);
     }
     {
         auto scene = raster_test::gbuffer_scene();

@@ -220,7 +220,8 @@ TEST_CASE("shadow maps: a point light's cube map over a plane") {
         }
     }
     CHECK(covered == 48 * 48);
-    const double solid_angle = 4.0 * std::atan(double(half) * half / (height * std::sqrt(2.0 * half * half + height * height)));
+    const double solid_angle =
+        4.0 * std::atan(double(half) * half / (height * std::sqrt(2.0 * half * half + height * height)));
     for (int c = 0; c < 3; ++c) {
         const double expected = albedo[c] * light.color[c] * light.intensity * solid_angle;
         CHECK(flux_sum(r, c) == doctest::Approx(expected).epsilon(1e-5));
@@ -314,7 +315,8 @@ TEST_CASE("shadow maps: the in-repo Cornell box's point light gives a sane refle
     const RsmRead r = render(ctx, gpu, map);
 
     float max_albedo = 0.0f;
-    for (const auto& m : scene.materials) max_albedo = std::max({max_albedo, m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b});
+    for (const auto& m : scene.materials)
+        max_albedo = std::max({max_albedo, m.base_color_factor.r, m.base_color_factor.g, m.base_color_factor.b});
     size_t covered = 0;
     glm::dvec3 total(0.0);
     for (size_t i = 0; i < r.depth.size(); ++i) {

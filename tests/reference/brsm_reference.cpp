@@ -35,7 +35,9 @@ std::vector<int> pixel_candidates(double p, uint32_t size) {
     return out;
 }
 
-glm::dvec3 xyz(const glm::vec4& v) { return glm::dvec3(v.x, v.y, v.z); }
+glm::dvec3 xyz(const glm::vec4& v) {
+    return glm::dvec3(v.x, v.y, v.z);
+}
 
 // The diffuse light of a pVPL (y, n_y, flux luminance) at G-buffer pixel (x, y), vplkit/brsm.glsl.
 double diffuse_at(const Gbuffer& g, int px, int py, const glm::dvec3& y, const glm::dvec3& n_y, double flux,
@@ -57,7 +59,9 @@ double diffuse_at(const Gbuffer& g, int px, int py, const glm::dvec3& y, const g
 
 }  // namespace
 
-uint32_t pcg_hash(uint32_t v) { return rxs_m_xs(v * kMultiplier + kIncrement); }
+uint32_t pcg_hash(uint32_t v) {
+    return rxs_m_xs(v * kMultiplier + kIncrement);
+}
 
 Pcg32::Pcg32(uint32_t seed, uint32_t index) : state_(pcg_hash(seed ^ pcg_hash(index))), increment_(2u * index + 1u) {}
 
@@ -67,15 +71,20 @@ uint32_t Pcg32::next_uint() {
     return rxs_m_xs(state);
 }
 
-double Pcg32::next_float() { return double(next_uint() >> 8u) / 16777216.0; }
+double Pcg32::next_float() {
+    return double(next_uint() >> 8u) / 16777216.0;
+}
 
-double luminance(const glm::dvec3& rgb) { return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z; }
+double luminance(const glm::dvec3& rgb) {
+    return 0.2126 * rgb.x + 0.7152 * rgb.y + 0.0722 * rgb.z;
+}
 
 std::vector<double> brsm_flux_luminance(const Rsm& rsm, uint32_t map_size) {
     std::vector<double> out(size_t(map_size) * map_size, 0.0);
     for (uint32_t y = 0; y < rsm.position.height; ++y) {
         for (uint32_t x = 0; x < rsm.position.width; ++x) {
-            if (rsm.position.at(x, y).w > 0.5f) out[size_t(y) * map_size + x] = std::max(0.0, luminance(xyz(rsm.flux.at(x, y))));
+            if (rsm.position.at(x, y).w > 0.5f)
+                out[size_t(y) * map_size + x] = std::max(0.0, luminance(xyz(rsm.flux.at(x, y))));
         }
     }
     return out;
@@ -107,7 +116,8 @@ std::vector<Interval> brsm_contribution(const Rsm& rsm, const Gbuffer& gbuffer, 
                 double lo = INFINITY, hi = -INFINITY;
                 for (int cx : pixel_candidates(px, gbuffer.position.width)) {
                     for (int cy : pixel_candidates(py, gbuffer.position.height)) {
-                        const double c = cx < 0 || cy < 0 ? 0.0 : diffuse_at(gbuffer, cx, cy, y, n_y, flux[index], p.min_distance);
+                        const double c =
+                            cx < 0 || cy < 0 ? 0.0 : diffuse_at(gbuffer, cx, cy, y, n_y, flux[index], p.min_distance);
                         lo = std::min(lo, c);
                         hi = std::max(hi, c);
                     }

@@ -16,11 +16,11 @@ namespace vplkit::reference {
 
 // PCG32 streams as vplkit/rng.glsl defines them (O'Neill 2014, RXS-M-XS; seeding by pcg_hash).
 class Pcg32 {
- public:
+public:
     Pcg32(uint32_t seed, uint32_t index);
     uint32_t next_uint();
     double next_float();  // the top 24 bits / 2^24, as rng_next_float
- private:
+private:
     uint32_t state_ = 0;
     uint32_t increment_ = 0;
 };

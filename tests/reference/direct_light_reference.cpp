@@ -8,7 +8,9 @@ namespace vplkit::reference {
 
 namespace {
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Vec3& a, const Vec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 Vec3 normalized(const Vec3& v) {
     const double l = std::sqrt(dot(v, v));
@@ -17,7 +19,8 @@ Vec3 normalized(const Vec3& v) {
 
 }  // namespace
 
-Vec3 gltf_brdf(const Vec3& n, const Vec3& wo, const Vec3& wi, const Vec3& base_color, double roughness, double metallic) {
+Vec3 gltf_brdf(const Vec3& n, const Vec3& wo, const Vec3& wi, const Vec3& base_color, double roughness,
+               double metallic) {
     const double pi = std::numbers::pi;
     const double n_dot_l = dot(n, wi);
     if (n_dot_l <= 0.0) {

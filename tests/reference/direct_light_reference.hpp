@@ -9,12 +9,13 @@ namespace vplkit::reference {
 using Vec3 = std::array<double, 3>;
 
 // f(wo, wi) of the glTF BRDF; alpha = max(roughness^2, 1e-3) as the shader clamps it.
-Vec3 gltf_brdf(const Vec3& n, const Vec3& wo, const Vec3& wi, const Vec3& base_color, double roughness, double metallic);
+Vec3 gltf_brdf(const Vec3& n, const Vec3& wo, const Vec3& wi, const Vec3& base_color, double roughness,
+               double metallic);
 
 struct PointLightSample {
-    Vec3 wi{};          // unit, towards the light
+    Vec3 wi{};            // unit, towards the light
     double distance = 0;  // 0 for a directional light
-    Vec3 irradiance{};  // on a surface facing the light
+    Vec3 irradiance{};    // on a surface facing the light
 };
 
 enum class LightKind { directional, point, spot };

@@ -8,14 +8,20 @@ namespace vplkit::reference {
 
 namespace {
 
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+Vec3 sub(const Vec3& a, const Vec3& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double dot(const Vec3& a, const Vec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 Vec3 normalized(const Vec3& v) {
     const double l = std::sqrt(dot(v, v));
     return {v[0] / l, v[1] / l, v[2] / l};
 }
 
-bool is_leaf(uint32_t node, uint32_t leaf_count) { return node >= leaf_count - 1; }
+bool is_leaf(uint32_t node, uint32_t leaf_count) {
+    return node >= leaf_count - 1;
+}
 
 uint32_t first_leaf(uint32_t node, uint32_t leaf_count) {
     // Follow left children down to the leaf level.
@@ -36,7 +42,8 @@ double average_corner_cosine(const Vec3& x, const Vec3& n, const Vec3& lo, const
     return sum / 8.0;
 }
 
-double expected_contribution(const ShadingPoint& x, const Vec3& wo, const CutNode& node, double min_distance, double& d2) {
+double expected_contribution(const ShadingPoint& x, const Vec3& wo, const CutNode& node, double min_distance,
+                             double& d2) {
     const Vec3 to_mean = sub(node.mean, x.position);
     d2 = std::max(dot(to_mean, to_mean), min_distance * min_distance);
     if (node.leaf_count == 0 || !(node.intensity > 0.0)) return 0.0;
@@ -69,7 +76,8 @@ std::vector<uint32_t> hybrid_cut(const ShadingPoint& x, const Vec3& wo, const st
         cut.push_back(entry(0, a, d2));
     }
     while (cut.size() < cut_size) {
-        auto best = std::max_element(cut.begin(), cut.end(), [](const Entry& a, const Entry& b) { return a.priority < b.priority; });
+        auto best = std::max_element(cut.begin(), cut.end(),
+                                     [](const Entry& a, const Entry& b) { return a.priority < b.priority; });
         if (best == cut.end() || best->priority < 0.0) break;
         const uint32_t parent = best->node;
         std::vector<Entry> kept;
@@ -86,7 +94,8 @@ std::vector<uint32_t> hybrid_cut(const ShadingPoint& x, const Vec3& wo, const st
     }
     std::vector<uint32_t> out;
     for (const Entry& e : cut) out.push_back(e.node);
-    std::sort(out.begin(), out.end(), [&](uint32_t a, uint32_t b) { return first_leaf(a, leaf_count) < first_leaf(b, leaf_count); });
+    std::sort(out.begin(), out.end(),
+              [&](uint32_t a, uint32_t b) { return first_leaf(a, leaf_count) < first_leaf(b, leaf_count); });
     return out;
 }
 

@@ -24,7 +24,8 @@ double average_corner_cosine(const Vec3& x, const Vec3& n, const Vec3& lo, const
 
 // The expected contribution's numerator a (material x cosine x intensity) and its squared
 // distance d2 (clamped below by min_distance^2).
-double expected_contribution(const ShadingPoint& x, const Vec3& wo, const CutNode& node, double min_distance, double& d2);
+double expected_contribution(const ShadingPoint& x, const Vec3& wo, const CutNode& node, double min_distance,
+                             double& d2);
 
 // The cut of at most cut_size nodes, in the order of their first leaf.
 std::vector<uint32_t> hybrid_cut(const ShadingPoint& x, const Vec3& wo, const std::function<CutNode(uint32_t)>& node,

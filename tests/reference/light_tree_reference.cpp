@@ -5,7 +5,9 @@
 
 namespace vplkit::reference {
 
-uint32_t light_tree_leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_ceil(count); }
+uint32_t light_tree_leaf_count(uint32_t count) {
+    return count <= 1 ? 1u : std::bit_ceil(count);
+}
 
 std::vector<LightTreeNode> light_tree(std::span<const LightTreeVpl> vpls) {
     const uint32_t count = uint32_t(vpls.size());

@@ -16,12 +16,12 @@ struct LightTreeVpl {
 };
 
 struct LightTreeNode {
-    bool empty = true;                 // no real VPL below: no box
-    std::array<double, 3> box_min{};   // meaningful only when !empty
+    bool empty = true;                // no real VPL below: no box
+    std::array<double, 3> box_min{};  // meaningful only when !empty
     std::array<double, 3> box_max{};
-    double intensity = 0.0;            // sum over the real VPLs below of flux r + g + b
-    uint32_t vpl_count = 0;            // real VPLs below
-    uint32_t height = 0;               // levels below the node (0 at a leaf)
+    double intensity = 0.0;  // sum over the real VPLs below of flux r + g + b
+    uint32_t vpl_count = 0;  // real VPLs below
+    uint32_t height = 0;     // levels below the node (0 at a leaf)
 };
 
 // Leaves: `count` rounded up to a power of two (1 for count 1).

@@ -123,7 +123,8 @@ std::vector<GbufferTexel> rasterize_gbuffer(const scene::Scene& scene, const glm
                     uv += f.b[k] * glm::dvec2(v[k]->uv0);
                 }
 
-                const TextureRead base = read_texture(scene, m.base_color_texture, uv, true, glm::dvec4(1.0), tolerances.texel);
+                const TextureRead base =
+                    read_texture(scene, m.base_color_texture, uv, true, glm::dvec4(1.0), tolerances.texel);
                 const glm::dvec4 base_color = glm::dvec4(m.base_color_factor) * base.value;
                 bool ambiguous = base.ambiguous;
                 if (m.alpha_mode != scene::AlphaMode::opaque) {
@@ -133,9 +134,12 @@ std::vector<GbufferTexel> rasterize_gbuffer(const scene::Scene& scene, const glm
                         continue;  // discarded: the next fragment behind it shows
                     }
                 }
-                const TextureRead mr = read_texture(scene, m.metallic_roughness_texture, uv, false, glm::dvec4(1.0), tolerances.texel);
-                const TextureRead nt = read_texture(scene, m.normal_texture, uv, false, glm::dvec4(0.5, 0.5, 1.0, 1.0), tolerances.texel);
-                const TextureRead em = read_texture(scene, m.emissive_texture, uv, true, glm::dvec4(0.0), tolerances.texel);
+                const TextureRead mr =
+                    read_texture(scene, m.metallic_roughness_texture, uv, false, glm::dvec4(1.0), tolerances.texel);
+                const TextureRead nt =
+                    read_texture(scene, m.normal_texture, uv, false, glm::dvec4(0.5, 0.5, 1.0, 1.0), tolerances.texel);
+                const TextureRead em =
+                    read_texture(scene, m.emissive_texture, uv, true, glm::dvec4(0.0), tolerances.texel);
                 ambiguous = ambiguous || mr.ambiguous || nt.ambiguous || em.ambiguous;
 
                 const glm::dvec3 p0(v[0]->position), p1(v[1]->position), p2(v[2]->position);

@@ -40,8 +40,8 @@ struct GbufferTexel {
 };
 
 struct RasterTolerances {
-    double edge = 1e-3;    // pixels
-    double texel = 1e-2;   // texels
+    double edge = 1e-3;   // pixels
+    double texel = 1e-2;  // texels
 };
 
 // sRGB-encoded 8-bit value -> linear (IEC 61966-2-1).

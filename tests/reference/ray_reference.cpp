@@ -7,11 +7,15 @@ namespace vplkit::reference {
 
 namespace {
 
-Double3 sub(const Double3& a, const Double3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+Double3 sub(const Double3& a, const Double3& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 Double3 cross(const Double3& a, const Double3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-double dot(const Double3& a, const Double3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Double3& a, const Double3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 }  // namespace
 
@@ -67,9 +71,13 @@ bool occluded(std::span<const Triangle> triangles, const Ray& ray) {
     return false;
 }
 
-double length(const Double3& v) { return std::sqrt(dot(v, v)); }
+double length(const Double3& v) {
+    return std::sqrt(dot(v, v));
+}
 
-double distance(const Double3& a, const Double3& b) { return length(sub(a, b)); }
+double distance(const Double3& a, const Double3& b) {
+    return length(sub(a, b));
+}
 
 double farthest_vertex(const Triangle& triangle, const Double3& point) {
     return std::max({distance(triangle.v0, point), distance(triangle.v1, point), distance(triangle.v2, point)});

@@ -9,8 +9,12 @@ namespace vplkit::reference {
 
 namespace {
 
-double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-Vec3 sub(const Vec3& a, const Vec3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+double dot(const Vec3& a, const Vec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3 sub(const Vec3& a, const Vec3& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
 Vec3 cross(const Vec3& a, const Vec3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
@@ -45,7 +49,8 @@ double rtslc_box_cosine_bound(const Vec3& x, const Vec3& n, const Vec3& lo, cons
     const Vec3 b = cross(n, t);
     Vec3 a_lo{1e300, 1e300, 1e300}, a_hi{-1e300, -1e300, -1e300};
     for (int corner = 0; corner < 8; ++corner) {
-        const Vec3 c = sub({(corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 4) ? hi[2] : lo[2]}, x);
+        const Vec3 c =
+            sub({(corner & 1) ? hi[0] : lo[0], (corner & 2) ? hi[1] : lo[1], (corner & 4) ? hi[2] : lo[2]}, x);
         const Vec3 local{dot(c, t), dot(c, b), dot(c, n)};
         for (int k = 0; k < 3; ++k) {
             a_lo[k] = std::min(a_lo[k], local[k]);

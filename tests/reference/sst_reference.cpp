@@ -15,16 +15,30 @@ constexpr double kEps = 0x1p-23;
 constexpr Double3 kFrameAxis{0.26726124f, 0.53452248f, 0.80178373f};
 constexpr Double3 kFrameTangent{0.89442719f, -0.44721360f, 0.0f};
 
-double dot(const Double3& a, const Double3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const Double3& a, const Double3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 Double3 cross(const Double3& a, const Double3& b) {
     return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
 }
-Double3 scale(const Double3& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-Double3 add(const Double3& a, const Double3& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-Double3 sub(const Double3& a, const Double3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-double max_abs(const Double3& a) { return std::max({std::abs(a[0]), std::abs(a[1]), std::abs(a[2])}); }
-double max_of(const Double3& a) { return std::max({a[0], a[1], a[2]}); }
-Double3 to_double(const std::array<float, 3>& a) { return {a[0], a[1], a[2]}; }
+Double3 scale(const Double3& a, double s) {
+    return {a[0] * s, a[1] * s, a[2] * s};
+}
+Double3 add(const Double3& a, const Double3& b) {
+    return {a[0] + b[0], a[1] + b[1], a[2] + b[2]};
+}
+Double3 sub(const Double3& a, const Double3& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+double max_abs(const Double3& a) {
+    return std::max({std::abs(a[0]), std::abs(a[1]), std::abs(a[2])});
+}
+double max_of(const Double3& a) {
+    return std::max({a[0], a[1], a[2]});
+}
+Double3 to_double(const std::array<float, 3>& a) {
+    return {a[0], a[1], a[2]};
+}
 
 bool is_suitable(double nu, double sigma_z, const SstThresholds& thresholds) {
     // seed 004 eq. 3, seed 000 eq. 5.6
@@ -194,8 +208,8 @@ SstNodeRef sst_merge(const SstNodeRef& left, const SstNodeRef& right, const SstT
     const double dl_max = max_abs(dl);
     const double dl2_err = 2 * dl_max * dl_err + dl_err * dl_err;
     const double terms = std::max(max_of(vl), max_of(vr)) + a * b * dl_max * dl_max;
-    e.variance = a * rotated_err(left, el) + b * rotated_err(right, er) + a * b * dl2_err +
-                 2 * weight_rel * terms + 4 * kEps * max_of(node.variance);
+    e.variance = a * rotated_err(left, el) + b * rotated_err(right, er) + a * b * dl2_err + 2 * weight_rel * terms +
+                 4 * kEps * max_of(node.variance);
     return node;
 }
 

@@ -35,8 +35,8 @@ struct SstThresholds {
 
 // Absolute error bounds of a float build (first order, before any safety factor).
 struct SstErrorBound {
-    double mean = 0.0;           // per position component
-    double normal = 0.0;         // per normal component
+    double mean = 0.0;    // per position component
+    double normal = 0.0;  // per normal component
     double nu = 0.0;
     double variance = 0.0;       // per variance component
     double intensity_rel = 0.0;  // relative, of the intensity
@@ -56,8 +56,8 @@ struct SstNodeRef {
     uint32_t leaf_count = 0;
     Double3 colour{};
 
-    double sigma_z = 0.0;                 // sqrt(variance[2])
-    double merged_normal_length = 1.0;    // |a n1 + b n2| before renormalizing (1 at leaves)
+    double sigma_z = 0.0;               // sqrt(variance[2])
+    double merged_normal_length = 1.0;  // |a n1 + b n2| before renormalizing (1 at leaves)
     // A discrete decision in this node or below (the normal fallback, the frame's pole guard) is
     // within rounding of its threshold: a float build may have gone the other way (tests avoid
     // such data).

@@ -20,9 +20,13 @@ HalfTexel to_half(float r, float g, float b, float a) {
 
 }  // namespace
 
-float half_round(float v) { return glm::unpackHalf1x16(glm::packHalf1x16(v)); }
+float half_round(float v) {
+    return glm::unpackHalf1x16(glm::packHalf1x16(v));
+}
 
-reference::Vec3 d3(glm::vec3 v) { return {v.x, v.y, v.z}; }
+reference::Vec3 d3(glm::vec3 v) {
+    return {v.x, v.y, v.z};
+}
 
 GpuSyntheticScene upload(Context& context, uint32_t width, uint32_t height, std::span<const Pixel> pixels,
                          std::span<const glm::vec3> triangles, std::span<const TestVpl> vpls) {

@@ -8,7 +8,9 @@ namespace vplkit::reference {
 
 namespace {
 
-double dot(const UpsampleVec3& a, const UpsampleVec3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const UpsampleVec3& a, const UpsampleVec3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 double distance(const UpsampleVec3& a, const UpsampleVec3& b) {
     const UpsampleVec3 d{a[0] - b[0], a[1] - b[1], a[2] - b[2]};
@@ -30,7 +32,9 @@ struct Tap {
 
 }  // namespace
 
-uint32_t upsample_half_side(uint32_t full) { return uint32_t((uint64_t(full) + 1) / 2); }
+uint32_t upsample_half_side(uint32_t full) {
+    return uint32_t((uint64_t(full) + 1) / 2);
+}
 
 UpsampleResult upsample_reference(const Grid<UpsampleTexel>& full, const Grid<UpsampleTexel>& half,
                                   const Grid<UpsampleVec3>& half_radiance, double min_cos, double max_distance) {
@@ -52,8 +56,8 @@ UpsampleResult upsample_reference(const Grid<UpsampleTexel>& full, const Grid<Up
             const uint32_t i0 = x / 2, j0 = y / 2;
             const uint32_t i1 = std::min(i0 + 1, half.width - 1), j1 = std::min(j0 + 1, half.height - 1);
             const double tx = (double(x) - 2.0 * i0) / 2.0, ty = (double(y) - 2.0 * j0) / 2.0;
-            const Tap taps[4] = {{i0, j0, (1 - tx) * (1 - ty)}, {i1, j0, tx * (1 - ty)}, {i0, j1, (1 - tx) * ty},
-                                 {i1, j1, tx * ty}};
+            const Tap taps[4] = {
+                {i0, j0, (1 - tx) * (1 - ty)}, {i1, j0, tx * (1 - ty)}, {i0, j1, (1 - tx) * ty}, {i1, j1, tx * ty}};
             UpsampleVec3 sum{};
             double weight_sum = 0.0;
             int nearest = -1;

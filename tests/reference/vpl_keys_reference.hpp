@@ -19,14 +19,14 @@ struct Box {
 Box vpl_bounds(std::span<const std::array<float, 3>> positions);
 
 struct CellCode {
-    uint32_t morton = 0;   // 30-bit Morton code, x in the highest bit of each triple
-    double margin = 0.0;   // distance, in cells, from the nearest cell border on any axis
+    uint32_t morton = 0;  // 30-bit Morton code, x in the highest bit of each triple
+    double margin = 0.0;  // distance, in cells, from the nearest cell border on any axis
 };
 CellCode morton_code(const std::array<float, 3>& position, const Box& box);
 
 struct NormalCode {
-    uint32_t code = 0;     // 3 octant bits then 3 x 2 subdivision bits
-    double margin = 0.0;   // smallest |barycentric - 1/2| met in a decision
+    uint32_t code = 0;    // 3 octant bits then 3 x 2 subdivision bits
+    double margin = 0.0;  // smallest |barycentric - 1/2| met in a decision
 };
 NormalCode normal_code(const std::array<float, 3>& normal);
 

@@ -40,10 +40,10 @@ Vec3 vpl_contribution(const ShadingPoint& x, const Vec3& wo, const VplDesc& vpl,
 double scene_scale(std::span<const Triangle> triangles);
 
 struct ExactSum {
-    Vec3 radiance{};           // sum of the finite, unoccluded contributions
-    uint32_t dropped = 0;      // contributions that were not finite
-    uint32_t occluded = 0;     // contributions (non-zero) cut by a shadow ray
-    bool near_edge = false;    // a shadow ray passed within 1e-4 (barycentric) of a triangle edge
+    Vec3 radiance{};         // sum of the finite, unoccluded contributions
+    uint32_t dropped = 0;    // contributions that were not finite
+    uint32_t occluded = 0;   // contributions (non-zero) cut by a shadow ray
+    bool near_edge = false;  // a shadow ray passed within 1e-4 (barycentric) of a triangle edge
 };
 
 // The exact indirect light at x seen from `camera`; scale as from scene_scale().

@@ -97,7 +97,8 @@ double check_against_exact(const vplkit::scene::Scene& scene, vplkit::RenderSett
         settings.method = vplkit::GiMethod::exact;
         const auto exact = renderer.render(scene.camera(), settings);
         settings.half_resolution_gi = true;
-        const double exact_total[2] = {total(exact.indirect), total(renderer.render(scene.camera(), settings).indirect)};
+        const double exact_total[2] = {total(exact.indirect),
+                                       total(renderer.render(scene.camera(), settings).indirect)};
         REQUIRE(exact_total[0] > 0.0);
         REQUIRE(exact_total[1] > 0.0);
         exact_over_direct.add(exact_total[0] / total(exact.direct));
@@ -136,9 +137,8 @@ vplkit::RenderSettings one_bounce(vplkit::VplSource source, uint32_t width, uint
 }
 
 const std::vector<Variant> kVariants = {
-    {vplkit::GiMethod::sst, 4, false},    {vplkit::GiMethod::sst, 16, false},
-    {vplkit::GiMethod::hybrid, 4, false}, {vplkit::GiMethod::hybrid, 16, false},
-    {vplkit::GiMethod::hybrid, 32, true}, {vplkit::GiMethod::rtslc, 8, false},
+    {vplkit::GiMethod::sst, 4, false},     {vplkit::GiMethod::sst, 16, false},   {vplkit::GiMethod::hybrid, 4, false},
+    {vplkit::GiMethod::hybrid, 16, false}, {vplkit::GiMethod::hybrid, 32, true}, {vplkit::GiMethod::rtslc, 8, false},
 };
 
 }  // namespace

@@ -167,7 +167,8 @@ void check_direct_against_cpu_path(bool lambert) {
             }
             if (cos_theta > 0.0 && !vplkit::reference::occluded(triangles, shadow)) {
                 ++lit;
-                const Vec3 base = {material.base_color_factor.x, material.base_color_factor.y, material.base_color_factor.z};
+                const Vec3 base = {material.base_color_factor.x, material.base_color_factor.y,
+                                   material.base_color_factor.z};
                 const double pi = std::numbers::pi;
                 const Vec3 f = lambert ? Vec3{base[0] / pi, base[1] / pi, base[2] / pi}
                                        : vplkit::reference::gltf_brdf(n, wo, s.wi, base, material.roughness_factor,
@@ -178,7 +179,8 @@ void check_direct_against_cpu_path(bool lambert) {
             CAPTURE(x);
             CAPTURE(y);
             for (int c = 0; c < 3; ++c) {
-                CHECK(double(image.radiance[(y * width + x) * 3 + c]) == doctest::Approx(expected[c]).epsilon(2e-3).scale(1e-6 / 2e-3));
+                CHECK(double(image.radiance[(y * width + x) * 3 + c]) ==
+                      doctest::Approx(expected[c]).epsilon(2e-3).scale(1e-6 / 2e-3));
             }
         }
     }
@@ -223,8 +225,10 @@ TEST_CASE("direct render: an emissive quad without an emissive texture shows its
     int emitter_pixels = 0, lit_pixels = 0;
     for (size_t i = 0; i < image.radiance.size(); i += 3) {
         const float r = image.radiance[i];
-        if (std::abs(r - material.emission().x) <= 1e-3f * material.emission().x) ++emitter_pixels;
-        else if (r > 0.0f) ++lit_pixels;
+        if (std::abs(r - material.emission().x) <= 1e-3f * material.emission().x)
+            ++emitter_pixels;
+        else if (r > 0.0f)
+            ++lit_pixels;
     }
     CHECK(emitter_pixels > 0);
     CHECK(lit_pixels > 64 * 64 / 2);  // the walls, floor and blocks get the quad's light
@@ -390,7 +394,8 @@ vplkit::RenderSettings sampled_settings(vplkit::GiMethod method, uint32_t width 
 }
 
 // Pixels the G-buffer covers (a surface drawn there), from a --vpls-only frame of the same size.
-uint32_t covered_pixels(vplkit::Renderer& renderer, const vplkit::scene::Camera& camera, vplkit::RenderSettings settings) {
+uint32_t covered_pixels(vplkit::Renderer& renderer, const vplkit::scene::Camera& camera,
+                        vplkit::RenderSettings settings) {
     settings.vpls_only = true;
     const auto image = renderer.render(camera, settings);
     uint32_t covered = 0;
@@ -593,8 +598,8 @@ TEST_CASE("render at half GI resolution: half-size indirect light, upsampled, cl
             const double ratio = indirect_total(half) / indirect_total(full);
             ratio_sum += ratio;
             if (exact) {
-                MESSAGE("exact: half / full total " << ratio << "; " << half.upsample_counts.fallback_pixels
-                                                    << " of " << covered << " covered pixels took the nearest sample, "
+                MESSAGE("exact: half / full total " << ratio << "; " << half.upsample_counts.fallback_pixels << " of "
+                                                    << covered << " covered pixels took the nearest sample, "
                                                     << half.upsample_counts.empty_pixels << " none");
             }
         }

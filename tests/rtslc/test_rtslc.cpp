@@ -107,32 +107,40 @@ std::vector<TestVpl> floor_vpls(uint32_t count, float s, float flux_scale, uint3
     std::vector<TestVpl> vpls;
     for (uint32_t i = 0; i < count; ++i) {
         switch (i % 10) {
-        case 0: case 1: case 2: case 3:  // ceiling, facing down
-            vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)) * s,
-                            glm::normalize(glm::vec3(0.3f * (unit(rng) - 0.5f), -1.0f, 0.3f * (unit(rng) - 0.5f))),
-                            colour()});
-            break;
-        case 4: case 5: {  // wall at x = -2.9 facing +x; low ones light the floor at grazing angles
-            const float height = i < 20 ? 0.005f + 0.01f * float(i % 4) : 0.1f + 1.4f * unit(rng);
-            vpls.push_back({glm::vec3(-2.9f, height, -2.5f + 5.0f * unit(rng)) * s, {1.0f, 0.0f, 0.0f}, colour()});
-            break;
-        }
-        case 6:  // below the floor, facing up: behind every shading point
-            vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), -0.5f, -2.5f + 5.0f * unit(rng)) * s, {0, 1, 0}, colour()});
-            break;
-        case 7:  // above the floor, facing up: away from every shading point
-            vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 1.5f, -2.5f + 5.0f * unit(rng)) * s, {0, 1, 0}, colour()});
-            break;
-        case 8: {  // free, facing somewhere downwards
-            const glm::vec3 n = glm::normalize(glm::vec3(unit(rng) - 0.5f, -0.2f - unit(rng), unit(rng) - 0.5f));
-            vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 0.1f + 0.8f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n,
-                            colour()});
-            break;
-        }
-        default:  // black: a real leaf that never lights anything
-            vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 1.0f, -2.5f + 5.0f * unit(rng)) * s, {0, -1, 0},
-                            glm::vec3(0.0f)});
-            break;
+            case 0:
+            case 1:
+            case 2:
+            case 3:  // ceiling, facing down
+                vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 2.0f, -2.5f + 5.0f * unit(rng)) * s,
+                                glm::normalize(glm::vec3(0.3f * (unit(rng) - 0.5f), -1.0f, 0.3f * (unit(rng) - 0.5f))),
+                                colour()});
+                break;
+            case 4:
+            case 5: {  // wall at x = -2.9 facing +x; low ones light the floor at grazing angles
+                const float height = i < 20 ? 0.005f + 0.01f * float(i % 4) : 0.1f + 1.4f * unit(rng);
+                vpls.push_back({glm::vec3(-2.9f, height, -2.5f + 5.0f * unit(rng)) * s, {1.0f, 0.0f, 0.0f}, colour()});
+                break;
+            }
+            case 6:  // below the floor, facing up: behind every shading point
+                vpls.push_back(
+                    {glm::vec3(-2.5f + 5.0f * unit(rng), -0.5f, -2.5f + 5.0f * unit(rng)) * s, {0, 1, 0}, colour()});
+                break;
+            case 7:  // above the floor, facing up: away from every shading point
+                vpls.push_back(
+                    {glm::vec3(-2.5f + 5.0f * unit(rng), 1.5f, -2.5f + 5.0f * unit(rng)) * s, {0, 1, 0}, colour()});
+                break;
+            case 8: {  // free, facing somewhere downwards
+                const glm::vec3 n = glm::normalize(glm::vec3(unit(rng) - 0.5f, -0.2f - unit(rng), unit(rng) - 0.5f));
+                vpls.push_back(
+                    {glm::vec3(-2.5f + 5.0f * unit(rng), 0.1f + 0.8f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n,
+                     colour()});
+                break;
+            }
+            default:  // black: a real leaf that never lights anything
+                vpls.push_back({glm::vec3(-2.5f + 5.0f * unit(rng), 1.0f, -2.5f + 5.0f * unit(rng)) * s,
+                                {0, -1, 0},
+                                glm::vec3(0.0f)});
+                break;
         }
     }
     return vpls;
@@ -200,7 +208,9 @@ struct Gpu {
         const auto nodes = trees.light_tree.download<vplkit::shaders::LightTreeNode>(2 * size_t(trees.leaf_count) - 1);
         std::vector<ref::RtslcNode> out;
         for (const auto& n : nodes) {
-            out.push_back({{n.box_min.x, n.box_min.y, n.box_min.z}, {n.box_max.x, n.box_max.y, n.box_max.z}, n.intensity,
+            out.push_back({{n.box_min.x, n.box_min.y, n.box_min.z},
+                           {n.box_max.x, n.box_max.y, n.box_max.z},
+                           n.intensity,
                            n.vpl_count});
         }
         return out;
@@ -217,13 +227,14 @@ std::vector<ref::Vec3> unshadowed(const Setup& setup) {
     const double eps = scene_min_distance(setup);
     std::vector<ref::Vec3> out;
     for (const Pixel& p : setup.pixels) {
-        out.push_back(p.covered ? ref::rtslc_unshadowed_sum(shading_point(p), d3(setup.camera), vpls, eps) : ref::Vec3{});
+        out.push_back(p.covered ? ref::rtslc_unshadowed_sum(shading_point(p), d3(setup.camera), vpls, eps)
+                                : ref::Vec3{});
     }
     return out;
 }
 
 struct Unbiasedness {
-    double largest_z = 0.0;         // over pixels and channels, sigma from the reference's probabilities
+    double largest_z = 0.0;  // over pixels and channels, sigma from the reference's probabilities
     double rms_z = 0.0;
     double largest_sample_z = 0.0;  // the same with sigma estimated from the samples
     double image_z = 0.0;           // of the image's summed radiance, sigma from the samples
@@ -256,7 +267,8 @@ NodeMoments node_moments(const Gpu& gpu, const std::vector<ref::RtslcNode>& node
     m.s2.assign(nodes.size(), {0, 0, 0});
     for (uint32_t leaf = 0; leaf < gpu.trees.count; ++leaf) {
         const auto& v = leaves[leaf];
-        const ref::VplDesc vpl{{v.position.x, v.position.y, v.position.z}, {v.normal.x, v.normal.y, v.normal.z},
+        const ref::VplDesc vpl{{v.position.x, v.position.y, v.position.z},
+                               {v.normal.x, v.normal.y, v.normal.z},
                                {v.flux.x, v.flux.y, v.flux.z}};
         const auto c = ref::vpl_contribution(shading_point(p), s.wo, vpl, eps);
         for (int k = 0; k < 3; ++k) {
@@ -368,7 +380,8 @@ Unbiasedness check_unbiased(Gpu& gpu, stages::RtslcOptions options, int seeds, d
             CHECK(std::abs(z) < z_limit);
             u.largest_z = std::max(u.largest_z, std::abs(z));
             if (sample_variance > 0.0) {
-                u.largest_sample_z = std::max(u.largest_sample_z, std::abs(mean - exact[p][k]) / std::sqrt(sample_variance / seeds));
+                u.largest_sample_z =
+                    std::max(u.largest_sample_z, std::abs(mean - exact[p][k]) / std::sqrt(sample_variance / seeds));
             }
             z2 += z * z;
             ++zs;
@@ -425,7 +438,8 @@ TEST_CASE("rtslc: cuts equal the reference cut and partition the real VPLs") {
                     const uint32_t bx = b % blocks_x, by = b / blocks_x;
                     bool any_covered = false;
                     for (uint32_t y = by * block; y < (by + 1) * block; ++y) {
-                        for (uint32_t x = bx * block; x < (bx + 1) * block; ++x) any_covered |= setup.pixels[y * 16 + x].covered;
+                        for (uint32_t x = bx * block; x < (bx + 1) * block; ++x)
+                            any_covered |= setup.pixels[y * 16 + x].covered;
                     }
                     const uint32_t rep = frame.representatives[b];
                     std::vector<uint32_t> cut;
@@ -502,8 +516,8 @@ TEST_CASE("rtslc: unbiased over 200 seeds without shadows") {
     const auto small_blocks = check_unbiased(gpu, no_shadows(4, 4), 100, 5.0);
     const auto one_node = check_unbiased(gpu, no_shadows(1, 8), 100, 5.0);
     MESSAGE("4 x 4 blocks, 4 spp: largest |z| " << small_blocks.largest_z << ", rms z " << small_blocks.rms_z
-                                               << "; 1 spp: largest |z| " << one_node.largest_z << ", rms z "
-                                               << one_node.rms_z);
+                                                << "; 1 spp: largest |z| " << one_node.largest_z << ", rms z "
+                                                << one_node.rms_z);
 }
 
 TEST_CASE("rtslc: interleaved sampling is unbiased where a sub-block is one shading point") {
@@ -531,7 +545,8 @@ TEST_CASE("rtslc: interleaved shares rotate per frame and the reconstruction res
     const double eps = scene_min_distance(setup);
     auto leaf_light = [&](const Pixel& p, uint32_t node) {
         const auto& v = leaves[node - (gpu.trees.leaf_count - 1)];
-        const ref::VplDesc vpl{{v.position.x, v.position.y, v.position.z}, {v.normal.x, v.normal.y, v.normal.z},
+        const ref::VplDesc vpl{{v.position.x, v.position.y, v.position.z},
+                               {v.normal.x, v.normal.y, v.normal.z},
                                {v.flux.x, v.flux.y, v.flux.z}};
         const ref::Vec3 wo = d3(glm::normalize(setup.camera - p.position));
         return ref::vpl_contribution(shading_point(p), wo, vpl, eps);
@@ -577,7 +592,8 @@ TEST_CASE("rtslc: interleaved shares rotate per frame and the reconstruction res
                         CAPTURE(y);
                         for (int k = 0; k < 3; ++k) {
                             const double expected = sum[k] * 8.0 / covered_nodes;
-                            CHECK(double(f.image[y * 16 + x][k]) == doctest::Approx(expected).epsilon(1e-3).scale(1e-6));
+                            CHECK(double(f.image[y * 16 + x][k]) ==
+                                  doctest::Approx(expected).epsilon(1e-3).scale(1e-6));
                         }
                     }
                 }
@@ -602,7 +618,8 @@ TEST_CASE("rtslc: hard cases stay finite and unbiased") {
         // 50 coincident VPLs of one flux: every box is one point, the child probabilities are the
         // intensity ratios, and each traversal's estimate is the exact sum of its node: no variance.
         Setup s = floor_setup();
-        for (int i = 0; i < 50; ++i) s.vpls.push_back({{0.3f, 1.2f, -0.2f}, glm::normalize(glm::vec3(0.1f, -1, 0)), {1, 2, 3}});
+        for (int i = 0; i < 50; ++i)
+            s.vpls.push_back({{0.3f, 1.2f, -0.2f}, glm::normalize(glm::vec3(0.1f, -1, 0)), {1, 2, 3}});
         variants.push_back({"coincident VPLs", s});
     }
     {
@@ -686,7 +703,8 @@ TEST_CASE("rtslc: a VPL behind a wall gives nothing") {
     // The same VPL without shadow rays lights the far side too.
     const auto unshadowed_frame = gpu.render(no_shadows());
     int far_lit = 0;
-    for (size_t i = 0; i < setup.pixels.size(); ++i) far_lit += setup.pixels[i].position.x > 0.0f && unshadowed_frame.image[i][0] > 0.0f;
+    for (size_t i = 0; i < setup.pixels.size(); ++i)
+        far_lit += setup.pixels[i].position.x > 0.0f && unshadowed_frame.image[i][0] > 0.0f;
     CHECK(far_lit > 80);
 }
 
@@ -698,7 +716,8 @@ TEST_CASE("rtslc: dead branches return no light and are counted") {
     std::mt19937 rng(3);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int i = 0; i < 40; ++i) {
-        setup.vpls.push_back({{-2.5f + 5.0f * unit(rng), -0.2f - unit(rng), -2.5f + 5.0f * unit(rng)}, {0, 1, 0}, {5, 5, 5}});
+        setup.vpls.push_back(
+            {{-2.5f + 5.0f * unit(rng), -0.2f - unit(rng), -2.5f + 5.0f * unit(rng)}, {0, 1, 0}, {5, 5, 5}});
     }
     Gpu gpu(setup);
     const auto f = gpu.render(no_shadows(8, 8));
@@ -754,10 +773,19 @@ TEST_CASE("rtslc: bad options and targets are refused, naming the problem") {
     refused([](auto& o) { o.block_size = 33; }, "block_size");
     refused([](auto& o) { o.interleave = 3; }, "interleave");
     refused([](auto& o) { o.interleave = 0; }, "interleave");
-    refused([](auto& o) { o.interleave = 4; o.similarity_max_distance = 1.0f; }, "interleave^2");
+    refused(
+        [](auto& o) {
+            o.interleave = 4;
+            o.similarity_max_distance = 1.0f;
+        },
+        "interleave^2");
     refused([](auto& o) { o.interleave = 2; }, "similarity_max_distance");
-    refused([](auto& o) { o.interleave = 2; o.similarity_max_distance = std::numeric_limits<float>::infinity(); },
-            "similarity_max_distance");
+    refused(
+        [](auto& o) {
+            o.interleave = 2;
+            o.similarity_max_distance = std::numeric_limits<float>::infinity();
+        },
+        "similarity_max_distance");
     refused([](auto& o) { o.similarity_min_cos = std::numeric_limits<float>::quiet_NaN(); }, "similarity_min_cos");
     refused([](auto& o) { o.slots_per_dispatch = 0; }, "slots_per_dispatch");
     stages::validate({});
@@ -766,7 +794,8 @@ TEST_CASE("rtslc: bad options and targets are refused, naming the problem") {
     Gpu gpu(setup);
     stages::RtslcOptions options;
     auto scratch = stages::RtslcScratch::create(gpu.ctx, 16, 16, options);
-    auto wrong = vplkit::Image::create(gpu.ctx, 16, 15, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
+    auto wrong =
+        vplkit::Image::create(gpu.ctx, 16, 15, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
     vplkit::PassList passes;
     CHECK_THROWS_WITH_AS(stages::add_rtslc_passes(gpu.ctx, passes, gpu.gbuffer, gpu.bvh, gpu.trees, setup.camera, wrong,
                                                   gpu.counters, options, scratch),
@@ -775,7 +804,8 @@ TEST_CASE("rtslc: bad options and targets are refused, naming the problem") {
     CHECK_THROWS_WITH_AS(stages::add_rtslc_passes(gpu.ctx, passes, gpu.gbuffer, gpu.bvh, gpu.trees, setup.camera,
                                                   gpu.indirect, gpu.counters, options, scratch),
                          doctest::Contains("scratch"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(stages::RtslcScratch::create(gpu.ctx, 0, 16, options), doctest::Contains("0 x 16"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(stages::RtslcScratch::create(gpu.ctx, 0, 16, options), doctest::Contains("0 x 16"),
+                         vplkit::Error);
     CHECK(passes.size() == 0);
 }
 

@@ -127,7 +127,9 @@ struct Generator {
         return b;
     }
 
-    float intensity(float decades_lo = -1.0f, float decades_hi = 1.0f) { return std::pow(10.0f, range(decades_lo, decades_hi)); }
+    float intensity(float decades_lo = -1.0f, float decades_hi = 1.0f) {
+        return std::pow(10.0f, range(decades_lo, decades_hi));
+    }
 };
 
 std::vector<Named> make_cases() {

@@ -86,8 +86,9 @@ TEST_CASE("graphics pipeline: two triangles with a depth test match a CPU raster
     push.colors[0] = {1.0f, 0.0f, 0.0f, 0.0f};
     push.colors[1] = {0.0f, 0.0f, 1.0f, 0.0f};
     vplkit::PassList passes("raster test");
-    passes.add("draw", {vplkit::Use::read(vertex_buffer, vplkit::Stage::vertex), vplkit::Use::color_attachment(color),
-                        vplkit::Use::depth_attachment(depth)},
+    passes.add("draw",
+               {vplkit::Use::read(vertex_buffer, vplkit::Stage::vertex), vplkit::Use::color_attachment(color),
+                vplkit::Use::depth_attachment(depth)},
                [&](VkCommandBuffer cmd) {
                    vplkit::begin_rendering(cmd, {{color}, {VkClearColorValue{{0.0f, 0.0f, 0.0f, -1.0f}}}, depth, 1.0f});
                    pipeline.bind(cmd);
@@ -145,6 +146,7 @@ TEST_CASE("graphics pipeline: push constants of the wrong size are refused") {
     auto pipeline = vplkit::GraphicsPipeline::create<vs::Module, fs::Module>(ctx.device(), ctx.pipeline_cache(), state);
     uint32_t too_small = 0;
     ctx.one_shot([&](VkCommandBuffer cmd) {
-        CHECK_THROWS_WITH_AS(pipeline.push_constants(cmd, too_small), doctest::Contains("pushed 4 bytes"), vplkit::Error);
+        CHECK_THROWS_WITH_AS(pipeline.push_constants(cmd, too_small), doctest::Contains("pushed 4 bytes"),
+                             vplkit::Error);
     });
 }

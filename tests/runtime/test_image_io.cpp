@@ -66,14 +66,17 @@ TEST_CASE("PFM: truncated and non-PFM files are refused by name") {
     const fs::path dir = temp_dir();
     {
         std::ofstream out(dir / "short.pfm", std::ios::binary);
-        out << "PF\n4 4\n-1.0\n" << "abc";
+        out << "PF\n4 4\n-1.0\n"
+            << "abc";
     }
-    CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "short.pfm"), doctest::Contains("short.pfm is truncated"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "short.pfm"), doctest::Contains("short.pfm is truncated"),
+                         vplkit::Error);
     {
         std::ofstream out(dir / "text.pfm");
         out << "hello";
     }
-    CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "text.pfm"), doctest::Contains("text.pfm is not a PFM file"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::read_pfm(dir / "text.pfm"), doctest::Contains("text.pfm is not a PFM file"),
+                         vplkit::Error);
 }
 
 TEST_CASE("PNG round trip is exact: read_png gives back the bytes write_png was given") {
@@ -98,10 +101,12 @@ TEST_CASE("PNG: missing, non-PNG and truncated files are refused by name") {
         std::ofstream out(dir / "text.png");
         out << "hello";
     }
-    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "text.png"), doctest::Contains("text.png is not a PNG file"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "text.png"), doctest::Contains("text.png is not a PNG file"),
+                         vplkit::Error);
     const std::vector<float> rgb(2 * 2 * 3, 0.5f);
     vplkit::write_pfm(dir / "image.pfm", 2, 2, rgb);  // a real image, just not a PNG
-    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "image.pfm"), doctest::Contains("image.pfm is not a PNG file"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(vplkit::read_png(dir / "image.pfm"), doctest::Contains("image.pfm is not a PNG file"),
+                         vplkit::Error);
     const std::string folder = "cannot open " + dir.string() + ": it is a folder";
     CHECK_THROWS_WITH_AS(vplkit::read_png(dir), doctest::Contains(folder.c_str()), vplkit::Error);
 

@@ -25,9 +25,18 @@ Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s, float f
     scene.scale = s;
     const float f = 3.0f * s;
     // Floor, and a double-sided occluding quad at y = s over part of it.
-    scene.triangles = {{-f, 0, -f}, {-f, 0, f}, {f, 0, f}, {-f, 0, -f}, {f, 0, f}, {f, 0, -f},
-                       {-0.5f * s, s, -0.5f * s}, {-0.5f * s, s, 0.7f * s}, {0.6f * s, s, 0.7f * s},
-                       {-0.5f * s, s, -0.5f * s}, {0.6f * s, s, 0.7f * s}, {0.6f * s, s, -0.5f * s}};
+    scene.triangles = {{-f, 0, -f},
+                       {-f, 0, f},
+                       {f, 0, f},
+                       {-f, 0, -f},
+                       {f, 0, f},
+                       {f, 0, -f},
+                       {-0.5f * s, s, -0.5f * s},
+                       {-0.5f * s, s, 0.7f * s},
+                       {0.6f * s, s, 0.7f * s},
+                       {-0.5f * s, s, -0.5f * s},
+                       {0.6f * s, s, 0.7f * s},
+                       {0.6f * s, s, -0.5f * s}};
     scene.camera = glm::vec3(0.0f, 3.0f, 4.0f) * s;
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -56,7 +65,8 @@ Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s, float f
             v = {glm::vec3(-2.9f, 0.05f + 1.8f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, {1, 0, 0}, colour()};
         } else if (kind == 8) {  // free, facing somewhere downwards
             const glm::vec3 n = glm::normalize(glm::vec3(unit(rng) - 0.5f, -0.2f - unit(rng), unit(rng) - 0.5f));
-            v = {glm::vec3(-2.5f + 5.0f * unit(rng), 0.2f + 0.6f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n, colour()};
+            v = {glm::vec3(-2.5f + 5.0f * unit(rng), 0.2f + 0.6f * unit(rng), -2.5f + 5.0f * unit(rng)) * s, n,
+                 colour()};
         } else {  // below the floor facing up: behind every shading point
             v = {glm::vec3(-2.5f + 5.0f * unit(rng), -0.5f, -2.5f + 5.0f * unit(rng)) * s, {0, 1, 0}, colour()};
         }
@@ -118,10 +128,10 @@ std::vector<reference::Vec3> exact(const Scene& scene, bool visibility) {
             out.push_back({0, 0, 0});
             continue;
         }
-        const auto sum = reference::exact_indirect(shading_point(p), d3(scene.camera), vpls,
-                                                   visibility ? std::span<const reference::Triangle>(triangles)
-                                                              : std::span<const reference::Triangle>(),
-                                                   scale);
+        const auto sum = reference::exact_indirect(
+            shading_point(p), d3(scene.camera), vpls,
+            visibility ? std::span<const reference::Triangle>(triangles) : std::span<const reference::Triangle>(),
+            scale);
         out.push_back(sum.radiance);
     }
     return out;

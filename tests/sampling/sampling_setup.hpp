@@ -34,7 +34,7 @@ struct Scene {
     std::vector<glm::vec3> triangles;  // three vertices each
     std::vector<TestVpl> vpls;
     glm::vec3 camera{0.0f, 3.0f, 4.0f};
-    float scale = 1.0f;                // the length unit the scene was built in
+    float scale = 1.0f;  // the length unit the scene was built in
 };
 
 // `vpl_count` VPLs (at least 1) at scale s with flux ~ flux_scale.
@@ -45,10 +45,10 @@ using Texel = std::array<float, 4>;
 struct Rendered {
     std::vector<Texel> image;
     stages::GiCounts counts;
-    std::vector<uint32_t> cuts;                  // hybrid: blocks x cut_size
-    std::vector<shaders::HybridBlock> blocks;    // hybrid
-    std::vector<shaders::SstNode> sst;           // the tree the method sampled
-    std::vector<shaders::Vpl> leaves;            // its leaves (sorted, padded)
+    std::vector<uint32_t> cuts;                // hybrid: blocks x cut_size
+    std::vector<shaders::HybridBlock> blocks;  // hybrid
+    std::vector<shaders::SstNode> sst;         // the tree the method sampled
+    std::vector<shaders::Vpl> leaves;          // its leaves (sorted, padded)
     uint32_t leaf_count = 0;
 };
 
@@ -60,7 +60,7 @@ struct RunOptions {
     uint32_t block_size = 8;
     uint32_t seed = 0;
     bool visibility = true;
-    stages::SstOptions sst;  // thresholds (nu_min > 1: never suitable, traversals go to leaves)
+    stages::SstOptions sst;                // thresholds (nu_min > 1: never suitable, traversals go to leaves)
     float similarity_max_distance = 2.0f;  // x scene.scale (the room is 6 x 6; a pixel 0.1-0.7 wide)
     bool mock_cuts = true;                 // hybrid
     stages::HybridTraversal traversal = stages::HybridTraversal::substitute;  // hybrid

@@ -70,7 +70,8 @@ TEST_CASE("hybrid cuts: no overlap, first-leaf order, and the double reference's
         const Rendered r = render_hybrid_cuts(scene, cut_size);
         const uint32_t blocks_x = 3, blocks_y = 2;
         REQUIRE(r.blocks.size() == blocks_x * blocks_y);
-        const double min_distance = ref::kVplMinDistanceFraction * ref::scene_scale(reference_triangles(scene.triangles));
+        const double min_distance =
+            ref::kVplMinDistanceFraction * ref::scene_scale(reference_triangles(scene.triangles));
         uint32_t matched = 0;
         for (uint32_t b = 0; b < blocks_x * blocks_y; ++b) {
             const auto& block = r.blocks[b];
@@ -94,7 +95,9 @@ TEST_CASE("hybrid cuts: no overlap, first-leaf order, and the double reference's
             // The representative pixel: find it by position and rebuild its shading point.
             const Pixel* rep = nullptr;
             for (const Pixel& p : scene.pixels) {
-                if (p.covered && glm::distance(p.position, glm::vec3(block.position.x, block.position.y, block.position.z)) == 0.0f) rep = &p;
+                if (p.covered &&
+                    glm::distance(p.position, glm::vec3(block.position.x, block.position.y, block.position.z)) == 0.0f)
+                    rep = &p;
             }
             REQUIRE(rep != nullptr);
             const ref::ShadingPoint x = shading_point(*rep);
@@ -105,11 +108,13 @@ TEST_CASE("hybrid cuts: no overlap, first-leaf order, and the double reference's
             CHECK(gpu == expected);
             matched += gpu == expected;
         }
-        MESSAGE("cut size " << cut_size << ": " << matched << " of " << blocks_x * blocks_y << " blocks match the reference");
+        MESSAGE("cut size " << cut_size << ": " << matched << " of " << blocks_x * blocks_y
+                            << " blocks match the reference");
     }
 }
 
-TEST_CASE("hybrid cuts: every block's cut covers every VPL with light, also those its representative sees from behind") {
+TEST_CASE(
+    "hybrid cuts: every block's cut covers every VPL with light, also those its representative sees from behind") {
     // A cut serves every pixel of its block and the pixels that blend with it: a node left out
     // because the representative pixel sees its box only from behind would lose its light for
     // pixels elsewhere that do see it (with spp >= 2, a representative behind the root's box had

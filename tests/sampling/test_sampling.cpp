@@ -63,7 +63,8 @@ MeanCheck check_mean(const Scene& scene, RunOptions options, uint32_t seeds, con
             check.worst_z = std::max(check.worst_z, z);
             if (z > 4.5) {
                 ++check.outside;
-                MESSAGE("pixel " << i << " channel " << c << ": mean " << mean << " exact " << truth[i][c] << " sigma " << sigma);
+                MESSAGE("pixel " << i << " channel " << c << ": mean " << mean << " exact " << truth[i][c] << " sigma "
+                                 << sigma);
             }
         }
     }
@@ -99,7 +100,8 @@ TEST_CASE("hybrid: 1x1 blocks without early stop or shadows give the exact sum o
     CHECK(check.outside == 0);
 }
 
-TEST_CASE("hybrid with rtslc's traversal (sec. 7.1's protocol): 1x1 blocks without shadows give the exact sum on average") {
+TEST_CASE(
+    "hybrid with rtslc's traversal (sec. 7.1's protocol): 1x1 blocks without shadows give the exact sum on average") {
     // rtslc's min/max-distance weights bound the light, so their tail is short: 300 seeds, and
     // 100 to see that the worst z does not grow with the count (a bias would).
     const Scene scene = room(8, 6, 200);

@@ -184,15 +184,19 @@ TEST_CASE("hybrid: cut blending's bilinear and normalized weights sum to 1") {
         p.normal = {n.x, n.y, n.z};
     }
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    auto block_buffer = vplkit::Buffer::create(ctx, blocks.size() * sizeof(blocks[0]), storage, vplkit::MemoryUse::device, "blocks");
-    auto pixel_buffer = vplkit::Buffer::create(ctx, pixels.size() * sizeof(pixels[0]), storage, vplkit::MemoryUse::device, "pixels");
-    auto results = vplkit::Buffer::create(ctx, pixels.size() * sizeof(vplkit::sampling_test::BlendResult), storage, vplkit::MemoryUse::device, "results");
+    auto block_buffer =
+        vplkit::Buffer::create(ctx, blocks.size() * sizeof(blocks[0]), storage, vplkit::MemoryUse::device, "blocks");
+    auto pixel_buffer =
+        vplkit::Buffer::create(ctx, pixels.size() * sizeof(pixels[0]), storage, vplkit::MemoryUse::device, "pixels");
+    auto results = vplkit::Buffer::create(ctx, pixels.size() * sizeof(vplkit::sampling_test::BlendResult), storage,
+                                          vplkit::MemoryUse::device, "results");
     block_buffer.upload(blocks);
     pixel_buffer.upload(pixels);
     const float min_cos = 0.97f, max_distance = 0.7f;
     const auto& pipeline = ctx.pipeline<shader::Pipeline>();
     vplkit::PassList passes("blend weights");
-    passes.add("blend weights", {vplkit::Use::read(block_buffer), vplkit::Use::read(pixel_buffer), vplkit::Use::write(results)},
+    passes.add("blend weights",
+               {vplkit::Use::read(block_buffer), vplkit::Use::read(pixel_buffer), vplkit::Use::write(results)},
                [&](VkCommandBuffer cmd) {
                    shader::Bindings b;
                    b.blocks = block_buffer.descriptor();
@@ -224,7 +228,8 @@ TEST_CASE("hybrid: cut blending's bilinear and normalized weights sum to 1") {
                 bilinear_sum += bilinear[i];
                 const auto& b = blocks[block_y[i] * bx + block_x[i]];
                 const auto& p = pixels[y * width + x];
-                const double dot = double(p.normal.x) * b.normal.x + double(p.normal.y) * b.normal.y + double(p.normal.z) * b.normal.z;
+                const double dot =
+                    double(p.normal.x) * b.normal.x + double(p.normal.y) * b.normal.y + double(p.normal.z) * b.normal.z;
                 const double dx = p.position.x - b.position.x, dz = p.position.z - b.position.z;
                 const bool similar = b.covered && dot > min_cos && dx * dx + dz * dz < max_distance * max_distance;
                 expected[i] = similar ? w : 0.0;
@@ -259,21 +264,23 @@ TEST_CASE("sst and hybrid: a child is taken with exactly the probability its lig
     vplkit::Context& ctx = vplkit::test::context();
     namespace shader = vplkit::sampling_test::child_probability;
     std::vector<vplkit::shaders::vec4> weights = {
-        {1.0f, 1.0f, 1e-9f, 1.0f},   // the right child 1e-9 as bright: p_left rounded to 1 in float
-        {1e-9f, 1.0f, 1.0f, 1.0f},   // the left child below 2^-24
-        {0.0f, 1.0f, 1.0f, 1.0f},    // the left child dark: exactly 0
-        {1.0f, 1.0f, 0.0f, 1.0f},    // the right child dark: exactly 1
-        {0.0f, 1.0f, 0.0f, 1.0f},    // both dark: a dead branch (< 0)
+        {1.0f, 1.0f, 1e-9f, 1.0f},  // the right child 1e-9 as bright: p_left rounded to 1 in float
+        {1e-9f, 1.0f, 1.0f, 1.0f},  // the left child below 2^-24
+        {0.0f, 1.0f, 1.0f, 1.0f},   // the left child dark: exactly 0
+        {1.0f, 1.0f, 0.0f, 1.0f},   // the right child dark: exactly 1
+        {0.0f, 1.0f, 0.0f, 1.0f},   // both dark: a dead branch (< 0)
     };
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> exponent(-12.0f, 12.0f);
     for (int i = 0; i < 500; ++i) {
-        weights.push_back({std::pow(10.0f, exponent(rng)), std::pow(10.0f, exponent(rng) / 4.0f), std::pow(10.0f, exponent(rng)),
-                           std::pow(10.0f, exponent(rng) / 4.0f)});
+        weights.push_back({std::pow(10.0f, exponent(rng)), std::pow(10.0f, exponent(rng) / 4.0f),
+                           std::pow(10.0f, exponent(rng)), std::pow(10.0f, exponent(rng) / 4.0f)});
     }
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
-    auto in = vplkit::Buffer::create(ctx, weights.size() * sizeof(weights[0]), storage, vplkit::MemoryUse::device, "weights");
-    auto out = vplkit::Buffer::create(ctx, weights.size() * sizeof(float), storage, vplkit::MemoryUse::device, "probabilities");
+    auto in =
+        vplkit::Buffer::create(ctx, weights.size() * sizeof(weights[0]), storage, vplkit::MemoryUse::device, "weights");
+    auto out = vplkit::Buffer::create(ctx, weights.size() * sizeof(float), storage, vplkit::MemoryUse::device,
+                                      "probabilities");
     in.upload(weights);
     const auto& pipeline = ctx.pipeline<shader::Pipeline>();
     vplkit::PassList passes("child probability");
@@ -313,7 +320,11 @@ TEST_CASE("sst and hybrid: a child is taken with exactly the probability its lig
 TEST_CASE("sst and hybrid: bad options are refused by name") {
     using vplkit::stages::HybridOptions;
     using vplkit::stages::SstGiOptions;
-    auto sst = [](uint32_t spp) { SstGiOptions o; o.samples_per_pixel = spp; vplkit::stages::validate(o); };
+    auto sst = [](uint32_t spp) {
+        SstGiOptions o;
+        o.samples_per_pixel = spp;
+        vplkit::stages::validate(o);
+    };
     CHECK_THROWS_WITH_AS(sst(0), doctest::Contains("samples per pixel"), vplkit::Error);
     CHECK_THROWS_WITH_AS(sst(65), doctest::Contains("samples per pixel"), vplkit::Error);
     auto hybrid = [](auto change) {
@@ -323,11 +334,14 @@ TEST_CASE("sst and hybrid: bad options are refused by name") {
         vplkit::stages::validate(o);
     };
     CHECK_NOTHROW(hybrid([](HybridOptions&) {}));
-    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.samples_per_pixel = 0; }), doctest::Contains("cut size"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.block_size = 33; }), doctest::Contains("block size"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_min_cos = 2.0f; }), doctest::Contains("min cos"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = 0.0f; }), doctest::Contains("max distance"),
+    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.samples_per_pixel = 0; }), doctest::Contains("cut size"),
                          vplkit::Error);
-    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = NAN; }), doctest::Contains("max distance"),
+    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.block_size = 33; }), doctest::Contains("block size"),
                          vplkit::Error);
+    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_min_cos = 2.0f; }), doctest::Contains("min cos"),
+                         vplkit::Error);
+    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = 0.0f; }),
+                         doctest::Contains("max distance"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = NAN; }),
+                         doctest::Contains("max distance"), vplkit::Error);
 }

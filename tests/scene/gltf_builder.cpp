@@ -218,8 +218,12 @@ std::vector<uint8_t> png(uint32_t width, uint32_t height, const std::vector<uint
     return out;
 }
 
-std::string source_dir() { return VPLKIT_SOURCE_DIR; }
+std::string source_dir() {
+    return VPLKIT_SOURCE_DIR;
+}
 
-fs::path shared_scenes() { return (fs::path(VPLKIT_SOURCE_DIR) / ".." / "shared" / "scenes").lexically_normal(); }
+fs::path shared_scenes() {
+    return (fs::path(VPLKIT_SOURCE_DIR) / ".." / "shared" / "scenes").lexically_normal();
+}
 
 }  // namespace scene_test

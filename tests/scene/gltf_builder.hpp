@@ -24,7 +24,7 @@ inline constexpr int kFloat = 5126;
 
 // A fresh empty directory for one test case, removed with everything in it at destruction.
 class TempDir {
- public:
+public:
     explicit TempDir(const std::string& name);
     ~TempDir();
     TempDir(const TempDir&) = delete;
@@ -32,7 +32,7 @@ class TempDir {
     const fs::path& path() const { return path_; }
     fs::path operator/(const std::string& name) const { return path_ / name; }
 
- private:
+private:
     fs::path path_;
 };
 
@@ -42,7 +42,7 @@ std::string base64(const std::vector<uint8_t>& bytes);
 std::string json_float(double v);
 
 class GltfBuilder {
- public:
+public:
     // Each entry is one JSON object, without brackets around the array.
     std::vector<std::string> buffer_views, accessors, meshes, nodes, materials, textures, images, samplers, cameras,
         lights;

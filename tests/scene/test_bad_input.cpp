@@ -45,7 +45,9 @@ GltfBuilder quad_builder() {
     return b;
 }
 
-void put_float(std::vector<uint8_t>& bin, size_t offset, float value) { std::memcpy(bin.data() + offset, &value, 4); }
+void put_float(std::vector<uint8_t>& bin, size_t offset, float value) {
+    std::memcpy(bin.data() + offset, &value, 4);
+}
 
 }  // namespace
 

@@ -19,8 +19,12 @@ namespace {
 
 constexpr float kTolerance = 1e-5f;
 
-bool near(glm::vec3 a, glm::vec3 b) { return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(kTolerance))); }
-bool near(glm::vec4 a, glm::vec4 b) { return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec4(kTolerance))); }
+bool near(glm::vec3 a, glm::vec3 b) {
+    return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(kTolerance)));
+}
+bool near(glm::vec4 a, glm::vec4 b) {
+    return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec4(kTolerance)));
+}
 
 // A material with a normal texture (a 1x1 PNG written next to the file): what makes the loader
 // generate tangents.

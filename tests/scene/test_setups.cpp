@@ -18,7 +18,9 @@ using namespace scene_test;
 
 namespace {
 
-fs::path setups_file() { return fs::path(source_dir()) / "scenes" / "setups.txt"; }
+fs::path setups_file() {
+    return fs::path(source_dir()) / "scenes" / "setups.txt";
+}
 
 std::string setups_error(const std::string& text) {
     TempDir dir("setups_error");
@@ -39,11 +41,11 @@ void check_contains(const std::string& message, std::initializer_list<const char
 
 // Changes the working directory for the lifetime of the object.
 class WorkingDirectory {
- public:
+public:
     explicit WorkingDirectory(const fs::path& path) : previous_(fs::current_path()) { fs::current_path(path); }
     ~WorkingDirectory() { fs::current_path(previous_); }
 
- private:
+private:
     fs::path previous_;
 };
 

@@ -23,7 +23,9 @@ namespace {
 constexpr float kTolerance = 1e-5f;
 const double kHalfSqrt2 = std::sqrt(0.5);
 
-bool near(glm::vec3 a, glm::vec3 b) { return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(kTolerance))); }
+bool near(glm::vec3 a, glm::vec3 b) {
+    return glm::all(glm::lessThanEqual(glm::abs(a - b), glm::vec3(kTolerance)));
+}
 
 // Node layout (roots A, C, D, G; A's children B and E):
 //   A: T(1,2,3) R_z(90) S(2)                 mesh 0 (triangle (0,0,0) (1,0,0) (0,1,0), normal +z)

@@ -112,7 +112,9 @@ std::vector<ref::SstLeaf> reference_leaves(const Scene& scene) {
     return leaves;
 }
 
-ref::SstThresholds thresholds(const SstOptions& options) { return {options.nu_min, options.sigma_max}; }
+ref::SstThresholds thresholds(const SstOptions& options) {
+    return {options.nu_min, options.sigma_max};
+}
 
 std::vector<SstNode> build_on_gpu(const Scene& scene, const SstOptions& options = {}) {
     vplkit::Context& ctx = vplkit::test::context();
@@ -141,9 +143,13 @@ std::vector<SstNode> build_on_gpu(const Scene& scene, const SstOptions& options 
     return nodes.download<SstNode>(node_count);
 }
 
-ref::Double3 d3(const vec3& v) { return {v.x, v.y, v.z}; }
+ref::Double3 d3(const vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
-bool finite(const vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 bool all_finite(const SstNode& n) {
     return finite(n.mean) && std::isfinite(n.intensity) && finite(n.normal) && std::isfinite(n.nu) &&
@@ -152,8 +158,8 @@ bool all_finite(const SstNode& n) {
 
 bool is_all_zero(const SstNode& n) {
     auto zero = [](const vec3& v) { return v.x == 0.0f && v.y == 0.0f && v.z == 0.0f; };
-    return zero(n.mean) && n.intensity == 0.0f && zero(n.normal) && n.nu == 0.0f && zero(n.variance) &&
-           n.flags == 0u && zero(n.box_lo) && n.leaf_count == 0u && zero(n.box_hi) && zero(n.colour);
+    return zero(n.mean) && n.intensity == 0.0f && zero(n.normal) && n.nu == 0.0f && zero(n.variance) && n.flags == 0u &&
+           zero(n.box_lo) && n.leaf_count == 0u && zero(n.box_hi) && zero(n.colour);
 }
 
 bool near3(const vec3& gpu, const ref::Double3& r, double tol) {
@@ -164,7 +170,9 @@ bool near3(const vec3& gpu, const ref::Double3& r, double tol) {
     return true;
 }
 
-bool exact3(const vec3& gpu, const ref::Double3& r) { return d3(gpu) == r; }
+bool exact3(const vec3& gpu, const ref::Double3& r) {
+    return d3(gpu) == r;
+}
 
 bool suitability_ambiguous(const ref::SstNodeRef& r, const ref::SstThresholds& th) {
     const double sigma2 = double(th.sigma_max) * double(th.sigma_max);
@@ -318,7 +326,8 @@ TEST_CASE("sst: anti-parallel normals fall back to the brighter child normal") {
     }
     SUBCASE("a slightly brighter right child gives its normal") {
         // a - b = -5e-5: the merged normal is far shorter than 1e-3
-        const Scene scene = padded({make_vpl({0, 0, 0}, up, {1, 1, 1}), make_vpl({0, 0, 1}, down, {1.0001f, 1.0001f, 1.0001f})});
+        const Scene scene =
+            padded({make_vpl({0, 0, 0}, up, {1, 1, 1}), make_vpl({0, 0, 1}, down, {1.0001f, 1.0001f, 1.0001f})});
         const auto gpu = build_on_gpu(scene);
         CHECK(gpu[0].flags == 2u);
         CHECK(exact3(gpu[0].normal, {0.0, 0.0, -1.0}));
@@ -439,8 +448,8 @@ TEST_CASE("sst: scenes at 1e-3 and 1e4 scale far from the origin match the refer
 TEST_CASE("sst: intensities from 1e-6 to 1e6 keep variances non-negative and match") {
     for (uint32_t seed : {11u, 12u, 13u}) {
         CAPTURE(seed);
-        const Scene scene =
-            random_scene({.count = 1000, .seed = seed, .extent = 10.0, .flux_lo = 1e-6, .flux_hi = 1e6, .log_flux = true});
+        const Scene scene = random_scene(
+            {.count = 1000, .seed = seed, .extent = 10.0, .flux_lo = 1e-6, .flux_hi = 1e6, .log_flux = true});
         const Comparison c = build_and_compare(scene);
         CHECK(c.ambiguous_flags <= c.nodes / 50);
     }
@@ -473,9 +482,9 @@ std::vector<Vpl> patch(uint32_t side_log2, double spacing, double radius, double
             nrm = {0.0, 0.0, 1.0};
         }
         const double dz = z_noise * u(rng);
-        vpls.push_back(make_vpl({float(origin[0] + p[0] + nrm[0] * dz), float(origin[1] + p[1]),
-                                 float(origin[2] + p[2] + nrm[2] * dz)},
-                                unit(nrm[0], nrm[1], nrm[2]), {1.0f, 0.8f, 0.6f}));
+        vpls.push_back(make_vpl(
+            {float(origin[0] + p[0] + nrm[0] * dz), float(origin[1] + p[1]), float(origin[2] + p[2] + nrm[2] * dz)},
+            unit(nrm[0], nrm[1], nrm[2]), {1.0f, 0.8f, 0.6f}));
     }
     return vpls;
 }
@@ -484,7 +493,8 @@ std::vector<Vpl> patch(uint32_t side_log2, double spacing, double radius, double
 
 TEST_CASE("sst: suitability flags at the thesis and the paper thresholds") {
     SUBCASE("two VPLs: nu = 0.6 between the thresholds") {
-        const Scene scene = padded({make_vpl({0, 0, 0}, {0, 0, 1}, {1, 1, 1}), make_vpl({0, 0, 0}, {0.8f, 0, 0.6f}, {1, 1, 1})});
+        const Scene scene =
+            padded({make_vpl({0, 0, 0}, {0, 0, 1}, {1, 1, 1}), make_vpl({0, 0, 0}, {0.8f, 0, 0.6f}, {1, 1, 1})});
         const auto thesis = build_on_gpu(scene, kThesis);
         const auto paper = build_on_gpu(scene, kPaper);
         CHECK(thesis[0].nu == doctest::Approx(0.6).epsilon(1e-6));
@@ -493,7 +503,8 @@ TEST_CASE("sst: suitability flags at the thesis and the paper thresholds") {
     }
     SUBCASE("two VPLs: sigma_z = 0.2 between the thresholds") {
         // equal weights 0.4 apart along the normal: var_z = a b d^2 = 0.04
-        const Scene scene = padded({make_vpl({0, 0, 0}, {0, 0, 1}, {1, 1, 1}), make_vpl({0, 0, 0.4f}, {0, 0, 1}, {1, 1, 1})});
+        const Scene scene =
+            padded({make_vpl({0, 0, 0}, {0, 0, 1}, {1, 1, 1}), make_vpl({0, 0, 0.4f}, {0, 0, 1}, {1, 1, 1})});
         const auto thesis = build_on_gpu(scene, kThesis);
         const auto paper = build_on_gpu(scene, kPaper);
         CHECK(thesis[0].variance.z == doctest::Approx(0.04).epsilon(1e-6));
@@ -623,7 +634,8 @@ TEST_CASE("sst: tree invariants hold on the GPU tree") {
         CHECK(n.mean.z <= n.box_hi.z + slack);
         CHECK(n.nu <= std::min(l.nu, r.nu) * (1.0f + 4e-7f));
         CHECK(std::abs(std::sqrt(double(n.normal.x) * n.normal.x + double(n.normal.y) * n.normal.y +
-                                 double(n.normal.z) * n.normal.z) - 1.0) <= 1e-6);
+                                 double(n.normal.z) * n.normal.z) -
+                       1.0) <= 1e-6);
     }
     CHECK(gpu[0].leaf_count == scene.count);
     CHECK(gpu[0].intensity == doctest::Approx(total).epsilon(1e-5));
@@ -641,8 +653,8 @@ TEST_CASE("sst: many small workgroups merge across workgroups") {
 
 TEST_CASE("sst: bad arguments are refused with a message") {
     vplkit::Context& ctx = vplkit::test::context();
-    auto leaves = vplkit::Buffer::create(ctx, 8 * sizeof(Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device,
-                                         "leaves");
+    auto leaves = vplkit::Buffer::create(ctx, 8 * sizeof(Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                         vplkit::MemoryUse::device, "leaves");
     auto nodes = vplkit::Buffer::create(ctx, 7 * sizeof(SstNode), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                         vplkit::MemoryUse::device, "nodes");
     auto small = vplkit::Buffer::create(ctx, 6 * sizeof(SstNode), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -659,9 +671,9 @@ TEST_CASE("sst: bad arguments are refused with a message") {
                          vplkit::Error);
     CHECK_THROWS_WITH_AS(add_sst_passes(ctx, passes, leaves, nodes, counters, 5, {.sigma_max = -1.0f}),
                          doctest::Contains("sigma_max"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(add_sst_passes(ctx, passes, leaves, nodes, counters, 5,
-                                        {.nu_min = std::numeric_limits<float>::quiet_NaN()}),
-                         doctest::Contains("finite"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(
+        add_sst_passes(ctx, passes, leaves, nodes, counters, 5, {.nu_min = std::numeric_limits<float>::quiet_NaN()}),
+        doctest::Contains("finite"), vplkit::Error);
     CHECK_THROWS_WITH_AS(add_sst_passes(ctx, passes, leaves, nodes, counters, 5, {.workgroup_size = 0}),
                          doctest::Contains("workgroup size"), vplkit::Error);
     CHECK(passes.size() == 0);

@@ -16,7 +16,9 @@ namespace {
 
 namespace ref = vplkit::reference;
 
-double dot(const ref::Double3& a, const ref::Double3& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+double dot(const ref::Double3& a, const ref::Double3& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
 
 std::array<float, 3> unit(double x, double y, double z) {
     double l = std::sqrt(x * x + y * y + z * z);
@@ -98,7 +100,8 @@ TEST_CASE("sst reference: coplanar VPLs with one normal have the direct per-axis
     ref::sst_frame(root.normal, t_axis, b_axis);
     CHECK(root.variance[0] == doctest::Approx(ref::direct_variance_along(leaves, direct.mean, t_axis)).epsilon(1e-9));
     CHECK(root.variance[1] == doctest::Approx(ref::direct_variance_along(leaves, direct.mean, b_axis)).epsilon(1e-9));
-    CHECK(root.variance[2] == doctest::Approx(ref::direct_variance_along(leaves, direct.mean, root.normal)).epsilon(1e-9));
+    CHECK(root.variance[2] ==
+          doctest::Approx(ref::direct_variance_along(leaves, direct.mean, root.normal)).epsilon(1e-9));
     CHECK(root.nu == doctest::Approx(1.0).epsilon(1e-12));
 }
 

@@ -33,7 +33,8 @@ TEST_CASE("binding access: readonly, writeonly and read-write bindings of kit sh
     CHECK(binding_access(sst::kSetLayoutBindings, sst::kBindingAccess, sst::kBindingGiCounters) == Access::read_write);
     namespace exact = vplkit::shaders::exact_gi;
     // exact_gi adds each chunk onto the image: read and written.
-    CHECK(binding_access(exact::kSetLayoutBindings, exact::kBindingAccess, exact::kBindingIndirect) == Access::read_write);
+    CHECK(binding_access(exact::kSetLayoutBindings, exact::kBindingAccess, exact::kBindingIndirect) ==
+          Access::read_write);
     CHECK(binding_access(exact::kSetLayoutBindings, exact::kBindingAccess, exact::kBindingVpls) == Access::read);
     namespace build = vplkit::shaders::build_sst;
     CHECK(binding_access(build::kSetLayoutBindings, build::kBindingAccess, build::kBindingLeaves) == Access::read);

@@ -62,7 +62,8 @@ void check_sorted(const std::vector<uint64_t>& keys, const std::vector<uint32_t>
     CHECK(gpu_as_set == expected);
 }
 
-void check_random(uint32_t count, uint64_t key_range, uint32_t seed, const vplkit::stages::BitonicSortOptions& options = {}) {
+void check_random(uint32_t count, uint64_t key_range, uint32_t seed,
+                  const vplkit::stages::BitonicSortOptions& options = {}) {
     std::mt19937_64 rng(seed);
     std::uniform_int_distribution<uint64_t> key(0, key_range);
     std::vector<uint64_t> keys(count);
@@ -102,8 +103,8 @@ TEST_CASE("bitonic sort: 2^16 + 1 pairs") {
 }
 
 TEST_CASE("bitonic sort: many duplicate keys") {
-    check_random(3000, 5, 11);    // six distinct keys
-    check_random(1000, 0, 12);    // all keys equal
+    check_random(3000, 5, 11);  // six distinct keys
+    check_random(1000, 0, 12);  // all keys equal
 }
 
 TEST_CASE("bitonic sort: keys equal to the padding's +infinity stay in range") {

@@ -87,8 +87,8 @@ TEST_CASE("gather leaves: a leaf buffer too small is refused") {
     vplkit::Context& ctx = vplkit::test::context();
     auto vpls = vplkit::Buffer::create(ctx, 5 * sizeof(Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
     auto order = vplkit::Buffer::create(ctx, 5 * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    auto leaves = vplkit::Buffer::create(ctx, 5 * sizeof(Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device,
-                                         "small leaves");
+    auto leaves = vplkit::Buffer::create(ctx, 5 * sizeof(Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                         vplkit::MemoryUse::device, "small leaves");
     vplkit::PassList passes;
     CHECK_THROWS_WITH_AS(vplkit::stages::add_gather_leaves_pass(ctx, passes, vpls, order, leaves, 5),
                          doctest::Contains("fewer than the 8 leaves"), vplkit::Error);

@@ -28,9 +28,11 @@ struct Result {
     uint32_t non_finite = 0;
 };
 
-Result run_tonemap(uint32_t width, uint32_t height, const std::vector<std::array<float, 4>>& hdr_texels, float exposure) {
+Result run_tonemap(uint32_t width, uint32_t height, const std::vector<std::array<float, 4>>& hdr_texels,
+                   float exposure) {
     vplkit::Context& ctx = vplkit::test::context();
-    auto hdr = vplkit::Image::create(ctx, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "hdr");
+    auto hdr =
+        vplkit::Image::create(ctx, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "hdr");
     auto ldr = vplkit::Image::create(ctx, width, height, VK_FORMAT_R8G8B8A8_UNORM, VK_IMAGE_USAGE_STORAGE_BIT, "ldr");
     auto stats = vplkit::Buffer::create(ctx, vplkit::stages::kTonemapStatsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                         vplkit::MemoryUse::device, "tonemap stats");
@@ -52,7 +54,8 @@ TEST_CASE("tonemap: matches the reference from 1e-6 to 1e6") {
     std::uniform_real_distribution<float> log10_value(-6.0f, 6.0f);
     std::vector<std::array<float, 4>> hdr(width * height);
     for (auto& t : hdr) {
-        t = {std::pow(10.0f, log10_value(rng)), std::pow(10.0f, log10_value(rng)), std::pow(10.0f, log10_value(rng)), 1.0f};
+        t = {std::pow(10.0f, log10_value(rng)), std::pow(10.0f, log10_value(rng)), std::pow(10.0f, log10_value(rng)),
+             1.0f};
     }
     hdr[0] = {0.0f, 0.0f, 0.0f, 1.0f};
     hdr[1] = {-5.0f, 0.5f, 1e30f, 1.0f};  // negative radiance clamps to 0; huge saturates

@@ -30,8 +30,8 @@
 
 namespace {
 
-using vplkit::shaders::Vpl;
 using vplkit::shaders::vec3;
+using vplkit::shaders::Vpl;
 using Float3 = std::array<float, 3>;
 
 constexpr double kCellMargin = 1e-3;
@@ -46,7 +46,9 @@ Vpl make_vpl(Float3 p, Float3 n) {
     return vpl;
 }
 
-Float3 to_array(const vec3& v) { return {v.x, v.y, v.z}; }
+Float3 to_array(const vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
 float ordered_to_float(uint32_t u) {
     uint32_t bits = (u & 0x80000000u) ? (u & 0x7fffffffu) : ~u;
@@ -198,9 +200,21 @@ TEST_CASE("vpl keys: normals on the axes and on octant and subdivision borders")
     // triangle; -0 counts as positive) is checked for real.
     const float d2 = 1.0f / std::sqrt(2.0f), d3 = 1.0f / std::sqrt(3.0f);
     const std::vector<Float3> normals = {
-        {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1},
-        {d2, d2, 0}, {-d2, 0, d2}, {0, -d2, -d2}, {d3, d3, d3}, {-d3, d3, -d3},
-        {-0.0f, 1, 0}, {0.5f, 0.25f, 0.25f}, {0.25f, 0.75f, 0.0f}, {0, 0, 0},
+        {1, 0, 0},
+        {-1, 0, 0},
+        {0, 1, 0},
+        {0, -1, 0},
+        {0, 0, 1},
+        {0, 0, -1},
+        {d2, d2, 0},
+        {-d2, 0, d2},
+        {0, -d2, -d2},
+        {d3, d3, d3},
+        {-d3, d3, -d3},
+        {-0.0f, 1, 0},
+        {0.5f, 0.25f, 0.25f},
+        {0.25f, 0.75f, 0.0f},
+        {0, 0, 0},
     };
     std::vector<Vpl> vpls;
     for (const Float3& n : normals) {

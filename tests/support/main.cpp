@@ -10,18 +10,18 @@
 #include <cstdio>
 
 int main(int argc, char** argv) {
-  doctest::Context runner;
-  runner.applyCommandLine(argc, argv);
-  int result = runner.run();
-  if (runner.shouldExit()) return result;
+    doctest::Context runner;
+    runner.applyCommandLine(argc, argv);
+    int result = runner.run();
+    if (runner.shouldExit()) return result;
 
-  vplkit::test::detail::destroy_shared_context();
-  auto& s = vplkit::test::detail::state();
-  std::lock_guard lock(s.mutex);
-  if (!s.outside_tests.empty()) {
-    std::fprintf(stderr, "vplkit test: %zu validation message(s) outside test cases (see above): failing\n",
-                 s.outside_tests.size());
-    if (result == 0) result = 1;
-  }
-  return result;
+    vplkit::test::detail::destroy_shared_context();
+    auto& s = vplkit::test::detail::state();
+    std::lock_guard lock(s.mutex);
+    if (!s.outside_tests.empty()) {
+        std::fprintf(stderr, "vplkit test: %zu validation message(s) outside test cases (see above): failing\n",
+                     s.outside_tests.size());
+        if (result == 0) result = 1;
+    }
+    return result;
 }

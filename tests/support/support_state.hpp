@@ -11,11 +11,11 @@
 namespace vplkit::test::detail {
 
 struct State {
-  std::mutex mutex;
-  std::unique_ptr<Context> shared;
-  int capture_depth = 0;
-  std::vector<ValidationMessage> captured;
-  std::vector<ValidationMessage> outside_tests;  // e.g. leaks reported when the context dies
+    std::mutex mutex;
+    std::unique_ptr<Context> shared;
+    int capture_depth = 0;
+    std::vector<ValidationMessage> captured;
+    std::vector<ValidationMessage> outside_tests;  // e.g. leaks reported when the context dies
 };
 
 State& state();

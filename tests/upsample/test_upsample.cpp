@@ -92,28 +92,41 @@ Scene make_scene(uint32_t width, uint32_t height) {
             const float fx = float(x) * kSpacing, fz = float(y) * kSpacing;
             glm::vec3 p{0.0f}, n{0.0f, 1.0f, 0.0f};
             switch (region) {
-                case Region::background: break;
-                case Region::plane_a: p = {fx, 0.0f, fz}; break;
+                case Region::background:
+                    break;
+                case Region::plane_a:
+                    p = {fx, 0.0f, fz};
+                    break;
                 case Region::plane_b: {
                     const float along = (float(x) - 7.5f) * kSpacing;
                     p = {7.5f * kSpacing + along * c60, along * s60, fz};
                     n = {-s60, c60, 0.0f};
                     break;
                 }
-                case Region::floor_c: p = {fx, -3.0f, fz}; break;
+                case Region::floor_c:
+                    p = {fx, -3.0f, fz};
+                    break;
                 // Off the pixel centre in x and z so that no two fallback candidates are at the
                 // same distance.
-                case Region::thin: p = {fx + 0.013f, 0.05f, fz + 0.017f}; n = {0.0f, 0.6f, 0.8f}; break;
-                case Region::isolated: p = {fx, 0.3f, fz}; break;
-                case Region::facing_away: p = {fx, -2.98f, fz}; n = {0.0f, -1.0f, 0.0f}; break;
+                case Region::thin:
+                    p = {fx + 0.013f, 0.05f, fz + 0.017f};
+                    n = {0.0f, 0.6f, 0.8f};
+                    break;
+                case Region::isolated:
+                    p = {fx, 0.3f, fz};
+                    break;
+                case Region::facing_away:
+                    p = {fx, -2.98f, fz};
+                    n = {0.0f, -1.0f, 0.0f};
+                    break;
             }
             const bool planar = region == Region::plane_a || region == Region::plane_b || region == Region::floor_c;
             if (planar) n = glm::normalize(n + glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
             const bool covered = region != Region::background;
             scene.regions.push_back(region);
             scene.position.push_back({p.x, p.y, p.z, covered ? 1.0f : 0.0f});
-            scene.normal.push_back({n.x, n.y, n.z, unit(rng)});      // w: roughness
-            scene.geometric.push_back({n.x, n.y, n.z, unit(rng)});   // w: metallic
+            scene.normal.push_back({n.x, n.y, n.z, unit(rng)});     // w: roughness
+            scene.geometric.push_back({n.x, n.y, n.z, unit(rng)});  // w: metallic
             scene.albedo.push_back(to_half(unit(rng), unit(rng), unit(rng), 1.0f));
             scene.emission.push_back(to_half(unit(rng), 0.0f, unit(rng), 0.0f));
         }
@@ -201,10 +214,14 @@ ref::UpsampleResult run_reference(const Scene& scene, const std::vector<Texel>& 
 // Per plane: a value a blend across planes could not produce by accident.
 Texel plane_constant(Region region) {
     switch (region) {
-        case Region::plane_a: return {1.0f, 2.0f, 3.0f, 0.0f};
-        case Region::plane_b: return {100.0f, 200.0f, 300.0f, 0.0f};
-        case Region::floor_c: return {1e4f, 2e4f, 3e4f, 0.0f};
-        default: return {0.0f, 0.0f, 0.0f, 0.0f};
+        case Region::plane_a:
+            return {1.0f, 2.0f, 3.0f, 0.0f};
+        case Region::plane_b:
+            return {100.0f, 200.0f, 300.0f, 0.0f};
+        case Region::floor_c:
+            return {1e4f, 2e4f, 3e4f, 0.0f};
+        default:
+            return {0.0f, 0.0f, 0.0f, 0.0f};
     }
 }
 
@@ -297,11 +314,19 @@ TEST_CASE("upsample: matches the double reference on a crease, a depth jump and 
                 }
                 // What the scene was built to show, pixel by pixel.
                 switch (scene.region(x, y)) {
-                    case Region::background: CHECK(e.outcome == ref::UpsampleOutcome::background); break;
-                    case Region::thin: CHECK(e.outcome == ref::UpsampleOutcome::fallback); break;
+                    case Region::background:
+                        CHECK(e.outcome == ref::UpsampleOutcome::background);
+                        break;
+                    case Region::thin:
+                        CHECK(e.outcome == ref::UpsampleOutcome::fallback);
+                        break;
                     case Region::isolated:
-                    case Region::facing_away: CHECK(e.outcome == ref::UpsampleOutcome::empty); break;
-                    default: CHECK(e.outcome == ref::UpsampleOutcome::blended); break;
+                    case Region::facing_away:
+                        CHECK(e.outcome == ref::UpsampleOutcome::empty);
+                        break;
+                    default:
+                        CHECK(e.outcome == ref::UpsampleOutcome::blended);
+                        break;
                 }
             }
         }
@@ -401,16 +426,18 @@ TEST_CASE("upsample: bad options and mismatched sizes are refused") {
         CAPTURE(min_cos);
         stages::UpsampleOptions o = good;
         o.min_cos = min_cos;
-        CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
-                             doctest::Contains("min_cos"), vplkit::Error);
+        CHECK_THROWS_WITH_AS(
+            stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
+            doctest::Contains("min_cos"), vplkit::Error);
     }
     // The default max_distance (0) must be replaced by a scene-relative one.
     for (float max_distance : {0.0f, -1.0f, nan, inf}) {
         CAPTURE(max_distance);
         stages::UpsampleOptions o = good;
         o.max_distance = max_distance;
-        CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
-                             doctest::Contains("max_distance"), vplkit::Error);
+        CHECK_THROWS_WITH_AS(
+            stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
+            doctest::Contains("max_distance"), vplkit::Error);
     }
     CHECK_THROWS_WITH_AS(
         stages::add_upsample_pass(ctx, passes, full, wrong_half, half_indirect, full_indirect, counters, good),
@@ -419,8 +446,9 @@ TEST_CASE("upsample: bad options and mismatched sizes are refused") {
     CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, wrong_size, full_indirect, counters, good),
                          doctest::Contains("'small half' (8x5"), vplkit::Error);
     auto wrong_format = make_indirect(16, 12, "half-float full", VK_FORMAT_R16G16B16A16_SFLOAT);
-    CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, half_indirect, wrong_format, counters, good),
-                         doctest::Contains("'half-float full'"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(
+        stages::add_upsample_pass(ctx, passes, full, half, half_indirect, wrong_format, counters, good),
+        doctest::Contains("'half-float full'"), vplkit::Error);
     auto tiny = vplkit::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "tiny");
     CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, tiny, good),
                          doctest::Contains("'tiny' is too small"), vplkit::Error);
@@ -430,6 +458,7 @@ TEST_CASE("upsample: bad options and mismatched sizes are refused") {
     CHECK(stages::upsample_options_for_scene(10.0f).min_cos == 0.9f);
     for (float scale : {0.0f, -1.0f, nan, inf}) {
         CAPTURE(scale);
-        CHECK_THROWS_WITH_AS(stages::upsample_options_for_scene(scale), doctest::Contains("scene scale"), vplkit::Error);
+        CHECK_THROWS_WITH_AS(stages::upsample_options_for_scene(scale), doctest::Contains("scene scale"),
+                             vplkit::Error);
     }
 }

@@ -59,7 +59,8 @@ void add_triangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t 
         scene.vertices.push_back(v);
     }
     scene.triangle_materials.push_back(material);
-    if (scene.materials[material].emits()) scene.emissive_triangles.push_back(uint32_t(scene.triangle_materials.size() - 1));
+    if (scene.materials[material].emits())
+        scene.emissive_triangles.push_back(uint32_t(scene.triangle_materials.size() - 1));
 }
 
 void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material) {
@@ -98,10 +99,10 @@ struct Traced {
 
 // Traces `scene` with `options`; the BVH's ids are the scene's triangle indices.
 class Tracer {
- public:
+public:
     explicit Tracer(const Scene& scene)
-        : bvh_(vplkit::upload_bvh(vplkit::test::context(),
-                                  vplkit::build_bvh(vplkit::scene::triangle_positions(scene)))),
+        : bvh_(
+              vplkit::upload_bvh(vplkit::test::context(), vplkit::build_bvh(vplkit::scene::triangle_positions(scene)))),
           sources_(vplkit::stages::upload_vpl_sources(vplkit::test::context(), scene)) {}
 
     Traced run(const VplTracingOptions& options) {
@@ -127,7 +128,7 @@ class Tracer {
     const vplkit::stages::VplSources& sources() const { return sources_; }
     const vplkit::GpuBvh& bvh() const { return bvh_; }
 
- private:
+private:
     vplkit::GpuBvh bvh_;
     vplkit::stages::VplSources sources_;
 };
@@ -173,9 +174,13 @@ void check_mean_flux(Tracer& tracer, VplTracingOptions options, uint32_t seeds, 
     }
 }
 
-bool finite(const vplkit::shaders::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const vplkit::shaders::vec3& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
-glm::dvec3 to_d(const vplkit::shaders::vec3& v) { return {v.x, v.y, v.z}; }
+glm::dvec3 to_d(const vplkit::shaders::vec3& v) {
+    return {v.x, v.y, v.z};
+}
 
 // Spot power by midpoint quadrature of lights.glsl's squared angular attenuation over the sphere
 // (independent of the closed form upload_vpl_sources uses).

@@ -84,7 +84,8 @@ int main(int argc, char** argv) {
             flux[bounces[i]] += double(vpls[i].flux.x) + vpls[i].flux.y + vpls[i].flux.z;
             ++per_bounce[bounces[i]];
         }
-        std::printf("emitted power (R+G+B): %.4f W\n", double(sources.total_power.x + sources.total_power.y + sources.total_power.z));
+        std::printf("emitted power (R+G+B): %.4f W\n",
+                    double(sources.total_power.x + sources.total_power.y + sources.total_power.z));
         for (uint32_t k = 1; k <= options.max_bounces; ++k) {
             std::printf("bounce %u: %u VPLs, flux (R+G+B) %.4f W\n", k, per_bounce[k], flux[k]);
         }

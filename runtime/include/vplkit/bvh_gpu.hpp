@@ -18,10 +18,10 @@ namespace vplkit {
 class Context;
 
 struct GpuBvh {
-    Buffer nodes;                 // BvhNode[node_count]
-    Buffer triangles;             // BvhTriangle[max(triangle_count, 1)]: never empty (Vulkan has no empty buffers)
+    Buffer nodes;      // BvhNode[node_count]
+    Buffer triangles;  // BvhTriangle[max(triangle_count, 1)]: never empty (Vulkan has no empty buffers)
     uint32_t node_count = 0;
-    uint32_t triangle_count = 0;  // 0 for an empty scene
+    uint32_t triangle_count = 0;       // 0 for an empty scene
     float scene_scale = kBvhMinScale;  // Bvh::scene_scale, for offset_ray_origin
 
     // As the stages take it.
@@ -33,7 +33,7 @@ struct GpuBvh {
 GpuBvh upload_bvh(Context& context, const Bvh& bvh);
 
 // The ray-query stage under the names its callers use (it takes a GpuBvh: GpuBvh converts).
-using stages::TraceMode;
 using stages::add_trace_rays_pass;
+using stages::TraceMode;
 
 }  // namespace vplkit

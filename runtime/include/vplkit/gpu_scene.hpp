@@ -32,107 +32,107 @@ class Context;
 // either colour or data). After create() the whole chain is in SHADER_READ_ONLY_OPTIMAL and never
 // changes, so passes that sample it need no barrier and need not declare it in a PassList.
 class TextureImage {
- public:
-  // Uploads `image` (rows top to bottom) and, when `mipmaps` is true, generates every level down
-  // to 1x1 with linear-filtered vkCmdBlitImage (each level the box average of the one above).
-  // Where the device cannot blit the format with linear filtering, the texture keeps one level
-  // (mip_levels() == 1). Throws Error for an empty image, a size that does not match its bytes,
-  // or an image that is neither srgb nor linear.
-  static TextureImage create(Context& context, const scene::Image& image, bool mipmaps, std::string_view name = {});
+public:
+    // Uploads `image` (rows top to bottom) and, when `mipmaps` is true, generates every level down
+    // to 1x1 with linear-filtered vkCmdBlitImage (each level the box average of the one above).
+    // Where the device cannot blit the format with linear filtering, the texture keeps one level
+    // (mip_levels() == 1). Throws Error for an empty image, a size that does not match its bytes,
+    // or an image that is neither srgb nor linear.
+    static TextureImage create(Context& context, const scene::Image& image, bool mipmaps, std::string_view name = {});
 
-  TextureImage() = default;
-  ~TextureImage();
-  TextureImage(TextureImage&& other) noexcept;
-  TextureImage& operator=(TextureImage&& other) noexcept;
-  TextureImage(const TextureImage&) = delete;
-  TextureImage& operator=(const TextureImage&) = delete;
+    TextureImage() = default;
+    ~TextureImage();
+    TextureImage(TextureImage&& other) noexcept;
+    TextureImage& operator=(TextureImage&& other) noexcept;
+    TextureImage(const TextureImage&) = delete;
+    TextureImage& operator=(const TextureImage&) = delete;
 
-  VkImage handle() const { return image_; }
-  VkFormat format() const { return format_; }
-  // VK_NULL_HANDLE for a view the image was not created with.
-  VkImageView srgb_view() const { return srgb_view_; }
-  VkImageView unorm_view() const { return unorm_view_; }
-  uint32_t width() const { return width_; }
-  uint32_t height() const { return height_; }
-  uint32_t mip_levels() const { return mip_levels_; }
-  const std::string& name() const { return name_; }
+    VkImage handle() const { return image_; }
+    VkFormat format() const { return format_; }
+    // VK_NULL_HANDLE for a view the image was not created with.
+    VkImageView srgb_view() const { return srgb_view_; }
+    VkImageView unorm_view() const { return unorm_view_; }
+    uint32_t width() const { return width_; }
+    uint32_t height() const { return height_; }
+    uint32_t mip_levels() const { return mip_levels_; }
+    const std::string& name() const { return name_; }
 
-  // The texels of one mip level (RGBA8 rows, top to bottom), read back through a staging buffer.
-  std::vector<uint8_t> download(uint32_t level) const;
+    // The texels of one mip level (RGBA8 rows, top to bottom), read back through a staging buffer.
+    std::vector<uint8_t> download(uint32_t level) const;
 
- private:
-  void release();
+private:
+    void release();
 
-  Context* context_ = nullptr;
-  VkImage image_ = VK_NULL_HANDLE;
-  VkDeviceMemory memory_ = VK_NULL_HANDLE;
-  VkImageView srgb_view_ = VK_NULL_HANDLE;
-  VkImageView unorm_view_ = VK_NULL_HANDLE;
-  VkFormat format_ = VK_FORMAT_UNDEFINED;
-  uint32_t width_ = 0;
-  uint32_t height_ = 0;
-  uint32_t mip_levels_ = 0;
-  std::string name_;
+    Context* context_ = nullptr;
+    VkImage image_ = VK_NULL_HANDLE;
+    VkDeviceMemory memory_ = VK_NULL_HANDLE;
+    VkImageView srgb_view_ = VK_NULL_HANDLE;
+    VkImageView unorm_view_ = VK_NULL_HANDLE;
+    VkFormat format_ = VK_FORMAT_UNDEFINED;
+    uint32_t width_ = 0;
+    uint32_t height_ = 0;
+    uint32_t mip_levels_ = 0;
+    std::string name_;
 };
 
 struct GpuSceneOptions {
-  // Generate mip chains (without them, minified textures alias: Sponza's floor shimmers).
-  bool mipmaps = true;
+    // Generate mip chains (without them, minified textures alias: Sponza's floor shimmers).
+    bool mipmaps = true;
 };
 
 class GpuScene {
- public:
-  // Uploads `scene` (blocking). Reads vertices, indices, triangle_materials, materials, textures
-  // and images (not primitives or bounds: bounds() is computed from the indexed vertices, so a
-  // scene built by hand needs only those). Throws Error for a scene without triangles, an index,
-  // material, texture or image out of range, or a texture used as colour (data) whose image is
-  // not marked srgb (linear).
-  static GpuScene create(Context& context, const scene::Scene& scene, const GpuSceneOptions& options = {});
+public:
+    // Uploads `scene` (blocking). Reads vertices, indices, triangle_materials, materials, textures
+    // and images (not primitives or bounds: bounds() is computed from the indexed vertices, so a
+    // scene built by hand needs only those). Throws Error for a scene without triangles, an index,
+    // material, texture or image out of range, or a texture used as colour (data) whose image is
+    // not marked srgb (linear).
+    static GpuScene create(Context& context, const scene::Scene& scene, const GpuSceneOptions& options = {});
 
-  GpuScene() = default;
-  GpuScene(GpuScene&& other) noexcept;
-  GpuScene& operator=(GpuScene&& other) noexcept;
-  GpuScene(const GpuScene&) = delete;
-  GpuScene& operator=(const GpuScene&) = delete;
-  ~GpuScene();
+    GpuScene() = default;
+    GpuScene(GpuScene&& other) noexcept;
+    GpuScene& operator=(GpuScene&& other) noexcept;
+    GpuScene(const GpuScene&) = delete;
+    GpuScene& operator=(const GpuScene&) = delete;
+    ~GpuScene();
 
-  // scene::Vertex[] (48 bytes each; storage and vertex-buffer usage).
-  const Buffer& vertices() const { return vertices_; }
-  // uint32 x 3 per triangle, global vertex indices (storage and index-buffer usage).
-  const Buffer& indices() const { return indices_; }
-  // shaders::SceneMaterial[], one per scene material (storage usage).
-  const Buffer& materials() const { return materials_; }
+    // scene::Vertex[] (48 bytes each; storage and vertex-buffer usage).
+    const Buffer& vertices() const { return vertices_; }
+    // uint32 x 3 per triangle, global vertex indices (storage and index-buffer usage).
+    const Buffer& indices() const { return indices_; }
+    // shaders::SceneMaterial[], one per scene material (storage usage).
+    const Buffer& materials() const { return materials_; }
 
-  std::span<const GpuDraw> draws() const { return draws_; }
-  const MaterialTextures& textures(uint32_t material) const { return material_textures_.at(material); }
+    std::span<const GpuDraw> draws() const { return draws_; }
+    const MaterialTextures& textures(uint32_t material) const { return material_textures_.at(material); }
 
-  // As the raster stages take it (the draws and textures stay in this object).
-  operator stages::SceneBuffers() const { return {vertices_, indices_, materials_, draws_, material_textures_}; }
+    // As the raster stages take it (the draws and textures stay in this object).
+    operator stages::SceneBuffers() const { return {vertices_, indices_, materials_, draws_, material_textures_}; }
 
-  const scene::Bounds& bounds() const { return bounds_; }
-  uint32_t triangle_count() const { return triangle_count_; }
-  uint32_t vertex_count() const { return vertex_count_; }
-  uint32_t material_count() const { return uint32_t(material_textures_.size()); }
-  // The scene's images, in Scene::images order.
-  std::span<const TextureImage> images() const { return images_; }
+    const scene::Bounds& bounds() const { return bounds_; }
+    uint32_t triangle_count() const { return triangle_count_; }
+    uint32_t vertex_count() const { return vertex_count_; }
+    uint32_t material_count() const { return uint32_t(material_textures_.size()); }
+    // The scene's images, in Scene::images order.
+    std::span<const TextureImage> images() const { return images_; }
 
- private:
-  void release();
+private:
+    void release();
 
-  Context* context_ = nullptr;
-  Buffer vertices_;
-  Buffer indices_;
-  Buffer materials_;
-  std::vector<GpuDraw> draws_;
-  std::vector<TextureImage> images_;
-  // White (base colour, metallic-roughness), flat normal, black (emissive).
-  std::array<TextureImage, 2> defaults_;  // white (colour and data), flat normal
-  // One per distinct scene::Sampler, and one for the defaults (index 0).
-  std::vector<VkSampler> samplers_;
-  std::vector<MaterialTextures> material_textures_;
-  scene::Bounds bounds_;
-  uint32_t triangle_count_ = 0;
-  uint32_t vertex_count_ = 0;
+    Context* context_ = nullptr;
+    Buffer vertices_;
+    Buffer indices_;
+    Buffer materials_;
+    std::vector<GpuDraw> draws_;
+    std::vector<TextureImage> images_;
+    // White (base colour, metallic-roughness), flat normal, black (emissive).
+    std::array<TextureImage, 2> defaults_;  // white (colour and data), flat normal
+    // One per distinct scene::Sampler, and one for the defaults (index 0).
+    std::vector<VkSampler> samplers_;
+    std::vector<MaterialTextures> material_textures_;
+    scene::Bounds bounds_;
+    uint32_t triangle_count_ = 0;
+    uint32_t vertex_count_ = 0;
 };
 
 }  // namespace vplkit

@@ -30,38 +30,38 @@ namespace vplkit {
 class Context;
 
 struct PassTiming {
-  std::string name;
-  double gpu_ms = 0.0;  // GPU time from the end of everything before the pass to its own end
-  uint32_t tag = 0;     // the pass's Step::tag
+    std::string name;
+    double gpu_ms = 0.0;  // GPU time from the end of everything before the pass to its own end
+    uint32_t tag = 0;     // the pass's Step::tag
 };
 
 class PassList : public StepList {
- public:
-  // `name` labels the whole command buffer in debuggers.
-  explicit PassList(std::string name = "vplkit passes") : name_(std::move(name)) {}
+public:
+    // `name` labels the whole command buffer in debuggers.
+    explicit PassList(std::string name = "vplkit passes") : name_(std::move(name)) {}
 
-  // Records every pass into one command buffer with the barriers the uses call for, a debug
-  // label and a pair of timestamps around each pass, submits it and waits. Can be called again.
-  void run(Context& context);
+    // Records every pass into one command buffer with the barriers the uses call for, a debug
+    // label and a pair of timestamps around each pass, submits it and waits. Can be called again.
+    void run(Context& context);
 
-  void clear() override;
+    void clear() override;
 
-  // Of the last run(): one entry per pass, in order.
-  const std::vector<PassTiming>& timings() const { return timings_; }
-  double total_gpu_ms() const;
-  // Of the last run(): every barrier, in recording order (buffer and image barriers counted
-  // one by one; several of them before one pass share one vkCmdPipelineBarrier2 call).
-  const std::vector<BarrierRecord>& barriers() const { return barriers_; }
-  size_t barrier_count() const { return barriers_.size(); }
-  // Number of vkCmdPipelineBarrier2 calls of the last run (not counting the final host barrier).
-  size_t pipeline_barrier_count() const;
-  // Barriers of the last run, one describe() line each.
-  std::string describe_barriers() const;
+    // Of the last run(): one entry per pass, in order.
+    const std::vector<PassTiming>& timings() const { return timings_; }
+    double total_gpu_ms() const;
+    // Of the last run(): every barrier, in recording order (buffer and image barriers counted
+    // one by one; several of them before one pass share one vkCmdPipelineBarrier2 call).
+    const std::vector<BarrierRecord>& barriers() const { return barriers_; }
+    size_t barrier_count() const { return barriers_.size(); }
+    // Number of vkCmdPipelineBarrier2 calls of the last run (not counting the final host barrier).
+    size_t pipeline_barrier_count() const;
+    // Barriers of the last run, one describe() line each.
+    std::string describe_barriers() const;
 
- private:
-  std::string name_;
-  std::vector<PassTiming> timings_;
-  std::vector<BarrierRecord> barriers_;
+private:
+    std::string name_;
+    std::vector<PassTiming> timings_;
+    std::vector<BarrierRecord> barriers_;
 };
 
 }  // namespace vplkit

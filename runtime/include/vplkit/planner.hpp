@@ -31,8 +31,8 @@ enum class FrameStage {
     gi_sst,
     gi_rtslc,
     gi_hybrid,
-    gi_upsample,      // joint bilateral upsampling to full resolution
-    compose,          // direct + indirect
+    gi_upsample,  // joint bilateral upsampling to full resolution
+    compose,      // direct + indirect
     tonemap,
 };
 
@@ -51,20 +51,20 @@ struct PlannedStage {
 
 // What the previous frame left that this one may reuse.
 struct ReusableWork {
-    std::string vpl_key;   // the VPL set the cached VPLs are (empty: none cached)
+    std::string vpl_key;      // the VPL set the cached VPLs are (empty: none cached)
     bool light_tree = false;  // the cached VPLs' trees, built with the cached tree key
     bool sst = false;
     std::string tree_key;
 };
 
 struct FramePlan {
-    std::vector<PlannedStage> stages;  // every stage, in frame order
+    std::vector<PlannedStage> stages;      // every stage, in frame order
     VplSource vpl_source = VplSource::ir;  // the source chosen (VplSource::automatic resolved)
-    bool reuse_vpls = false;    // the previous frame's VPLs serve this frame
-    bool reuse_trees = false;   // and its trees
-    std::string vpl_key;        // this frame's VPL set
-    std::string tree_key;       // this frame's tree settings
-    std::vector<std::string> notes;  // e.g. "the scene has no light: the image would be black"
+    bool reuse_vpls = false;               // the previous frame's VPLs serve this frame
+    bool reuse_trees = false;              // and its trees
+    std::string vpl_key;                   // this frame's VPL set
+    std::string tree_key;                  // this frame's tree settings
+    std::vector<std::string> notes;        // e.g. "the scene has no light: the image would be black"
 
     bool runs(FrameStage stage) const;
     // One line: "plan: gbuffer, direct light, ... ; left out: direct emissive, ..."

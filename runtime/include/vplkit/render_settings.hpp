@@ -44,14 +44,14 @@ inline constexpr float kSigmaMaxSceneFraction = 0.012f;
 struct RenderSettings {
     uint32_t width = 640;
     uint32_t height = 360;
-    float exposure = 1.0f;          // linear scale before the tone curve
-    glm::vec3 background{0.0f};     // radiance where no surface was drawn
-    uint32_t emissive_samples = 16; // area-light samples per pixel for emissive triangles
-    uint32_t seed = 0;              // the same seed gives the same image
+    float exposure = 1.0f;           // linear scale before the tone curve
+    glm::vec3 background{0.0f};      // radiance where no surface was drawn
+    uint32_t emissive_samples = 16;  // area-light samples per pixel for emissive triangles
+    uint32_t seed = 0;               // the same seed gives the same image
     GiMethod method = GiMethod::none;
     VplSource vpl_source = VplSource::automatic;
-    uint32_t vpl_paths = 4096;      // ir: light paths traced for VPLs
-    uint32_t vpl_bounces = 2;       // ir: surface hits per path at most
+    uint32_t vpl_paths = 4096;  // ir: light paths traced for VPLs
+    uint32_t vpl_bounces = 2;   // ir: surface hits per path at most
     // brsm: its options (vpl_count is the VPL budget over all punctual lights; the seed is
     // replaced by `seed`), and the side of each light's RSM face.
     stages::BrsmOptions brsm;
@@ -64,7 +64,7 @@ struct RenderSettings {
     // The frame counter: sst, rtslc and hybrid draw other random numbers in each frame (for
     // temporal accumulation); rtslc also rotates its interleaved shares. The VPLs follow `seed`.
     uint32_t frame = 0;
-    bool mock_cuts = true;    // hybrid: mock cuts where no block is alike (false: root traversals)
+    bool mock_cuts = true;  // hybrid: mock cuts where no block is alike (false: root traversals)
     // hybrid: the traversal below the cut nodes (lightcuts: the thesis' comparison protocol).
     stages::HybridTraversal hybrid_traversal = stages::HybridTraversal::substitute;
     // Every stage that can run for the method runs (direct emissive light without emitters, both
@@ -74,7 +74,7 @@ struct RenderSettings {
     // trees (the scene's geometry and lights never change within a renderer). false: rebuild
     // every frame (benchmarks that time the whole pipeline).
     bool reuse_static_work = true;
-    stages::SstOptions sst;   // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
+    stages::SstOptions sst;  // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
     // sst, hybrid: when set (the default), sst.sigma_max is replaced by this fraction of the scene
     // scale (the BVH's largest coordinate magnitude), so the threshold means the same in a room
     // and in a hall, in metres and in millimetres; unset: sst.sigma_max as given. See

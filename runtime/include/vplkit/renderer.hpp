@@ -1,8 +1,8 @@
 #pragma once
 // A whole frame: the G-buffer raster pass, direct light from punctual lights and from emissive
 // triangles (area-light sampling) with BVH shadow rays, VPLs and indirect light by the chosen
-// method (optionally at half resolution), the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH built once, at
-// construction; render() can then be called for any camera and size.
+// method (optionally at half resolution), the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH
+// built once, at construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/gpu_lights.hpp"
@@ -43,32 +43,32 @@ struct VplPoint {
 struct RenderedImage {
     uint32_t width = 0;
     uint32_t height = 0;
-    std::vector<uint8_t> rgba8;      // tonemapped sRGB, rows top to bottom
-    std::vector<float> radiance;     // linear RGB, 3 floats per pixel, rows top to bottom: direct + indirect
-    std::vector<float> direct;       // the direct part alone (same layout)
-    std::vector<float> indirect;     // the indirect part alone (zero with GiMethod::none)
-    uint32_t vpl_count = 0;          // VPLs the indirect light came from
-    std::vector<VplPoint> vpls;      // with vpls_only: the VPLs
-    std::vector<float> gbuffer_position;  // with vpls_only: xyz + covered (1/0), 4 floats per pixel
-    std::vector<std::string> notes;  // what a user should know about this frame (e.g. a light without VPLs)
-    uint32_t dropped_pixels = 0;     // pixels where a non-finite VPL contribution was left out
-    std::vector<PassTiming> timings; // GPU time per pass
-    double exact_gi_wall_ms = 0.0;   // GiMethod::exact: the gather's host wall clock (ExactGiResult::wall_ms)
-    stages::GiCounts gi_counts;      // sst, rtslc, hybrid: traversals, levels, dropped samples, mock cuts
+    std::vector<uint8_t> rgba8;              // tonemapped sRGB, rows top to bottom
+    std::vector<float> radiance;             // linear RGB, 3 floats per pixel, rows top to bottom: direct + indirect
+    std::vector<float> direct;               // the direct part alone (same layout)
+    std::vector<float> indirect;             // the indirect part alone (zero with GiMethod::none)
+    uint32_t vpl_count = 0;                  // VPLs the indirect light came from
+    std::vector<VplPoint> vpls;              // with vpls_only: the VPLs
+    std::vector<float> gbuffer_position;     // with vpls_only: xyz + covered (1/0), 4 floats per pixel
+    std::vector<std::string> notes;          // what a user should know about this frame (e.g. a light without VPLs)
+    uint32_t dropped_pixels = 0;             // pixels where a non-finite VPL contribution was left out
+    std::vector<PassTiming> timings;         // GPU time per pass
+    double exact_gi_wall_ms = 0.0;           // GiMethod::exact: the gather's host wall clock (ExactGiResult::wall_ms)
+    stages::GiCounts gi_counts;              // sst, rtslc, hybrid: traversals, levels, dropped samples, mock cuts
     stages::UpsampleCounts upsample_counts;  // half_resolution_gi: pixels no similar sample reached
-    float sst_sigma_max = 0.0f;      // sst, hybrid: the sigma_max the tree was built with (world units)
-    uint32_t gi_width = 0;           // the size indirect light was computed at
+    float sst_sigma_max = 0.0f;              // sst, hybrid: the sigma_max the tree was built with (world units)
+    uint32_t gi_width = 0;                   // the size indirect light was computed at
     uint32_t gi_height = 0;
-    std::string plan_summary;        // the frame's plan in one line (FramePlan::summary, planner.hpp)
-    std::vector<std::string> stages_run;  // the stages the plan ran (stage_name), in order
+    std::string plan_summary;              // the frame's plan in one line (FramePlan::summary, planner.hpp)
+    std::vector<std::string> stages_run;   // the stages the plan ran (stage_name), in order
     VplSource vpl_source = VplSource::ir;  // where this frame's VPLs came from (automatic resolved)
-    bool reused_vpls = false;        // the previous frame's VPLs (and, below, trees) served this one
+    bool reused_vpls = false;              // the previous frame's VPLs (and, below, trees) served this one
     bool reused_trees = false;
     uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
 };
 
 class Renderer {
- public:
+public:
     // `scene` must outlive the renderer (the VPL tracer reads its lights and materials).
     // Throws vplkit::Error when the scene has no light at all (no punctual light and no emissive
     // triangle), naming the scene: its image could only be black.
@@ -83,7 +83,7 @@ class Renderer {
     uint32_t light_count() const { return lights_.count; }
     uint32_t emitter_count() const { return emitters_.count; }
 
- private:
+private:
     struct GeneratedVpls {
         Buffer vpls;
         uint32_t count = 0;
@@ -93,8 +93,8 @@ class Renderer {
                                 const RenderSettings& settings, RenderedImage& out);
     // The frame's VPLs: the previous frame's when the plan reuses them, else new ones (kept for
     // the next frame).
-    const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                                    const RenderSettings& settings, RenderedImage& out);
+    const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view,
+                                    stages::GbufferImages& gbuffer, const RenderSettings& settings, RenderedImage& out);
     // Indirect light from the cached VPLs by settings.method into `indirect` (full size), at full
     // or half resolution, with the trees the plan builds or reuses (renderer_gi.cpp).
     void render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,

@@ -17,7 +17,7 @@ namespace vplkit::stages {
 struct RtslcScratch {
     uint32_t width = 0, height = 0;
     uint32_t block_size = 0;
-    uint32_t cut_size = 0;   // samples_per_pixel: slots per block in `cuts`
+    uint32_t cut_size = 0;  // samples_per_pixel: slots per block in `cuts`
     uint32_t interleave = 1;
     Buffer cuts;             // RtslcScratchBuffers::cuts
     Buffer representatives;  // RtslcScratchBuffers::representatives

@@ -161,7 +161,7 @@ struct PrimitiveInstance {
 
 // What the loader skipped or repaired instead of failing.
 struct LoadWarnings {
-    uint32_t skipped_primitives = 0;    // mode other than TRIANGLES (points, lines, strips, fans)
+    uint32_t skipped_primitives = 0;  // mode other than TRIANGLES (points, lines, strips, fans)
     // Zero area in world space (a repeated corner, collinear corners, or a height below float
     // resolution of the longest edge: under FLT_EPSILON times its length): dropped.
     uint32_t degenerate_triangles = 0;

@@ -9,13 +9,13 @@
 namespace vplkit {
 
 struct ValidationMessage {
-  enum class Severity { warning, error };
+    enum class Severity { warning, error };
 
-  Severity severity = Severity::error;
-  VkDebugUtilsMessageTypeFlagsEXT types = 0;  // general / validation / performance
-  std::string id_name;                        // e.g. "VUID-vkCmdFillBuffer-dstOffset-00024"
-  int32_t id_number = 0;
-  std::string text;                           // the layer's full message
+    Severity severity = Severity::error;
+    VkDebugUtilsMessageTypeFlagsEXT types = 0;  // general / validation / performance
+    std::string id_name;                        // e.g. "VUID-vkCmdFillBuffer-dstOffset-00024"
+    int32_t id_number = 0;
+    std::string text;  // the layer's full message
 };
 
 // "error" / "warning".

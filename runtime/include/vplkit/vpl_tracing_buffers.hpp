@@ -21,10 +21,10 @@ namespace vplkit::stages {
 
 // Everything the tracer reads about the scene besides the BVH.
 struct VplSources {
-    Buffer lights;            // PunctualLight[max(punctual_count, 1)] (lights.glsl)
-    Buffer emissive;          // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
-    Buffer emitter_cdf;       // float[max(emitter_count, 1)]
-    Buffer triangle_albedo;   // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
+    Buffer lights;           // PunctualLight[max(punctual_count, 1)] (lights.glsl)
+    Buffer emissive;         // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
+    Buffer emitter_cdf;      // float[max(emitter_count, 1)]
+    Buffer triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
     uint32_t punctual_count = 0;
     uint32_t emissive_count = 0;
     // punctual_count + emissive_count, or 0 when no emitter has any power (then no path is traced).
@@ -38,8 +38,8 @@ struct VplSources {
     glm::vec3 total_power{0.0f};
 
     operator VplSourceBuffers() const {
-        return {lights,         emissive,       emitter_cdf,    triangle_albedo, punctual_count,
-                emissive_count, emitter_count,  triangle_count, scene_center,    scene_radius};
+        return {lights,         emissive,      emitter_cdf,    triangle_albedo, punctual_count,
+                emissive_count, emitter_count, triangle_count, scene_center,    scene_radius};
     }
 };
 
@@ -68,7 +68,7 @@ struct VplTracingOutput {
 };
 
 struct VplCounts {
-    uint32_t vpls = 0;       // appended (at most the capacity)
+    uint32_t vpls = 0;  // appended (at most the capacity)
     // Paths the driver ended early: lavapipe silently stops an invocation's loops after 65535
     // iterations of all of them together (bounces x BVH traversal steps); such a path's later
     // bounces are missing, so the VPL set underestimates the light. 0 on other drivers.

@@ -40,8 +40,8 @@ GpuBvh upload_bvh(Context& context, const Bvh& bvh) {
     check_range(context, node_bytes, "nodes");
     check_range(context, triangle_bytes, "triangles");
     gpu.nodes = Buffer::create(context, node_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "bvh nodes");
-    gpu.triangles = Buffer::create(context, triangle_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
-                                   "bvh triangles");
+    gpu.triangles =
+        Buffer::create(context, triangle_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "bvh triangles");
     gpu.nodes.upload(bvh.nodes);
     gpu.triangles.upload(triangles);
     return gpu;

@@ -27,7 +27,9 @@ bool degenerate(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
     return !(twice_area > double(FLT_EPSILON) * longest2);
 }
 
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 

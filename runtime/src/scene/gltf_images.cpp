@@ -13,7 +13,9 @@
 namespace vplkit::scene::detail {
 namespace {
 
-bool is_data_uri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
+bool is_data_uri(const std::string& uri) {
+    return uri.rfind("data:", 0) == 0;
+}
 
 // URIs are percent-encoded (glTF 2.0 3.2.2); tinygltf decodes them the same way before opening.
 std::string percent_decode(const std::string& uri) {

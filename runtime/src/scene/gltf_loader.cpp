@@ -46,9 +46,13 @@ std::string one_line(const std::string& text) {
     return out;
 }
 
-std::string quoted_name(const std::string& name) { return name.empty() ? "" : " '" + name + "'"; }
+std::string quoted_name(const std::string& name) {
+    return name.empty() ? "" : " '" + name + "'";
+}
 
-bool finite(double v) { return std::isfinite(v); }
+bool finite(double v) {
+    return std::isfinite(v);
+}
 
 template <typename T>
 void check_index(const GltfSource& source, int index, const std::vector<T>& items, const char* kind,
@@ -64,7 +68,7 @@ void check_index(const GltfSource& source, int index, const std::vector<T>& item
 // Turns the file's textures and images into the scene's, keeping only those materials use, each
 // once, in order of first use.
 class TextureTable {
- public:
+public:
     explicit TextureTable(const GltfSource& source) : source_(source) {}
 
     // `slot` names the use for messages ("base colour texture of material 0 'floor'").
@@ -109,14 +113,17 @@ class TextureTable {
     std::vector<Texture> take_textures() { return std::move(textures_); }
     const std::vector<detail::ImageUse>& image_uses() const { return image_uses_; }
 
- private:
+private:
     Sampler convert_sampler(const tinygltf::Sampler& s, int index) const {
         const std::string label = "sampler " + std::to_string(index);
         auto wrap = [&](int mode, const char* axis) {
             switch (mode) {
-                case TINYGLTF_TEXTURE_WRAP_REPEAT: return Wrap::repeat;
-                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::clamp_to_edge;
-                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::mirrored_repeat;
+                case TINYGLTF_TEXTURE_WRAP_REPEAT:
+                    return Wrap::repeat;
+                case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE:
+                    return Wrap::clamp_to_edge;
+                case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT:
+                    return Wrap::mirrored_repeat;
                 default:
                     source_.fail(label + " has " + axis + " " + std::to_string(mode) +
                                  ", not a glTF wrap mode (10497, 33071, 33648)");
@@ -127,9 +134,14 @@ class TextureTable {
         out.wrap_t = wrap(s.wrapT, "wrapT");
         switch (s.magFilter) {
             case -1:
-            case TINYGLTF_TEXTURE_FILTER_LINEAR: out.mag_filter = Filter::linear; break;
-            case TINYGLTF_TEXTURE_FILTER_NEAREST: out.mag_filter = Filter::nearest; break;
-            default: source_.fail(label + " has magFilter " + std::to_string(s.magFilter) + ", not 9728 or 9729");
+            case TINYGLTF_TEXTURE_FILTER_LINEAR:
+                out.mag_filter = Filter::linear;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST:
+                out.mag_filter = Filter::nearest;
+                break;
+            default:
+                source_.fail(label + " has magFilter " + std::to_string(s.magFilter) + ", not 9728 or 9729");
         }
         switch (s.minFilter) {
             case -1:
@@ -151,7 +163,8 @@ class TextureTable {
             case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
                 out.min_filter = Filter::nearest, out.mipmap_mode = MipmapMode::linear;
                 break;
-            default: source_.fail(label + " has minFilter " + std::to_string(s.minFilter) + ", not a glTF filter");
+            default:
+                source_.fail(label + " has minFilter " + std::to_string(s.minFilter) + ", not a glTF filter");
         }
         return out;
     }
@@ -579,8 +592,8 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
         loader.SetImageLoader(&detail::capture_image_bytes, &captured);
         const size_t separator = file.find_last_of("/\\");
         std::string base_dir = separator == std::string::npos ? std::string() : file.substr(0, separator);
-        loader.SetFsCallbacks({&tinygltf::FileExists, &expand_uri_path, &tinygltf::ReadWholeFile,
-                               &tinygltf::WriteWholeFile, &base_dir});
+        loader.SetFsCallbacks(
+            {&tinygltf::FileExists, &expand_uri_path, &tinygltf::ReadWholeFile, &tinygltf::WriteWholeFile, &base_dir});
         std::string err;
         const bool ok = is_glb(path) ? loader.LoadBinaryFromFile(&model, &err, &warn, file)
                                      : loader.LoadASCIIFromFile(&model, &err, &warn, file);

@@ -21,7 +21,8 @@ struct VplTrees::Scratch {
 
 VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions& options) {
     if (count == 0 || count > kMaxKeyedVpls) {
-        throw Error("vpl trees: " + std::to_string(count) + " VPLs; 1.." + std::to_string(kMaxKeyedVpls) + " can be sorted");
+        throw Error("vpl trees: " + std::to_string(count) + " VPLs; 1.." + std::to_string(kMaxKeyedVpls) +
+                    " can be sorted");
     }
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     VplTrees trees;
@@ -29,7 +30,8 @@ VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions
     trees.leaf_count = stages::leaf_count(count);
     trees.context_ = &context;
     trees.options_ = options;
-    trees.leaves = Buffer::create(context, uint64_t(trees.leaf_count) * sizeof(shaders::Vpl), storage, MemoryUse::device, "leaves");
+    trees.leaves = Buffer::create(context, uint64_t(trees.leaf_count) * sizeof(shaders::Vpl), storage,
+                                  MemoryUse::device, "leaves");
     trees.light_tree = Buffer::create(context, uint64_t(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
                                       storage, MemoryUse::device, "light tree");
     trees.sst = Buffer::create(context, uint64_t(sst_node_count(count)) * sizeof(shaders::SstNode), storage,

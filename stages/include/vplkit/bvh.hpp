@@ -32,10 +32,10 @@
 //
 // Degenerate triangles (zero area: the cross product of two edges, in double precision, is
 // exactly zero) are left out of the tree, and counted: they have no area that a ray could hit,
-// while the float test, working on rounded projections, might report a spurious hit on one. Non-finite vertices, and coordinates of 2^32 or more in magnitude (the
-// float intersection math would overflow), are refused with an Error naming the triangle.
-// The empty scene (no triangles, or only degenerate ones) gives one leaf with no triangles:
-// every ray misses it.
+// while the float test, working on rounded projections, might report a spurious hit on one. Non-finite vertices, and
+// coordinates of 2^32 or more in magnitude (the float intersection math would overflow), are refused with an Error
+// naming the triangle. The empty scene (no triangles, or only degenerate ones) gives one leaf with no triangles: every
+// ray misses it.
 
 #include "vplkit/shaders/types.hpp"
 
@@ -66,11 +66,11 @@ inline constexpr float kBvhOriginOffset = 1.0f / 65536.0f;  // 2^-16
 inline constexpr float kBvhMinScale = 1e-30f;
 
 struct BvhBuildOptions {
-    uint32_t bins = 32;                                // 2..256 per axis
+    uint32_t bins = 32;                                  // 2..256 per axis
     uint32_t max_leaf_triangles = kBvhMaxLeafTriangles;  // 1..kBvhMaxLeafTriangles
-    uint32_t max_depth = kBvhMaxDepth;                 // 1..kBvhMaxDepth
-    float traversal_cost = 1.0f;                       // > 0
-    float triangle_cost = 1.0f;                        // > 0
+    uint32_t max_depth = kBvhMaxDepth;                   // 1..kBvhMaxDepth
+    float traversal_cost = 1.0f;                         // > 0
+    float triangle_cost = 1.0f;                          // > 0
 };
 
 struct Bvh {
@@ -82,8 +82,8 @@ struct Bvh {
     uint32_t input_triangles = 0;       // triangles given to build_bvh
     uint32_t degenerate_triangles = 0;  // of those, left out for zero area
     uint32_t leaf_count = 0;
-    uint32_t depth = 0;                 // of the deepest leaf (the root is at depth 0)
-    uint32_t median_splits = 0;         // SAH splits replaced by median splits to respect max_depth
+    uint32_t depth = 0;          // of the deepest leaf (the root is at depth 0)
+    uint32_t median_splits = 0;  // SAH splits replaced by median splits to respect max_depth
     // The largest coordinate magnitude of the (padded) root box, at least kBvhMinScale: what
     // bvh_scene_scale() in bvh.glsl returns, the scale offsets and tolerances are relative to.
     float scene_scale = kBvhMinScale;
@@ -100,7 +100,11 @@ struct Bvh {
 Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids = {},
               const BvhBuildOptions& options = {});
 
-inline bool bvh_is_leaf(const shaders::BvhNode& node) { return (node.meta & kBvhLeafFlag) != 0; }
-inline uint32_t bvh_leaf_triangles(const shaders::BvhNode& node) { return node.meta & kBvhCountMask; }
+inline bool bvh_is_leaf(const shaders::BvhNode& node) {
+    return (node.meta & kBvhLeafFlag) != 0;
+}
+inline uint32_t bvh_leaf_triangles(const shaders::BvhNode& node) {
+    return node.meta & kBvhCountMask;
+}
 
 }  // namespace vplkit

@@ -10,15 +10,15 @@
 namespace vplkit {
 
 class Error : public std::runtime_error {
- public:
-  explicit Error(const std::string& message, VkResult result = VK_SUCCESS)
-      : std::runtime_error(message), result_(result) {}
+public:
+    explicit Error(const std::string& message, VkResult result = VK_SUCCESS)
+        : std::runtime_error(message), result_(result) {}
 
-  // The VkResult that caused the error, VK_SUCCESS when it did not come from a Vulkan call.
-  VkResult result() const { return result_; }
+    // The VkResult that caused the error, VK_SUCCESS when it did not come from a Vulkan call.
+    VkResult result() const { return result_; }
 
- private:
-  VkResult result_;
+private:
+    VkResult result_;
 };
 
 // "VK_ERROR_OUT_OF_DEVICE_MEMORY"; "VkResult(-123)" for a value this build does not know.

@@ -44,7 +44,7 @@ struct VplTrees {
     // hybrid the SST).
     void add_build_passes(PassList& passes, const Buffer& vpls, bool light_tree = true, bool sst = true);
 
- private:
+private:
     struct Scratch;
     std::shared_ptr<Scratch> scratch_;  // keys, values, bounds, sorter, SST counters
     Context* context_ = nullptr;

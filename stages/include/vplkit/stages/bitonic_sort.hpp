@@ -30,7 +30,7 @@ void record_bitonic_sort(Device& device, VkCommandBuffer cmd, const BufferView& 
                          uint32_t count, const BitonicSortOptions& options = {});
 
 // Adds one pass named "sort" that runs record_bitonic_sort on the buffers.
-void add_bitonic_sort_pass(Device& device, StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
-                           const BitonicSortOptions& options = {});
+void add_bitonic_sort_pass(Device& device, StepList& passes, const BufferView& keys, const BufferView& values,
+                           uint32_t count, const BitonicSortOptions& options = {});
 
 }  // namespace vplkit::stages

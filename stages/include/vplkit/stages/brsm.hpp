@@ -126,8 +126,8 @@ void add_brsm_count_clear_pass(StepList& passes, const BrsmOutputViews& output);
 // (brsm_light_requirements). Throws Error otherwise, for bad options or a scene_scale that is
 // not positive.
 void add_brsm_light_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
-                           const ShadowMapViews& map, size_t light_index, float scene_scale,
-                           const BrsmOptions& options, const BrsmOutputViews& output);
+                           const ShadowMapViews& map, size_t light_index, float scene_scale, const BrsmOptions& options,
+                           const BrsmOutputViews& output);
 
 // add_brsm_count_clear_pass, then add_brsm_light_passes for every map in order. `maps` must
 // be rendered before (add_shadow_map_passes, in this or an earlier step list) and be the maps

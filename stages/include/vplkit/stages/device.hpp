@@ -56,7 +56,9 @@ struct ScratchBuffer {
 class Device {
 public:
     Device() = default;
-    Device(VkDevice device, const Limits& limits, VkPipelineCache cache = VK_NULL_HANDLE) { attach(device, limits, cache); }
+    Device(VkDevice device, const Limits& limits, VkPipelineCache cache = VK_NULL_HANDLE) {
+        attach(device, limits, cache);
+    }
     Device(VkPhysicalDevice physical_device, VkDevice device, VkPipelineCache cache = VK_NULL_HANDLE)
         : Device(device, Limits::query(physical_device), cache) {}
     virtual ~Device() { destroy_pipelines(); }

@@ -20,10 +20,10 @@ namespace vplkit::stages {
 
 // Where a raster pass looks from (the runtime makes one from a scene::Camera: vplkit/camera_view.hpp).
 struct CameraView {
-  // World space -> Vulkan clip space: x right, y down in the image, depth 0 (near) .. 1 (far).
-  glm::mat4 view_projection{1.0f};
-  // The eye, for the side normals are turned to.
-  glm::vec3 position{0.0f};
+    // World space -> Vulkan clip space: x right, y down in the image, depth 0 (near) .. 1 (far).
+    glm::mat4 view_projection{1.0f};
+    // The eye, for the side normals are turned to.
+    glm::vec3 position{0.0f};
 };
 
 // A right-handed view space looking down -Z, projected to Vulkan clip space with the vertical

@@ -38,8 +38,8 @@ struct HybridOptions {
     uint32_t samples_per_pixel = 8;
     uint32_t block_size = 8;  // k, 1..kMaxHybridBlockSize (seed 000 ch. 7 uses 8)
     uint32_t seed = 0;
-    uint32_t frame = 0;       // the frame counter: each frame draws other random numbers
-    bool visibility = true;   // false: no shadow rays (tests)
+    uint32_t frame = 0;      // the frame counter: each frame draws other random numbers
+    bool visibility = true;  // false: no shadow rays (tests)
     // Cut blending's similarity (eq. 5.3): normals' dot above min_cos and positions closer than
     // max_distance (world units: the caller scales it to the scene; > 0).
     float similarity_min_cos = 0.9f;

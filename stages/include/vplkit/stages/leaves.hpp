@@ -11,7 +11,9 @@
 namespace vplkit::stages {
 
 // Leaves of the perfect binary trees over `count` VPLs: count rounded up to a power of two.
-inline uint32_t leaf_count(uint32_t count) { return count <= 1 ? 1u : std::bit_ceil(count); }
+inline uint32_t leaf_count(uint32_t count) {
+    return count <= 1 ? 1u : std::bit_ceil(count);
+}
 
 // Adds the pass "gather leaves". `leaves` holds leaf_count(count) Vpls; `sorted_values` holds
 // the count VPL indices in key order (the values the key sort moved).

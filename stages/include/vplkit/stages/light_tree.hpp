@@ -54,7 +54,7 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels);
 // first `count` real; `nodes` receives light_tree_node_count(count) LightTreeNodes.
 // Throws vplkit::Error for count 0 or above kLightTreeMaxLeaves, bad options, buffers too small,
 // or a tree the device cannot dispatch or address in one storage buffer.
-void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, uint32_t count,
-                           const LightTreeOptions& options = {});
+void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
+                           uint32_t count, const LightTreeOptions& options = {});
 
 }  // namespace vplkit::stages

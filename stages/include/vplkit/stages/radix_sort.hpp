@@ -25,11 +25,21 @@
 #include <vector>
 
 namespace vplkit::shaders {
-namespace radix_histogram { struct Pipeline; }
-namespace radix_scan_reduce { struct Pipeline; }
-namespace radix_scan_chunks { struct Pipeline; }
-namespace radix_scatter { struct Pipeline; }
-namespace radix_copy { struct Pipeline; }
+namespace radix_histogram {
+struct Pipeline;
+}
+namespace radix_scan_reduce {
+struct Pipeline;
+}
+namespace radix_scan_chunks {
+struct Pipeline;
+}
+namespace radix_scatter {
+struct Pipeline;
+}
+namespace radix_copy {
+struct Pipeline;
+}
 }  // namespace vplkit::shaders
 
 namespace vplkit::stages {
@@ -86,7 +96,7 @@ RadixSortRequirements radix_sort_requirements(const Limits& limits, uint32_t max
 // Holds the scratch buffers for sorting up to `max_count` pairs, and the pipelines. Reusable for
 // any number of sorts of up to max_count pairs, one at a time (they share the scratch buffers).
 class RadixSorter {
- public:
+public:
     // Creates the pipelines; the scratch buffers come from device.create_scratch_buffer (the
     // runtime's Context allocates them; a plain stages::Device throws: use the other constructor).
     // Throws vplkit::Error for bad options (naming the option and the device limit it breaks) or
@@ -114,12 +124,13 @@ class RadixSorter {
 
     // Adds one step named `name` that runs record() on the buffers, declaring the scratch buffers
     // among its uses. The sorter (at the same address) must outlive the recording.
-    void add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name = "radix sort");
+    void add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
+                  std::string name = "radix sort");
 
     // The scratch buffers record() writes, for callers that declare uses themselves.
     const RadixSortScratch& scratch() const { return scratch_; }
 
- private:
+private:
     uint32_t scan_workgroup_size() const;
     void init(Device& device, const RadixSortOptions& options);
 

@@ -70,7 +70,7 @@ void validate(const RtslcOptions& options);
 struct RtslcScratchBuffers {
     uint32_t width = 0, height = 0;
     uint32_t block_size = 0;
-    uint32_t cut_size = 0;   // samples_per_pixel: slots per block in `cuts`
+    uint32_t cut_size = 0;  // samples_per_pixel: slots per block in `cuts`
     uint32_t interleave = 1;
     BufferView cuts;             // uint32[block_count() * cut_size]: light tree node indices, the cut's
                                  // nodes first (in no particular order), then kRtslcNoNode

@@ -14,21 +14,22 @@
 namespace vplkit {
 
 // One draw: a maximal run of consecutive triangles of one material (Scene::triangle_materials),
-// so primitive instances of one material that the loader placed one after the other are one draw. Recorded as vkCmdDraw(3 * triangle_count, 1, 3 * first_triangle, 0):
-// the vertex shaders pull vertices through the index buffer themselves.
+// so primitive instances of one material that the loader placed one after the other are one draw. Recorded as
+// vkCmdDraw(3 * triangle_count, 1, 3 * first_triangle, 0): the vertex shaders pull vertices through the index buffer
+// themselves.
 struct GpuDraw {
-  uint32_t first_triangle = 0;
-  uint32_t triangle_count = 0;
-  uint32_t material = 0;
+    uint32_t first_triangle = 0;
+    uint32_t triangle_count = 0;
+    uint32_t material = 0;
 };
 
 // The four combined image samplers a draw of one material binds (SHADER_READ_ONLY_OPTIMAL), in
 // the order of raster_material.glsl's texture bindings.
 struct MaterialTextures {
-  VkDescriptorImageInfo base_color{};          // sRGB view, or the white default
-  VkDescriptorImageInfo metallic_roughness{};  // UNORM view, or the white default
-  VkDescriptorImageInfo normal{};              // UNORM view, or the flat-normal default
-  VkDescriptorImageInfo emissive{};            // sRGB view, or the white default (glTF: factor alone)
+    VkDescriptorImageInfo base_color{};          // sRGB view, or the white default
+    VkDescriptorImageInfo metallic_roughness{};  // UNORM view, or the white default
+    VkDescriptorImageInfo normal{};              // UNORM view, or the flat-normal default
+    VkDescriptorImageInfo emissive{};            // sRGB view, or the white default (glTF: factor alone)
 };
 
 }  // namespace vplkit
@@ -39,11 +40,11 @@ namespace vplkit::stages {
 // stay there (they are not declared as uses: no barrier is recorded for them). The two arrays are
 // referenced, not copied: they must outlive the recording of the steps.
 struct SceneBuffers {
-  BufferView vertices;   // scene::Vertex[] (48 bytes each), read by the vertex shaders
-  BufferView indices;    // uint32 x 3 per triangle, global vertex indices, read by the vertex shaders
-  BufferView materials;  // shaders::SceneMaterial[], one per material, read by the fragment shaders
-  std::span<const GpuDraw> draws;
-  std::span<const MaterialTextures> textures;  // one per material, indexed by GpuDraw::material
+    BufferView vertices;   // scene::Vertex[] (48 bytes each), read by the vertex shaders
+    BufferView indices;    // uint32 x 3 per triangle, global vertex indices, read by the vertex shaders
+    BufferView materials;  // shaders::SceneMaterial[], one per material, read by the fragment shaders
+    std::span<const GpuDraw> draws;
+    std::span<const MaterialTextures> textures;  // one per material, indexed by GpuDraw::material
 };
 
 }  // namespace vplkit::stages

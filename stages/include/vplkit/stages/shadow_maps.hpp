@@ -50,25 +50,25 @@ inline constexpr float kSpotSingleFaceMaxAngle = std::numbers::pi_v<float> / 3.0
 
 // One face of a light's map.
 struct ShadowFace {
-  // World -> the face's Vulkan clip space (y down the image, depth 0 .. 1). A world point's
-  // texel: ndc = clip.xyz / clip.w, texel = rect.offset + (ndc.xy * 0.5 + 0.5) * rect.extent.
-  glm::mat4 view_projection{1.0f};
-  VkRect2D rect{};  // the face's texels in the map's images
+    // World -> the face's Vulkan clip space (y down the image, depth 0 .. 1). A world point's
+    // texel: ndc = clip.xyz / clip.w, texel = rect.offset + (ndc.xy * 0.5 + 0.5) * rect.extent.
+    glm::mat4 view_projection{1.0f};
+    VkRect2D rect{};  // the face's texels in the map's images
 };
 
 // One light's map as the stages take it. The raster pass writes the four images (colour/depth
 // attachment usage, the formats above, one size); BRSM reads position, normal and flux (GENERAL
 // layout, storage usage). `faces` is referenced, not copied: it must outlive the recording.
 struct ShadowMapViews {
-  std::span<const ShadowFace> faces;  // 1, or 6 for a cube map
-  ImageView position;
-  ImageView normal;
-  ImageView flux;
-  ImageView depth;
-  BufferView light_uniform;  // shaders::RsmLight (uniform usage), read by rsm_shade.frag
+    std::span<const ShadowFace> faces;  // 1, or 6 for a cube map
+    ImageView position;
+    ImageView normal;
+    ImageView flux;
+    ImageView depth;
+    BufferView light_uniform;  // shaders::RsmLight (uniform usage), read by rsm_shade.frag
 
-  uint32_t width() const { return position.width; }
-  uint32_t height() const { return position.height; }
+    uint32_t width() const { return position.width; }
+    uint32_t height() const { return position.height; }
 };
 
 // Adds the pass "shadow map <n>" (n = `index`, for timings): reads `scene` and the light

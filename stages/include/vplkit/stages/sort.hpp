@@ -46,7 +46,7 @@ struct SortOptions {
 };
 
 class KeyValueSorter {
- public:
+public:
     // For radix, creates the pipelines and the scratch buffers for up to `max_count` pairs.
     // Throws vplkit::Error for bad options or a count the device cannot sort (bitonic checks its
     // workgroup size and the count when a pass is added or recorded).
@@ -70,9 +70,10 @@ class KeyValueSorter {
 
     // Adds one pass named `name` that records the sort, with every buffer it touches among its
     // uses. The sorter must outlive the recording (moving it is fine).
-    void add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count, std::string name = "sort");
+    void add_pass(StepList& passes, const BufferView& keys, const BufferView& values, uint32_t count,
+                  std::string name = "sort");
 
- private:
+private:
     Device* device_ = nullptr;
     SortOptions options_;
     uint32_t max_count_ = 0;

@@ -50,7 +50,7 @@ inline uint32_t sst_counter_count(uint32_t count) {
 // `nodes` gets sst_node_count(count) SstNodes; `counters` holds sst_counter_count(count) uints
 // (contents on entry do not matter). Throws vplkit::Error for count 0, a buffer too small,
 // thresholds that are not finite or a sigma_max < 0, or a workgroup size the device refuses.
-void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes, const BufferView& counters,
-                    uint32_t count, const SstOptions& options = {});
+void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
+                    const BufferView& counters, uint32_t count, const SstOptions& options = {});
 
 }  // namespace vplkit::stages

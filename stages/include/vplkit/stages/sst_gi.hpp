@@ -27,8 +27,8 @@ namespace vplkit::stages {
 struct SstGiOptions {
     uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (seed 004 uses 1)
     uint32_t seed = 0;
-    uint32_t frame = 0;              // the frame counter: each frame draws other random numbers
-    bool visibility = true;          // false: no shadow rays (tests)
+    uint32_t frame = 0;      // the frame counter: each frame draws other random numbers
+    bool visibility = true;  // false: no shadow rays (tests)
 };
 
 // Throws vplkit::Error naming the bad option.

@@ -32,15 +32,19 @@ enum class Stage : uint32_t {
     compute = 1u << 0,
     vertex = 1u << 1,
     fragment = 1u << 2,
-    transfer = 1u << 3,          // copies, fills, clears, blits
-    host = 1u << 4,              // the CPU reads it after the submission
-    indirect = 1u << 5,          // indirect dispatch/draw arguments
-    vertex_input = 1u << 6,      // vertex and index buffers
+    transfer = 1u << 3,      // copies, fills, clears, blits
+    host = 1u << 4,          // the CPU reads it after the submission
+    indirect = 1u << 5,      // indirect dispatch/draw arguments
+    vertex_input = 1u << 6,  // vertex and index buffers
     color_attachment = 1u << 7,
     depth_attachment = 1u << 8,  // depth/stencil tests and writes
 };
-constexpr Stage operator|(Stage a, Stage b) { return Stage(uint32_t(a) | uint32_t(b)); }
-constexpr bool has_stage(Stage set, Stage s) { return (uint32_t(set) & uint32_t(s)) != 0; }
+constexpr Stage operator|(Stage a, Stage b) {
+    return Stage(uint32_t(a) | uint32_t(b));
+}
+constexpr bool has_stage(Stage set, Stage s) {
+    return (uint32_t(set) & uint32_t(s)) != 0;
+}
 
 enum class Access { read, write, read_write };
 
@@ -92,10 +96,10 @@ enum Hazard : uint32_t {
 
 // One buffer or image barrier that recording inserted.
 struct BarrierRecord {
-    size_t pass = 0;        // index of the step it was recorded before
-    std::string resource;   // the buffer's or image's name ("" when unnamed)
+    size_t pass = 0;       // index of the step it was recorded before
+    std::string resource;  // the buffer's or image's name ("" when unnamed)
     bool is_image = false;
-    uint32_t hazards = 0;   // Hazard bits
+    uint32_t hazards = 0;  // Hazard bits
     VkPipelineStageFlags2 src_stages = 0;
     VkAccessFlags2 src_access = 0;
     VkPipelineStageFlags2 dst_stages = 0;
@@ -113,8 +117,8 @@ struct ResourceUse {
     std::string name;
     VkBuffer buffer = VK_NULL_HANDLE;  // one of buffer and image
     VkImage image = VK_NULL_HANDLE;
-    std::string step;                  // the first (entry) or last (exit) step that uses it
-    Access access = Access::read;      // of that step
+    std::string step;              // the first (entry) or last (exit) step that uses it
+    Access access = Access::read;  // of that step
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access_flags = 0;
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // images: the layout that step uses

@@ -22,7 +22,9 @@ struct BufferView {
     explicit operator bool() const { return buffer != VK_NULL_HANDLE; }
     VkDescriptorBufferInfo descriptor() const { return {buffer, offset, size}; }
     // `range` bytes from `from` (relative to this view's offset).
-    VkDescriptorBufferInfo descriptor(VkDeviceSize from, VkDeviceSize range) const { return {buffer, offset + from, range}; }
+    VkDescriptorBufferInfo descriptor(VkDeviceSize from, VkDeviceSize range) const {
+        return {buffer, offset + from, range};
+    }
 };
 
 // A 2D image, one mip level and one layer.

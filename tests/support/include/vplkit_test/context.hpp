@@ -34,15 +34,15 @@ void report_validation_message(const ValidationMessage& message);
 // While alive, validation messages are collected here instead of failing the test: for tests
 // that provoke a message on purpose and check it arrived.
 class ValidationCapture {
- public:
-  ValidationCapture();
-  ~ValidationCapture();
-  ValidationCapture(const ValidationCapture&) = delete;
-  ValidationCapture& operator=(const ValidationCapture&) = delete;
+public:
+    ValidationCapture();
+    ~ValidationCapture();
+    ValidationCapture(const ValidationCapture&) = delete;
+    ValidationCapture& operator=(const ValidationCapture&) = delete;
 
-  std::vector<ValidationMessage> messages() const;
-  // Whether a captured message's id name or text contains `needle`.
-  bool contains(std::string_view needle) const;
+    std::vector<ValidationMessage> messages() const;
+    // Whether a captured message's id name or text contains `needle`.
+    bool contains(std::string_view needle) const;
 };
 
 }  // namespace vplkit::test
