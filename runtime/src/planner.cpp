@@ -44,46 +44,6 @@ const char* stage_name(FrameStage stage) {
     return "?";
 }
 
-bool stage_owns_pass(FrameStage stage, const std::string& pass) {
-    auto starts = [&](const char* prefix) { return pass.rfind(prefix, 0) == 0; };
-    switch (stage) {
-        case FrameStage::gbuffer:
-            return pass == "gbuffer";
-        case FrameStage::direct_light:
-            return pass == "direct light" || pass == "indirect clear";
-        case FrameStage::direct_emissive:
-            return pass == "direct emissive";
-        case FrameStage::vpl_paths:
-            return pass == "vpl count clear" || pass == "trace vpls";
-        case FrameStage::brsm_vpls:
-            return starts("shadow map ") || starts("brsm ") || pass == "importance mips" || pass == "warp samples";
-        case FrameStage::vpl_sort:
-            return pass == "vpl bounds clear" || pass == "vpl bounds" || pass == "morton keys" || pass == "sort" ||
-                   pass == "gather leaves";
-        case FrameStage::light_tree:
-            return pass == "light tree leaves" || pass == "light tree levels";
-        case FrameStage::sst:
-            return pass == "sst clear counters" || pass == "build sst";
-        case FrameStage::gi_downsample:
-            return pass == "gbuffer downsample";
-        case FrameStage::gi_exact:
-            return starts("exact gi");
-        case FrameStage::gi_sst:
-            return pass == "sst gi" || pass == "gi counters clear";
-        case FrameStage::gi_rtslc:
-            return starts("rtslc ") || pass == "gi counters clear";
-        case FrameStage::gi_hybrid:
-            return starts("hybrid ") || pass == "gi counters clear";
-        case FrameStage::gi_upsample:
-            return pass == "upsample clear" || pass == "upsample";
-        case FrameStage::compose:
-            return pass == "compose";
-        case FrameStage::tonemap:
-            return starts("tonemap");
-    }
-    return false;
-}
-
 bool FramePlan::runs(FrameStage stage) const {
     for (const PlannedStage& s : stages) {
         if (s.stage == stage) return s.runs;

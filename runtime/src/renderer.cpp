@@ -61,6 +61,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
         auto output = stages::VplTracingOutput::create(context_, tracing);
         PassList passes("vpls");
+        passes.set_tag(stage_tag(FrameStage::vpl_paths));
         stages::add_trace_vpls_pass(context_, passes, gpu_bvh_, sources, tracing, output);
         passes.run(context_);
         append(out.timings, passes.timings());
@@ -90,6 +91,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         auto map = stages::ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution);
         stages::allocate_brsm_light_buffers(context_, map, output.lights[i]);
         PassList passes("brsm vpls");
+        passes.set_tag(stage_tag(FrameStage::brsm_vpls));
         if (!cleared) stages::add_brsm_count_clear_pass(passes, output);
         cleared = true;
         stages::add_shadow_map_pass(context_, passes, scene_, map, uint32_t(i));
@@ -167,13 +169,17 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     }
 
     PassList direct_passes("direct light");
+    direct_passes.set_tag(stage_tag(FrameStage::gbuffer));
     stages::add_gbuffer_pass(context_, direct_passes, scene_, view, gbuffer);
+    direct_passes.set_tag(stage_tag(FrameStage::direct_light));
     stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_, lights_,
                                   {view.position, settings.background}, direct);
     if (plan.runs(FrameStage::direct_emissive)) {
+        direct_passes.set_tag(stage_tag(FrameStage::direct_emissive));
         stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
                                          {view.position, settings.emissive_samples, settings.seed}, direct);
     }
+    direct_passes.set_tag(stage_tag(FrameStage::direct_light));  // the indirect image is cleared with it
     direct_passes.add("indirect clear", {Use::transfer_dst(indirect)}, [&indirect](VkCommandBuffer cmd) {
         const VkClearColorValue zero{};
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -199,7 +205,9 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     }
 
     PassList output_passes("output");
+    output_passes.set_tag(stage_tag(FrameStage::compose));
     stages::add_compose_pass(context_, output_passes, direct, indirect, composed);
+    output_passes.set_tag(stage_tag(FrameStage::tonemap));
     stages::add_tonemap_passes(context_, output_passes, composed, display, stats, settings.exposure);
     output_passes.run(context_);
     append(out.timings, output_passes.timings());

@@ -130,6 +130,7 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         half_indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
                                       "half indirect radiance");
         PassList passes("gi downsample");
+        passes.set_tag(stage_tag(FrameStage::gi_downsample));
         stages::add_gbuffer_downsample_pass(context_, passes, gbuffer, *half_gbuffer);
         passes.run(context_);
         append(out.timings, passes.timings());
@@ -142,7 +143,8 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         options.progress = settings.progress;
         const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh_, vpls.vpls, vpls.count,
                                                     view.position, gi_target, options);
-        out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms});
+        out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms,
+                               stage_tag(FrameStage::gi_exact)});
         out.exact_gi_wall_ms = result.wall_ms;
         out.dropped_pixels = result.counts.dropped_pixels;
     } else {
@@ -157,12 +159,17 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
             cache_.tree_key = plan.tree_key;
             cache_.light_tree = plan.runs(FrameStage::light_tree);
             cache_.sst = plan.runs(FrameStage::sst);
-            cache_.trees->add_build_passes(passes, vpls.vpls, cache_.light_tree, cache_.sst);
+            cache_.trees->add_build_passes(
+                passes, vpls.vpls, cache_.light_tree, cache_.sst,
+                {stage_tag(FrameStage::vpl_sort), stage_tag(FrameStage::light_tree), stage_tag(FrameStage::sst)});
         }
         const stages::VplTrees& trees = *cache_.trees;
         auto counters = stages::create_gi_counters(context_);
         std::optional<stages::RtslcScratch> rtslc_scratch;
         std::optional<stages::HybridCuts> hybrid_cuts;
+        passes.set_tag(stage_tag(settings.method == GiMethod::sst     ? FrameStage::gi_sst
+                                 : settings.method == GiMethod::rtslc ? FrameStage::gi_rtslc
+                                                                      : FrameStage::gi_hybrid));
         switch (settings.method) {
             case GiMethod::sst:
                 stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
@@ -201,6 +208,7 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     if (half) {
         auto counters = stages::create_upsample_counters(context_);
         PassList passes("gi upsample");
+        passes.set_tag(stage_tag(FrameStage::gi_upsample));
         stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, *half_indirect, indirect, counters,
                                   stages::upsample_options_for_scene(gpu_bvh_.scene_scale));
         passes.run(context_);

@@ -5,6 +5,7 @@
 #include "bench_gi.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
+#include "scene_warnings.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -128,21 +129,21 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
 }
 
 // Which group of the frame a pass belongs to, by the planner's stage of the pass.
-bool owned_by(const std::string& pass, std::initializer_list<FrameStage> stages) {
+bool owned_by(const PassTiming& pass, std::initializer_list<FrameStage> stages) {
     for (FrameStage stage : stages) {
         if (stage_owns_pass(stage, pass)) return true;
     }
     return false;
 }
 
-bool is_gi_pass(const std::string& pass) {
+bool is_gi_pass(const PassTiming& pass) {
     return owned_by(pass, {FrameStage::gi_downsample, FrameStage::gi_exact, FrameStage::gi_sst, FrameStage::gi_rtslc,
                            FrameStage::gi_hybrid, FrameStage::gi_upsample});
 }
-bool is_tree_pass(const std::string& pass) {
+bool is_tree_pass(const PassTiming& pass) {
     return owned_by(pass, {FrameStage::vpl_sort, FrameStage::light_tree, FrameStage::sst});
 }
-bool is_vpl_pass(const std::string& pass) {
+bool is_vpl_pass(const PassTiming& pass) {
     return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls});
 }
 
@@ -204,6 +205,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     ContextOptions context_options;
     if (auto device = args.value("--device")) context_options.device = *device;
     const bool quick = args.flag("--quick");
+    const bool strict = args.flag("--strict");
     std::optional<uint32_t> width, height;
     if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
     if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
@@ -263,6 +265,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         scene = scene::load_setup_scene(setup, load_options);
     }
     scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
+    report_scene_warnings(scene, strict);
     std::filesystem::create_directories(out / "images");
     std::filesystem::create_directories(cache);
 
@@ -380,11 +383,11 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
                 if (this_frame.count(t.name) == 0 && stage_ms.count(t.name) == 0) stage_names.push_back(t.name);
                 this_frame[t.name] += t.gpu_ms;
                 total += t.gpu_ms;
-                if (is_gi_pass(t.name))
+                if (is_gi_pass(t))
                     gi += t.gpu_ms;
-                else if (is_tree_pass(t.name))
+                else if (is_tree_pass(t))
                     trees += t.gpu_ms;
-                else if (is_vpl_pass(t.name))
+                else if (is_vpl_pass(t))
                     vpls += t.gpu_ms;
             }
             for (const auto& [name, ms] : this_frame) stage_ms[name].push_back(ms);

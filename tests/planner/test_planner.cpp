@@ -69,7 +69,7 @@ void check_frame_matches_plan(const vplkit::scene::Scene& scene, const RenderSet
         CAPTURE(t.name);
         int owners = 0;
         for (FrameStage stage : kAllStages) {
-            if (vplkit::stage_owns_pass(stage, t.name) && ran.count(vplkit::stage_name(stage))) {
+            if (vplkit::stage_owns_pass(stage, t) && ran.count(vplkit::stage_name(stage))) {
                 ++owners;
                 seen.insert(vplkit::stage_name(stage));
             }
@@ -213,7 +213,7 @@ TEST_CASE("planner: a static frame rendered twice rebuilds no VPLs and no tree t
             CAPTURE(t.name);
             for (FrameStage stage : {FrameStage::vpl_paths, FrameStage::brsm_vpls, FrameStage::vpl_sort,
                                      FrameStage::sst, FrameStage::light_tree}) {
-                CHECK(!vplkit::stage_owns_pass(stage, t.name));
+                CHECK(!vplkit::stage_owns_pass(stage, t));
             }
         }
         CHECK(second.rgba8 == first.rgba8);

@@ -4,6 +4,7 @@
 // left (VPLs and trees that are still valid), with the reason for every stage kept or left out.
 // The Renderer records exactly the stages the plan runs; `vplkit plan` prints the plan.
 
+#include "vplkit/pass_list.hpp"
 #include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
 
@@ -39,9 +40,14 @@ enum class FrameStage {
 // "direct light", "gi hybrid", ... (what `vplkit plan` prints).
 const char* stage_name(FrameStage stage);
 
-// The pass names (PassList::add names, before any " (N passes)") a stage records; a pass of a
-// frame belongs to exactly one stage. "shadow map " and "brsm " are prefixes (one per light).
-bool stage_owns_pass(FrameStage stage, const std::string& pass_name);
+// The tag the renderer gives every pass of a stage (StepList::set_tag): a pass belongs to the
+// stage whose tag it carries, whatever its name. 0 (untagged) is no stage.
+constexpr uint32_t stage_tag(FrameStage stage) {
+    return uint32_t(stage) + 1;
+}
+inline bool stage_owns_pass(FrameStage stage, const PassTiming& pass) {
+    return pass.tag == stage_tag(stage);
+}
 
 struct PlannedStage {
     FrameStage stage;

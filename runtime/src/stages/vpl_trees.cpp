@@ -45,13 +45,18 @@ VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions
     return trees;
 }
 
-void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, bool build_light_tree, bool build_sst) {
+void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, bool build_light_tree, bool build_sst,
+                                const VplTreeBuildTags& tags) {
     Scratch& s = *scratch_;
+    passes.set_tag(tags.sort);
     add_vpl_key_passes(*context_, passes, {vpls, s.bounds, s.keys, s.values}, count);
     s.sorter.add_pass(passes, s.keys, s.values, count);
     add_gather_leaves_pass(*context_, passes, vpls, s.values, leaves, count);
+    passes.set_tag(tags.light_tree);
     if (build_light_tree) add_light_tree_passes(*context_, passes, leaves, light_tree, count, options_.light_tree);
+    passes.set_tag(tags.sst);
     if (build_sst) add_sst_passes(*context_, passes, leaves, sst, s.sst_counters, count, options_.sst);
+    passes.set_tag(0);
 }
 
 }  // namespace vplkit::stages

@@ -25,6 +25,14 @@ struct VplTreeOptions {
     SstOptions sst;
 };
 
+// The tags (StepList::set_tag) of the passes of each part of the build, for a frame graph that
+// groups them.
+struct VplTreeBuildTags {
+    uint32_t sort = 0;  // keys, sort, gather leaves
+    uint32_t light_tree = 0;
+    uint32_t sst = 0;
+};
+
 struct VplTrees {
     uint32_t count = 0;       // real VPLs
     uint32_t leaf_count = 0;  // leaf_count(count): a power of two
@@ -42,7 +50,8 @@ struct VplTrees {
     // the sort's passes, "gather leaves", then "light tree leaves/levels" and "build sst" unless
     // the caller needs only one of the trees (a method reads one: rtslc the light tree, sst and
     // hybrid the SST).
-    void add_build_passes(PassList& passes, const Buffer& vpls, bool light_tree = true, bool sst = true);
+    void add_build_passes(PassList& passes, const Buffer& vpls, bool light_tree = true, bool sst = true,
+                          const VplTreeBuildTags& tags = {});
 
 private:
     struct Scratch;
