@@ -26,12 +26,6 @@
 
 namespace vplkit {
 
-// Geometric similarity's distance for cut blending and interleaved reconstruction (seed 000
-// eq. 5.3 gives no value), as a share of the scene scale: blending compares a pixel with block
-// representatives up to ~1.5 blocks away, 10-20 pixels at 8 x 8 blocks, which on a wall seen at a
-// 320-pixel width in Sponza is ~1 unit of its ~30; the normal test catches creases either way.
-constexpr float kGiSimilarityDistanceFraction = 0.1f;
-
 const char* gi_method_name(GiMethod method) {
     switch (method) {
         case GiMethod::none:
@@ -117,7 +111,8 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
         return;
     }
-    const GiStageOptions options = gi_stage_options(settings, kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
+    const GiStageOptions options =
+        gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
     const stages::SstGiOptions& sst_options = options.sst;
     const stages::RtslcOptions& rtslc_options = options.rtslc;
     const stages::HybridOptions& hybrid_options = options.hybrid;

@@ -142,9 +142,8 @@ int main() {
         dropin::HostBuffer bvh_nodes = buffer(bvh.nodes.size() * sizeof(vplkit::shaders::BvhNode));
         dropin::HostBuffer bvh_triangles = buffer(bvh.triangles.size() * sizeof(vplkit::shaders::BvhTriangle));
         dropin::HostBuffer counters = buffer(vplkit::stages::kGiCountersBytes);
-        vplkit::stages::HybridOptions hybrid;  // defaults, but for the scene-relative similarity distance
-        hybrid.samples_per_pixel = 16;
-        hybrid.similarity_max_distance = 0.05f * bvh.scene_scale;
+        vplkit::stages::HybridOptions hybrid;  // the defaults (distances relative to the BVH's scene scale)...
+        hybrid.samples_per_pixel = 16;         // ...but 16 samples per pixel
         const auto cut_needs = vplkit::stages::hybrid_cut_requirements(kSize, kSize, hybrid);
         dropin::HostBuffer cut_blocks = buffer(cut_needs.blocks_bytes);
         dropin::HostBuffer cut_nodes = buffer(cut_needs.cuts_bytes);

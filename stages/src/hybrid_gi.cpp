@@ -24,8 +24,8 @@ void validate(const HybridOptions& options) {
         options.similarity_min_cos > 1.0f) {
         throw Error("hybrid gi: similarity min cos must be in [-1, 1]");
     }
-    if (!std::isfinite(options.similarity_max_distance) || !(options.similarity_max_distance > 0.0f)) {
-        throw Error("hybrid gi: similarity max distance must be finite and > 0 (world units)");
+    if (!std::isfinite(options.similarity_max_distance) || options.similarity_max_distance < 0.0f) {
+        throw Error("hybrid gi: similarity max distance must be finite and >= 0 (world units; 0: scene-relative)");
     }
 }
 
@@ -49,6 +49,7 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
                           const BufferView& counters, const HybridCutBuffers& cuts, const HybridOptions& options) {
     validate(options);
     check_gbuffer_target("hybrid gi", gbuffer, indirect);
+    const float similarity_distance = gi_similarity_distance(options.similarity_max_distance, bvh.scene_scale);
     const uint32_t k = options.block_size;
     if (cuts.cut_size != options.samples_per_pixel || cuts.blocks_x != (gbuffer.width() + k - 1) / k ||
         cuts.blocks_y != (gbuffer.height() + k - 1) / k) {
@@ -90,7 +91,8 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
                gbuffer_bvh_uses(gbuffer, bvh,
                                 {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks),
                                  Use::read(cuts.cuts), Use::write(indirect), Use::read_write(counters)}),
-               [&gi_pipeline, gbuffer, bvh, trees, cuts, camera, indirect, counters, options](VkCommandBuffer cmd) {
+               [&gi_pipeline, gbuffer, bvh, trees, cuts, camera, indirect, counters, options,
+                similarity_distance](VkCommandBuffer cmd) {
                    shaders::hybrid_gi::Bindings b;
                    bind_bvh(b, bvh);
                    bind_gbuffer(b, gbuffer);
@@ -112,7 +114,7 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
                    push.frame = options.frame;
                    push.visibility = options.visibility ? 1u : 0u;
                    push.min_cos = options.similarity_min_cos;
-                   push.max_distance = options.similarity_max_distance;
+                   push.max_distance = similarity_distance;
                    push.mock_cuts = options.mock_cuts ? 1u : 0u;
                    gi_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
                });

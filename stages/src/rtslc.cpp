@@ -68,11 +68,8 @@ void validate(const RtslcOptions& options) {
         options.similarity_min_cos > 1.0f) {
         refuse("similarity_min_cos must be a finite cosine in [-1, 1]");
     }
-    if (options.interleave > 1 &&
-        !(std::isfinite(options.similarity_max_distance) && options.similarity_max_distance > 0.0f)) {
-        refuse(
-            "similarity_max_distance must be finite and > 0 with interleave > 1 (an absolute distance: scale "
-            "it to the scene)");
+    if (!(std::isfinite(options.similarity_max_distance) && options.similarity_max_distance >= 0.0f)) {
+        refuse("similarity_max_distance must be finite and >= 0 (world units; 0: scene-relative)");
     }
     if (options.slots_per_dispatch < 1) {
         refuse("slots_per_dispatch must be at least 1");
@@ -100,6 +97,7 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
                       const BufferView& counters, const RtslcOptions& options, const RtslcScratchBuffers& scratch) {
     validate(options);
     check_targets(gbuffer, trees, indirect, counters, options, scratch);
+    const float similarity_distance = gi_similarity_distance(options.similarity_max_distance, bvh.scene_scale);
     const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     add_gi_counters_clear(passes, counters, "gi counters clear");
 
@@ -165,26 +163,27 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
 
     if (options.interleave > 1) {
         const auto& interleave_pipeline = device.pipeline<shaders::rtslc_interleave::Pipeline>();
-        passes.add("rtslc interleave",
-                   {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(scratch.cuts),
-                    Use::read(scratch.estimates), Use::write(indirect)},
-                   [&interleave_pipeline, gbuffer, scratch, indirect, options](VkCommandBuffer cmd) {
-                       shaders::rtslc_interleave::Bindings b;
-                       b.gbuffer_position = gbuffer.position.descriptor();
-                       b.gbuffer_normal = gbuffer.normal.descriptor();
-                       b.cuts = scratch.cuts.descriptor();
-                       b.estimates = scratch.estimates.descriptor();
-                       b.indirect = indirect.descriptor();
-                       shaders::rtslc_interleave::Push push{};
-                       push.block_size = options.block_size;
-                       push.cut_size = options.samples_per_pixel;
-                       push.blocks_x = scratch.blocks_x();
-                       push.interleave = options.interleave;
-                       push.frame = options.frame;
-                       push.similarity_min_cos = options.similarity_min_cos;
-                       push.similarity_max_distance = options.similarity_max_distance;
-                       interleave_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
-                   });
+        passes.add(
+            "rtslc interleave",
+            {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(scratch.cuts),
+             Use::read(scratch.estimates), Use::write(indirect)},
+            [&interleave_pipeline, gbuffer, scratch, indirect, options, similarity_distance](VkCommandBuffer cmd) {
+                shaders::rtslc_interleave::Bindings b;
+                b.gbuffer_position = gbuffer.position.descriptor();
+                b.gbuffer_normal = gbuffer.normal.descriptor();
+                b.cuts = scratch.cuts.descriptor();
+                b.estimates = scratch.estimates.descriptor();
+                b.indirect = indirect.descriptor();
+                shaders::rtslc_interleave::Push push{};
+                push.block_size = options.block_size;
+                push.cut_size = options.samples_per_pixel;
+                push.blocks_x = scratch.blocks_x();
+                push.interleave = options.interleave;
+                push.frame = options.frame;
+                push.similarity_min_cos = options.similarity_min_cos;
+                push.similarity_max_distance = similarity_distance;
+                interleave_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
+            });
     }
 }
 

@@ -779,7 +779,16 @@ TEST_CASE("rtslc: bad options and targets are refused, naming the problem") {
             o.similarity_max_distance = 1.0f;
         },
         "interleave^2");
-    refused([](auto& o) { o.interleave = 2; }, "similarity_max_distance");
+    refused(
+        [](auto& o) {
+            o.interleave = 2;
+            o.similarity_max_distance = -1.0f;
+        },
+        "similarity_max_distance");
+    // 0 (the default) is the scene-relative distance, with or without interleaving.
+    stages::RtslcOptions interleaved;
+    interleaved.interleave = 2;
+    stages::validate(interleaved);
     refused(
         [](auto& o) {
             o.interleave = 2;

@@ -340,8 +340,12 @@ TEST_CASE("sst and hybrid: bad options are refused by name") {
                          vplkit::Error);
     CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_min_cos = 2.0f; }), doctest::Contains("min cos"),
                          vplkit::Error);
-    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = 0.0f; }),
+    CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = -1.0f; }),
                          doctest::Contains("max distance"), vplkit::Error);
+    // A default-constructed HybridOptions is valid: distance 0 is scene-relative.
+    CHECK_NOTHROW(vplkit::stages::validate(HybridOptions{}));
+    CHECK(vplkit::stages::gi_similarity_distance(0.0f, 30.0f) == doctest::Approx(3.0f));
+    CHECK(vplkit::stages::gi_similarity_distance(0.5f, 30.0f) == 0.5f);
     CHECK_THROWS_WITH_AS(hybrid([](HybridOptions& o) { o.similarity_max_distance = NAN; }),
                          doctest::Contains("max distance"), vplkit::Error);
 }

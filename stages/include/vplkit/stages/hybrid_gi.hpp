@@ -10,6 +10,7 @@
 // a = the pixel's dropped samples; counts (including mock-cut pixels) in `counters`
 // (kGiCountersBytes, gi_counters.hpp; cleared, then read and written).
 
+#include "vplkit/stages/gi_similarity.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
@@ -41,7 +42,7 @@ struct HybridOptions {
     uint32_t frame = 0;      // the frame counter: each frame draws other random numbers
     bool visibility = true;  // false: no shadow rays (tests)
     // Cut blending's similarity (eq. 5.3): normals' dot above min_cos and positions closer than
-    // max_distance (world units: the caller scales it to the scene; > 0).
+    // max_distance (world units; 0: gi_similarity_distance's share of the scene scale).
     float similarity_min_cos = 0.9f;
     float similarity_max_distance = 0.0f;
     // A pixel none of whose four blocks is similar uses the mock cut (sec. 5.1.4); false: it

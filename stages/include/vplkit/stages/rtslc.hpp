@@ -19,6 +19,7 @@
 // unbiased for the sum over every VPL (with visibility); with it, an approximation (biased at
 // edges: rtslc_interleave.comp says why).
 
+#include "vplkit/stages/gi_similarity.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
@@ -47,9 +48,8 @@ struct RtslcOptions {
     uint32_t seed = 0;               // the same seed and frame give the same image
     bool visibility = true;          // false: no shadow rays (every VPL visible), for tests and comparisons
     // Reconstruction after interleaving (seed 000 eq. 5.3): a neighbour's estimate is used when
-    // the normals' cosine exceeds min_cos and the positions lie closer than max_distance. The
-    // distance is absolute (world units): the caller scales it to the scene (e.g. 5% of
-    // Bvh::scene_scale); it must be > 0 when interleave > 1.
+    // the normals' cosine exceeds min_cos and the positions lie closer than max_distance (world
+    // units; 0: gi_similarity_distance's share of the scene scale).
     float similarity_min_cos = 0.9f;
     float similarity_max_distance = 0.0f;
     // Cut slots per "rtslc gi" dispatch, >= 1: lavapipe ends an invocation's loops after 65535
