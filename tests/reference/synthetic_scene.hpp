@@ -1,8 +1,8 @@
 #pragma once
-// The synthetic scene harness the gi, sampling and rtslc suites share: a G-buffer given pixel by
-// pixel, a triangle list for the BVH and shadow rays, and VPLs, uploaded for the GPU stages and
-// converted to the double reference's types (vpl_reference.hpp, ray_reference.hpp). Each suite
-// keeps its own scene generator; only these mechanics are shared. Namespace vplkit::test: it
+// The synthetic scene harness the gi suite's exact, sampling and rtslc tests share: a G-buffer
+// given pixel by pixel, a triangle list for the BVH and shadow rays, and VPLs, uploaded for the
+// GPU stages and converted to the double reference's types (vpl_reference.hpp, ray_reference.hpp).
+// Each test file keeps its own scene generator; only these mechanics are shared. Namespace vplkit::test: it
 // serves the tests, and the GPU half is not a reference.
 
 #include "vpl_reference.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Helpers of the radix_sort suite: random pairs, the GPU sort through either interface, and the
+// Helpers of the radix sort and sort interface tests: random pairs, the GPU sort through either interface, and the
 // CPU reference (std::stable_sort). Sorting moves bits and computes nothing that could round, so
 // every comparison is exact.
 

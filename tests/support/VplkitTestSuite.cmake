@@ -5,7 +5,7 @@
 #
 # Builds the test program <name>_tests from SOURCES (no main: vplkit_test_support provides it)
 # linked with vplkit_test_support and vplkit_runtime, and registers each doctest case as its own
-# ctest test named "<name>/<case>" (so `ctest -R <name>` runs one suite), labeled <name>.
+# ctest test named "<name>/<case>" (so `ctest -R '^<name>/'` runs one suite), labeled <name>.
 # Every case runs in its own process on the validated test context; a validation message fails
 # the case. Avoid '*', '?' and ',' in case names: ctest passes the name to --test-case=,
 # which treats them as wildcards and separators.

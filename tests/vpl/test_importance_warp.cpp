@@ -141,7 +141,7 @@ constexpr uint32_t kChiSamples = 1u << 16;
 
 }  // namespace
 
-TEST_CASE("mip chain holds the quadrant sums") {
+TEST_CASE("importance warp: mip chain holds the quadrant sums") {
     std::mt19937 gen(7);
     std::uniform_real_distribution<float> dist(0.0f, 10.0f);
     std::vector<float> map(kSize * kSize);
@@ -161,7 +161,7 @@ TEST_CASE("mip chain holds the quadrant sums") {
     CHECK(offset == vplkit::stages::importance_mip_floats(kSize));
 }
 
-TEST_CASE("smooth pdf: chi-square passes and a wrong pmf fails") {
+TEST_CASE("importance warp: smooth pdf: chi-square passes and a wrong pmf fails") {
     const auto map = smooth_map(kSize);
     const auto r = run_warp(map, kSize, kChiSamples, 12345);
     REQUIRE(r.count == kChiSamples);
@@ -185,7 +185,7 @@ TEST_CASE("smooth pdf: chi-square passes and a wrong pmf fails") {
     CHECK(bad_mirrored.statistic > bad_mirrored.critical);
 }
 
-TEST_CASE("zero regions are never sampled") {
+TEST_CASE("importance warp: zero regions are never sampled") {
     auto map = smooth_map(kSize);
     for (uint32_t y = 0; y < kSize; ++y)
         for (uint32_t x = 0; x < kSize; ++x)
@@ -199,7 +199,7 @@ TEST_CASE("zero regions are never sampled") {
     CHECK(c.statistic < c.critical);
 }
 
-TEST_CASE("a single hot texel takes every sample with pmf 1") {
+TEST_CASE("importance warp: a single hot texel takes every sample with pmf 1") {
     std::vector<float> map(kSize * kSize, 0.0f);
     map[37 * kSize + 5] = 3.5f;
     const auto r = run_warp(map, kSize, kSamples, 5);
@@ -210,7 +210,7 @@ TEST_CASE("a single hot texel takes every sample with pmf 1") {
     }
 }
 
-TEST_CASE("a 1x1 map has one level and pmf 1") {
+TEST_CASE("importance warp: a 1x1 map has one level and pmf 1") {
     const auto r = run_warp({2.0f}, 1, 64, 3);
     REQUIRE(r.count == 64);
     CHECK(r.mips.size() == 1);
@@ -220,7 +220,7 @@ TEST_CASE("a 1x1 map has one level and pmf 1") {
     }
 }
 
-TEST_CASE("an all-zero pdf gives no samples") {
+TEST_CASE("importance warp: an all-zero pdf gives no samples") {
     std::vector<float> map(kSize * kSize, 0.0f);
     const auto r = run_warp(map, kSize, kSamples, 5);
     CHECK(r.count == 0);
@@ -230,7 +230,7 @@ TEST_CASE("an all-zero pdf gives no samples") {
     }
 }
 
-TEST_CASE("the same seed gives the same samples and another seed others") {
+TEST_CASE("importance warp: the same seed gives the same samples and another seed others") {
     const auto map = smooth_map(kSize);
     const auto a = run_warp(map, kSize, 4096, 42);
     const auto b = run_warp(map, kSize, 4096, 42);
@@ -247,7 +247,7 @@ TEST_CASE("the same seed gives the same samples and another seed others") {
 // Estimator sum_i value(t_i) / (N pmf(t_i)) of sum_t value(t), for a value not proportional to
 // the importance but zero wherever it is: averaged over 64 seeds it must match the exact sum
 // within 4 sigma / sqrt(64) (sigma: sample standard deviation across seeds) plus float error.
-TEST_CASE("warped estimates are unbiased") {
+TEST_CASE("importance warp: warped estimates are unbiased") {
     auto map = smooth_map(kSize);
     std::vector<double> value(map.size());
     double exact = 0;
@@ -274,7 +274,7 @@ TEST_CASE("warped estimates are unbiased") {
     CHECK(std::abs(mean - exact) <= bound);
 }
 
-TEST_CASE("bad sizes and zero samples are refused") {
+TEST_CASE("importance warp: bad sizes and zero samples are refused") {
     vplkit::Context& ctx = vplkit::test::context();
     CHECK_THROWS_AS(vplkit::stages::importance_mip_floats(48), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::importance_mip_floats(0), vplkit::Error);
