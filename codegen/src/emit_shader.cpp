@@ -237,6 +237,7 @@ private:
             out += "// This shader has no descriptors.\n";
             out += "inline constexpr std::array<VkDescriptorSetLayoutBinding, 0> kSetLayoutBindings = {};\n";
             out += "inline constexpr std::array<Access, 0> kBindingAccess = {};\n";
+            out += "inline constexpr std::array<const char*, 0> kBindingNames = {};\n";
             return out;
         }
         CommentedLines lines;
@@ -263,6 +264,10 @@ private:
         out += "inline constexpr Access kBindingAccess[] = {\n";
         for (const Binding& b : s_.bindings)
             out += "    " + std::string(access_cpp(b.access)) + ",  // " + b.name + "\n";
+        out += "};\n";
+        out += "// Each binding's name in the GLSL, in the same order.\n";
+        out += "inline constexpr const char* kBindingNames[] = {";
+        for (size_t i = 0; i < s_.bindings.size(); ++i) out += (i ? ", \"" : "\"") + s_.bindings[i].name + "\"";
         out += "};\n";
         return out;
     }
@@ -430,12 +435,17 @@ private:
         if (s_.bindings.empty()) {
             out +=
                 "  static constexpr const VkDescriptorSetLayoutBinding* set_layout_bindings = nullptr;\n"
-                "  static constexpr uint32_t set_layout_binding_count = 0;\n";
+                "  static constexpr uint32_t set_layout_binding_count = 0;\n"
+                "  static constexpr const Access* binding_access = nullptr;\n"
+                "  static constexpr const char* const* binding_names = nullptr;\n";
         } else {
             out +=
                 "  static constexpr const VkDescriptorSetLayoutBinding* set_layout_bindings = kSetLayoutBindings;\n"
                 "  static constexpr uint32_t set_layout_binding_count = " +
-                std::to_string(s_.bindings.size()) + ";\n";
+                std::to_string(s_.bindings.size()) +
+                ";\n"
+                "  static constexpr const Access* binding_access = kBindingAccess;\n"
+                "  static constexpr const char* const* binding_names = kBindingNames;\n";
         }
         out += std::string("  static constexpr bool has_push_constants = ") + (s_.push ? "true" : "false") + ";\n";
         out += s_.push ? "  static constexpr VkPushConstantRange push_constant_range = kPushConstantRange;\n"

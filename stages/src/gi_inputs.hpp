@@ -27,9 +27,17 @@ template <typename Bindings>
 void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
     b.bvh_nodes = bvh.nodes.descriptor();
     b.bvh_triangles = bvh.triangles.descriptor();
+    b.bvh_alpha = bvh.alpha.descriptor();
 }
 
 // ... and as step uses, followed by `more`.
+// The G-buffer's images a GI shader binds, followed by `more` (binding_uses matches views to them).
+inline std::vector<ImageView> gbuffer_images(const GbufferViews& gbuffer, std::vector<ImageView> more = {}) {
+    std::vector<ImageView> images = {gbuffer.position, gbuffer.normal, gbuffer.geometric_normal, gbuffer.albedo};
+    images.insert(images.end(), more.begin(), more.end());
+    return images;
+}
+
 inline std::vector<Use> gbuffer_uses(const GbufferViews& gbuffer, std::vector<Use> more) {
     std::vector<Use> uses = {Use::read(gbuffer.position), Use::read(gbuffer.normal),
                              Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo)};
@@ -38,7 +46,7 @@ inline std::vector<Use> gbuffer_uses(const GbufferViews& gbuffer, std::vector<Us
 }
 
 inline std::vector<Use> gbuffer_bvh_uses(const GbufferViews& gbuffer, const BvhBuffers& bvh, std::vector<Use> more) {
-    more.insert(more.begin(), {Use::read(bvh.nodes), Use::read(bvh.triangles)});
+    more.insert(more.begin(), {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha)});
     return gbuffer_uses(gbuffer, std::move(more));
 }
 

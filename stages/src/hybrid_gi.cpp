@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
 
 #include "vplkit/error.hpp"
@@ -63,16 +64,14 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
     add_gi_counters_clear(passes, counters, "gi counters clear");
     const glm::vec3 camera = camera_position;
     const auto& cut_pipeline = device.pipeline<shaders::hybrid_cut::Pipeline>();
-    passes.add("hybrid cuts",
-               gbuffer_uses(gbuffer, {Use::read(trees.sst), Use::read(trees.leaves), Use::write(cuts.blocks),
-                                      Use::write(cuts.cuts)}),
-               [&cut_pipeline, gbuffer, bvh, trees, cuts, camera, options](VkCommandBuffer cmd) {
-                   shaders::hybrid_cut::Bindings b;
-                   b.sst_nodes = trees.sst.descriptor();
-                   b.sst_leaves = trees.leaves.descriptor();
-                   bind_gbuffer(b, gbuffer);
-                   b.blocks = cuts.blocks.descriptor();
-                   b.cuts = cuts.cuts.descriptor();
+    shaders::hybrid_cut::Bindings cut_bindings;
+    cut_bindings.sst_nodes = trees.sst.descriptor();
+    cut_bindings.sst_leaves = trees.leaves.descriptor();
+    bind_gbuffer(cut_bindings, gbuffer);
+    cut_bindings.blocks = cuts.blocks.descriptor();
+    cut_bindings.cuts = cuts.cuts.descriptor();
+    passes.add("hybrid cuts", binding_uses<shaders::hybrid_cut::Module>(cut_bindings, gbuffer_images(gbuffer)),
+               [&cut_pipeline, b = cut_bindings, bvh, trees, cuts, camera, options](VkCommandBuffer cmd) {
                    shaders::hybrid_cut::Push push{};
                    push.camera_position = {camera.x, camera.y, camera.z};
                    push.block_size = options.block_size;
@@ -87,21 +86,18 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
     shaders::hybrid_gi::Spec spec;
     spec.kTraversal = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
     const auto& gi_pipeline = device.pipeline<shaders::hybrid_gi::Pipeline>(spec);
-    passes.add("hybrid gi",
-               gbuffer_bvh_uses(gbuffer, bvh,
-                                {Use::read(trees.sst), Use::read(trees.leaves), Use::read(cuts.blocks),
-                                 Use::read(cuts.cuts), Use::write(indirect), Use::read_write(counters)}),
-               [&gi_pipeline, gbuffer, bvh, trees, cuts, camera, indirect, counters, options,
+    shaders::hybrid_gi::Bindings gi_bindings;
+    bind_bvh(gi_bindings, bvh);
+    bind_gbuffer(gi_bindings, gbuffer);
+    gi_bindings.sst_nodes = trees.sst.descriptor();
+    gi_bindings.sst_leaves = trees.leaves.descriptor();
+    gi_bindings.blocks = cuts.blocks.descriptor();
+    gi_bindings.cuts = cuts.cuts.descriptor();
+    gi_bindings.indirect = indirect.descriptor();
+    gi_bindings.gi_counters = counters.descriptor();
+    passes.add("hybrid gi", binding_uses<shaders::hybrid_gi::Module>(gi_bindings, gbuffer_images(gbuffer, {indirect})),
+               [&gi_pipeline, b = gi_bindings, trees, cuts, camera, indirect, options,
                 similarity_distance](VkCommandBuffer cmd) {
-                   shaders::hybrid_gi::Bindings b;
-                   bind_bvh(b, bvh);
-                   bind_gbuffer(b, gbuffer);
-                   b.sst_nodes = trees.sst.descriptor();
-                   b.sst_leaves = trees.leaves.descriptor();
-                   b.blocks = cuts.blocks.descriptor();
-                   b.cuts = cuts.cuts.descriptor();
-                   b.indirect = indirect.descriptor();
-                   b.gi_counters = counters.descriptor();
                    shaders::hybrid_gi::Push push{};
                    push.camera_position = {camera.x, camera.y, camera.z};
                    push.block_size = options.block_size;

@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/sst.hpp"
 
 #include "vplkit/error.hpp"
@@ -70,14 +71,13 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     push.leaf_count = leaves_in_tree;
     push.nu_min = options.nu_min;
     push.sigma_max = options.sigma_max;
-    passes.add("build sst", {Use::read(leaves), Use::write(nodes), Use::read_write(counters)},
-               [&pipeline, leaves, nodes, counters, push, threads](VkCommandBuffer cmd) {
-                   shaders::build_sst::Bindings bindings;
-                   bindings.leaves = leaves.descriptor();
-                   bindings.nodes = nodes.descriptor();
-                   bindings.counters = counters.descriptor();
-                   pipeline.dispatch(cmd, bindings, push, threads);
-               });
+    shaders::build_sst::Bindings bindings;
+    bindings.leaves = leaves.descriptor();
+    bindings.nodes = nodes.descriptor();
+    bindings.counters = counters.descriptor();
+    passes.add(
+        "build sst", binding_uses<shaders::build_sst::Module>(bindings),
+        [&pipeline, bindings, push, threads](VkCommandBuffer cmd) { pipeline.dispatch(cmd, bindings, push, threads); });
 }
 
 }  // namespace vplkit::stages

@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/sst_gi.hpp"
 
 #include "vplkit/error.hpp"
@@ -22,18 +23,15 @@ void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbu
     check_gbuffer_target("sst gi", gbuffer, indirect);
     add_gi_counters_clear(passes, counters, "gi counters clear");
     const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>();
-    passes.add("sst gi",
-               gbuffer_bvh_uses(
-                   gbuffer, bvh,
-                   {Use::read(trees.sst), Use::read(trees.leaves), Use::write(indirect), Use::read_write(counters)}),
-               [&pipeline, gbuffer, bvh, trees, camera_position, indirect, counters, options](VkCommandBuffer cmd) {
-                   shaders::sst_gi::Bindings b;
-                   bind_bvh(b, bvh);
-                   bind_gbuffer(b, gbuffer);
-                   b.sst_nodes = trees.sst.descriptor();
-                   b.sst_leaves = trees.leaves.descriptor();
-                   b.indirect = indirect.descriptor();
-                   b.gi_counters = counters.descriptor();
+    shaders::sst_gi::Bindings bindings;
+    bind_bvh(bindings, bvh);
+    bind_gbuffer(bindings, gbuffer);
+    bindings.sst_nodes = trees.sst.descriptor();
+    bindings.sst_leaves = trees.leaves.descriptor();
+    bindings.indirect = indirect.descriptor();
+    bindings.gi_counters = counters.descriptor();
+    passes.add("sst gi", binding_uses<shaders::sst_gi::Module>(bindings, gbuffer_images(gbuffer, {indirect})),
+               [&pipeline, b = bindings, bvh, trees, camera_position, indirect, options](VkCommandBuffer cmd) {
                    shaders::sst_gi::Push push{};
                    push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
                    push.samples_per_pixel = options.samples_per_pixel;

@@ -1,0 +1,76 @@
+#pragma once
+// A step's uses, derived from the shader's reflection rather than written a second time: every
+// binding of a generated Bindings (vplkit/shaders/<name>.hpp) becomes a Use with the access the
+// SPIR-V declares (kBindingAccess: readonly -> read, writeonly -> write, else read and write).
+// Buffers come from the descriptors themselves; an image binding names only a VkImageView, so
+// the images the bindings use are passed in and matched by view.
+//
+//   shaders::build_sst::Bindings b;
+//   b.leaves = leaves.descriptor(); ...
+//   passes.add("build sst", binding_uses<shaders::build_sst::Module>(b), [&pipeline, b, push](VkCommandBuffer cmd) {
+//       pipeline.dispatch(cmd, b, push, threads);
+//   });
+
+#include "vplkit/error.hpp"
+#include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/steps.hpp"
+
+#include <vulkan/vulkan.h>
+
+#include <string>
+#include <vector>
+
+namespace vplkit::stages {
+
+inline Access access_of(shaders::Access access) {
+    switch (access) {
+        case shaders::Access::read:
+            return Access::read;
+        case shaders::Access::write:
+            return Access::write;
+        case shaders::Access::read_write:
+            break;
+    }
+    return Access::read_write;
+}
+
+// The uses of one dispatch of Module (a generated shader's Module type) with `bindings`, in
+// `stage`. Throws Error when an image binding's view is not among `images`. Array elements left
+// empty (VK_NULL_HANDLE) are skipped.
+template <class Module>
+std::vector<Use> binding_uses(const typename Module::Bindings& bindings, const std::vector<ImageView>& images = {},
+                              Stage stage = Stage::compute) {
+    std::vector<Use> uses;
+    constexpr uint32_t count = Module::set_layout_binding_count;
+    if constexpr (count > 0) {
+        VkWriteDescriptorSet writes[count];
+        Module::write_descriptors(bindings, writes);
+        for (uint32_t i = 0; i < count; ++i) {
+            const Access access = access_of(Module::binding_access[i]);
+            const std::string name = Module::binding_names[i];
+            for (uint32_t e = 0; e < writes[i].descriptorCount; ++e) {
+                if (writes[i].pBufferInfo != nullptr) {
+                    const VkDescriptorBufferInfo& info = writes[i].pBufferInfo[e];
+                    if (info.buffer == VK_NULL_HANDLE) continue;
+                    uses.push_back({BufferView{info.buffer, info.offset, info.range, name}, {}, access, stage});
+                    continue;
+                }
+                const VkDescriptorImageInfo& info = writes[i].pImageInfo[e];
+                if (info.imageView == VK_NULL_HANDLE) continue;
+                const ImageView* image = nullptr;
+                for (const ImageView& candidate : images) {
+                    if (candidate.view == info.imageView) image = &candidate;
+                }
+                if (image == nullptr) {
+                    throw Error("vplkit: binding '" + name +
+                                "' uses an image view that is not among the step's images");
+                }
+                // Read-only sampled images stay in their layout; storage access needs GENERAL.
+                uses.push_back({{}, *image, access, stage, info.imageLayout});
+            }
+        }
+    }
+    return uses;
+}
+
+}  // namespace vplkit::stages
