@@ -25,6 +25,8 @@ static_assert(offsetof(scene::Vertex, position) == offsetof(vs::SceneVertex, pos
 static_assert(offsetof(scene::Vertex, normal) == offsetof(vs::SceneVertex, normal));
 static_assert(offsetof(scene::Vertex, tangent) == offsetof(vs::SceneVertex, tangent));
 static_assert(offsetof(scene::Vertex, uv0) == offsetof(vs::SceneVertex, uv0));
+static_assert(offsetof(scene::Vertex, uv1) == offsetof(vs::SceneVertex, uv1));
+static_assert(offsetof(scene::Vertex, color) == offsetof(vs::SceneVertex, color));
 
 // raster_material.glsl's flag bits.
 constexpr uint32_t kAlphaTest = 1u;

@@ -1,5 +1,7 @@
 #include "vplkit/renderer.hpp"
 
+#include "vplkit/bvh_alpha.hpp"
+
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -29,6 +31,7 @@ Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(conte
     scene_ = GpuScene::create(context, scene);
     const auto start = std::chrono::steady_clock::now();
     bvh_ = build_bvh(scene::triangle_positions(scene));
+    add_alpha_tests(bvh_, scene);  // MASK and BLEND cut-outs let rays through, as the G-buffer shows them
     bvh_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu_bvh_ = upload_bvh(context, bvh_);
     lights_ = stages::upload_lights(context, scene.lights);

@@ -104,7 +104,15 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
             throw Error("VPL tracing: triangle " + std::to_string(t) + " has material " + std::to_string(m) +
                         ", but the scene has " + std::to_string(scene.materials.size()));
         }
-        albedo[t] = {material_rho[m].x, material_rho[m].y, material_rho[m].z, 0.0f};
+        // COLOR_0 multiplies the base colour: a light path's hit takes the triangle's mean colour,
+        // the average of its corners' (exact for the linearly interpolated colour alone; with a
+        // texture, mean(texture x colour) becomes mean(texture) x mean(colour), the same
+        // per-triangle approximation the texture mean already makes).
+        glm::vec3 color(0.0f);
+        for (int corner = 0; corner < 3; ++corner)
+            color += glm::vec3(scene.vertices[scene.indices[3 * t + corner]].color);
+        const glm::vec3 rho = material_rho[m] * (color / 3.0f);
+        albedo[t] = {rho.x, rho.y, rho.z, 0.0f};
     }
 
     std::vector<double> weights;

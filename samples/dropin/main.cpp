@@ -141,6 +141,8 @@ int main() {
         dropin::HostBuffer sst_counters = buffer(vplkit::stages::sst_counter_count(n) * sizeof(uint32_t));
         dropin::HostBuffer bvh_nodes = buffer(bvh.nodes.size() * sizeof(vplkit::shaders::BvhNode));
         dropin::HostBuffer bvh_triangles = buffer(bvh.triangles.size() * sizeof(vplkit::shaders::BvhTriangle));
+        // The alpha-test records: one zero word, every triangle here is opaque.
+        dropin::HostBuffer bvh_alpha = buffer(sizeof(uint32_t));
         dropin::HostBuffer counters = buffer(vplkit::stages::kGiCountersBytes);
         vplkit::stages::HybridOptions hybrid;  // the defaults (distances relative to the BVH's scene scale)...
         hybrid.samples_per_pixel = 16;         // ...but 16 samples per pixel
@@ -150,6 +152,7 @@ int main() {
         std::memcpy(vpls.mapped, scene.vpls.data(), vpls.size);
         std::memcpy(bvh_nodes.mapped, bvh.nodes.data(), bvh_nodes.size);
         std::memcpy(bvh_triangles.mapped, bvh.triangles.data(), bvh_triangles.size);
+        std::memset(bvh_alpha.mapped, 0, bvh_alpha.size);
 
         // The G-buffer and the output, uploaded through host buffers (RGBA32F and RGBA16F).
         using vplkit::stages::kGbufferAlbedoFormat;
@@ -188,9 +191,12 @@ int main() {
         gbuffer.normal = view(normal, "normal");
         gbuffer.geometric_normal = view(geometric_normal, "geometric normal");
         gbuffer.albedo = view(albedo, "albedo");
-        const vplkit::stages::BvhBuffers bvh_views{view(bvh_nodes, "bvh nodes"), view(bvh_triangles, "bvh triangles"),
-                                                   uint32_t(bvh.nodes.size()), uint32_t(bvh.triangles.size()),
-                                                   bvh.scene_scale};
+        const vplkit::stages::BvhBuffers bvh_views{view(bvh_nodes, "bvh nodes"),
+                                                   view(bvh_triangles, "bvh triangles"),
+                                                   uint32_t(bvh.nodes.size()),
+                                                   uint32_t(bvh.triangles.size()),
+                                                   bvh.scene_scale,
+                                                   view(bvh_alpha, "bvh alpha")};
         // hybrid reads only the leaves and the SST; the light tree view is rtslc's (any buffer will do).
         const vplkit::stages::VplTreeBuffers trees{n, leaves, view(leaf_buffer, "leaves"), view(sst_nodes, "sst"),
                                                    view(sst_nodes, "sst")};
@@ -236,7 +242,7 @@ int main() {
 
         for (dropin::HostBuffer* b :
              {&vpls, &bounds, &keys, &values, &sort_keys, &sort_values, &sort_counts, &leaf_buffer, &sst_nodes,
-              &sst_counters, &bvh_nodes, &bvh_triangles, &counters, &cut_blocks, &cut_nodes, &readback}) {
+              &sst_counters, &bvh_nodes, &bvh_triangles, &bvh_alpha, &counters, &cut_blocks, &cut_nodes, &readback}) {
             b->destroy(gpu);
         }
         for (dropin::HostBuffer& b : uploads) b.destroy(gpu);

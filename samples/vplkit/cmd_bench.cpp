@@ -61,7 +61,7 @@ const char* const kBenchUsage =
     "usage: vplkit bench gi --scene NAME|FILE [--camera N] [--sun ...] [--point ...] [--out DIR]\n"
     "                       [--width W --height H] [--frames F] [--quick]\n"
     "                       [--vpl-source ir|brsm] [--vpls N] [--seed S] [--target-ms T] [--cache DIR]\n"
-    "                       [--sweeps LIST] [--device SEL]\n"
+    "                       [--sweeps LIST] [--device SEL] [--strict]\n"
     "\n"
     "What every indirect-light method's accuracy costs on a standard set-up. Renders the exact\n"
     "ground truth once (cached in --cache, keyed by scene, camera, lights, size, VPL set and seed),\n"
@@ -83,7 +83,8 @@ const char* const kBenchUsage =
     "  --vpls N         the VPL budget (default 4096)\n"
     "  --target-ms T    the equal-time target frame time (default: hybrid's at 8 spp)\n"
     "  --cache DIR      where ground truths are kept (default out/bench-cache)\n"
-    "  --sweeps LIST    only these sweeps, comma-separated: spp, block, resolution, interleave, mock, vpls\n";
+    "  --sweeps LIST    only these sweeps, comma-separated: spp, block, resolution, interleave, mock, vpls\n"
+    "  --strict         fail when the scene has a warning (a feature of the file vplkit skips or approximates)\n";
 
 namespace {
 

@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "scene_warnings.hpp"
 #include "vpl_view.hpp"
 
 #include "vplkit/context.hpp"
@@ -38,7 +39,7 @@ const char* const kRenderUsage =
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
     "                     [--seed S] [--emissive-samples N] [--frames F] [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
-    "                     [--device SEL] [--validation]\n"
+    "                     [--device SEL] [--validation] [--strict]\n"
     "\n"
     "Renders one frame (G-buffer; direct light from punctual lights and emissive triangles with BVH\n"
     "shadow rays; indirect light by the chosen method; tone mapping) and prints the device used\n"
@@ -95,15 +96,18 @@ const char* const kRenderUsage =
     "  --frames F       render the frame F times and print each stage's median time over frames\n"
     "                   2..F (the first pays for shader compiles); the image is the same each time\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
-    "  --validation     run with the Vulkan validation layer on\n";
+    "  --validation     run with the Vulkan validation layer on\n"
+    "  --strict         fail (exit 1, nothing written) when the scene has a warning: a feature of\n"
+    "                   the file that vplkit skips or approximates (printed as 'warning: ...')\n";
 
 const char* const kPlanUsage =
     "usage: vplkit plan [render's options: --scene NAME|FILE --method M --vpl-source S --bounces B\n"
-    "                   --gi-resolution R --sun ... --point ... ...]\n"
+    "                   --gi-resolution R --sun ... --point ... --strict ...]\n"
     "\n"
     "Prints the stages a frame with these options would run, and for every stage kept or left out\n"
     "the reason (the effects planner, runtime/include/vplkit/planner.hpp). Reads the scene; no\n"
-    "device work. `vplkit render` prints the plan's one-line summary.\n";
+    "device work. `vplkit render` prints the plan's one-line summary. The scene's warnings (what\n"
+    "the file states that vplkit skips or approximates) are printed first; --strict fails on them.\n";
 
 namespace {
 
@@ -188,6 +192,7 @@ int render_or_plan(Args& args, bool plan_only) {
     ContextOptions context_options;
     if (auto device = args.value("--device")) context_options.device = *device;
     context_options.validation = args.flag("--validation");
+    const bool strict = args.flag("--strict");
     const std::string scene_arg = args.value("--scene").value_or("");
     const std::filesystem::path out = args.value("--out").value_or("vplkit.png");
     const auto out_hdr = args.value("--out-hdr");
@@ -352,6 +357,7 @@ int render_or_plan(Args& args, bool plan_only) {
         settings.height = height.value_or(setup.height ? setup.height : 360);
     }
     scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
+    report_scene_warnings(scene, strict);
     if (lambertian) scene::use_lambertian_materials(scene);
     const double load_ms =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();

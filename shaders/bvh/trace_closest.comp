@@ -5,6 +5,7 @@
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_BVH_ALPHA_BINDING 4
 #include "vplkit/bvh.glsl"
 
 // Small groups: rays diverge, and a group waits for its slowest ray.

@@ -10,6 +10,7 @@
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_BVH_ALPHA_BINDING 9
 #include "vplkit/bvh.glsl"
 #include "vplkit/brdf.glsl"
 #include "vplkit/gbuffer.glsl"

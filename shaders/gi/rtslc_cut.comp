@@ -16,6 +16,7 @@
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_BVH_ALPHA_BINDING 10
 #define VPLKIT_GI_COUNTERS_BINDING 8
 #include "vplkit/bvh.glsl"
 #include "vplkit/brdf.glsl"

@@ -21,13 +21,14 @@ void add_direct_emissive_pass(Device& device, StepList& passes, const GbufferVie
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     passes.add(
         "direct emissive",
-        {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-         Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(emitters.triangles),
-         Use::read_write(radiance)},
+        {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
+         Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
+         Use::read(emitters.triangles), Use::read_write(radiance)},
         [&pipeline, gbuffer, bvh, emitters, params, radiance](VkCommandBuffer cmd) {
             shaders::direct_emissive::Bindings b;
             b.bvh_nodes = bvh.nodes.descriptor();
             b.bvh_triangles = bvh.triangles.descriptor();
+            b.bvh_alpha = bvh.alpha.descriptor();
             b.gbuffer_position = gbuffer.position.descriptor();
             b.gbuffer_normal = gbuffer.normal.descriptor();
             b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();

@@ -17,13 +17,14 @@ void add_direct_light_pass(Device& device, StepList& passes, const GbufferViews&
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     passes.add(
         "direct light",
-        {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-         Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(gbuffer.emission),
-         Use::read(lights.lights), Use::write(radiance)},
+        {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
+         Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
+         Use::read(gbuffer.emission), Use::read(lights.lights), Use::write(radiance)},
         [&pipeline, gbuffer, bvh, lights, params, radiance](VkCommandBuffer cmd) {
             shaders::direct_light::Bindings b;
             b.bvh_nodes = bvh.nodes.descriptor();
             b.bvh_triangles = bvh.triangles.descriptor();
+            b.bvh_alpha = bvh.alpha.descriptor();
             b.gbuffer_position = gbuffer.position.descriptor();
             b.gbuffer_normal = gbuffer.normal.descriptor();
             b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();

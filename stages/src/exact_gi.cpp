@@ -38,13 +38,14 @@ void add_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, co
                const ImageView& indirect, const BufferView& counters) {
     const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>();
     passes.add("exact gi",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(gbuffer.position), Use::read(gbuffer.normal),
-                Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo), Use::read(vpls),
-                Use::read_write(indirect), Use::read_write(counters)},
+               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
+                Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
+                Use::read(vpls), Use::read_write(indirect), Use::read_write(counters)},
                [&pipeline, gbuffer, bvh, vpls, first, count, camera_position, indirect, counters](VkCommandBuffer cmd) {
                    shaders::exact_gi::Bindings b;
                    b.bvh_nodes = bvh.nodes.descriptor();
                    b.bvh_triangles = bvh.triangles.descriptor();
+                   b.bvh_alpha = bvh.alpha.descriptor();
                    b.gbuffer_position = gbuffer.position.descriptor();
                    b.gbuffer_normal = gbuffer.normal.descriptor();
                    b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();

@@ -36,31 +36,37 @@ void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     // Views by value: the caller's may be temporaries (a GpuBvh or Buffer converted at the call).
     const BufferView nodes = bvh.nodes;
     const BufferView triangles = bvh.triangles;
-    std::vector<Use> uses = {Use::read(nodes), Use::read(triangles), Use::read(rays), Use::write(results)};
+    const BufferView alpha = bvh.alpha;
+    std::vector<Use> uses = {Use::read(nodes), Use::read(triangles), Use::read(alpha), Use::read(rays),
+                             Use::write(results)};
     if (mode == TraceMode::closest_hit) {
         const auto& pipeline = device.pipeline<shaders::trace_closest::Pipeline>();
-        passes.add(name, std::move(uses), [&pipeline, nodes, triangles, rays, results, ray_count](VkCommandBuffer cmd) {
-            shaders::trace_closest::Bindings bindings;
-            bindings.bvh_nodes = nodes.descriptor();
-            bindings.bvh_triangles = triangles.descriptor();
-            bindings.rays = rays.descriptor();
-            bindings.hits = results.descriptor();
-            shaders::trace_closest::Push push{};
-            push.ray_count = ray_count;
-            pipeline.dispatch(cmd, bindings, push, ray_count);
-        });
+        passes.add(name, std::move(uses),
+                   [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
+                       shaders::trace_closest::Bindings bindings;
+                       bindings.bvh_nodes = nodes.descriptor();
+                       bindings.bvh_triangles = triangles.descriptor();
+                       bindings.bvh_alpha = alpha.descriptor();
+                       bindings.rays = rays.descriptor();
+                       bindings.hits = results.descriptor();
+                       shaders::trace_closest::Push push{};
+                       push.ray_count = ray_count;
+                       pipeline.dispatch(cmd, bindings, push, ray_count);
+                   });
     } else {
         const auto& pipeline = device.pipeline<shaders::trace_occlusion::Pipeline>();
-        passes.add(name, std::move(uses), [&pipeline, nodes, triangles, rays, results, ray_count](VkCommandBuffer cmd) {
-            shaders::trace_occlusion::Bindings bindings;
-            bindings.bvh_nodes = nodes.descriptor();
-            bindings.bvh_triangles = triangles.descriptor();
-            bindings.rays = rays.descriptor();
-            bindings.occlusion = results.descriptor();
-            shaders::trace_occlusion::Push push{};
-            push.ray_count = ray_count;
-            pipeline.dispatch(cmd, bindings, push, ray_count);
-        });
+        passes.add(name, std::move(uses),
+                   [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
+                       shaders::trace_occlusion::Bindings bindings;
+                       bindings.bvh_nodes = nodes.descriptor();
+                       bindings.bvh_triangles = triangles.descriptor();
+                       bindings.bvh_alpha = alpha.descriptor();
+                       bindings.rays = rays.descriptor();
+                       bindings.occlusion = results.descriptor();
+                       shaders::trace_occlusion::Push push{};
+                       push.ray_count = ray_count;
+                       pipeline.dispatch(cmd, bindings, push, ray_count);
+                   });
     }
 }
 

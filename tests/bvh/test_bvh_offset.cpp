@@ -49,12 +49,13 @@ std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh,
     const auto& pipeline = ctx.pipeline<ts::surface_rays::Pipeline>();
     vplkit::PassList passes("surface rays test");
     passes.add("surface rays",
-               {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(query_buffer),
-                vplkit::Use::write(result_buffer)},
+               {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(bvh.alpha),
+                vplkit::Use::read(query_buffer), vplkit::Use::write(result_buffer)},
                [&](VkCommandBuffer cmd) {
                    ts::surface_rays::Bindings bindings;
                    bindings.bvh_nodes = bvh.nodes.descriptor();
                    bindings.bvh_triangles = bvh.triangles.descriptor();
+                   bindings.bvh_alpha = bvh.alpha.descriptor();
                    bindings.queries = query_buffer.descriptor();
                    bindings.results = result_buffer.descriptor();
                    ts::surface_rays::Push push{};
@@ -77,12 +78,13 @@ std::vector<uint32_t> run_segments(const vplkit::GpuBvh& bvh, const std::vector<
     const auto& pipeline = ctx.pipeline<ts::segment_visibility::Pipeline>();
     vplkit::PassList passes("segment visibility test");
     passes.add("segment visibility",
-               {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(query_buffer),
-                vplkit::Use::write(result_buffer)},
+               {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(bvh.alpha),
+                vplkit::Use::read(query_buffer), vplkit::Use::write(result_buffer)},
                [&](VkCommandBuffer cmd) {
                    ts::segment_visibility::Bindings bindings;
                    bindings.bvh_nodes = bvh.nodes.descriptor();
                    bindings.bvh_triangles = bvh.triangles.descriptor();
+                   bindings.bvh_alpha = bvh.alpha.descriptor();
                    bindings.queries = query_buffer.descriptor();
                    bindings.occluded = result_buffer.descriptor();
                    ts::segment_visibility::Push push{};

@@ -5,6 +5,7 @@
 // `bvh_triangles`, so their generated Bindings have fields of those names:
 //     bindings.bvh_nodes = gpu_bvh.nodes.descriptor();
 //     bindings.bvh_triangles = gpu_bvh.triangles.descriptor();
+//     bindings.bvh_alpha = gpu_bvh.alpha.descriptor();
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/bvh.hpp"
@@ -20,12 +21,13 @@ class Context;
 struct GpuBvh {
     Buffer nodes;      // BvhNode[node_count]
     Buffer triangles;  // BvhTriangle[max(triangle_count, 1)]: never empty (Vulkan has no empty buffers)
+    Buffer alpha;      // Bvh::alpha, or one zero word
     uint32_t node_count = 0;
     uint32_t triangle_count = 0;       // 0 for an empty scene
     float scene_scale = kBvhMinScale;  // Bvh::scene_scale, for offset_ray_origin
 
     // As the stages take it.
-    operator stages::BvhBuffers() const { return {nodes, triangles, node_count, triangle_count, scene_scale}; }
+    operator stages::BvhBuffers() const { return {nodes, triangles, node_count, triangle_count, scene_scale, alpha}; }
 };
 
 // Device-local buffers with the BVH's nodes and triangles. Throws Error when a buffer would

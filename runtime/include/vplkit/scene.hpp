@@ -22,7 +22,7 @@
 
 namespace vplkit::scene {
 
-// One vertex: 48 bytes, no padding, so the vector uploads as a vertex buffer or as a
+// One vertex: 72 bytes, no padding, so the vector uploads as a vertex buffer or as a
 // scalar-layout storage buffer as it is.
 struct Vertex {
     glm::vec3 position{0.0f};  // world space
@@ -33,8 +33,12 @@ struct Vertex {
     // no tangents and the primitive's material has no normal texture (nothing needs one then).
     glm::vec4 tangent{0.0f};
     glm::vec2 uv0{0.0f};  // TEXCOORD_0 ((0, 0) when the primitive has none)
+    glm::vec2 uv1{0.0f};  // TEXCOORD_1 ((0, 0) when the primitive has none)
+    // COLOR_0, linear RGBA in [0, 1] (RGB files get a = 1; white when the primitive has none): it
+    // multiplies the material's base colour (glTF 2.0 3.9.2).
+    glm::vec4 color{1.0f};
 };
-static_assert(sizeof(Vertex) == 48, "Vertex is uploaded as is: no padding");
+static_assert(sizeof(Vertex) == 72, "Vertex is uploaded as is: no padding");
 
 enum class AlphaMode : uint32_t { opaque, mask, blend };
 enum class Wrap : uint32_t { repeat, clamp_to_edge, mirrored_repeat };
@@ -168,8 +172,16 @@ struct LoadWarnings {
     uint32_t repaired_normals = 0;      // zero-length NORMAL: replaced by the adjacent faces' normal
     uint32_t untangented_vertices = 0;  // generated tangent undefined (no UVs or degenerate UVs):
                                         // an arbitrary unit vector orthogonal to the normal, w = +1
-    std::vector<std::string> messages;  // each other thing ignored, one line each
+    std::vector<std::string> messages;  // each other thing ignored or approximated, one line each
 };
+
+// What a user is told about `warnings`: one line per thing the loader skipped or approximated
+// (the counters as sentences, then the messages), each line once, in the order first met. A
+// scene that renders exactly as its file states has none. Zero-area triangles are not among
+// them (nothing could draw them: see degenerate_triangles_note).
+std::vector<std::string> warning_lines(const LoadWarnings& warnings);
+// The dropped zero-area triangles as a line (empty when there were none): they change no image.
+std::string degenerate_triangles_note(const LoadWarnings& warnings);
 
 struct Scene {
     std::filesystem::path source;  // the file it was loaded from

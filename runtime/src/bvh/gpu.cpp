@@ -44,6 +44,12 @@ GpuBvh upload_bvh(Context& context, const Bvh& bvh) {
         Buffer::create(context, triangle_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "bvh triangles");
     gpu.nodes.upload(bvh.nodes);
     gpu.triangles.upload(triangles);
+    const std::vector<uint32_t> opaque(bvh.alpha.empty() ? 1 : 0, 0u);
+    const auto& alpha = bvh.alpha.empty() ? opaque : bvh.alpha;
+    check_range(context, alpha.size() * sizeof(uint32_t), "alpha-test records");
+    gpu.alpha = Buffer::create(context, alpha.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryUse::device, "bvh alpha");
+    gpu.alpha.upload(alpha);
     return gpu;
 }
 

@@ -3,6 +3,7 @@
 #include "vplkit/error.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 namespace vplkit::scene::detail {
@@ -311,6 +312,19 @@ std::vector<glm::vec2> read_texcoords(const GltfSource& source, int accessor, co
     const auto floats = read_floats(source, accessor, 2, true, what);
     std::vector<glm::vec2> out(floats.size() / 2);
     std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
+    return out;
+}
+
+std::vector<glm::vec4> read_colors(const GltfSource& source, int accessor, const std::string& what) {
+    const size_t components = get_accessor(source, accessor, what).type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    const auto floats = read_floats(source, accessor, components, true, what);
+    std::vector<glm::vec4> out(floats.size() / components, glm::vec4(1.0f));
+    for (size_t i = 0; i < out.size(); ++i) {
+        for (size_t c = 0; c < components; ++c) {
+            const float v = floats[i * components + c];
+            out[i][int(c)] = std::isnan(v) ? v : std::clamp(v, 0.0f, 1.0f);
+        }
+    }
     return out;
 }
 

@@ -36,6 +36,9 @@ size_t accessor_count(const GltfSource& source, int index, const std::string& wh
 std::vector<glm::vec3> read_vec3(const GltfSource& source, int accessor, const std::string& what);
 std::vector<glm::vec4> read_vec4(const GltfSource& source, int accessor, const std::string& what);
 std::vector<glm::vec2> read_texcoords(const GltfSource& source, int accessor, const std::string& what);
+// COLOR_n: VEC3 or VEC4 of FLOAT or normalized UNSIGNED_BYTE / UNSIGNED_SHORT, as RGBA (a = 1
+// for VEC3), clamped to [0, 1] (glTF 2.0 3.7.2.1 gives that range).
+std::vector<glm::vec4> read_colors(const GltfSource& source, int accessor, const std::string& what);
 
 // Triangle indices: SCALAR UNSIGNED_BYTE / UNSIGNED_SHORT / UNSIGNED_INT.
 std::vector<uint32_t> read_indices(const GltfSource& source, int accessor, const std::string& what);

@@ -147,6 +147,8 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
                 v.position = positions[i];
                 v.normal = normal;
                 if (has_uvs) v.uv0 = data.uvs[i];
+                if (!data.uvs1.empty()) v.uv1 = data.uvs1[i];
+                if (!data.colors.empty()) v.color = data.colors[i];
                 if (has_tangents) v.tangent = file_tangent(i, normal);
                 out.push_back(v);
                 local.push_back(uint32_t(k + j));
@@ -166,6 +168,8 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
                 zero_normals.push_back(uint32_t(i));
             }
             if (has_uvs) v.uv0 = data.uvs[i];
+            if (!data.uvs1.empty()) v.uv1 = data.uvs1[i];
+            if (!data.colors.empty()) v.color = data.colors[i];
             out.push_back(v);
         }
         if (!zero_normals.empty()) {

@@ -20,6 +20,8 @@ struct PrimitiveData {
     std::vector<glm::vec3> normals;   // empty: the file has none
     std::vector<glm::vec4> tangents;  // empty: the file has none
     std::vector<glm::vec2> uvs;       // empty: the file has none
+    std::vector<glm::vec2> uvs1;      // TEXCOORD_1; empty: the file has none
+    std::vector<glm::vec4> colors;    // COLOR_0 as RGBA in [0, 1]; empty: the file has none
     std::vector<uint32_t> indices;    // 3 per triangle
     uint32_t material = 0;            // index into Scene::materials
 };

@@ -410,6 +410,16 @@ std::optional<PrimitiveData> decode_primitive(const GltfSource& source, int mesh
         check_count(data.uvs.size(), "TEXCOORD_0");
         check_finite(&data.uvs[0].x, 2, "TEXCOORD_0");
     }
+    if (const int a = attribute("TEXCOORD_1"); a >= 0) {
+        data.uvs1 = detail::read_texcoords(source, a, "TEXCOORD_1 of " + label);
+        check_count(data.uvs1.size(), "TEXCOORD_1");
+        check_finite(&data.uvs1[0].x, 2, "TEXCOORD_1");
+    }
+    if (const int a = attribute("COLOR_0"); a >= 0) {
+        data.colors = detail::read_colors(source, a, "COLOR_0 of " + label);
+        check_count(data.colors.size(), "COLOR_0");
+        check_finite(&data.colors[0].x, 4, "COLOR_0");
+    }
 
     if (primitive.indices >= 0) {
         data.indices = detail::read_indices(source, primitive.indices, "indices of " + label);

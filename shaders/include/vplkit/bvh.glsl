@@ -8,11 +8,32 @@
 // included. Helpers for rays that start on surfaces: bvh_hit_position, bvh_triangle_normal,
 // bvh_scene_scale, offset_ray_origin.
 //
-// Including it: define the set-0 binding numbers of the two buffers first,
+// Including it: define the set-0 binding numbers of the three buffers first,
 //     #define VPLKIT_BVH_NODES_BINDING 0
 //     #define VPLKIT_BVH_TRIANGLES_BINDING 1
+//     #define VPLKIT_BVH_ALPHA_BINDING 4
 //     #include "vplkit/bvh.glsl"
-// which declares `bvh_nodes` and `bvh_triangles` (generated Bindings fields of the same names).
+// which declares `bvh_nodes`, `bvh_triangles` and `bvh_alpha` (generated Bindings fields of the
+// same names).
+//
+// Alpha-tested triangles (glTF MASK materials, and BLEND ones, which the G-buffer draws where
+// alpha >= 0.5): a ray passes through a triangle where alpha = base colour factor alpha x COLOR_0
+// alpha x base colour texture alpha < cutoff, exactly where the G-buffer discards, so shadow
+// rays, light paths and VPL visibility see the surface the camera sees. A triangle's `alpha` is
+// 0 when it is opaque (the test is skipped: a triangle hit in an opaque scene costs one compare
+// of a word already loaded); else the offset of its record in `bvh_alpha` (a plain uint array,
+// written by vplkit::add_alpha_tests, runtime/include/vplkit/bvh_alpha.hpp):
+//   triangle record (10 words): the base colour texture's UVs at v0, v1, v2 (texture transform
+//     and texCoord set applied; 6 floats), alpha factor x COLOR_0 alpha at v0, v1, v2 (3 floats),
+//     the offset of its material record;
+//   material record (5 words): cutoff (float), texture width, height (0 x 0: no texture, alpha
+//     1), wrap modes (S in bits 0-1, T in bits 2-3: 0 repeat, 1 clamp, 2 mirrored), the offset
+//     of the texture's alpha bytes (width x height, rows top to bottom, 4 to a word).
+// Why a plain array and not a sampler: lavapipe has no descriptor indexing, so compute shaders
+// cannot pick one of many textures per hit; the alpha channels of the masked materials' base
+// colour textures are few (Sponza: its plants and chains) and a byte per texel. The texture is
+// read bilinearly at level 0 with the sampler's wrap modes (the G-buffer's trilinear filtering
+// differs only where the footprint spans several texels: at the mask's edges, far away).
 //
 // Layout. Nodes are 32 bytes, in depth-first order: an interior node's first child is the next
 // node and `index` holds its second child; a leaf's `index` is its first triangle and `meta`
@@ -47,8 +68,8 @@
 // Self-intersection (origins on surfaces): offset_ray_origin below, after Wachter and Binder,
 // "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, 2019, ch. 6).
 
-#if !defined(VPLKIT_BVH_NODES_BINDING) || !defined(VPLKIT_BVH_TRIANGLES_BINDING)
-#error "define VPLKIT_BVH_NODES_BINDING and VPLKIT_BVH_TRIANGLES_BINDING before including vplkit/bvh.glsl"
+#if !defined(VPLKIT_BVH_NODES_BINDING) || !defined(VPLKIT_BVH_TRIANGLES_BINDING) || !defined(VPLKIT_BVH_ALPHA_BINDING)
+#error "define VPLKIT_BVH_NODES_BINDING, VPLKIT_BVH_TRIANGLES_BINDING and VPLKIT_BVH_ALPHA_BINDING before including vplkit/bvh.glsl"
 #endif
 
 struct BvhNode {
@@ -62,6 +83,7 @@ struct BvhTriangle {
     vec3 v0;
     uint id;     // the caller's id for this triangle (its input index unless ids were given)
     vec3 v1;
+    uint alpha;  // 0: opaque; else its record's offset in bvh_alpha (see above)
     vec3 v2;
 };
 
@@ -72,6 +94,10 @@ layout(std430, set = 0, binding = VPLKIT_BVH_NODES_BINDING) readonly buffer BvhN
 layout(std430, set = 0, binding = VPLKIT_BVH_TRIANGLES_BINDING) readonly buffer BvhTriangleBuffer {
     BvhTriangle items[];
 } bvh_triangles;
+
+layout(std430, set = 0, binding = VPLKIT_BVH_ALPHA_BINDING) readonly buffer BvhAlphaBuffer {
+    uint words[];
+} bvh_alpha;
 
 // Equals vplkit::kBvhMaxDepth: the host builds no leaf deeper than this, and the traversal
 // pushes at most one node per level of the path it is on, so the stack never overflows for a
@@ -213,6 +239,58 @@ bool bvh_intersect_triangle(BvhRayState ray, BvhTriangle tri, float tmin, float 
     return true;
 }
 
+// One texel of an alpha record's texture (bytes 4 to a word), with glTF's wrap modes.
+float bvh_alpha_texel(uint data, uvec2 size, uint wrap, ivec2 texel) {
+    ivec2 n = ivec2(size);
+    for (int axis = 0; axis < 2; ++axis) {
+        uint mode = (wrap >> (2 * axis)) & 3u;
+        int i = texel[axis];
+        if (mode == 1u) {
+            i = clamp(i, 0, n[axis] - 1);
+        } else if (mode == 2u) {
+            int period = 2 * n[axis];
+            i = ((i % period) + period) % period;
+            i = i < n[axis] ? i : period - 1 - i;
+        } else {
+            i = ((i % n[axis]) + n[axis]) % n[axis];
+        }
+        texel[axis] = i;
+    }
+    uint index = uint(texel.y) * size.x + uint(texel.x);
+    return float((bvh_alpha.words[data + index / 4u] >> (8u * (index % 4u))) & 0xffu) / 255.0;
+}
+
+// Whether the hit at `barycentrics` on `tri` is on the surface (its alpha test passes).
+bool bvh_alpha_passes(BvhTriangle tri, vec2 barycentrics) {
+    if (tri.alpha == 0u) {
+        return true;
+    }
+    uint r = tri.alpha;
+    vec3 w = vec3(1.0 - barycentrics.x - barycentrics.y, barycentrics.x, barycentrics.y);
+    float alpha = w.x * uintBitsToFloat(bvh_alpha.words[r + 6u]) + w.y * uintBitsToFloat(bvh_alpha.words[r + 7u]) +
+                  w.z * uintBitsToFloat(bvh_alpha.words[r + 8u]);
+    uint m = bvh_alpha.words[r + 9u];
+    float cutoff = uintBitsToFloat(bvh_alpha.words[m]);
+    uvec2 size = uvec2(bvh_alpha.words[m + 1u], bvh_alpha.words[m + 2u]);
+    if (size.x > 0u && size.y > 0u) {
+        vec2 uv = w.x * vec2(uintBitsToFloat(bvh_alpha.words[r]), uintBitsToFloat(bvh_alpha.words[r + 1u])) +
+                  w.y * vec2(uintBitsToFloat(bvh_alpha.words[r + 2u]), uintBitsToFloat(bvh_alpha.words[r + 3u])) +
+                  w.z * vec2(uintBitsToFloat(bvh_alpha.words[r + 4u]), uintBitsToFloat(bvh_alpha.words[r + 5u]));
+        uint wrap = bvh_alpha.words[m + 3u];
+        uint data = bvh_alpha.words[m + 4u];
+        // Bilinear between texel centres at (i + 0.5) / size (Vulkan's convention).
+        vec2 x = uv * vec2(size) - 0.5;
+        vec2 f = fract(x);
+        ivec2 i0 = ivec2(floor(x));
+        float a00 = bvh_alpha_texel(data, size, wrap, i0);
+        float a10 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 0));
+        float a01 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(0, 1));
+        float a11 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 1));
+        alpha *= mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
+    }
+    return alpha >= cutoff;
+}
+
 BvhHit bvh_no_hit(float tmax) {
     BvhHit hit;
     hit.t = tmax;
@@ -243,7 +321,8 @@ BvhHit bvh_closest_hit(vec3 origin, vec3 direction, float tmin, float tmax) {
                     float t;
                     vec2 barycentrics;
                     BvhTriangle tri = bvh_triangles.items[i];
-                    if (bvh_intersect_triangle(ray, tri, tmin, hit.t, t, barycentrics)) {
+                    if (bvh_intersect_triangle(ray, tri, tmin, hit.t, t, barycentrics) &&
+                        bvh_alpha_passes(tri, barycentrics)) {
                         hit.t = t;
                         hit.id = tri.id;
                         hit.barycentrics = barycentrics;
@@ -293,7 +372,9 @@ bool bvh_occluded(vec3 origin, vec3 direction, float tmin, float tmax) {
                 for (uint i = node.index; i < end; ++i) {
                     float t;
                     vec2 barycentrics;
-                    if (bvh_intersect_triangle(ray, bvh_triangles.items[i], tmin, tmax, t, barycentrics)) {
+                    BvhTriangle tri = bvh_triangles.items[i];
+                    if (bvh_intersect_triangle(ray, tri, tmin, tmax, t, barycentrics) &&
+                        bvh_alpha_passes(tri, barycentrics)) {
                         return true;
                     }
                 }

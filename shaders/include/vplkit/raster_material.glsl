@@ -44,7 +44,7 @@ layout(set = 0, binding = VPLKIT_SCENE_TEXTURES_BINDING + 2) uniform sampler2D n
 layout(set = 0, binding = VPLKIT_SCENE_TEXTURES_BINDING + 3) uniform sampler2D emissive_texture;            // sRGB view
 
 struct RasterSurface {
-    vec3 albedo;            // base colour factor x texture
+    vec3 albedo;            // base colour factor x texture x vertex colour
     vec3 normal;            // unit shading normal (normal map applied) on the viewer's side
     vec3 geometric_normal;  // unit face normal on the viewer's side
     float roughness;        // perceptual (glTF) roughness
@@ -52,7 +52,8 @@ struct RasterSurface {
     vec3 emission;          // emitted radiance
 };
 
-// The material at a fragment seen from direction `to_viewer` (any length; for the G-buffer the
+// The material at a fragment with vertex colour `color` (COLOR_0, white without one) seen from
+// direction `to_viewer` (any length; for the G-buffer the
 // camera, for a shadow map the light). Discards the fragment when the alpha test fails.
 //
 // Facing: every triangle is drawn from both sides (no culling: a G-buffer or RSM for GI must not
@@ -60,11 +61,12 @@ struct RasterSurface {
 // viewer's side; the shading normal is computed in the file's tangent frame and then the whole
 // frame is turned to the side the vertex normal must be on (glTF 2.0, double-sided materials:
 // back-face normals are reversed; applied to single-sided ones too for the reason above).
-RasterSurface raster_surface(SceneMaterial m, vec3 vertex_normal, vec4 vertex_tangent, vec2 uv, vec3 face_normal,
+RasterSurface raster_surface(SceneMaterial m, vec4 color, vec3 vertex_normal, vec4 vertex_tangent, vec2 uv, vec3 face_normal,
                              vec3 to_viewer) {
     // Every texture is sampled before the alpha test may discard, so the implicit derivatives of
     // the quad's surviving invocations stay defined.
-    vec4 base_color = m.base_color_factor * texture(base_color_texture, uv);
+    // glTF 2.0 3.9.2: base colour = factor x texture x COLOR_0 (alpha included).
+    vec4 base_color = m.base_color_factor * texture(base_color_texture, uv) * color;
     vec4 metallic_roughness = texture(metallic_roughness_texture, uv);
     vec3 tangent_normal = texture(normal_texture, uv).xyz;
     vec3 emissive = texture(emissive_texture, uv).rgb;

@@ -19,12 +19,14 @@
 #error "define VPLKIT_SCENE_VERTICES_BINDING and VPLKIT_SCENE_INDICES_BINDING before including vplkit/raster_scene.glsl"
 #endif
 
-// scene::Vertex byte for byte (48 bytes, no padding: hence the scalar layout).
+// scene::Vertex byte for byte (72 bytes, no padding: hence the scalar layout).
 struct SceneVertex {
     vec3 position;  // world space
     vec3 normal;    // world space, unit
     vec4 tangent;   // xyz world space, w = bitangent sign; all zero when no normal texture needs it
     vec2 uv0;
+    vec2 uv1;
+    vec4 color;     // COLOR_0 (white without one): multiplies the base colour
 };
 
 layout(scalar, set = 0, binding = VPLKIT_SCENE_VERTICES_BINDING) readonly buffer SceneVertexBuffer {

@@ -78,6 +78,9 @@ struct Bvh {
     std::vector<shaders::BvhNode> nodes;
     // In leaf order; empty for an empty scene (upload_bvh still makes a non-empty buffer).
     std::vector<shaders::BvhTriangle> triangles;
+    // The alpha-test records of bvh.glsl (BvhTriangle::alpha points into them); empty when every
+    // triangle is opaque (build_bvh leaves it so; vplkit::add_alpha_tests fills it).
+    std::vector<uint32_t> alpha;
 
     uint32_t input_triangles = 0;       // triangles given to build_bvh
     uint32_t degenerate_triangles = 0;  // of those, left out for zero area

@@ -5,6 +5,7 @@
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
+#define VPLKIT_BVH_ALPHA_BINDING 4
 #include "vplkit/bvh.glsl"
 
 layout(local_size_x = 64, local_size_x_id = 0) in;  // 64 unless specialized

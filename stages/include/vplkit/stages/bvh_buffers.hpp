@@ -1,8 +1,8 @@
 #pragma once
 // The BVH every ray-casting stage reads (shaders/include/vplkit/bvh.glsl): BvhNode[node_count]
 // and BvhTriangle[max(triangle_count, 1)], as built by vplkit::build_bvh (runtime: bvh.hpp) and
-// uploaded by the caller. Shaders that include bvh.glsl bind them as `bvh_nodes` and
-// `bvh_triangles`.
+// uploaded by the caller, and the alpha-test records (Bvh::alpha). Shaders that include bvh.glsl
+// bind them as `bvh_nodes`, `bvh_triangles` and `bvh_alpha`.
 
 #include "vplkit/stages/views.hpp"
 
@@ -16,6 +16,7 @@ struct BvhBuffers {
     uint32_t node_count = 0;
     uint32_t triangle_count = 0;  // 0 for an empty scene (triangles then holds one unused record)
     float scene_scale = 1e-30f;   // Bvh::scene_scale: the largest coordinate magnitude, for ray-origin offsets
+    BufferView alpha;             // Bvh::alpha (at least one word: a zero when every triangle is opaque)
 };
 
 }  // namespace vplkit::stages
