@@ -196,7 +196,8 @@ int main() {
                                                    uint32_t(bvh.nodes.size()),
                                                    uint32_t(bvh.triangles.size()),
                                                    bvh.scene_scale,
-                                                   view(bvh_alpha, "bvh alpha")};
+                                                   view(bvh_alpha, "bvh alpha"),
+                                                   /*alpha_tests=*/false};
         // hybrid reads only the leaves and the SST; the light tree view is rtslc's (any buffer will do).
         const vplkit::stages::VplTreeBuffers trees{n, leaves, view(leaf_buffer, "leaves"), view(sst_nodes, "sst"),
                                                    view(sst_nodes, "sst")};

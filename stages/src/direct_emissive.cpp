@@ -17,7 +17,8 @@ void add_direct_emissive_pass(Device& device, StepList& passes, const GbufferVie
     if (params.samples == 0) throw Error("direct emissive: samples per pixel must be at least 1");
     // With no emitter the dispatch adds nothing (the shader returns at once): whether it runs
     // at all is the effects planner's decision (planner.hpp), not this function's.
-    const auto& pipeline = device.pipeline<shaders::direct_emissive::Pipeline>();
+    const auto& pipeline =
+        device.pipeline<shaders::direct_emissive::Pipeline>(bvh_spec<shaders::direct_emissive::Spec>(bvh));
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     passes.add(
         "direct emissive",

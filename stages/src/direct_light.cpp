@@ -13,7 +13,7 @@ void add_direct_light_pass(Device& device, StepList& passes, const GbufferViews&
         radiance.height != gbuffer.height()) {
         throw Error("direct light: '" + radiance.name + "' must be RGBA32F and of the G-buffer's size");
     }
-    const auto& pipeline = device.pipeline<shaders::direct_light::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::direct_light::Pipeline>(bvh_spec<shaders::direct_light::Spec>(bvh));
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     passes.add(
         "direct light",

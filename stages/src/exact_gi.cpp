@@ -36,7 +36,7 @@ void validate(const GbufferViews& gbuffer, const BufferView& vpls, uint64_t vpl_
 void add_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
                const BufferView& vpls, uint32_t first, uint32_t count, glm::vec3 camera_position,
                const ImageView& indirect, const BufferView& counters) {
-    const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>(bvh_spec<shaders::exact_gi::Spec>(bvh));
     passes.add("exact gi",
                {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
                 Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),

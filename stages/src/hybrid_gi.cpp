@@ -85,7 +85,7 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
                });
     shaders::hybrid_gi::Spec spec;
     spec.kTraversal = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
-    const auto& gi_pipeline = device.pipeline<shaders::hybrid_gi::Pipeline>(spec);
+    const auto& gi_pipeline = device.pipeline<shaders::hybrid_gi::Pipeline>(bvh_spec(bvh, spec));
     shaders::hybrid_gi::Bindings gi_bindings;
     bind_bvh(gi_bindings, bvh);
     bind_gbuffer(gi_bindings, gbuffer);

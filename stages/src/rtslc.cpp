@@ -128,7 +128,7 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
 
     shaders::rtslc_gi::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
-    const auto& gi_pipeline = device.pipeline<shaders::rtslc_gi::Pipeline>(spec);
+    const auto& gi_pipeline = device.pipeline<shaders::rtslc_gi::Pipeline>(bvh_spec(bvh, spec));
     const ImageView radiance = options.interleave > 1 ? scratch.estimates : indirect;
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);

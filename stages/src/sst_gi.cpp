@@ -22,7 +22,7 @@ void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbu
     validate(options);
     check_gbuffer_target("sst gi", gbuffer, indirect);
     add_gi_counters_clear(passes, counters, "gi counters clear");
-    const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>(bvh_spec<shaders::sst_gi::Spec>(bvh));
     shaders::sst_gi::Bindings bindings;
     bind_bvh(bindings, bvh);
     bind_gbuffer(bindings, gbuffer);

@@ -40,7 +40,8 @@ void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     std::vector<Use> uses = {Use::read(nodes), Use::read(triangles), Use::read(alpha), Use::read(rays),
                              Use::write(results)};
     if (mode == TraceMode::closest_hit) {
-        const auto& pipeline = device.pipeline<shaders::trace_closest::Pipeline>();
+        const auto& pipeline =
+            device.pipeline<shaders::trace_closest::Pipeline>(bvh_spec<shaders::trace_closest::Spec>(bvh));
         passes.add(name, std::move(uses),
                    [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
                        shaders::trace_closest::Bindings bindings;
@@ -54,7 +55,8 @@ void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh
                        pipeline.dispatch(cmd, bindings, push, ray_count);
                    });
     } else {
-        const auto& pipeline = device.pipeline<shaders::trace_occlusion::Pipeline>();
+        const auto& pipeline =
+            device.pipeline<shaders::trace_occlusion::Pipeline>(bvh_spec<shaders::trace_occlusion::Spec>(bvh));
         passes.add(name, std::move(uses),
                    [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
                        shaders::trace_occlusion::Bindings bindings;

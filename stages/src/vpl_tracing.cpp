@@ -39,7 +39,7 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
         throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
                     " VPLs (paths x max_bounces)");
     }
-    const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>();
+    const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>(bvh_spec<shaders::trace_vpls::Spec>(bvh));
     const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * device.limits().max_workgroup_count[0];
     if (options.paths > max_paths) {
         throw Error("VPL tracing: " + std::to_string(options.paths) + " paths exceed one dispatch's " +

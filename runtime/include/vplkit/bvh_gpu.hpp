@@ -25,9 +25,12 @@ struct GpuBvh {
     uint32_t node_count = 0;
     uint32_t triangle_count = 0;       // 0 for an empty scene
     float scene_scale = kBvhMinScale;  // Bvh::scene_scale, for offset_ray_origin
+    bool alpha_tests = false;          // Bvh::alpha is not empty
 
     // As the stages take it.
-    operator stages::BvhBuffers() const { return {nodes, triangles, node_count, triangle_count, scene_scale, alpha}; }
+    operator stages::BvhBuffers() const {
+        return {nodes, triangles, node_count, triangle_count, scene_scale, alpha, alpha_tests};
+    }
 };
 
 // Device-local buffers with the BVH's nodes and triangles. Throws Error when a buffer would

@@ -50,6 +50,7 @@ GpuBvh upload_bvh(Context& context, const Bvh& bvh) {
     gpu.alpha = Buffer::create(context, alpha.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                MemoryUse::device, "bvh alpha");
     gpu.alpha.upload(alpha);
+    gpu.alpha_tests = !bvh.alpha.empty();
     return gpu;
 }
 

@@ -17,6 +17,17 @@ struct BvhBuffers {
     uint32_t triangle_count = 0;  // 0 for an empty scene (triangles then holds one unused record)
     float scene_scale = 1e-30f;   // Bvh::scene_scale: the largest coordinate magnitude, for ray-origin offsets
     BufferView alpha;             // Bvh::alpha (at least one word: a zero when every triangle is opaque)
+    // Whether some triangle has an alpha-test record: false compiles the test out of the
+    // traversal (bvh_spec), so opaque scenes trace as fast as without alpha tests.
+    bool alpha_tests = true;
 };
+
+// A shader's specialization with bvh.glsl's kBvhAlphaTest set from `bvh` (the shader must include
+// bvh.glsl and call its traversal, else its Spec has no such member).
+template <typename Spec>
+Spec bvh_spec(const BvhBuffers& bvh, Spec spec = {}) {
+    spec.kBvhAlphaTest = bvh.alpha_tests ? 1u : 0u;
+    return spec;
+}
 
 }  // namespace vplkit::stages
