@@ -18,7 +18,7 @@
 #include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/sst_gi.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
+#include "vplkit/vpl_trees.hpp"
 
 #include <cmath>
 #include <optional>

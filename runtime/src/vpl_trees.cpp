@@ -1,4 +1,4 @@
-#include "vplkit/stages/vpl_trees.hpp"
+#include "vplkit/vpl_trees.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"

@@ -5,7 +5,7 @@
 #include "vplkit/hybrid_cuts.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
+#include "vplkit/vpl_trees.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <glm/geometric.hpp>

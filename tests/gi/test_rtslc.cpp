@@ -28,7 +28,7 @@
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/rtslc.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
+#include "vplkit/vpl_trees.hpp"
 #include "vplkit_test/context.hpp"
 #include "rtslc_reference.hpp"
 #include "synthetic_scene.hpp"

@@ -14,7 +14,7 @@
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/upsample.hpp"
-#include "vplkit/stages/vpl_trees.hpp"
+#include "vplkit/vpl_trees.hpp"
 
 #include <glm/vec3.hpp>
 
