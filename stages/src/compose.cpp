@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/compose.hpp"
 
 #include "vplkit/error.hpp"
@@ -15,14 +16,13 @@ void add_compose_pass(Device& device, StepList& passes, const ImageView& direct,
     }
     const auto& pipeline = device.pipeline<shaders::compose::Pipeline>();
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-    passes.add("compose", {Use::read(direct), Use::read(indirect), Use::write(composed)},
-               [&pipeline, direct, indirect, composed](VkCommandBuffer cmd) {
-                   shaders::compose::Bindings b;
-                   b.direct = direct.descriptor();
-                   b.indirect = indirect.descriptor();
-                   b.composed = composed.descriptor();
-                   pipeline.dispatch(cmd, b, composed.width, composed.height);
-               });
+    shaders::compose::Bindings b;
+    b.direct = direct.descriptor();
+    b.indirect = indirect.descriptor();
+    b.composed = composed.descriptor();
+    passes.add(
+        "compose", binding_uses<shaders::compose::Module>(b, {direct, indirect, composed}),
+        [&pipeline, b, composed](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, composed.width, composed.height); });
 }
 
 }  // namespace vplkit::stages

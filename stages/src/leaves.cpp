@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/leaves.hpp"
 
 #include "vplkit/error.hpp"
@@ -22,12 +23,12 @@ void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& 
                     std::to_string(count) + " VPLs");
     }
     const auto& pipeline = device.pipeline<shaders::gather_leaves::Pipeline>();
-    passes.add("gather leaves", {Use::read(vpls), Use::read(sorted_values), Use::write(leaves)},
-               [&pipeline, vpls, sorted_values, leaves, count, leaves_needed](VkCommandBuffer cmd) {
-                   shaders::gather_leaves::Bindings bindings;
-                   bindings.vpls = vpls.descriptor();
-                   bindings.order = sorted_values.descriptor();
-                   bindings.leaves = leaves.descriptor();
+    shaders::gather_leaves::Bindings bindings;
+    bindings.vpls = vpls.descriptor();
+    bindings.order = sorted_values.descriptor();
+    bindings.leaves = leaves.descriptor();
+    passes.add("gather leaves", binding_uses<shaders::gather_leaves::Module>(bindings),
+               [&pipeline, bindings, count, leaves_needed](VkCommandBuffer cmd) {
                    shaders::gather_leaves::Push push{};
                    push.count = count;
                    push.leaf_count = leaves_needed;

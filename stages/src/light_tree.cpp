@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/light_tree.hpp"
 
 #include "vplkit/barriers.hpp"
@@ -112,11 +113,11 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
     const auto& leaves_pipeline = device.pipeline<shaders::light_tree_leaves::Pipeline>(leaves_spec);
     const auto& levels_pipeline = device.pipeline<shaders::light_tree_levels::Pipeline>(levels_spec);
 
-    passes.add("light tree leaves", {Use::read(leaves), Use::write(nodes)},
-               [&leaves_pipeline, leaves, nodes, count, leaf_count, leaf_bytes, node_bytes](VkCommandBuffer cmd) {
-                   shaders::light_tree_leaves::Bindings bindings;
-                   bindings.leaves = leaves.descriptor(0, leaf_bytes);
-                   bindings.nodes = nodes.descriptor(0, node_bytes);
+    shaders::light_tree_leaves::Bindings leaf_bindings;
+    leaf_bindings.leaves = leaves.descriptor(0, leaf_bytes);
+    leaf_bindings.nodes = nodes.descriptor(0, node_bytes);
+    passes.add("light tree leaves", binding_uses<shaders::light_tree_leaves::Module>(leaf_bindings),
+               [&leaves_pipeline, bindings = leaf_bindings, count, leaf_count](VkCommandBuffer cmd) {
                    shaders::light_tree_leaves::Push push{};
                    push.count = count;
                    push.leaf_count = leaf_count;
@@ -125,13 +126,13 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
     if (leaf_count == 1) {
         return;  // the root is the only leaf
     }
-    passes.add("light tree levels", {Use::read_write(nodes)},
-               [&levels_pipeline, nodes, leaf_count, node_bytes,
+    shaders::light_tree_levels::Bindings level_bindings;
+    level_bindings.nodes = nodes.descriptor(0, node_bytes);
+    passes.add("light tree levels", binding_uses<shaders::light_tree_levels::Module>(level_bindings),
+               [&levels_pipeline, bindings = level_bindings, leaf_count,
                 group_levels = options.group_levels != 0
                                    ? options.group_levels
                                    : light_tree_default_group_levels(device.limits())](VkCommandBuffer cmd) {
-                   shaders::light_tree_levels::Bindings bindings;
-                   bindings.nodes = nodes.descriptor(0, node_bytes);
                    bool first = true;
                    for_each_group(leaf_count, group_levels, [&](uint32_t source_level, uint32_t levels) {
                        if (!first) {

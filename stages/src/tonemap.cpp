@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/tonemap.hpp"
 
 #include "vplkit/error.hpp"
@@ -25,12 +26,12 @@ void add_tonemap_passes(Device& device, StepList& passes, const ImageView& hdr, 
         vkCmdFillBuffer(cmd, stats.buffer, stats.offset, kTonemapStatsBytes, 0u);
     });
     const auto& pipeline = device.pipeline<shaders::tonemap::Pipeline>();
-    passes.add("tonemap", {Use::read(hdr), Use::write(ldr), Use::read_write(stats)},
-               [&pipeline, hdr, ldr, stats, exposure](VkCommandBuffer cmd) {
-                   shaders::tonemap::Bindings bindings;
-                   bindings.hdr = hdr.descriptor(VK_IMAGE_LAYOUT_GENERAL);
-                   bindings.ldr = ldr.descriptor(VK_IMAGE_LAYOUT_GENERAL);
-                   bindings.stats = stats.descriptor();
+    shaders::tonemap::Bindings bindings;
+    bindings.hdr = hdr.descriptor(VK_IMAGE_LAYOUT_GENERAL);
+    bindings.ldr = ldr.descriptor(VK_IMAGE_LAYOUT_GENERAL);
+    bindings.stats = stats.descriptor();
+    passes.add("tonemap", binding_uses<shaders::tonemap::Module>(bindings, {hdr, ldr}),
+               [&pipeline, bindings, hdr, exposure](VkCommandBuffer cmd) {
                    shaders::tonemap::Push push{};
                    push.exposure = exposure;
                    pipeline.dispatch(cmd, bindings, push, hdr.width, hdr.height);

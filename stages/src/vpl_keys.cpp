@@ -1,3 +1,4 @@
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
 
 #include "vplkit/error.hpp"
@@ -54,24 +55,24 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
     });
 
     const auto& bounds_pipeline = device.pipeline<shaders::vpl_bounds::Pipeline>();
-    passes.add("vpl bounds", {Use::read(vpls), Use::read_write(bounds)},
-               [&bounds_pipeline, vpls, bounds, count](VkCommandBuffer cmd) {
-                   shaders::vpl_bounds::Bindings bindings;
-                   bindings.vpls = vpls.descriptor();
-                   bindings.bounds = bounds.descriptor();
+    shaders::vpl_bounds::Bindings bounds_bindings;
+    bounds_bindings.vpls = vpls.descriptor();
+    bounds_bindings.bounds = bounds.descriptor();
+    passes.add("vpl bounds", binding_uses<shaders::vpl_bounds::Module>(bounds_bindings),
+               [&bounds_pipeline, bindings = bounds_bindings, count](VkCommandBuffer cmd) {
                    shaders::vpl_bounds::Push push{};
                    push.vpl_count = count;
                    bounds_pipeline.dispatch(cmd, bindings, push, count);
                });
 
     const auto& keys_pipeline = device.pipeline<shaders::morton_keys::Pipeline>();
-    passes.add("morton keys", {Use::read(vpls), Use::read(bounds), Use::write(keys), Use::write(values)},
-               [&keys_pipeline, vpls, bounds, keys, values, count](VkCommandBuffer cmd) {
-                   shaders::morton_keys::Bindings bindings;
-                   bindings.vpls = vpls.descriptor();
-                   bindings.bounds = bounds.descriptor();
-                   bindings.keys = keys.descriptor();
-                   bindings.values = values.descriptor();
+    shaders::morton_keys::Bindings keys_bindings;
+    keys_bindings.vpls = vpls.descriptor();
+    keys_bindings.bounds = bounds.descriptor();
+    keys_bindings.keys = keys.descriptor();
+    keys_bindings.values = values.descriptor();
+    passes.add("morton keys", binding_uses<shaders::morton_keys::Module>(keys_bindings),
+               [&keys_pipeline, bindings = keys_bindings, count](VkCommandBuffer cmd) {
                    shaders::morton_keys::Push push{};
                    push.vpl_count = count;
                    keys_pipeline.dispatch(cmd, bindings, push, count);
