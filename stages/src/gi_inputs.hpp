@@ -30,7 +30,6 @@ void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
     b.bvh_alpha = bvh.alpha.descriptor();
 }
 
-// ... and as step uses, followed by `more`.
 // The G-buffer's images a GI shader binds, followed by `more` (binding_uses matches views to them).
 inline std::vector<ImageView> gbuffer_images(const GbufferViews& gbuffer, std::vector<ImageView> more = {}) {
     std::vector<ImageView> images = {gbuffer.position, gbuffer.normal, gbuffer.geometric_normal, gbuffer.albedo};
@@ -38,6 +37,7 @@ inline std::vector<ImageView> gbuffer_images(const GbufferViews& gbuffer, std::v
     return images;
 }
 
+// The G-buffer and BVH as step uses, followed by `more` (for steps that list their uses by hand).
 inline std::vector<Use> gbuffer_uses(const GbufferViews& gbuffer, std::vector<Use> more) {
     std::vector<Use> uses = {Use::read(gbuffer.position), Use::read(gbuffer.normal),
                              Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo)};
