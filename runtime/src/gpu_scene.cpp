@@ -165,6 +165,14 @@ GpuScene GpuScene::create(Context& context, const scene::Scene& scene, const Gpu
         out.roughness_factor = m.roughness_factor;
         out.normal_scale = m.normal_scale;
         out.alpha_cutoff = m.alpha_mode == scene::AlphaMode::blend ? kBlendAsMaskCutoff : m.alpha_cutoff;
+        auto rows = [](const scene::UvTransform& t, vs::vec4& u_row, vs::vec4& v_row) {
+            u_row = to_vec4(glm::vec4(t.u_row(), float(t.tex_coord)));
+            v_row = to_vec4(glm::vec4(t.v_row(), 0.0f));
+        };
+        rows(m.base_color_uv, out.base_color_u_row, out.base_color_v_row);
+        rows(m.metallic_roughness_uv, out.metallic_roughness_u_row, out.metallic_roughness_v_row);
+        rows(m.normal_uv, out.normal_u_row, out.normal_v_row);
+        rows(m.emissive_uv, out.emissive_u_row, out.emissive_v_row);
         out.flags = (m.alpha_mode != scene::AlphaMode::opaque ? kAlphaTest : 0u) |
                     (m.normal_texture != scene::kNoTexture ? kNormalTexture : 0u) |
                     (m.double_sided ? kDoubleSided : 0u);

@@ -66,6 +66,9 @@ std::string ground_truth_key(const scene::Setup& setup, const scene::Scene& scen
     key << "vplkit exact ground truth v1\nsetup " << setup.name << "\nscene " << setup.scene.string() << "\ncamera "
         << c.position.x << ' ' << c.position.y << ' ' << c.position.z << ' ' << c.forward.x << ' ' << c.forward.y << ' '
         << c.forward.z << ' ' << c.up.x << ' ' << c.up.y << ' ' << c.up.z << ' ' << c.yfov << "\n";
+    if (c.projection == scene::Projection::orthographic) {
+        key << "orthographic " << c.ymag << ' ' << c.znear << ' ' << c.zfar << "\n";
+    }
     for (const scene::Light& l : scene.lights) {
         key << "light " << int(l.type) << ' ' << l.color.x << ' ' << l.color.y << ' ' << l.color.z << ' ' << l.intensity
             << ' ' << l.position.x << ' ' << l.position.y << ' ' << l.position.z << ' ' << l.direction.x << ' '

@@ -20,6 +20,7 @@ layout(location = 2) in vec4 world_tangent;
 layout(location = 3) in vec2 uv0;
 layout(location = 4) flat in vec3 face_normal;
 layout(location = 5) in vec4 vertex_color;
+layout(location = 6) in vec2 uv1;
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
@@ -28,7 +29,7 @@ layout(location = 3) out vec4 out_albedo;
 layout(location = 4) out vec4 out_emission;
 
 void main() {
-    RasterSurface s = raster_surface(scene_materials.items[push.material], vertex_color, world_normal, world_tangent, uv0, face_normal,
+    RasterSurface s = raster_surface(scene_materials.items[push.material], vertex_color, world_normal, world_tangent, uv0, uv1, face_normal,
                                      push.viewer_position - world_position);
     out_position = vec4(world_position, 1.0);
     out_normal = vec4(s.normal, s.roughness);

@@ -20,6 +20,7 @@ layout(location = 2) out vec4 world_tangent;
 layout(location = 3) out vec2 uv0;
 layout(location = 4) flat out vec3 face_normal;
 layout(location = 5) out vec4 vertex_color;
+layout(location = 6) out vec2 uv1;
 
 void main() {
     uint triangle = uint(gl_VertexIndex) / 3u;
@@ -28,6 +29,7 @@ void main() {
     world_normal = v.normal;
     world_tangent = v.tangent;
     uv0 = v.uv0;
+    uv1 = v.uv1;
     vertex_color = v.color;
     face_normal = scene_face_normal(triangle);
     gl_Position = push.view_projection * vec4(v.position, 1.0);

@@ -36,6 +36,7 @@ layout(location = 2) in vec4 world_tangent;
 layout(location = 3) in vec2 uv0;
 layout(location = 4) flat in vec3 face_normal;
 layout(location = 5) in vec4 vertex_color;
+layout(location = 6) in vec2 uv1;
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
@@ -110,7 +111,7 @@ vec3 texel_incident_power() {
 
 void main() {
     vec3 to_light = light.type == kLightDirectional ? -light.direction : light.position - world_position;
-    RasterSurface s = raster_surface(scene_materials.items[push.material], vertex_color, world_normal, world_tangent, uv0, face_normal,
+    RasterSurface s = raster_surface(scene_materials.items[push.material], vertex_color, world_normal, world_tangent, uv0, uv1, face_normal,
                                      to_light);
     out_position = vec4(world_position, 1.0);
     out_normal = vec4(s.normal, 0.0);

@@ -57,6 +57,27 @@ glm::mat4 vulkan_perspective(float yfov, float aspect, float znear, float zfar) 
     return m;
 }
 
+glm::mat4 vulkan_orthographic(float ymag, float aspect, float znear, float zfar) {
+    if (!(ymag > 0.0f) || !std::isfinite(ymag))
+        throw Error("camera: orthographic half height " + std::to_string(ymag) + " is not positive");
+    if (!(aspect > 0.0f) || !std::isfinite(aspect))
+        throw Error("camera: aspect ratio " + std::to_string(aspect) + " is not positive");
+    if (!(znear >= 0.0f) || !std::isfinite(znear))
+        throw Error("camera: near plane " + std::to_string(znear) + " is negative");
+    if (!(zfar > znear) || !std::isfinite(zfar)) {
+        throw Error("camera: far plane " + std::to_string(zfar) + " is not beyond the near plane " +
+                    std::to_string(znear));
+    }
+    // clip w = 1; depth = (-z - near) / (far - near), 0 at znear, 1 at zfar.
+    glm::mat4 m(0.0f);
+    m[0][0] = 1.0f / (ymag * aspect);
+    m[1][1] = -1.0f / ymag;  // Vulkan's clip-space y points down the image
+    m[2][2] = -1.0f / (zfar - znear);
+    m[3][2] = -znear / (zfar - znear);
+    m[3][3] = 1.0f;
+    return m;
+}
+
 void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
                       const GbufferViews& images) {
     for (const GpuDraw& draw : scene.draws) {

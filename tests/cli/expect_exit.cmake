@@ -1,7 +1,8 @@
 # Runs one vplkit command line and checks its exit code and that its output matches a pattern.
 #   cmake -DCOMMAND="<program>;<args...>" -DEXPECT_EXIT=<code> -DEXPECT_OUTPUT=<regex>
-#         [-DFORBID_FILE=<path>] -P expect_exit.cmake
+#         [-DFORBID_FILE=<path>] [-DFORBID_OUTPUT=<regex>] -P expect_exit.cmake
 # FORBID_FILE: a file the command must not leave behind (no partial output on failure).
+# FORBID_OUTPUT: a pattern the output must not match (e.g. a line printed twice).
 if(FORBID_FILE)
   file(REMOVE "${FORBID_FILE}")
 endif()
@@ -12,6 +13,9 @@ if(NOT code STREQUAL "${EXPECT_EXIT}")
 endif()
 if(NOT all MATCHES "${EXPECT_OUTPUT}")
   message(FATAL_ERROR "output does not match '${EXPECT_OUTPUT}':\n${all}")
+endif()
+if(FORBID_OUTPUT AND all MATCHES "${FORBID_OUTPUT}")
+  message(FATAL_ERROR "output matches '${FORBID_OUTPUT}', which it must not:\n${all}")
 endif()
 if(FORBID_FILE AND EXISTS "${FORBID_FILE}")
   message(FATAL_ERROR "the command left ${FORBID_FILE} behind")

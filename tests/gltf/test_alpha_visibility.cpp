@@ -75,3 +75,8 @@ TEST_CASE("gltf: a factor-only alpha below the cutoff lets every ray through, ab
     // The texture's alpha times a factor of 0.4: nothing reaches the cutoff.
     CHECK(occlusion(gltf_features::masked_quad("MASK", 0.4f, true)) == std::vector<uint32_t>{0, 0, 0, 0});
 }
+
+TEST_CASE("gltf: rays read the mask through the texture's KHR_texture_transform") {
+    // Offset 0.25 along u: the rays at x = 0.125, 0.375, 0.625, 0.875 read texels 1, 2, 3, 3 (clamped).
+    CHECK(occlusion(gltf_features::masked_quad("MASK", 1.0f, true, 0.25f)) == std::vector<uint32_t>{1, 0, 1, 1});
+}

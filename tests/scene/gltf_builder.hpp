@@ -17,7 +17,9 @@ namespace scene_test {
 namespace fs = std::filesystem;
 
 // glTF component type numbers.
+inline constexpr int kByte = 5120;
 inline constexpr int kUnsignedByte = 5121;
+inline constexpr int kShort = 5122;
 inline constexpr int kUnsignedShort = 5123;
 inline constexpr int kUnsignedInt = 5125;
 inline constexpr int kFloat = 5126;

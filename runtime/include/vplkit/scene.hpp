@@ -2,7 +2,7 @@
 // The scene model a renderer consumes directly, loaded from a glTF 2.0 file (.gltf or .glb):
 // world-space triangles flattened from every instance of every triangle primitive (node
 // transforms applied, one copy per node that uses a mesh), PBR metallic-roughness materials,
-// RGBA8 images, KHR_lights_punctual lights and perspective cameras. Units are the file's.
+// RGBA8 images, KHR_lights_punctual lights and cameras. Units are the file's.
 //
 // load_gltf() either returns a complete Scene or throws one vplkit::Error whose message starts
 // with the file's path and names the problem; nothing partial is ever returned.
@@ -76,9 +76,26 @@ struct Texture {
 
 inline constexpr int32_t kNoTexture = -1;
 
-// glTF 2.0 metallic-roughness material; texture members index Scene::textures (kNoTexture: none).
-// Every texture is read with TEXCOORD_0 (Vertex::uv0). The occlusion texture is not kept (VPLs
-// compute the indirect light it would approximate).
+// How one texture reference maps a vertex's texture coordinates to the texture: its set
+// (textureInfo.texCoord, or KHR_texture_transform's override) and KHR_texture_transform's
+// uv' = T(offset) R(rotation) S(scale) uv, with R = [cos sin; -sin cos] as the extension writes
+// it (a positive rotation turns the UVs counter-clockwise in the image, whose v points down).
+struct UvTransform {
+    uint32_t tex_coord = 0;  // 0: Vertex::uv0, 1: Vertex::uv1
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;  // radians
+    glm::vec2 scale{1.0f};
+
+    // Rows of the 2x3 matrix: u' = dot(u_row, (u, v, 1)), v' = dot(v_row, (u, v, 1)).
+    glm::vec3 u_row() const;
+    glm::vec3 v_row() const;
+    glm::vec2 apply(glm::vec2 uv) const;
+    bool identity() const { return offset == glm::vec2(0.0f) && rotation == 0.0f && scale == glm::vec2(1.0f); }
+};
+
+// glTF 2.0 metallic-roughness material; texture members index Scene::textures (kNoTexture: none),
+// each read through its UvTransform. The occlusion texture is not kept (VPLs compute the
+// indirect light it would approximate).
 struct Material {
     std::string name;
     glm::vec4 base_color_factor{1.0f};        // linear RGBA
@@ -91,6 +108,10 @@ struct Material {
     glm::vec3 emissive_factor{0.0f};        // linear RGB
     float emissive_strength = 1.0f;         // KHR_materials_emissive_strength
     int32_t emissive_texture = kNoTexture;  // sRGB; multiplies the factor
+    UvTransform base_color_uv;
+    UvTransform metallic_roughness_uv;
+    UvTransform normal_uv;
+    UvTransform emissive_uv;
     AlphaMode alpha_mode = AlphaMode::opaque;
     float alpha_cutoff = 0.5f;  // AlphaMode::mask only
     bool double_sided = false;
@@ -104,19 +125,26 @@ struct Material {
 };
 
 enum class CameraOrigin : uint32_t { file, generated, setup };
+enum class Projection : uint32_t { perspective, orthographic };
 
-// A perspective camera. position/forward/up are the node's world transform with any scale
-// removed (glTF cameras look down their local -Z with +Y up).
+// A perspective or orthographic camera. position/forward/up are the node's world transform with
+// any scale removed (glTF cameras look down their local -Z with +Y up).
 struct Camera {
     std::string name;
     CameraOrigin origin = CameraOrigin::file;
+    Projection projection = Projection::perspective;
     glm::vec3 position{0.0f};
     glm::vec3 forward{0.0f, 0.0f, -1.0f};  // unit
     glm::vec3 up{0.0f, 1.0f, 0.0f};        // unit, orthogonal to forward
-    float yfov = 0.0f;                     // vertical field of view, radians
-    float aspect = 0.0f;                   // width / height; 0 when the file leaves it to the image
-    float znear = 0.0f;
-    float zfar = 0.0f;  // 0 = infinite (glTF)
+    float yfov = 0.0f;                     // perspective: vertical field of view, radians
+    float aspect = 0.0f;                   // perspective: width / height; 0 when the file leaves it to the image
+    // Orthographic: half the view's width and height in world units (glTF xmag, ymag). The image's
+    // aspect ratio decides the width, as it does a perspective camera's (pixels stay square):
+    // xmag is kept for reference.
+    float xmag = 0.0f;
+    float ymag = 0.0f;
+    float znear = 0.0f;  // orthographic: may be 0
+    float zfar = 0.0f;   // perspective: 0 = infinite (glTF); orthographic: > znear
 
     // Rigid transform: columns right, up, -forward, position.
     glm::mat4 world_from_camera() const;
@@ -199,7 +227,7 @@ struct Scene {
     std::vector<Image> images;      // only those the textures use, in order of first use
 
     std::vector<Light> lights;
-    // The scene's perspective cameras in node order (depth first from the scene's root nodes);
+    // The scene's cameras (perspective and orthographic) in node order (depth first from the scene's root nodes);
     // when the file has none, one generated camera (see load_gltf).
     std::vector<Camera> cameras;
     uint32_t active_camera = 0;
@@ -218,7 +246,7 @@ struct LoadOptions {
 };
 
 // Loads `path` (.gltf with external or embedded buffers and images, or .glb) and the scene it
-// names as default (else scene 0; else every root node). When the file has no perspective camera,
+// names as default (else scene 0; else every root node). When the file has no camera,
 // one is generated to frame the bounds: looking down -Z from the +Z side (glTF's front), at the
 // centre of the bounds' bounding sphere, vertical field of view 45 degrees, far enough that the
 // whole sphere is in view for any aspect ratio >= 1.

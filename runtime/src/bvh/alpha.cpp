@@ -16,6 +16,7 @@ namespace {
 constexpr float kBlendAsMaskCutoff = 0.5f;
 constexpr uint32_t kTriangleRecordWords = 10;
 constexpr uint32_t kMaterialRecordWords = 5;
+constexpr uint32_t kNearestBit = 16;  // bvh.glsl's kBvhAlphaNearest
 
 uint32_t wrap_code(scene::Wrap wrap) {
     switch (wrap) {
@@ -53,7 +54,8 @@ AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
             const scene::Image& image = scene.images.at(texture.image);
             words[record + 1] = image.width;
             words[record + 2] = image.height;
-            words[record + 3] = wrap_code(texture.sampler.wrap_s) | (wrap_code(texture.sampler.wrap_t) << 2);
+            words[record + 3] = wrap_code(texture.sampler.wrap_s) | (wrap_code(texture.sampler.wrap_t) << 2) |
+                                (texture.sampler.mag_filter == scene::Filter::nearest ? kNearestBit : 0u);
             words[record + 4] = 0;  // patched below, once the texture bytes have a place
         }
         material_record[m] = record;
@@ -100,7 +102,10 @@ AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
         if (all_pass) continue;  // alpha is linear over the triangle: it passes everywhere
         tri.alpha = uint32_t(words.size());
         for (int k = 0; k < 3; ++k) {
-            const glm::vec2 uv = corner[k]->uv0;
+            // The texture's own coordinates (set and KHR_texture_transform): the transform is
+            // affine, so interpolating transformed corners is transforming the interpolation.
+            const scene::UvTransform& t = material.base_color_uv;
+            const glm::vec2 uv = t.apply(t.tex_coord == 1 ? corner[k]->uv1 : corner[k]->uv0);
             words.push_back(std::bit_cast<uint32_t>(uv.x));
             words.push_back(std::bit_cast<uint32_t>(uv.y));
         }

@@ -175,27 +175,59 @@ size_t checked_count(const GltfSource& source, const tinygltf::Accessor& accesso
     return accessor.count;
 }
 
-// Reads accessor `index` as `components` floats per element (checked type and component type),
-// with sparse substitution. `allow_normalized` admits normalized UNSIGNED_BYTE/UNSIGNED_SHORT.
-std::vector<float> read_floats(const GltfSource& source, int index, size_t components, bool allow_normalized,
-                               const std::string& what) {
+std::string admitted_text(uint32_t admits) {
+    std::vector<std::string> kinds;
+    if (admits & kAdmitFloat) kinds.push_back("FLOAT");
+    if (admits & kAdmitNormalizedUnsigned) kinds.push_back("normalized UNSIGNED_BYTE / UNSIGNED_SHORT");
+    if (admits & kAdmitNormalizedSigned) kinds.push_back("normalized BYTE / SHORT");
+    if (admits & kAdmitIntegers) kinds.push_back("BYTE / UNSIGNED_BYTE / SHORT / UNSIGNED_SHORT");
+    std::string out;
+    for (size_t i = 0; i < kinds.size(); ++i) out += (i == 0 ? "" : i + 1 == kinds.size() ? " or " : ", ") + kinds[i];
+    return out;
+}
+
+bool admitted(int ct, bool normalized, uint32_t admits) {
+    const bool unsigned_small =
+        ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    const bool signed_small = ct == TINYGLTF_COMPONENT_TYPE_BYTE || ct == TINYGLTF_COMPONENT_TYPE_SHORT;
+    if (ct == TINYGLTF_COMPONENT_TYPE_FLOAT) return admits & kAdmitFloat;
+    if (normalized && unsigned_small) return admits & kAdmitNormalizedUnsigned;
+    if (normalized && signed_small) return admits & kAdmitNormalizedSigned;
+    if (!normalized && (unsigned_small || signed_small)) return admits & kAdmitIntegers;
+    return false;
+}
+
+}  // namespace
+
+bool quantized(const GltfSource& source) {
+    const auto& used = source.model.extensionsUsed;
+    return std::find(used.begin(), used.end(), "KHR_mesh_quantization") != used.end();
+}
+
+std::vector<float> read_floats(const GltfSource& source, int index, size_t components, uint32_t core,
+                               uint32_t with_quantization, const std::string& what) {
     const tinygltf::Accessor& accessor = get_accessor(source, index, what);
     const std::string owner = "accessor " + std::to_string(index) + " (" + what + ")";
-    if (type_components(accessor.type) != components || accessor.type == TINYGLTF_TYPE_MAT2) {
+    if (type_components(accessor.type) != components || accessor.type == TINYGLTF_TYPE_MAT2 ||
+        accessor.type == TINYGLTF_TYPE_MAT3) {
         source.fail(owner + " has type " + type_name(accessor.type) + ", expected " +
-                    (components == 2   ? "VEC2"
+                    (components == 1   ? "SCALAR"
+                     : components == 2 ? "VEC2"
                      : components == 3 ? "VEC3"
-                                       : "VEC4"));
+                     : components == 4 ? "VEC4"
+                                       : "MAT4"));
     }
     const int ct = accessor.componentType;
-    const bool normalized_ok =
-        allow_normalized && accessor.normalized &&
-        (ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || ct == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-    if (ct != TINYGLTF_COMPONENT_TYPE_FLOAT && !normalized_ok) {
+    const uint32_t admits = core | with_quantization;
+    const uint32_t allowed = quantized(source) ? admits : core;
+    if (!admitted(ct, accessor.normalized, allowed)) {
+        const bool needs_extension = admitted(ct, accessor.normalized, admits);
         source.fail(owner + " has " + (accessor.normalized ? "normalized " : "") + component_name(ct) +
-                    " components; glTF 2.0 allows FLOAT" +
-                    (allow_normalized ? " or normalized UNSIGNED_BYTE / UNSIGNED_SHORT" : "") +
-                    " here (KHR_mesh_quantization is not supported)");
+                    " components; " +
+                    (needs_extension ? "only KHR_mesh_quantization allows them, and the file does not list it in "
+                                       "extensionsUsed (allowed: " +
+                                           admitted_text(core) + ")"
+                                     : "glTF allows " + admitted_text(admits) + " here"));
     }
     const size_t csize = component_size(ct);
     const size_t element_size = csize * components;
@@ -261,8 +293,6 @@ std::vector<float> read_floats(const GltfSource& source, int index, size_t compo
     return out;
 }
 
-}  // namespace
-
 void GltfSource::fail(const std::string& problem) const {
     throw Error(file + ": " + problem);
 }
@@ -294,30 +324,79 @@ size_t accessor_count(const GltfSource& source, int index, const std::string& wh
     return get_accessor(source, index, what).count;
 }
 
-std::vector<glm::vec3> read_vec3(const GltfSource& source, int accessor, const std::string& what) {
-    const auto floats = read_floats(source, accessor, 3, false, what);
-    std::vector<glm::vec3> out(floats.size() / 3);
+namespace {
+
+template <typename Vec>
+std::vector<Vec> as_vectors(const std::vector<float>& floats) {
+    std::vector<Vec> out(floats.size() * sizeof(float) / sizeof(Vec));
     std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
     return out;
 }
 
-std::vector<glm::vec4> read_vec4(const GltfSource& source, int accessor, const std::string& what) {
-    const auto floats = read_floats(source, accessor, 4, false, what);
-    std::vector<glm::vec4> out(floats.size() / 4);
-    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
-    return out;
+}  // namespace
+
+std::vector<glm::vec3> read_positions(const GltfSource& source, int accessor, const std::string& what) {
+    return as_vectors<glm::vec3>(read_floats(source, accessor, 3, kAdmitFloat,
+                                             kAdmitNormalizedUnsigned | kAdmitNormalizedSigned | kAdmitIntegers, what));
+}
+
+std::vector<glm::vec3> read_normals(const GltfSource& source, int accessor, const std::string& what) {
+    return as_vectors<glm::vec3>(read_floats(source, accessor, 3, kAdmitFloat, kAdmitNormalizedSigned, what));
+}
+
+std::vector<glm::vec4> read_tangents(const GltfSource& source, int accessor, const std::string& what) {
+    return as_vectors<glm::vec4>(read_floats(source, accessor, 4, kAdmitFloat, kAdmitNormalizedSigned, what));
 }
 
 std::vector<glm::vec2> read_texcoords(const GltfSource& source, int accessor, const std::string& what) {
-    const auto floats = read_floats(source, accessor, 2, true, what);
-    std::vector<glm::vec2> out(floats.size() / 2);
-    std::memcpy(out.data(), floats.data(), floats.size() * sizeof(float));
+    return as_vectors<glm::vec2>(read_floats(source, accessor, 2, kAdmitFloat | kAdmitNormalizedUnsigned,
+                                             kAdmitNormalizedSigned | kAdmitIntegers, what));
+}
+
+std::vector<glm::vec3> read_target_positions(const GltfSource& source, int accessor, const std::string& what) {
+    return as_vectors<glm::vec3>(
+        read_floats(source, accessor, 3, kAdmitFloat, kAdmitNormalizedSigned | kAdmitIntegers, what));
+}
+
+std::vector<glm::vec3> read_target_directions(const GltfSource& source, int accessor, const std::string& what) {
+    return as_vectors<glm::vec3>(read_floats(source, accessor, 3, kAdmitFloat, kAdmitNormalizedSigned, what));
+}
+
+std::vector<glm::uvec4> read_joints(const GltfSource& source, int accessor, const std::string& what) {
+    const tinygltf::Accessor& a = get_accessor(source, accessor, what);
+    const int ct = a.componentType;
+    if (a.normalized || (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT)) {
+        source.fail("accessor " + std::to_string(accessor) + " (" + what + ") has " +
+                    (a.normalized ? "normalized " : "") + component_name(ct) +
+                    " components; joint indices must be UNSIGNED_BYTE or UNSIGNED_SHORT (not normalized)");
+    }
+    // Read as unnormalized integers: exact in float up to 65535.
+    const auto floats = read_floats(source, accessor, 4, kAdmitIntegers, 0, what);
+    std::vector<glm::uvec4> out(floats.size() / 4);
+    for (size_t i = 0; i < out.size(); ++i) {
+        for (int c = 0; c < 4; ++c) out[i][c] = uint32_t(floats[4 * i + size_t(c)]);
+    }
+    return out;
+}
+
+std::vector<glm::vec4> read_weights(const GltfSource& source, int accessor, const std::string& what) {
+    return as_vectors<glm::vec4>(read_floats(source, accessor, 4, kAdmitFloat | kAdmitNormalizedUnsigned, 0, what));
+}
+
+std::vector<glm::mat4> read_mat4s(const GltfSource& source, int accessor, const std::string& what) {
+    const auto floats = read_floats(source, accessor, 16, kAdmitFloat, 0, what);
+    std::vector<glm::mat4> out(floats.size() / 16);
+    for (size_t i = 0; i < out.size(); ++i) {
+        for (int c = 0; c < 4; ++c) {
+            for (int r = 0; r < 4; ++r) out[i][c][r] = floats[16 * i + size_t(4 * c + r)];  // column-major
+        }
+    }
     return out;
 }
 
 std::vector<glm::vec4> read_colors(const GltfSource& source, int accessor, const std::string& what) {
     const size_t components = get_accessor(source, accessor, what).type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-    const auto floats = read_floats(source, accessor, components, true, what);
+    const auto floats = read_floats(source, accessor, components, kAdmitFloat | kAdmitNormalizedUnsigned, 0, what);
     std::vector<glm::vec4> out(floats.size() / components, glm::vec4(1.0f));
     for (size_t i = 0; i < out.size(); ++i) {
         for (size_t c = 0; c < components; ++c) {

@@ -14,16 +14,31 @@
 
 namespace vplkit::scene::detail {
 
+// One morph target's displacements (glTF 2.0 3.7.2.2); an empty array: the target has none.
+struct MorphTarget {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::vec3> tangents;  // xyz only: the handedness w is not morphed
+};
+
+// JOINTS_n / WEIGHTS_n: four joint indices (into the skin's joints) and their weights per vertex.
+struct JointSet {
+    std::vector<glm::uvec4> joints;
+    std::vector<glm::vec4> weights;
+};
+
 // One glTF primitive decoded in its mesh's object space; every value finite, every index in range.
 struct PrimitiveData {
     std::vector<glm::vec3> positions;
-    std::vector<glm::vec3> normals;   // empty: the file has none
-    std::vector<glm::vec4> tangents;  // empty: the file has none
-    std::vector<glm::vec2> uvs;       // empty: the file has none
-    std::vector<glm::vec2> uvs1;      // TEXCOORD_1; empty: the file has none
-    std::vector<glm::vec4> colors;    // COLOR_0 as RGBA in [0, 1]; empty: the file has none
-    std::vector<uint32_t> indices;    // 3 per triangle
-    uint32_t material = 0;            // index into Scene::materials
+    std::vector<glm::vec3> normals;    // empty: the file has none
+    std::vector<glm::vec4> tangents;   // empty: the file has none
+    std::vector<glm::vec2> uvs;        // empty: the file has none
+    std::vector<glm::vec2> uvs1;       // TEXCOORD_1; empty: the file has none
+    std::vector<glm::vec4> colors;     // COLOR_0 as RGBA in [0, 1]; empty: the file has none
+    std::vector<uint32_t> indices;     // 3 per triangle
+    uint32_t material = 0;             // index into Scene::materials
+    std::vector<MorphTarget> targets;  // each array as long as positions, or empty
+    std::vector<JointSet> joint_sets;  // JOINTS_0/WEIGHTS_0, JOINTS_1/WEIGHTS_1, ...
 };
 
 // Appends `data` transformed by `world` (node to world) to `scene`: vertices, triangles, their

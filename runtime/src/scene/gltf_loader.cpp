@@ -5,6 +5,7 @@
 #include "scene/gltf_accessors.hpp"
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_images.hpp"
+#include "scene/gltf_pose.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/scene.hpp"
 
@@ -28,11 +29,16 @@ namespace vplkit::scene {
 namespace {
 
 using detail::GltfSource;
+using detail::JointSet;
+using detail::MorphTarget;
 using detail::PrimitiveData;
 
 constexpr const char* kLightsExtension = "KHR_lights_punctual";
 constexpr const char* kEmissiveStrengthExtension = "KHR_materials_emissive_strength";
-const std::set<std::string> kSupportedExtensions = {kLightsExtension, kEmissiveStrengthExtension};
+constexpr const char* kTextureTransformExtension = "KHR_texture_transform";
+constexpr const char* kQuantizationExtension = "KHR_mesh_quantization";
+const std::set<std::string> kSupportedExtensions = {kLightsExtension, kEmissiveStrengthExtension,
+                                                    kTextureTransformExtension, kQuantizationExtension};
 
 std::string one_line(const std::string& text) {
     std::string out;
@@ -71,15 +77,16 @@ class TextureTable {
 public:
     explicit TextureTable(const GltfSource& source) : source_(source) {}
 
-    // `slot` names the use for messages ("base colour texture of material 0 'floor'").
-    int32_t use(int gltf_texture, int tex_coord, bool srgb, const std::string& slot, LoadWarnings& warnings) {
+    // `info` is a material's textureInfo (or normal texture info); `uv` receives its texture
+    // coordinate set and KHR_texture_transform. `slot` names the use for messages ("base colour
+    // texture of material 0 'floor'").
+    template <typename Info>
+    int32_t use(const Info& info, bool srgb, const std::string& slot, UvTransform& uv, LoadWarnings& warnings) {
+        const int gltf_texture = info.index;
         if (gltf_texture < 0) return kNoTexture;
         const auto& model = source_.model;
         check_index(source_, gltf_texture, model.textures, "texture", slot);
-        if (tex_coord != 0) {
-            warnings.messages.push_back(slot + " uses TEXCOORD_" + std::to_string(tex_coord) +
-                                        "; vplkit reads every texture with TEXCOORD_0");
-        }
+        uv = uv_transform(info.texCoord, info.extensions, slot, warnings);
         const tinygltf::Texture& texture = model.textures[size_t(gltf_texture)];
         const std::string texture_label = "texture " + std::to_string(gltf_texture);
         if (texture.source < 0) {
@@ -114,6 +121,43 @@ public:
     const std::vector<detail::ImageUse>& image_uses() const { return image_uses_; }
 
 private:
+    UvTransform uv_transform(int tex_coord, const tinygltf::ExtensionMap& extensions, const std::string& slot,
+                             LoadWarnings& warnings) const {
+        UvTransform out;
+        if (auto it = extensions.find(kTextureTransformExtension); it != extensions.end()) {
+            const tinygltf::Value& ext = it->second;
+            const std::string label = slot + ": " + kTextureTransformExtension;
+            if (!ext.IsObject()) source_.fail(label + " is not an object");
+            auto number = [&](const tinygltf::Value& v, const char* what) {
+                const double d = v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+                if (!finite(d)) source_.fail(label + " " + what + " is not a finite number");
+                return float(d);
+            };
+            auto pair = [&](const char* key, glm::vec2 fallback) {
+                if (!ext.Has(key)) return fallback;
+                const tinygltf::Value& v = ext.Get(key);
+                if (!v.IsArray() || v.ArrayLen() != 2)
+                    source_.fail(label + " " + key + " is not an array of 2 numbers");
+                return glm::vec2(number(v.Get(0), key), number(v.Get(1), key));
+            };
+            out.offset = pair("offset", out.offset);
+            out.scale = pair("scale", out.scale);
+            if (ext.Has("rotation")) out.rotation = number(ext.Get("rotation"), "rotation");
+            if (ext.Has("texCoord")) {
+                const tinygltf::Value& v = ext.Get("texCoord");
+                if (!v.IsInt() || v.GetNumberAsInt() < 0) source_.fail(label + " texCoord is not an index >= 0");
+                tex_coord = v.GetNumberAsInt();
+            }
+        }
+        if (tex_coord > 1) {
+            warnings.messages.push_back(slot + " uses TEXCOORD_" + std::to_string(tex_coord) +
+                                        "; vplkit keeps TEXCOORD_0 and TEXCOORD_1 and reads it with TEXCOORD_0");
+            tex_coord = 0;
+        }
+        out.tex_coord = uint32_t(tex_coord);
+        return out;
+    }
+
     Sampler convert_sampler(const tinygltf::Sampler& s, int index) const {
         const std::string label = "sampler " + std::to_string(index);
         auto wrap = [&](int mode, const char* axis) {
@@ -233,15 +277,20 @@ Material convert_material(const GltfSource& source, int index, TextureTable& tex
     if (!finite(m.normalTexture.scale)) source.fail(label + ": normalTexture scale is not finite");
     out.normal_scale = float(m.normalTexture.scale);
 
-    out.base_color_texture = textures.use(pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord, true,
-                                          "base colour texture of " + label, warnings);
+    out.base_color_texture =
+        textures.use(pbr.baseColorTexture, true, "base colour texture of " + label, out.base_color_uv, warnings);
     out.metallic_roughness_texture =
-        textures.use(pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord, false,
-                     "metallic-roughness texture of " + label, warnings);
-    out.normal_texture =
-        textures.use(m.normalTexture.index, m.normalTexture.texCoord, false, "normal texture of " + label, warnings);
-    out.emissive_texture = textures.use(m.emissiveTexture.index, m.emissiveTexture.texCoord, true,
-                                        "emissive texture of " + label, warnings);
+        textures.use(pbr.metallicRoughnessTexture, false, "metallic-roughness texture of " + label,
+                     out.metallic_roughness_uv, warnings);
+    out.normal_texture = textures.use(m.normalTexture, false, "normal texture of " + label, out.normal_uv, warnings);
+    out.emissive_texture =
+        textures.use(m.emissiveTexture, true, "emissive texture of " + label, out.emissive_uv, warnings);
+    if (out.normal_texture != kNoTexture && (out.normal_uv.tex_coord != 0 || out.normal_uv.rotation != 0.0f)) {
+        // The tangent frame comes from the file's TANGENT or from TEXCOORD_0 as it is.
+        warnings.messages.push_back(label + ": the normal texture reads " +
+                                    (out.normal_uv.tex_coord != 0 ? std::string("TEXCOORD_1") : "rotated UVs") +
+                                    ", but its tangent frame follows TEXCOORD_0 unrotated (normal map approximated)");
+    }
     if (m.occlusionTexture.index >= 0) {
         warnings.messages.push_back(label + ": occlusion texture ignored (VPLs compute indirect light)");
     }
@@ -350,6 +399,91 @@ std::vector<NodeInstance> traverse(const GltfSource& source, LoadWarnings& warni
     return out;
 }
 
+// World transforms of nodes: those the scene's traversal reached, and on demand any other (a
+// skin's joint outside the scene) through its parents.
+class NodeWorlds {
+public:
+    NodeWorlds(const GltfSource& source, const std::vector<NodeInstance>& instances)
+        : source_(source), parent_(source.model.nodes.size(), -1), world_(source.model.nodes.size()) {
+        const auto& nodes = source.model.nodes;
+        for (size_t i = 0; i < nodes.size(); ++i) {
+            for (int child : nodes[i].children) {
+                if (child >= 0 && size_t(child) < nodes.size() && parent_[size_t(child)] < 0) {
+                    parent_[size_t(child)] = int(i);
+                }
+            }
+        }
+        for (const NodeInstance& instance : instances) world_[size_t(instance.node)] = instance.world;
+    }
+
+    glm::dmat4 operator()(int node) {
+        std::vector<int> chain;  // nodes without a known world, from `node` up
+        glm::dmat4 base(1.0);
+        for (int n = node;;) {
+            if (world_[size_t(n)]) {
+                base = *world_[size_t(n)];
+                break;
+            }
+            chain.push_back(n);
+            if (chain.size() > parent_.size()) source_.fail("node " + std::to_string(node) + " has a cycle above it");
+            if (parent_[size_t(n)] < 0) break;
+            n = parent_[size_t(n)];
+        }
+        for (auto it = chain.rbegin(); it != chain.rend(); ++it) {
+            const tinygltf::Node& n = source_.model.nodes[size_t(*it)];
+            base = base * local_transform(source_, n, "node " + std::to_string(*it) + quoted_name(n.name));
+            world_[size_t(*it)] = base;
+        }
+        return base;
+    }
+
+private:
+    const GltfSource& source_;
+    std::vector<int> parent_;
+    std::vector<std::optional<glm::dmat4>> world_;
+};
+
+// Each joint's world transform times its inverse bind matrix (glTF 2.0 3.7.3): what a vertex
+// bound to that joint is multiplied by. No inverseBindMatrices: identities.
+std::vector<glm::dmat4> joint_matrices(const GltfSource& source, int skin_index, NodeWorlds& worlds,
+                                       const std::string& node_label) {
+    check_index(source, skin_index, source.model.skins, "skin", node_label);
+    const tinygltf::Skin& skin = source.model.skins[size_t(skin_index)];
+    const std::string label = "skin " + std::to_string(skin_index) + quoted_name(skin.name);
+    if (skin.joints.empty()) source.fail(label + " has no joints");
+    std::vector<glm::mat4> inverse_bind(skin.joints.size(), glm::mat4(1.0f));
+    if (skin.inverseBindMatrices >= 0) {
+        inverse_bind = detail::read_mat4s(source, skin.inverseBindMatrices, "inverseBindMatrices of " + label);
+        if (inverse_bind.size() < skin.joints.size()) {
+            source.fail(label + " has " + std::to_string(skin.joints.size()) + " joints but " +
+                        std::to_string(inverse_bind.size()) + " inverse bind matrices");
+        }
+        for (const glm::mat4& m : inverse_bind) {
+            for (int c = 0; c < 4; ++c) {
+                for (int r = 0; r < 4; ++r) {
+                    if (!std::isfinite(m[c][r])) source.fail(label + ": an inverse bind matrix is not finite");
+                }
+            }
+        }
+    }
+    std::vector<glm::dmat4> out;
+    for (size_t j = 0; j < skin.joints.size(); ++j) {
+        check_index(source, skin.joints[j], source.model.nodes, "node", label + " (joint " + std::to_string(j) + ")");
+        out.push_back(worlds(skin.joints[j]) * glm::dmat4(inverse_bind[j]));
+    }
+    return out;
+}
+
+// The morph weights of a node's mesh: the node's, else the mesh's, else none (all zero).
+std::vector<double> morph_weights(const GltfSource& source, const tinygltf::Node& node, const tinygltf::Mesh& mesh,
+                                  const std::string& node_label) {
+    const std::vector<double>& weights = !node.weights.empty() ? node.weights : mesh.weights;
+    for (double w : weights) {
+        if (!finite(w)) source.fail(node_label + ": a morph target weight is not finite");
+    }
+    return weights;
+}
+
 // --- Meshes ---------------------------------------------------------------------------------
 
 // One glTF primitive decoded and validated once, however many nodes instance its mesh.
@@ -373,10 +507,9 @@ std::optional<PrimitiveData> decode_primitive(const GltfSource& source, int mesh
         warnings.messages.push_back(label + " has no POSITION: skipped");
         return std::nullopt;
     }
-    if (!primitive.targets.empty()) warnings.messages.push_back(label + ": morph targets ignored");
 
     PrimitiveData data;
-    data.positions = detail::read_vec3(source, position_accessor, "POSITION of " + label);
+    data.positions = detail::read_positions(source, position_accessor, "POSITION of " + label);
     const size_t vertex_count = data.positions.size();
     auto check_count = [&](size_t count, const char* name) {
         if (count != vertex_count) {
@@ -396,12 +529,12 @@ std::optional<PrimitiveData> decode_primitive(const GltfSource& source, int mesh
     };
     check_finite(&data.positions[0].x, 3, "POSITION");
     if (const int a = attribute("NORMAL"); a >= 0) {
-        data.normals = detail::read_vec3(source, a, "NORMAL of " + label);
+        data.normals = detail::read_normals(source, a, "NORMAL of " + label);
         check_count(data.normals.size(), "NORMAL");
         check_finite(&data.normals[0].x, 3, "NORMAL");
     }
     if (const int a = attribute("TANGENT"); a >= 0) {
-        data.tangents = detail::read_vec4(source, a, "TANGENT of " + label);
+        data.tangents = detail::read_tangents(source, a, "TANGENT of " + label);
         check_count(data.tangents.size(), "TANGENT");
         check_finite(&data.tangents[0].x, 4, "TANGENT");
     }
@@ -419,6 +552,48 @@ std::optional<PrimitiveData> decode_primitive(const GltfSource& source, int mesh
         data.colors = detail::read_colors(source, a, "COLOR_0 of " + label);
         check_count(data.colors.size(), "COLOR_0");
         check_finite(&data.colors[0].x, 4, "COLOR_0");
+    }
+
+    for (size_t t = 0; t < primitive.targets.size(); ++t) {
+        const std::string target_label = "morph target " + std::to_string(t) + " of " + label;
+        const auto& attributes = primitive.targets[t];
+        MorphTarget target;
+        auto displacement = [&](const char* name, auto read) {
+            const auto it = attributes.find(name);
+            if (it == attributes.end()) return std::vector<glm::vec3>{};
+            auto values = read(source, it->second, std::string(name) + " of " + target_label);
+            const std::string what = "morph target " + std::to_string(t) + " " + name;
+            check_count(values.size(), what.c_str());
+            check_finite(&values[0].x, 3, what.c_str());
+            return values;
+        };
+        target.positions = displacement("POSITION", detail::read_target_positions);
+        target.normals = displacement("NORMAL", detail::read_target_directions);
+        target.tangents = displacement("TANGENT", detail::read_target_directions);
+        for (const auto& [name, accessor] : attributes) {
+            if (name != "POSITION" && name != "NORMAL" && name != "TANGENT") {
+                warnings.messages.push_back(target_label + ": " + name + " displacements ignored");
+            }
+        }
+        data.targets.push_back(std::move(target));
+    }
+    for (int set = 0;; ++set) {
+        const std::string joints_name = "JOINTS_" + std::to_string(set);
+        const std::string weights_name = "WEIGHTS_" + std::to_string(set);
+        const int joints = attribute(joints_name.c_str()), weights = attribute(weights_name.c_str());
+        if (joints < 0 && weights < 0) break;
+        if (joints < 0 || weights < 0) {
+            source.fail(
+                label + " has " +
+                (joints < 0 ? weights_name + " without " + joints_name : joints_name + " without " + weights_name));
+        }
+        JointSet joint_set;
+        joint_set.joints = detail::read_joints(source, joints, joints_name + " of " + label);
+        joint_set.weights = detail::read_weights(source, weights, weights_name + " of " + label);
+        check_count(joint_set.joints.size(), joints_name.c_str());
+        check_count(joint_set.weights.size(), weights_name.c_str());
+        check_finite(&joint_set.weights[0].x, 4, weights_name.c_str());
+        data.joint_sets.push_back(std::move(joint_set));
     }
 
     if (primitive.indices >= 0) {
@@ -498,11 +673,35 @@ Light convert_light(const GltfSource& source, int index, const glm::dmat4& world
 Camera convert_camera(const GltfSource& source, int index, const glm::dmat4& world, const std::string& node_label) {
     const tinygltf::Camera& c = source.model.cameras[size_t(index)];
     const std::string label = "camera " + std::to_string(index) + quoted_name(c.name) + " (on " + node_label + ")";
-    const auto& p = c.perspective;
-    if (!(finite(p.yfov) && p.yfov > 0.0 && p.yfov < std::numbers::pi)) source.fail(label + ": yfov is not in (0, pi)");
-    if (!(finite(p.znear) && p.znear > 0.0)) source.fail(label + ": znear is not > 0");
-    if (!(finite(p.zfar) && (p.zfar == 0.0 || p.zfar > p.znear))) source.fail(label + ": zfar is not > znear");
-    if (!(finite(p.aspectRatio) && p.aspectRatio >= 0.0)) source.fail(label + ": aspectRatio is negative");
+    Camera out;
+    if (c.type == "perspective") {
+        const auto& p = c.perspective;
+        if (!(finite(p.yfov) && p.yfov > 0.0 && p.yfov < std::numbers::pi))
+            source.fail(label + ": yfov is not in (0, pi)");
+        if (!(finite(p.znear) && p.znear > 0.0)) source.fail(label + ": znear is not > 0");
+        if (!(finite(p.zfar) && (p.zfar == 0.0 || p.zfar > p.znear))) source.fail(label + ": zfar is not > znear");
+        if (!(finite(p.aspectRatio) && p.aspectRatio >= 0.0)) source.fail(label + ": aspectRatio is negative");
+        out.projection = Projection::perspective;
+        out.yfov = float(p.yfov);
+        out.aspect = float(p.aspectRatio);
+        out.znear = float(p.znear);
+        out.zfar = float(p.zfar);
+    } else if (c.type == "orthographic") {
+        const auto& o = c.orthographic;
+        // glTF 2.0 5.13: xmag and ymag must not be 0, zfar must be > znear >= 0.
+        if (!(finite(o.xmag) && o.xmag > 0.0 && finite(o.ymag) && o.ymag > 0.0)) {
+            source.fail(label + ": orthographic xmag and ymag must be > 0 (half the view's width and height)");
+        }
+        if (!(finite(o.znear) && o.znear >= 0.0)) source.fail(label + ": orthographic znear is not >= 0");
+        if (!(finite(o.zfar) && o.zfar > o.znear)) source.fail(label + ": orthographic zfar is not > znear");
+        out.projection = Projection::orthographic;
+        out.xmag = float(o.xmag);
+        out.ymag = float(o.ymag);
+        out.znear = float(o.znear);
+        out.zfar = float(o.zfar);
+    } else {
+        source.fail(label + ": type '" + c.type + "' is neither perspective nor orthographic");
+    }
     const glm::dmat3 linear(world);
     const glm::dvec3 forward = linear * glm::dvec3(0.0, 0.0, -1.0);
     const glm::dvec3 up = linear * glm::dvec3(0.0, 1.0, 0.0);
@@ -513,16 +712,11 @@ Camera convert_camera(const GltfSource& source, int index, const glm::dmat4& wor
     if (!(forward_length > 0.0) || !(up_length > 0.0)) {
         source.fail(label + ": the node's transform is singular, so the camera has no orientation");
     }
-    Camera out;
     out.name = c.name.empty() ? "camera " + std::to_string(index) : c.name;
     out.origin = CameraOrigin::file;
     out.position = glm::vec3(world[3]);
     out.forward = glm::vec3(f);
     out.up = glm::vec3(u / up_length);
-    out.yfov = float(p.yfov);
-    out.aspect = float(p.aspectRatio);
-    out.znear = float(p.znear);
-    out.zfar = float(p.zfar);
     return out;
 }
 
@@ -575,8 +769,10 @@ bool is_glb(const std::filesystem::path& path) {
 void check_extensions(const GltfSource& source, LoadWarnings& warnings) {
     for (const std::string& name : source.model.extensionsRequired) {
         if (!kSupportedExtensions.count(name)) {
-            source.fail("the file requires extension " + name + ", which vplkit does not support (supported: " +
-                        kLightsExtension + ", " + kEmissiveStrengthExtension + ")");
+            std::string supported;
+            for (const std::string& e : kSupportedExtensions) supported += (supported.empty() ? "" : ", ") + e;
+            source.fail("the file requires extension " + name +
+                        ", which vplkit does not support (supported: " + supported + ")");
         }
     }
     for (const std::string& name : source.model.extensionsUsed) {
@@ -630,7 +826,11 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
         }
     }
     check_extensions(source, scene.warnings);
-    if (!model.animations.empty()) scene.warnings.messages.push_back("animations ignored (static scene)");
+    if (!model.animations.empty()) {
+        scene.warnings.messages.push_back(std::to_string(model.animations.size()) +
+                                          " animation(s) ignored: the still frame is the file's rest pose (node "
+                                          "transforms, default morph weights)");
+    }
 
     // Materials first: a primitive's need for tangents depends on its material's normal texture.
     TextureTable textures(source);
@@ -641,19 +841,14 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
     bool default_material_used = false;
 
     std::vector<std::optional<std::vector<std::optional<PrimitiveData>>>> decoded(model.meshes.size());
-    for (const NodeInstance& instance : traverse(source, scene.warnings)) {
+    const std::vector<NodeInstance> instances = traverse(source, scene.warnings);
+    NodeWorlds worlds(source, instances);
+    for (const NodeInstance& instance : instances) {
         const tinygltf::Node& node = model.nodes[size_t(instance.node)];
         const std::string node_label = "node " + std::to_string(instance.node) + quoted_name(node.name);
-        if (node.skin >= 0) scene.warnings.messages.push_back(node_label + ": skin ignored (bind pose used)");
         if (node.camera >= 0) {
             check_index(source, node.camera, model.cameras, "camera", node_label);
-            if (model.cameras[size_t(node.camera)].type == "perspective") {
-                scene.cameras.push_back(convert_camera(source, node.camera, instance.world, node_label));
-            } else {
-                scene.warnings.messages.push_back(node_label + ": camera " + std::to_string(node.camera) + " is " +
-                                                  model.cameras[size_t(node.camera)].type +
-                                                  ", not perspective: skipped");
-            }
+            scene.cameras.push_back(convert_camera(source, node.camera, instance.world, node_label));
         }
         if (auto it = node.extensions.find(kLightsExtension); it != node.extensions.end()) {
             const tinygltf::Value& ext = it->second;
@@ -674,9 +869,37 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
                 primitives->push_back(decode_primitive(source, node.mesh, int(p), default_material, scene.warnings));
             }
         }
+        const std::vector<double> weights = morph_weights(source, node, mesh, node_label);
+        std::vector<glm::dmat4> joints;
+        if (node.skin >= 0 && node.mesh >= 0) joints = joint_matrices(source, node.skin, worlds, node_label);
         for (size_t p = 0; p < primitives->size(); ++p) {
-            const auto& data = (*primitives)[p];
-            if (!data) continue;
+            if (!(*primitives)[p]) continue;
+            const std::string where = node_label + " mesh " + std::to_string(node.mesh) + quoted_name(mesh.name) +
+                                      " primitive " + std::to_string(p);
+            // The still frame's pose: morphed, then skinned (world space; the node's own transform
+            // is then ignored, glTF 2.0 3.7.3).
+            const PrimitiveData* data = &*(*primitives)[p];
+            std::optional<PrimitiveData> posed;
+            glm::dmat4 world = instance.world;
+            if (!data->targets.empty() &&
+                std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0; })) {
+                if (weights.size() != data->targets.size()) {
+                    source.fail(where + " has " + std::to_string(data->targets.size()) + " morph targets, but " +
+                                std::to_string(weights.size()) + " weights are given");
+                }
+                posed = detail::morphed(*data, weights);
+                data = &*posed;
+            }
+            if (node.skin >= 0) {
+                if (data->joint_sets.empty()) {
+                    scene.warnings.messages.push_back(where +
+                                                      " has a skin but no JOINTS_0: drawn with the node's transform");
+                } else {
+                    posed = detail::skinned(source, *data, joints, where);
+                    data = &*posed;
+                    world = glm::dmat4(1.0);
+                }
+            }
             default_material_used |= data->material == default_material;
             const bool wants_tangents =
                 data->material != default_material && scene.materials[data->material].normal_texture != kNoTexture;
@@ -684,9 +907,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
             info.node = uint32_t(instance.node);
             info.mesh = uint32_t(node.mesh);
             info.primitive = uint32_t(p);
-            detail::append_instance(source, scene, *data, instance.world, wants_tangents, info,
-                                    node_label + " mesh " + std::to_string(node.mesh) + quoted_name(mesh.name) +
-                                        " primitive " + std::to_string(p));
+            detail::append_instance(source, scene, *data, world, wants_tangents, info, where);
         }
     }
     if (scene.indices.empty()) {
@@ -722,7 +943,7 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
     if (options.camera && *options.camera >= file_cameras) {
         source.fail("camera " + std::to_string(*options.camera) + " was asked for, but the file has " +
                     (file_cameras == 0
-                         ? std::string("no perspective camera")
+                         ? std::string("no camera")
                          : std::to_string(file_cameras) + " (0.." + std::to_string(file_cameras - 1) + ")"));
     }
     if (scene.cameras.empty()) scene.cameras.push_back(framing_camera(scene.bounds));

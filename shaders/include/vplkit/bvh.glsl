@@ -28,13 +28,15 @@
 //     and texCoord set applied; 6 floats), alpha factor x COLOR_0 alpha at v0, v1, v2 (3 floats),
 //     the offset of its material record;
 //   material record (5 words): cutoff (float), texture width, height (0 x 0: no texture, alpha
-//     1), wrap modes (S in bits 0-1, T in bits 2-3: 0 repeat, 1 clamp, 2 mirrored), the offset
-//     of the texture's alpha bytes (width x height, rows top to bottom, 4 to a word).
+//     1), wrap modes (S in bits 0-1, T in bits 2-3: 0 repeat, 1 clamp, 2 mirrored) and the
+//     magnification filter (bit 4: nearest), the offset of the texture's alpha bytes (width x
+//     height, rows top to bottom, 4 to a word).
 // Why a plain array and not a sampler: lavapipe has no descriptor indexing, so compute shaders
 // cannot pick one of many textures per hit; the alpha channels of the masked materials' base
 // colour textures are few (Sponza: its plants and chains) and a byte per texel. The texture is
-// read bilinearly at level 0 with the sampler's wrap modes (the G-buffer's trilinear filtering
-// differs only where the footprint spans several texels: at the mask's edges, far away).
+// read at level 0 with the sampler's wrap modes and magnification filter, nearest or bilinear
+// (the G-buffer's minification and mip filtering differ only where the footprint spans several
+// texels: at the mask's edges, far away).
 //
 // Layout. Nodes are 32 bytes, in depth-first order: an interior node's first child is the next
 // node and `index` holds its second child; a leaf's `index` is its first triangle and `meta`
@@ -240,6 +242,8 @@ bool bvh_intersect_triangle(BvhRayState ray, BvhTriangle tri, float tmin, float 
     return true;
 }
 
+const uint kBvhAlphaNearest = 16u;  // material record word 3: the texture's magFilter is NEAREST
+
 // One texel of an alpha record's texture (bytes 4 to a word), with glTF's wrap modes.
 float bvh_alpha_texel(uint data, uvec2 size, uint wrap, ivec2 texel) {
     ivec2 n = ivec2(size);
@@ -291,15 +295,19 @@ bool bvh_alpha_passes(BvhTriangle tri, vec2 barycentrics) {
                   w.z * vec2(uintBitsToFloat(bvh_alpha.words[r + 4u]), uintBitsToFloat(bvh_alpha.words[r + 5u]));
         uint wrap = bvh_alpha.words[m + 3u];
         uint data = bvh_alpha.words[m + 4u];
-        // Bilinear between texel centres at (i + 0.5) / size (Vulkan's convention).
-        vec2 x = uv * vec2(size) - 0.5;
-        vec2 f = fract(x);
-        ivec2 i0 = ivec2(floor(x));
-        float a00 = bvh_alpha_texel(data, size, wrap, i0);
-        float a10 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 0));
-        float a01 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(0, 1));
-        float a11 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 1));
-        alpha *= mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
+        if ((wrap & kBvhAlphaNearest) != 0u) {
+            alpha *= bvh_alpha_texel(data, size, wrap, ivec2(floor(uv * vec2(size))));
+        } else {
+            // Bilinear between texel centres at (i + 0.5) / size (Vulkan's convention).
+            vec2 x = uv * vec2(size) - 0.5;
+            vec2 f = fract(x);
+            ivec2 i0 = ivec2(floor(x));
+            float a00 = bvh_alpha_texel(data, size, wrap, i0);
+            float a10 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 0));
+            float a01 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(0, 1));
+            float a11 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 1));
+            alpha *= mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
+        }
     }
     return alpha >= cutoff;
 }

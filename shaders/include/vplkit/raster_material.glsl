@@ -32,6 +32,17 @@ struct SceneMaterial {
     float roughness_factor;
     float normal_scale;
     uint flags;  // kSceneMaterial* bits
+    // Per texture (base colour, metallic-roughness, normal, emissive) the rows of its 2x3 UV
+    // transform (KHR_texture_transform; identity without one): u' = dot(u_row.xyz, (uv, 1)),
+    // v' = dot(v_row.xyz, (uv, 1)); u_row.w = its texture coordinate set (0 or 1).
+    vec4 base_color_u_row;
+    vec4 base_color_v_row;
+    vec4 metallic_roughness_u_row;
+    vec4 metallic_roughness_v_row;
+    vec4 normal_u_row;
+    vec4 normal_v_row;
+    vec4 emissive_u_row;
+    vec4 emissive_v_row;
 };
 
 layout(std430, set = 0, binding = VPLKIT_SCENE_MATERIALS_BINDING) readonly buffer SceneMaterialBuffer {
@@ -52,7 +63,14 @@ struct RasterSurface {
     vec3 emission;          // emitted radiance
 };
 
-// The material at a fragment with vertex colour `color` (COLOR_0, white without one) seen from
+// The texture coordinates one texture reads: its set, through its transform.
+vec2 material_uv(vec4 u_row, vec4 v_row, vec2 uv0, vec2 uv1) {
+    vec3 uv = vec3(u_row.w != 0.0 ? uv1 : uv0, 1.0);
+    return vec2(dot(u_row.xyz, uv), dot(v_row.xyz, uv));
+}
+
+// The material at a fragment with vertex colour `color` (COLOR_0, white without one) and texture
+// coordinates uv0, uv1 (TEXCOORD_0, TEXCOORD_1) seen from
 // direction `to_viewer` (any length; for the G-buffer the
 // camera, for a shadow map the light). Discards the fragment when the alpha test fails.
 //
@@ -61,15 +79,17 @@ struct RasterSurface {
 // viewer's side; the shading normal is computed in the file's tangent frame and then the whole
 // frame is turned to the side the vertex normal must be on (glTF 2.0, double-sided materials:
 // back-face normals are reversed; applied to single-sided ones too for the reason above).
-RasterSurface raster_surface(SceneMaterial m, vec4 color, vec3 vertex_normal, vec4 vertex_tangent, vec2 uv, vec3 face_normal,
-                             vec3 to_viewer) {
+RasterSurface raster_surface(SceneMaterial m, vec4 color, vec3 vertex_normal, vec4 vertex_tangent, vec2 uv0, vec2 uv1,
+                             vec3 face_normal, vec3 to_viewer) {
     // Every texture is sampled before the alpha test may discard, so the implicit derivatives of
     // the quad's surviving invocations stay defined.
     // glTF 2.0 3.9.2: base colour = factor x texture x COLOR_0 (alpha included).
-    vec4 base_color = m.base_color_factor * texture(base_color_texture, uv) * color;
-    vec4 metallic_roughness = texture(metallic_roughness_texture, uv);
-    vec3 tangent_normal = texture(normal_texture, uv).xyz;
-    vec3 emissive = texture(emissive_texture, uv).rgb;
+    vec4 base_color = m.base_color_factor *
+                      texture(base_color_texture, material_uv(m.base_color_u_row, m.base_color_v_row, uv0, uv1)) * color;
+    vec4 metallic_roughness = texture(metallic_roughness_texture,
+                                      material_uv(m.metallic_roughness_u_row, m.metallic_roughness_v_row, uv0, uv1));
+    vec3 tangent_normal = texture(normal_texture, material_uv(m.normal_u_row, m.normal_v_row, uv0, uv1)).xyz;
+    vec3 emissive = texture(emissive_texture, material_uv(m.emissive_u_row, m.emissive_v_row, uv0, uv1)).rgb;
     if ((m.flags & kSceneMaterialAlphaTest) != 0u && base_color.a < m.alpha_cutoff) {
         discard;
     }

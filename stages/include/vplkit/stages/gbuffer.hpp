@@ -22,7 +22,9 @@ namespace vplkit::stages {
 struct CameraView {
     // World space -> Vulkan clip space: x right, y down in the image, depth 0 (near) .. 1 (far).
     glm::mat4 view_projection{1.0f};
-    // The eye, for the side normals are turned to.
+    // The eye, for the side normals are turned to and the direction to the viewer. An
+    // orthographic camera has none: the runtime puts it far back along the view direction
+    // (vplkit/camera_view.hpp).
     glm::vec3 position{0.0f};
 };
 
@@ -31,6 +33,12 @@ struct CameraView {
 // (`zfar` = 0: no far plane, depth tends to 1 at infinity). Throws Error for yfov outside
 // (0, pi), a non-positive aspect or znear, or a zfar that is neither 0 nor beyond znear.
 glm::mat4 vulkan_perspective(float yfov, float aspect, float znear, float zfar);
+
+// A right-handed view space looking down -Z, projected in parallel to Vulkan clip space: view
+// x in [-ymag aspect, ymag aspect] and y in [-ymag, ymag] fill the image, depth 0 at `znear`, 1
+// at `zfar` (glTF 2.0's orthographic projection, with the width from the image's aspect). Throws
+// Error for a non-positive ymag or aspect, a negative znear, or a zfar not beyond znear.
+glm::mat4 vulkan_orthographic(float ymag, float aspect, float znear, float zfar);
 
 // Adds the pass "gbuffer": reads `scene`, clears every image of `images` (position, normals,
 // albedo, emission to 0, depth to 1; colour/depth attachment usage, the formats of
