@@ -2,9 +2,9 @@
 // add_alpha_tests): a ray through a MASK material's cut-out passes, elsewhere it is blocked,
 // as the G-buffer shows the surface; BLEND is MASK at 0.5; OPAQUE ignores alpha.
 //
-// Expectation: feature_files' masked_quad, rays straight down through the quad at the centres of
-// its 4 texels (alpha 0, 1, 0, 1): bilinear filtering at a texel centre returns the texel exactly,
-// so the answer is exact (no tolerance).
+// Expectation: feature_files' masked_quad (alpha 0, 1, 0, 1, NEAREST filtering), rays straight
+// down through the quad at the centres of its 4 texels and either side of a texel border: the
+// texel a ray reads is known exactly, so the answer is exact (no tolerance).
 
 #include "feature_files.hpp"
 #include "vplkit/buffer.hpp"
@@ -21,8 +21,10 @@
 
 namespace {
 
-// Occlusion of 4 vertical rays through the quad at x = 0.125, 0.375, 0.625, 0.875, y = 0.5.
-std::vector<uint32_t> occlusion(const scene_test::GltfBuilder& b, vplkit::AlphaTestStats* stats = nullptr) {
+// Occlusion of vertical rays through the quad at y = 0.5 and each of `xs` (by default the
+// centres of the 4 texels).
+std::vector<uint32_t> occlusion(const scene_test::GltfBuilder& b, vplkit::AlphaTestStats* stats = nullptr,
+                                const std::vector<float>& xs = {0.125f, 0.375f, 0.625f, 0.875f}) {
     scene_test::TempDir dir("alpha");
     const auto scene = vplkit::scene::load_gltf(b.write(dir.path(), "masked", true));
     vplkit::Bvh bvh = vplkit::build_bvh(vplkit::scene::triangle_positions(scene));
@@ -31,7 +33,7 @@ std::vector<uint32_t> occlusion(const scene_test::GltfBuilder& b, vplkit::AlphaT
     auto& ctx = vplkit::test::context();
     const auto gpu = vplkit::upload_bvh(ctx, bvh);
     std::vector<vplkit::shaders::BvhRay> rays;
-    for (float x : {0.125f, 0.375f, 0.625f, 0.875f}) {
+    for (float x : xs) {
         vplkit::shaders::BvhRay ray{};
         ray.origin = {x, 0.5f, 1.0f};
         ray.direction = {0.0f, 0.0f, -1.0f};
@@ -79,4 +81,12 @@ TEST_CASE("gltf: a factor-only alpha below the cutoff lets every ray through, ab
 TEST_CASE("gltf: rays read the mask through the texture's KHR_texture_transform") {
     // Offset 0.25 along u: the rays at x = 0.125, 0.375, 0.625, 0.875 read texels 1, 2, 3, 3 (clamped).
     CHECK(occlusion(gltf_features::masked_quad("MASK", 1.0f, true, 0.25f)) == std::vector<uint32_t>{1, 0, 1, 1});
+}
+
+TEST_CASE("gltf: rays read a NEAREST-filtered mask texel by texel, as the G-buffer draws it") {
+    // Factor alpha 0.8 x texels 0, 1, 0, 1. At x = 0.27 (texel 1, 0.08 texel past the border)
+    // nearest gives 0.8 (blocked, as the G-buffer draws it); bilinear would give 0.8 x 0.58 < 0.5.
+    // At x = 0.23 (texel 0) both give less than 0.5: the ray passes.
+    CHECK(occlusion(gltf_features::masked_quad("MASK", 0.8f, true), nullptr, {0.23f, 0.27f}) ==
+          std::vector<uint32_t>{0, 1});
 }
