@@ -183,7 +183,7 @@ GltfBuilder morph_quad(const std::vector<float>& node_weights) {
     return b;
 }
 
-GltfBuilder skinned_quad(float arm_degrees, bool short_joints) {
+GltfBuilder skinned_quad(float arm_degrees, bool short_joints, bool mirrored) {
     GltfBuilder b;
     const int p = b.vec3s({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
     const int n = b.vec3s({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
@@ -215,7 +215,8 @@ GltfBuilder skinned_quad(float arm_degrees, bool short_joints) {
     const int arm =
         b.node("{\"name\":\"arm\",\"translation\":[0.5,0,0],\"rotation\":[0," + scene_test::json_float(std::sin(half)) +
                ",0," + scene_test::json_float(std::cos(half)) + "]}");
-    const int hip = b.node("{\"name\":\"hip\",\"children\":[" + std::to_string(arm) + "]}");
+    const int hip = b.node("{\"name\":\"hip\"," + std::string(mirrored ? "\"scale\":[-1,1,1]," : "") +
+                           "\"children\":[" + std::to_string(arm) + "]}");
     const int body = b.node("{\"mesh\":" + std::to_string(mesh) + ",\"skin\":0,\"translation\":[5,5,5]}");
     b.top_level_extra = ",\"skins\":[{\"joints\":[" + std::to_string(hip) + "," + std::to_string(arm) +
                         "],\"inverseBindMatrices\":" + std::to_string(ibm_accessor) + "}]";

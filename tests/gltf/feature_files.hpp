@@ -78,7 +78,9 @@ GltfBuilder morph_quad(const std::vector<float>& node_weights = {});
 // T(-0.5, 0, 0): bound unrotated). Vertices 0 and 3 follow the hip, vertex 1 the arm, vertex 2
 // both at 0.5. The mesh node has translation (5, 5, 5), which skinning ignores. Joints as
 // UNSIGNED_BYTE or UNSIGNED_SHORT (`short_joints`), weights as FLOAT or normalized UNSIGNED_BYTE.
-GltfBuilder skinned_quad(float arm_degrees, bool short_joints = false);
+// `mirrored`: the hip has scale (-1, 1, 1) (its inverse bind matrix stays the identity), so the
+// whole pose is mirrored in x.
+GltfBuilder skinned_quad(float arm_degrees, bool short_joints = false, bool mirrored = false);
 
 // The unit quad seen by camera 0, perspective from (0.5, 0.5, 2), and camera 1, orthographic from
 // (0.5, 0.5, 1) looking down -Z with ymag 0.625 (xmag 0.625), znear 0.1, zfar 10.

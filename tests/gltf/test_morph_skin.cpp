@@ -73,6 +73,34 @@ TEST_CASE("gltf: a skinned quad is posed by its rotated joint, blended where a v
     }
 }
 
+namespace {
+
+// Every triangle counter-clockwise on the side its vertex normals point to (the file's front).
+void check_front_faces(const vplkit::scene::Scene& scene) {
+    for (size_t t = 0; t < scene.triangle_count(); ++t) {
+        const auto& a = scene.vertices[scene.indices[3 * t]];
+        const auto& b = scene.vertices[scene.indices[3 * t + 1]];
+        const auto& c = scene.vertices[scene.indices[3 * t + 2]];
+        const glm::vec3 face = glm::cross(b.position - a.position, c.position - a.position);
+        CHECK(glm::dot(face, a.normal + b.normal + c.normal) > 0.0f);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("gltf: a mirroring skin keeps the file's front faces counter-clockwise") {
+    const auto plain = load(gltf_features::skinned_quad(90.0f), "skinned");
+    check_front_faces(plain);
+    const auto mirrored = load(gltf_features::skinned_quad(90.0f, false, true), "mirrored");
+    REQUIRE(mirrored.vertices.size() == plain.vertices.size());
+    for (size_t v = 0; v < plain.vertices.size(); ++v) {
+        const glm::vec3 flip(-1, 1, 1);
+        CHECK(glm::length(mirrored.vertices[v].position - flip * plain.vertices[v].position) <= 1e-6f);
+        CHECK(glm::length(mirrored.vertices[v].normal - flip * plain.vertices[v].normal) <= 1e-6f);
+    }
+    check_front_faces(mirrored);
+}
+
 TEST_CASE("gltf: a skin whose joints are in their bind pose draws the mesh as it is stored") {
     const auto scene = load(gltf_features::skinned_quad(0.0f), "bind_pose");
     const glm::vec3 z(0, 0, 1);

@@ -5,6 +5,8 @@
 #include <glm/matrix.hpp>
 
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace vplkit::scene::detail {
 
@@ -36,6 +38,7 @@ PrimitiveData morphed(const PrimitiveData& data, std::span<const double> weights
 PrimitiveData skinned(const GltfSource& source, const PrimitiveData& data, std::span<const glm::dmat4> joint_matrices,
                       const std::string& label) {
     PrimitiveData out = data;
+    std::vector<bool> mirrors(data.positions.size(), false);
     for (size_t i = 0; i < data.positions.size(); ++i) {
         glm::dmat4 skin(0.0);
         double total = 0.0;
@@ -58,6 +61,7 @@ PrimitiveData skinned(const GltfSource& source, const PrimitiveData& data, std::
         skin /= total;
         out.positions[i] = glm::vec3(skin * glm::dvec4(glm::dvec3(data.positions[i]), 1.0));
         const glm::dmat3 linear(skin);
+        mirrors[i] = glm::determinant(linear) < 0.0;
         if (!out.normals.empty()) {
             // The inverse transpose up to a positive factor: the cofactor matrix keeps a singular
             // blend (joints scaled to zero) finite; append_instance renormalizes.
@@ -68,8 +72,17 @@ PrimitiveData skinned(const GltfSource& source, const PrimitiveData& data, std::
             out.normals[i] = glm::vec3(glm::determinant(linear) < 0.0 ? -n : n);
         }
         if (!out.tangents.empty()) {
-            out.tangents[i] = glm::vec4(glm::vec3(linear * glm::dvec3(data.tangents[i])), data.tangents[i].w);
+            // A mirroring pose flips the handedness of the tangent frame, as a mirroring node does.
+            const float w = mirrors[i] ? -data.tangents[i].w : data.tangents[i].w;
+            out.tangents[i] = glm::vec4(glm::vec3(linear * glm::dvec3(data.tangents[i])), w);
         }
+    }
+    // A triangle whose corners are mirrored (most of them) turns clockwise: two corners are
+    // swapped so it stays counter-clockwise on the side the file made its front.
+    for (size_t t = 0; t + 2 < out.indices.size(); t += 3) {
+        const int mirrored =
+            int(mirrors[out.indices[t]]) + int(mirrors[out.indices[t + 1]]) + int(mirrors[out.indices[t + 2]]);
+        if (mirrored >= 2) std::swap(out.indices[t + 1], out.indices[t + 2]);
     }
     return out;
 }

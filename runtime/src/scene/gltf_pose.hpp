@@ -21,7 +21,9 @@ PrimitiveData morphed(const PrimitiveData& data, std::span<const double> weights
 // (normals by that matrix's inverse transpose, tangents by its linear part), where
 // joint_matrices[j] = world transform of joint j x its inverse bind matrix. Weights that do not
 // sum to 1 are rescaled to 1 (exporters round them); a vertex whose weights are all 0 is an
-// error naming `label`, as is a joint index outside the joints.
+// error naming `label`, as is a joint index outside the joints. Where the pose mirrors (negative
+// determinant) the tangents' handedness flips and the triangles are rewound to stay
+// counter-clockwise, as append_instance does for a mirroring node.
 PrimitiveData skinned(const GltfSource& source, const PrimitiveData& data, std::span<const glm::dmat4> joint_matrices,
                       const std::string& label);
 
