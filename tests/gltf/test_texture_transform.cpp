@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 namespace {
 
@@ -110,4 +111,19 @@ TEST_CASE("gltf: a texture transform reaches the loaded material (KHR_texture_tr
     const glm::vec2 p = t.apply({1.0f, 1.0f});
     CHECK(std::abs(p.x - (0.5 + 2 * std::cos(0.3) + 3 * std::sin(0.3))) < 1e-5);
     CHECK(std::abs(p.y - (-2 * std::sin(0.3) + 3 * std::cos(0.3))) < 1e-5);
+}
+
+TEST_CASE("gltf: a texture reading a coordinate set the primitive lacks is one warning") {
+    TexturedQuad o;
+    o.info_tex_coord = 1;
+    auto b = gltf_features::textured_quad(o);
+    std::string& mesh = b.meshes.at(0);
+    const size_t at = mesh.find(",\"TEXCOORD_1\"");
+    REQUIRE(at != std::string::npos);
+    mesh.erase(at, mesh.find('}', at) - at);  // TEXCOORD_1 is the last attribute
+    scene_test::TempDir dir("missing_set");
+    const auto scene = vplkit::scene::load_gltf(b.write(dir.path(), "quad", true));
+    const auto lines = vplkit::scene::warning_lines(scene.warnings);
+    REQUIRE(lines.size() == 1);
+    CHECK(lines[0].find("read TEXCOORD_1, which the primitive lacks") != std::string::npos);
 }

@@ -297,6 +297,22 @@ Material convert_material(const GltfSource& source, int index, TextureTable& tex
     return out;
 }
 
+// The texture coordinate sets `m`'s textures read that a primitive lacks ("TEXCOORD_1", ...).
+std::string missing_tex_coords(const Material& m, bool has_uv0, bool has_uv1) {
+    bool reads[2] = {false, false};
+    const std::pair<int32_t, const UvTransform*> uses[] = {{m.base_color_texture, &m.base_color_uv},
+                                                           {m.metallic_roughness_texture, &m.metallic_roughness_uv},
+                                                           {m.normal_texture, &m.normal_uv},
+                                                           {m.emissive_texture, &m.emissive_uv}};
+    for (const auto& [texture, uv] : uses) {
+        if (texture != kNoTexture) reads[uv->tex_coord] = true;
+    }
+    std::string out;
+    if (reads[0] && !has_uv0) out = "TEXCOORD_0";
+    if (reads[1] && !has_uv1) out += (out.empty() ? "" : " and ") + std::string("TEXCOORD_1");
+    return out;
+}
+
 // --- Node hierarchy -------------------------------------------------------------------------
 
 glm::dmat4 local_transform(const GltfSource& source, const tinygltf::Node& node, const std::string& label) {
@@ -901,6 +917,14 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
                 }
             }
             default_material_used |= data->material == default_material;
+            if (data->material != default_material) {
+                const std::string missing =
+                    missing_tex_coords(scene.materials[data->material], !data->uvs.empty(), !data->uvs1.empty());
+                if (!missing.empty()) {
+                    scene.warnings.messages.push_back(where + ": its material's textures read " + missing +
+                                                      ", which the primitive lacks (read as (0, 0))");
+                }
+            }
             const bool wants_tangents =
                 data->material != default_material && scene.materials[data->material].normal_texture != kNoTexture;
             PrimitiveInstance info;
