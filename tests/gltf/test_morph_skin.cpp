@@ -11,6 +11,7 @@
 #include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
+#include <cmath>
 #include <string>
 
 namespace {
@@ -57,6 +58,23 @@ TEST_CASE("gltf: a node's morph weights take precedence over its mesh's") {
     // Weights that do not match the targets: one clear error.
     const std::string error = load_error(gltf_features::morph_quad({0.5f}));
     CHECK(error.find("has 2 morph targets, but 1 weights are given") != std::string::npos);
+}
+
+TEST_CASE("gltf: a morph target's TANGENT displacements turn the tangents (handedness kept)") {
+    scene_test::GltfBuilder b;
+    const int p = b.vec3s({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    const int n = b.vec3s({{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}});
+    const int t = b.vec4s({{1, 0, 0, -1}, {1, 0, 0, -1}, {1, 0, 0, -1}, {1, 0, 0, -1}});
+    const int dt = b.vec3s({{-1, 1, 0}, {-1, 1, 0}, {-1, 1, 0}, {-1, 1, 0}});
+    const int i = b.indices({0, 1, 2, 0, 2, 3});
+    b.meshes.push_back("{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(p) + ",\"NORMAL\":" +
+                       std::to_string(n) + ",\"TANGENT\":" + std::to_string(t) + "},\"indices\":" + std::to_string(i) +
+                       ",\"targets\":[{\"TANGENT\":" + std::to_string(dt) + "}]}],\"weights\":[0.5]}");
+    b.roots.push_back(b.node("{\"mesh\":0}"));
+    const auto scene = load(b, "morph_tangents");
+    // (1, 0, 0) + 0.5 (-1, 1, 0) = (0.5, 0.5, 0), normalized; w stays -1.
+    const float h = std::sqrt(0.5f);
+    for (const auto& v : scene.vertices) CHECK(glm::length(v.tangent - glm::vec4(h, h, 0, -1)) <= 1e-6f);
 }
 
 TEST_CASE("gltf: a skinned quad is posed by its rotated joint, blended where a vertex has two joints") {
