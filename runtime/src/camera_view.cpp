@@ -7,8 +7,8 @@
 namespace vplkit::stages {
 
 glm::vec3 orthographic_eye(const scene::Camera& camera, float aspect) {
-    // Every visible point lies within `reach` of the camera's position, so from this eye the
-    // directions to two of them differ by at most reach / distance = 1e-4 rad.
+    // Every visible point lies within `reach` of the camera's position, so the direction from any
+    // of them to this eye is within reach / distance = 1e-4 rad of -forward.
     const float reach = camera.zfar + camera.ymag * (1.0f + aspect);
     return camera.position - camera.forward * (kOrthographicEyeDistance * reach);
 }

@@ -9,7 +9,7 @@
 namespace vplkit::stages {
 
 // The camera's view for an image of width x height (the image's aspect ratio, not the file's:
-// pixels stay square). Errors as vulkan_perspective, and for a zero size.
+// pixels stay square). Errors as vulkan_perspective / vulkan_orthographic, and for a zero size.
 // An orthographic camera's view is vulkan_orthographic, and its eye (CameraView::position: the
 // stages turn normals towards it and take the direction to it as the direction to the viewer)
 // lies kOrthographicEyeDistance times the view volume's extent back along -forward: the
