@@ -57,8 +57,9 @@ SstNode sst_fetch(uint node, uint leaf_count, uint count) {
 // out 10x low at some pixels, the heavy tail never drawn). RTSLC tames this by averaging its
 // min- and max-distance probabilities (rtslc.glsl); the SST has its means.
 //
-// The material term is that of the sample's lobe (gi_lobe.glsl): the whole BRDF or the diffuse
-// lobe towards the node's mean, the glossy lobe in gi_glossy_direction's direction into its box.
+// The material term is that of the sample's lobe (`lobe`: brdf.glsl's kBrdfLobe*, or
+// kGiWeightGlossyAtMean): the whole BRDF, the diffuse lobe or the glossy lobe towards the node's
+// mean, or for kBrdfLobeGlossy in gi_glossy_direction's direction into its box (gi_lobe.glsl).
 float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, uint lobe, float min_distance, out float d2) {
     vec3 to_mean = node.mean - p.position;
     d2 = max(dot(to_mean, to_mean), min_distance * min_distance);
