@@ -1,7 +1,10 @@
 #include "vplkit/planner.hpp"
 
 #include "vplkit/scene.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <sstream>
 
 namespace vplkit {
@@ -57,7 +60,7 @@ std::string FramePlan::summary() const {
         std::string& list = s.runs ? kept : out;
         list += (list.empty() ? "" : ", ") + std::string(stage_name(s.stage));
     }
-    return "plan: " + kept + (out.empty() ? "" : "; left out: " + out);
+    return "plan: " + kept + (out.empty() ? "" : "; left out: " + out) + (glossy_branch ? "; glossy branch on" : "");
 }
 
 std::string FramePlan::describe() const {
@@ -65,9 +68,59 @@ std::string FramePlan::describe() const {
     for (const PlannedStage& p : stages) {
         s << (p.runs ? "  run   " : "  skip  ") << stage_name(p.stage) << ": " << p.reason << "\n";
     }
+    s << (glossy_branch ? "  on    " : "  off   ") << "glossy branch: " << glossy_reason << "\n";
     for (const std::string& note : notes) s << "note: " << note << "\n";
     return s.str();
 }
+
+std::vector<GlossyMaterial> glossy_materials(const scene::Scene& scene, float max_roughness) {
+    std::vector<GlossyMaterial> out;
+    for (const scene::Material& m : scene.materials) {
+        if (m.roughness_factor < 0.0f) continue;  // Lambertian (scene::use_lambertian_materials)
+        float texel = 1.0f;                       // the smallest roughness the texture holds
+        if (m.metallic_roughness_texture != scene::kNoTexture) {
+            const scene::Image& image = scene.images.at(scene.textures.at(m.metallic_roughness_texture).image);
+            uint8_t smallest = 255;
+            for (size_t i = 1; i < image.rgba.size(); i += 4) smallest = std::min(smallest, image.rgba[i]);
+            texel = smallest / 255.0f;
+        }
+        const float min_roughness = m.roughness_factor * texel;
+        if (min_roughness < max_roughness) out.push_back({m.name, min_roughness});
+    }
+    return out;
+}
+
+namespace {
+
+// "forced on (...)", or which materials can be smoother than the limit, or that none can.
+std::string glossy_branch_reason(const scene::Scene& scene, const RenderSettings& settings, bool sampled, bool& on) {
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.2g", stages::kGlossyMaxRoughness);
+    on = false;
+    if (!sampled) {
+        return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree traversal to steer"
+                                                  : "no tree sampling method";
+    }
+    if (settings.glossy_branch == GlossyBranch::off) return "forced off (--glossy-lobe off)";
+    if (settings.glossy_branch == GlossyBranch::on || settings.force_all_stages) {
+        on = true;
+        return settings.glossy_branch == GlossyBranch::on ? "forced on (--glossy-lobe on)" : "forced on (--all-stages)";
+    }
+    const auto glossy = glossy_materials(scene, stages::kGlossyMaxRoughness);
+    if (glossy.empty()) return std::string("no material smoother than roughness ") + limit + ": compiled out";
+    on = true;
+    std::ostringstream s;
+    s.precision(2);
+    s << glossy.size() << " material(s) can be smoother than roughness " << limit << ":";
+    const size_t shown = std::min<size_t>(glossy.size(), 4);
+    for (size_t i = 0; i < shown; ++i) {
+        s << (i ? ", '" : " '") << glossy[i].name << "' (" << glossy[i].min_roughness << ")";
+    }
+    if (glossy.size() > shown) s << " and " << glossy.size() - shown << " more";
+    return s.str();
+}
+
+}  // namespace
 
 std::string vpl_set_key(const RenderSettings& settings, VplSource source, const std::string& view_key) {
     std::ostringstream key;
@@ -210,6 +263,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         !gi    ? no_gi + ": no indirect light"
         : half ? "GI at half resolution"
                : "GI resolution equals the output: no upsampling");
+    plan.glossy_reason = glossy_branch_reason(scene, settings, gi && sampled, plan.glossy_branch);
     add(FrameStage::compose, true, "every frame: direct + indirect");
     add(FrameStage::tonemap, true, "every frame: the picture");
     return plan;

@@ -111,8 +111,8 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
         return;
     }
-    const GiStageOptions options =
-        gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
+    GiStageOptions options = gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
+    options.sst.glossy.enabled = options.rtslc.glossy.enabled = options.hybrid.glossy.enabled = plan.glossy_branch;
     const stages::SstGiOptions& sst_options = options.sst;
     const stages::RtslcOptions& rtslc_options = options.rtslc;
     const stages::HybridOptions& hybrid_options = options.hybrid;

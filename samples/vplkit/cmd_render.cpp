@@ -33,7 +33,7 @@ const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
     "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
-    "                     [--traversal substitute|lightcuts] [--brdf gltf|lambert]\n"
+    "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
@@ -61,6 +61,10 @@ const char* const kRenderUsage =
     "  --interleave M   rtslc: interleaved sampling over M x M sub-blocks (default 1: off)\n"
     "  --traversal T    hybrid: below each cut node, substitute (default: the thesis' early-stop\n"
     "                   traversal) or lightcuts (rtslc's traversal to a leaf over hybrid's cuts)\n"
+    "  --glossy-lobe G  sst, rtslc, hybrid: the glossy branch (seed 004 sec. 4.2: receivers smoother\n"
+    "                   than roughness 0.5 sample the diffuse or the glossy lobe per sample, glossy to\n"
+    "                   a leaf VPL); auto (default): on when a material of the scene can be that\n"
+    "                   smooth (`vplkit plan` names them), else compiled out\n"
     "  --gi-resolution R   full (default) or half: indirect light at half resolution, joint\n"
     "                   bilateral upsampling to full\n"
     "  --nu-min V, --sigma-max S   sst, hybrid: a tree node is sampled as a whole when its normal\n"
@@ -248,6 +252,15 @@ int render_or_plan(Args& args, bool plan_only) {
         } else if (*text != "substitute") {
             throw UsageError("--traversal expects substitute or lightcuts, got '" + *text + "'");
         }
+    }
+    if (auto text = args.value("--glossy-lobe")) {
+        if (!sampled) throw UsageError("--glossy-lobe is for --method sst, rtslc or hybrid");
+        if (*text == "on")
+            settings.glossy_branch = GlossyBranch::on;
+        else if (*text == "off")
+            settings.glossy_branch = GlossyBranch::off;
+        else if (*text != "auto")
+            throw UsageError("--glossy-lobe expects auto, on or off, got '" + *text + "'");
     }
     if (auto text = args.value("--nu-min")) {
         if (!substitutes) throw UsageError("--nu-min is for --method sst or hybrid");

@@ -22,6 +22,7 @@
 #include "vplkit/vpl.glsl"
 #include "vplkit/vpl_eval.glsl"
 #include "vplkit/gi_bounds.glsl"
+#include "vplkit/gi_lobe.glsl"
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
 #include "vplkit/cut_blending.glsl"

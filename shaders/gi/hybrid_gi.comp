@@ -7,7 +7,10 @@
 // early at suitable nodes (eq. 5.6), and evaluates the node reached as a point light (sec. 5.3)
 // with one shadow ray (to a real VPL of the node for a substitute: sst_shadow_target). The
 // pixel's estimate is the sum over its cut's nodes. The specialization constant kTraversal swaps
-// the traversal for rtslc's to a leaf (sec. 7.1's comparison protocol).
+// the traversal for rtslc's to a leaf (sec. 7.1's comparison protocol). With kGlossyLobe
+// (gi_lobe.glsl), a glossy receiver picks the diffuse or the glossy lobe per cut node's traversal
+// (seed 004 sec. 4.2); the cut itself, shared by the block, is chosen for the whole BRDF, and the
+// node's share of the estimate is weighed by the probability of the lobe it was sampled in.
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
 
@@ -27,6 +30,7 @@
 #include "vplkit/gi_bounds.glsl"
 #include "vplkit/gi_counters.glsl"
 #include "vplkit/gi_evaluate.glsl"
+#include "vplkit/gi_lobe.glsl"
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
 #include "vplkit/sst_evaluate.glsl"
@@ -145,9 +149,10 @@ void main() {
         if (mock && sst_fetch(start, push.leaf_count, push.vpl_count).leaf_count == 0u) {
             continue;  // a padding node of the mock cut (a blended cut holds none)
         }
+        GiLobe lobe = gi_choose_lobe(p.normal, p.wo, p.albedo, p.roughness, p.metallic, rng);
         SstSample s = kTraversal == kHybridTraversalLightcuts
-                          ? sst_traverse_lightcuts(p, start, push.leaf_count, push.vpl_count, min_distance, rng)
-                          : sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected,
+                          ? sst_traverse_lightcuts(p, start, push.leaf_count, push.vpl_count, lobe, min_distance, rng)
+                          : sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected, lobe,
                                          min_distance, rng);
         ++traversals;
         levels += s.levels;
@@ -155,8 +160,8 @@ void main() {
             ++dead;
             continue;
         }
-        sst_add_sample(p, s, push.leaf_count, push.vpl_count, min_distance, scale, push.visibility != 0u, rng,
-                       total, dropped);
+        sst_add_sample(p, s, lobe.kind, push.leaf_count, push.vpl_count, min_distance, scale, push.visibility != 0u,
+                       rng, total, dropped);
     }
     if (!blended && !mock) {
         total /= float(push.cut_size);  // cut_size estimates of the whole tree

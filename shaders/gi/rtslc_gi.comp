@@ -6,7 +6,9 @@
 // (rtslc_child_probability, a fresh random number per level), and the leaf's VPL is evaluated
 // with vpl_contribution (the evaluation every method shares) divided by the path's probability,
 // with one shadow ray. The cut partitions the real VPLs, so the sum over the cut's nodes is an
-// unbiased estimate of the sum over every VPL.
+// unbiased estimate of the sum over every VPL. With kGlossyLobe (gi_lobe.glsl), a glossy receiver
+// picks the diffuse or the glossy lobe per traversal as sst and hybrid do (seed 004 sec. 4.2):
+// the lobe's child weights, only that lobe evaluated, over the lobe's x the path's probability.
 //
 // The slots sampled: the whole cut, or with interleave m > 1 the pixel's share (eq. 3,
 // rtslc_interleave_slots), and of those only the ones in [slot_first, slot_end): the host
@@ -30,6 +32,7 @@
 #include "vplkit/vpl.glsl"
 #include "vplkit/vpl_eval.glsl"
 #include "vplkit/rtslc.glsl"
+#include "vplkit/gi_lobe.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -115,7 +118,13 @@ void main() {
         uint node = cuts.items[base + slot];
         Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
         ++traversals;
-        float path_probability = 1.0;
+        GiLobe lobe = gi_choose_lobe(g.normal, s.wo, g.albedo, g.roughness, g.metallic, rng);
+        bool glossy = lobe.kind == kBrdfLobeGlossy;
+        GiGlossyPath glossy_path = GiGlossyPath(true, 1.0, 1.0);
+        if (glossy) {
+            glossy_path = gi_glossy_path_start(rng);  // gi_lobe.glsl: the glossy lobe's two-strategy mixture
+        }
+        float path_probability = lobe.probability;
         bool dead_branch = false;
         bool at_leaf = false;
         for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
@@ -124,16 +133,26 @@ void main() {
                 break;
             }
             uint left = light_tree_left_child(node);
-            RtslcChildProbability choice =
-                rtslc_child_probability(s, light_tree.items[left], light_tree.items[left + 1u], min_distance2);
+            LightTreeNode node_left = light_tree.items[left], node_right = light_tree.items[left + 1u];
+            RtslcChildProbability choice = rtslc_child_probability(s, node_left, node_right, min_distance2, lobe.kind);
+            RtslcChildProbability at_mean = choice;
+            if (glossy) {
+                at_mean = rtslc_child_probability(s, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
+            }
+            bool by_reflection = !glossy || glossy_path.by_reflection;
             // seed 003 sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly
             // 0 then: every VPL below has zero weight, so none of them could light this pixel.
-            if (choice.dead) {
+            if (by_reflection ? choice.dead : at_mean.dead) {
                 dead_branch = true;
                 break;
             }
-            bool go_left = rtslc_choose_left(choice.left, rng_next_float(rng));
-            path_probability *= rtslc_choice_probability(choice.left, go_left);
+            bool go_left = rtslc_choose_left(by_reflection ? choice.left : at_mean.left, rng_next_float(rng));
+            if (glossy) {
+                gi_glossy_path_step(glossy_path, choice.dead ? -1.0 : choice.left, at_mean.dead ? -1.0 : at_mean.left,
+                                    go_left);
+            } else {
+                path_probability *= rtslc_choice_probability(choice.left, go_left);
+            }
             node = go_left ? left : left + 1u;
             ++levels;
         }
@@ -144,9 +163,12 @@ void main() {
         if (!at_leaf) {
             break;  // cut short inside the traversal: `completed` stays false
         }
+        if (glossy) {
+            path_probability = lobe.probability * gi_glossy_path_probability(glossy_path);
+        }
         Vpl vpl = leaves.items[light_tree_node_leaf(push.leaf_count, node)];
-        vec3 c = vpl_contribution(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness, g.metallic,
-                                  vpl, min_distance);
+        vec3 c = vpl_contribution_lobe(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness,
+                                       g.metallic, vpl, min_distance, lobe.kind);
         // Issue 6: the per-pixel result is finite or the sample is counted as dropped. The
         // division comes first, so a NaN path probability (from a NaN intensity in the tree) or
         // one that underflowed to 0 drops the sample even where the VPL gives 0; a dropped

@@ -6,7 +6,8 @@
 // / clamped squared distance; the node evaluated as a point light (its VPL, or a position drawn
 // from its substitute distribution) with its colour divided by the path probability, one shadow
 // ray each (to the VPL, or for a substitute to a real VPL of the node: sst_shadow_target); the
-// pixel is the mean of its samples.
+// pixel is the mean of its samples. With kGlossyLobe (gi_lobe.glsl), a glossy receiver picks
+// the diffuse or the glossy lobe per sample (seed 004 sec. 4.2).
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
 
@@ -25,6 +26,7 @@
 #include "vplkit/gi_bounds.glsl"
 #include "vplkit/gi_counters.glsl"
 #include "vplkit/gi_evaluate.glsl"
+#include "vplkit/gi_lobe.glsl"
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
 #include "vplkit/sst_evaluate.glsl"
@@ -77,14 +79,16 @@ void main() {
             completed = true;
             break;
         }
-        SstSample s = sst_traverse(p, 0u, push.leaf_count, push.vpl_count, kSstWeightUpperBound, min_distance, rng);
+        GiLobe lobe = gi_choose_lobe(p.normal, p.wo, p.albedo, p.roughness, p.metallic, rng);
+        SstSample s =
+            sst_traverse(p, 0u, push.leaf_count, push.vpl_count, kSstWeightUpperBound, lobe, min_distance, rng);
         levels += s.levels;
         if (s.dead) {
             ++dead;
             continue;
         }
-        sst_add_sample(p, s, push.leaf_count, push.vpl_count, min_distance, scale, push.visibility != 0u, rng,
-                       total, dropped);
+        sst_add_sample(p, s, lobe.kind, push.leaf_count, push.vpl_count, min_distance, scale, push.visibility != 0u,
+                       rng, total, dropped);
     }
     gi_counters_add(dropped, push.samples_per_pixel, levels, dead, false, completed);
     imageStore(indirect, pixel, vec4(total / float(push.samples_per_pixel), float(dropped)));

@@ -1,5 +1,6 @@
 #include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/hybrid_cut.hpp"
@@ -28,6 +29,7 @@ void validate(const HybridOptions& options) {
     if (!std::isfinite(options.similarity_max_distance) || options.similarity_max_distance < 0.0f) {
         throw Error("hybrid gi: similarity max distance must be finite and >= 0 (world units; 0: scene-relative)");
     }
+    validate(options.glossy, "hybrid gi");
 }
 
 HybridCutRequirements hybrid_cut_requirements(uint32_t width, uint32_t height, const HybridOptions& options) {
@@ -85,7 +87,8 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
                });
     shaders::hybrid_gi::Spec spec;
     spec.kTraversal = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
-    const auto& gi_pipeline = device.pipeline<shaders::hybrid_gi::Pipeline>(bvh_spec(bvh, spec));
+    const auto& gi_pipeline =
+        device.pipeline<shaders::hybrid_gi::Pipeline>(bvh_spec(bvh, glossy_lobe_spec(options.glossy, spec)));
     shaders::hybrid_gi::Bindings gi_bindings;
     bind_bvh(gi_bindings, bvh);
     bind_gbuffer(gi_bindings, gbuffer);

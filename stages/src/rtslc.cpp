@@ -1,4 +1,5 @@
 #include "vplkit/stages/rtslc.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/rtslc_cut.hpp"
@@ -74,6 +75,7 @@ void validate(const RtslcOptions& options) {
     if (options.slots_per_dispatch < 1) {
         refuse("slots_per_dispatch must be at least 1");
     }
+    validate(options.glossy, "rtslc");
 }
 
 RtslcScratchRequirements rtslc_scratch_requirements(uint32_t width, uint32_t height, const RtslcOptions& options) {
@@ -128,7 +130,8 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
 
     shaders::rtslc_gi::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
-    const auto& gi_pipeline = device.pipeline<shaders::rtslc_gi::Pipeline>(bvh_spec(bvh, spec));
+    const auto& gi_pipeline =
+        device.pipeline<shaders::rtslc_gi::Pipeline>(bvh_spec(bvh, glossy_lobe_spec(options.glossy, spec)));
     const ImageView radiance = options.interleave > 1 ? scratch.estimates : indirect;
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);

@@ -1,4 +1,5 @@
 #include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/sst_gi.hpp"
 
 #include "vplkit/error.hpp"
@@ -14,6 +15,7 @@ void validate(const SstGiOptions& options) {
         throw Error("sst gi: samples per pixel must be 1.." + std::to_string(kMaxGiSamplesPerPixel) + ", got " +
                     std::to_string(options.samples_per_pixel));
     }
+    validate(options.glossy, "sst gi");
 }
 
 void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
@@ -22,7 +24,8 @@ void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbu
     validate(options);
     check_gbuffer_target("sst gi", gbuffer, indirect);
     add_gi_counters_clear(passes, counters, "gi counters clear");
-    const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>(bvh_spec<shaders::sst_gi::Spec>(bvh));
+    const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>(
+        bvh_spec(bvh, glossy_lobe_spec(options.glossy, shaders::sst_gi::Spec{})));
     shaders::sst_gi::Bindings bindings;
     bind_bvh(bindings, bvh);
     bind_gbuffer(bindings, gbuffer);

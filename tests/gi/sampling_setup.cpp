@@ -5,11 +5,14 @@
 #include "vplkit/hybrid_cuts.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/rtslc_scratch.hpp"
 #include "vplkit/vpl_trees.hpp"
 #include "vplkit_test/context.hpp"
 
+#include <doctest/doctest.h>
 #include <glm/geometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -75,6 +78,19 @@ Scene room(uint32_t width, uint32_t height, uint32_t vpl_count, float s, float f
     return scene;
 }
 
+Scene glossy_room(uint32_t width, uint32_t height, uint32_t vpl_count) {
+    Scene scene = room(width, height, vpl_count);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (size_t i = 0; i < scene.pixels.size(); ++i) {
+        Pixel& p = scene.pixels[i];
+        const size_t row = i / width;
+        p.roughness = row == 0 ? 0.05f : row == 1 ? 1.0f : 0.05f + 0.95f * unit(rng);
+        p.metallic = i % 3 == 0 ? 1.0f : 0.0f;
+    }
+    return scene;
+}
+
 Rendered render(const Scene& scene, const RunOptions& options) {
     Context& ctx = test::context();
     auto [gbuffer, bvh, vpls] = test::upload(ctx, scene.width, scene.height, scene.pixels, scene.triangles, scene.vpls);
@@ -93,7 +109,19 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.samples_per_pixel = options.samples_per_pixel;
         o.seed = options.seed;
         o.visibility = options.visibility;
+        o.glossy = options.glossy;
         stages::add_sst_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o);
+        passes.run(ctx);
+    } else if (options.method == Method::rtslc) {
+        stages::RtslcOptions o;
+        o.samples_per_pixel = options.samples_per_pixel;
+        o.block_size = options.block_size;
+        o.seed = options.seed;
+        o.frame = options.seed;
+        o.visibility = options.visibility;
+        o.glossy = options.glossy;
+        auto scratch = stages::RtslcScratch::create(ctx, scene.width, scene.height, o);
+        stages::add_rtslc_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o, scratch);
         passes.run(ctx);
     } else {
         stages::HybridOptions o;
@@ -104,6 +132,7 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.similarity_max_distance = options.similarity_max_distance * scene.scale;
         o.mock_cuts = options.mock_cuts;
         o.traversal = options.traversal;
+        o.glossy = options.glossy;
         auto cuts = stages::HybridCuts::create(ctx, scene.width, scene.height, o);
         stages::add_hybrid_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, cuts, o);
         passes.run(ctx);
@@ -135,6 +164,54 @@ std::vector<reference::Vec3> exact(const Scene& scene, bool visibility) {
         out.push_back(sum.radiance);
     }
     return out;
+}
+
+std::vector<MeanCheck> check_means(const Scene& scene, RunOptions options, const std::vector<uint32_t>& seed_counts,
+                                   const std::vector<reference::Vec3>& truth) {
+    const size_t n = scene.pixels.size();
+    std::vector<std::array<double, 3>> sum(n), sum2(n);
+    std::vector<MeanCheck> checks;
+    const uint32_t seeds = seed_counts.empty() ? 0 : seed_counts.back();
+    for (uint32_t s = 0; s < seeds; ++s) {
+        options.seed = 1000 + s;
+        const Rendered r = render(scene, options);
+        REQUIRE(r.counts.dropped_samples == 0);
+        REQUIRE(r.counts.cut_short == 0);
+        for (size_t i = 0; i < n; ++i) {
+            for (int c = 0; c < 3; ++c) {
+                sum[i][c] += r.image[i][c];
+                sum2[i][c] += double(r.image[i][c]) * r.image[i][c];
+            }
+        }
+        if (std::find(seed_counts.begin(), seed_counts.end(), s + 1) == seed_counts.end()) continue;
+        const uint32_t count = s + 1;
+        MeanCheck check;
+        check.seeds = count;
+        for (size_t i = 0; i < n; ++i) {
+            if (!scene.pixels[i].covered) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double mean = sum[i][c] / count;
+                const double var = std::max(sum2[i][c] / count - mean * mean, 0.0) * count / (count - 1);
+                // The float evaluation's own error (~1e-5 relative) bounds how small sigma may be.
+                const double sigma = std::sqrt(var / count) + 1e-5 * std::abs(truth[i][c]) + 1e-12;
+                const double z = std::abs(mean - truth[i][c]) / sigma;
+                ++check.checked;
+                check.worst_z = std::max(check.worst_z, z);
+                if (z > 4.5) {
+                    ++check.outside;
+                    MESSAGE(count << " seeds, pixel " << i << " channel " << c << ": mean " << mean << " exact "
+                                  << truth[i][c] << " sigma " << sigma);
+                }
+            }
+        }
+        checks.push_back(check);
+    }
+    return checks;
+}
+
+MeanCheck check_mean(const Scene& scene, RunOptions options, uint32_t seeds,
+                     const std::vector<reference::Vec3>& truth) {
+    return check_means(scene, options, {seeds}, truth).front();
 }
 
 double relative_rmse(const Scene& scene, const std::vector<Texel>& image, const std::vector<reference::Vec3>& truth) {

@@ -23,55 +23,8 @@
 #include <string>
 #include <vector>
 
-namespace {
-
 using namespace vplkit::sampling_test;
 namespace ref = vplkit::reference;
-
-struct MeanCheck {
-    uint32_t checked = 0;
-    uint32_t outside = 0;
-    double worst_z = 0.0;
-};
-
-// Mean and spread over `seeds` renders at every covered pixel against `truth`.
-MeanCheck check_mean(const Scene& scene, RunOptions options, uint32_t seeds, const std::vector<ref::Vec3>& truth) {
-    const size_t n = scene.pixels.size();
-    std::vector<std::array<double, 3>> sum(n), sum2(n);
-    for (uint32_t s = 0; s < seeds; ++s) {
-        options.seed = 1000 + s;
-        const Rendered r = render(scene, options);
-        REQUIRE(r.counts.dropped_samples == 0);
-        REQUIRE(r.counts.cut_short == 0);
-        for (size_t i = 0; i < n; ++i) {
-            for (int c = 0; c < 3; ++c) {
-                sum[i][c] += r.image[i][c];
-                sum2[i][c] += double(r.image[i][c]) * r.image[i][c];
-            }
-        }
-    }
-    MeanCheck check;
-    for (size_t i = 0; i < n; ++i) {
-        if (!scene.pixels[i].covered) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double mean = sum[i][c] / seeds;
-            const double var = std::max(sum2[i][c] / seeds - mean * mean, 0.0) * seeds / (seeds - 1);
-            // The float evaluation's own error (~1e-5 relative) bounds how small sigma may be.
-            const double sigma = std::sqrt(var / seeds) + 1e-5 * std::abs(truth[i][c]) + 1e-12;
-            const double z = std::abs(mean - truth[i][c]) / sigma;
-            ++check.checked;
-            check.worst_z = std::max(check.worst_z, z);
-            if (z > 4.5) {
-                ++check.outside;
-                MESSAGE("pixel " << i << " channel " << c << ": mean " << mean << " exact " << truth[i][c] << " sigma "
-                                 << sigma);
-            }
-        }
-    }
-    return check;
-}
-
-}  // namespace
 
 TEST_CASE("sst: without early stop or shadows the mean over seeds is the exact sum") {
     const Scene scene = room(8, 6, 200);

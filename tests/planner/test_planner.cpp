@@ -8,6 +8,7 @@
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_lights.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
@@ -238,5 +239,68 @@ TEST_CASE("planner: a static frame rendered twice rebuilds no VPLs and no tree t
         s.seed = 7;
         renderer.render(scene.camera(), s);
         CHECK(renderer.render(moved, s).reused_vpls == (source == VplSource::ir));
+    }
+}
+
+TEST_CASE("planner: a material smoother than the limit turns the glossy branch on and is named, a matte scene off") {
+    auto scene = vplkit::scene::load_gltf(kCornellPoint);  // every material roughness 1
+    for (GiMethod method : {GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid}) {
+        const FramePlan matte = vplkit::plan_frame(scene, small(method), "view");
+        CHECK_FALSE(matte.glossy_branch);
+        CHECK(matte.glossy_reason.find("no material smoother") != std::string::npos);
+    }
+    // A factor below the limit.
+    auto glossy = scene;
+    glossy.materials[1].roughness_factor = 0.2f;
+    const FramePlan by_factor = vplkit::plan_frame(glossy, small(GiMethod::hybrid), "view");
+    CHECK(by_factor.glossy_branch);
+    CHECK(by_factor.glossy_reason.find("'" + glossy.materials[1].name + "' (0.2)") != std::string::npos);
+    CHECK(by_factor.summary().find("glossy branch on") != std::string::npos);
+    // A factor of 1 with a texture whose smallest roughness texel (green) is 51 / 255 = 0.2.
+    auto textured = scene;
+    vplkit::scene::Image image;
+    image.name = "roughness";
+    image.width = 2;
+    image.height = 1;
+    image.rgba = {0, 255, 0, 255, 0, 51, 0, 255};
+    image.linear = true;
+    textured.images.push_back(image);
+    textured.textures.push_back({uint32_t(textured.images.size() - 1), {}});
+    textured.materials[0].metallic_roughness_texture = int32_t(textured.textures.size() - 1);
+    const auto found = vplkit::glossy_materials(textured, vplkit::stages::kGlossyMaxRoughness);
+    REQUIRE(found.size() == 1);
+    CHECK(found[0].name == textured.materials[0].name);
+    CHECK(found[0].min_roughness == doctest::Approx(0.2f));
+    CHECK(vplkit::plan_frame(textured, small(GiMethod::sst), "view").glossy_branch);
+    // No tree sampling, or Lambertian materials (--brdf lambert): off.
+    CHECK_FALSE(vplkit::plan_frame(glossy, small(GiMethod::exact), "view").glossy_branch);
+    CHECK_FALSE(vplkit::plan_frame(glossy, small(GiMethod::none), "view").glossy_branch);
+    vplkit::scene::use_lambertian_materials(glossy);
+    CHECK_FALSE(vplkit::plan_frame(glossy, small(GiMethod::rtslc), "view").glossy_branch);
+    // Forced either way, with the reason.
+    auto forced_off = small(GiMethod::hybrid);
+    forced_off.glossy_branch = vplkit::GlossyBranch::off;
+    const FramePlan off = vplkit::plan_frame(textured, forced_off, "view");
+    CHECK_FALSE(off.glossy_branch);
+    CHECK(off.glossy_reason.find("forced off") != std::string::npos);
+}
+
+TEST_CASE("planner: a matte scene's frame is bit-identical with the glossy branch forced on") {
+    // The branch is compiled out of the planned frame (no material smoother than the limit); forced
+    // on, no receiver is smooth enough to choose a lobe, so every sample runs as without it.
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    vplkit::Renderer renderer(ctx, scene);
+    for (GiMethod method : {GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid}) {
+        CAPTURE(vplkit::gi_method_name(method));
+        auto planned = small(method);
+        const auto a = renderer.render(scene.camera(), planned);
+        auto forced = planned;
+        forced.glossy_branch = vplkit::GlossyBranch::on;
+        const auto b = renderer.render(scene.camera(), forced);
+        CHECK(a.plan_summary.find("glossy branch on") == std::string::npos);
+        CHECK(b.plan_summary.find("glossy branch on") != std::string::npos);
+        CHECK(a.rgba8 == b.rgba8);
+        CHECK(a.radiance == b.radiance);
     }
 }

@@ -71,6 +71,10 @@ struct FramePlan {
     std::string vpl_key;                   // this frame's VPL set
     std::string tree_key;                  // this frame's tree settings
     std::vector<std::string> notes;        // e.g. "the scene has no light: the image would be black"
+    // The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp): compiled in or out,
+    // and why (the materials that turned it on).
+    bool glossy_branch = false;
+    std::string glossy_reason;
 
     bool runs(FrameStage stage) const;
     // One line: "plan: gbuffer, direct light, ... ; left out: direct emissive, ..."
@@ -78,6 +82,16 @@ struct FramePlan {
     // Every stage with its reason, a line each.
     std::string describe() const;
 };
+
+// A material that can be smoother than a roughness limit, and the smoothest it can be: its
+// roughness factor times the smallest roughness (green) texel of its metallic-roughness texture.
+struct GlossyMaterial {
+    std::string name;
+    float min_roughness = 1.0f;
+};
+// The scene's materials whose roughness can fall below `max_roughness`, in the scene's order
+// (a Lambertian material, `--brdf lambert`, never does).
+std::vector<GlossyMaterial> glossy_materials(const scene::Scene& scene, float max_roughness);
 
 // The key of the VPL set a frame with these settings places: everything the VPLs depend on
 // (source, budget, bounces, seed, BRSM options; for BRSM also the view and size, since it places

@@ -34,6 +34,11 @@ enum class VplSource {
     automatic,  // the planner's choice: BRSM for one bounce from punctual lights, else light paths
 };
 
+// The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp, seed 004 sec. 4.2): a glossy
+// receiver picks the diffuse or the glossy lobe per sample. automatic: the planner turns it on
+// when a material of the scene can be smoother than stages::kGlossyMaxRoughness.
+enum class GlossyBranch { automatic, on, off };
+
 // The default suitability threshold sigma_max (seed 000 eq. 5.6) as a fraction of the scene scale:
 // the thesis' 0.3 in its Sponza, whose scale is ~25 (0.3 / 25.5). Measured (lavapipe, 320x180,
 // 4096 BRSM VPLs, mean indirect against exact): the absolute 0.3 in the Breakfast room (scale ~2.3,
@@ -74,6 +79,7 @@ struct RenderSettings {
     // trees (the scene's geometry and lights never change within a renderer). false: rebuild
     // every frame (benchmarks that time the whole pipeline).
     bool reuse_static_work = true;
+    GlossyBranch glossy_branch = GlossyBranch::automatic;  // sst, rtslc, hybrid
     stages::SstOptions sst;  // sst, hybrid: the suitability thresholds nu_min, sigma_max (absolute)
     // sst, hybrid: when set (the default), sst.sigma_max is replaced by this fraction of the scene
     // scale (the BVH's largest coordinate magnitude), so the threshold means the same in a room

@@ -57,4 +57,36 @@ vec3 brdf_evaluate(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, f
     return mix(dielectric, metal, metallic);
 }
 
+// The BRDF's two lobes, which add up to brdf_evaluate (seed 004 sec. 4.2 samples them apart):
+//   diffuse = (1 - metallic) (1 - F(0.04)) base_color / pi
+//   glossy  = (1 - metallic) F(0.04) D V + metallic F(base_color) D V
+// kBrdfLobeBoth is brdf_evaluate itself. A Lambertian material (negative roughness) is all diffuse.
+const uint kBrdfLobeBoth = 0u;
+const uint kBrdfLobeDiffuse = 1u;
+const uint kBrdfLobeGlossy = 2u;
+
+vec3 brdf_evaluate_lobe(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, float metallic, uint lobe) {
+    if (lobe == kBrdfLobeBoth) {
+        return brdf_evaluate(n, wo, wi, base_color, roughness, metallic);
+    }
+    float n_dot_l = dot(n, wi);
+    if (n_dot_l <= 0.0) {
+        return vec3(0.0);
+    }
+    if (roughness < 0.0) {
+        return lobe == kBrdfLobeDiffuse ? base_color / kPi : vec3(0.0);
+    }
+    vec3 h = normalize(wo + wi);
+    float v_dot_h = max(dot(wo, h), 0.0);
+    vec3 dielectric_fresnel = schlick_fresnel(vec3(0.04), v_dot_h);
+    if (lobe == kBrdfLobeDiffuse) {
+        return (1.0 - metallic) * (vec3(1.0) - dielectric_fresnel) * (base_color / kPi);
+    }
+    float n_dot_v = max(dot(n, wo), 1e-4);
+    float n_dot_h = max(dot(n, h), 0.0);
+    float alpha = max(roughness * roughness, kMinAlpha);
+    float specular = ggx_distribution(n_dot_h, alpha) * smith_visibility(n_dot_l, n_dot_v, alpha);
+    return specular * mix(dielectric_fresnel, schlick_fresnel(base_color, v_dot_h), metallic);
+}
+
 #endif

@@ -79,6 +79,58 @@ float gi_material_weight(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughn
     return dot(f, vec3(0.2126, 0.7152, 0.0722));
 }
 
+// The child weights a traversal can use besides the lobes of brdf.glsl: the glossy lobe's BRDF
+// towards the cluster's mean or centre, as the whole BRDF's weights look (the defensive half of
+// the glossy traversal, gi_lobe.glsl). kBrdfLobeGlossy's weights look in gi_glossy_direction's.
+const uint kGiWeightGlossyAtMean = 3u;
+
+// The lobe of brdf.glsl a weight kind evaluates.
+uint gi_weight_lobe(uint weight) {
+    return weight == kGiWeightGlossyAtMean ? kBrdfLobeGlossy : weight;
+}
+
+// The material term of a cluster for one lobe of the BRDF (brdf_evaluate_lobe; `weight` a lobe
+// or kGiWeightGlossyAtMean), from x in direction wi; kBrdfLobeBoth is gi_material_weight itself.
+// A direction below the surface (or within 1e-2 of it) is lifted as gi_material_weight does, one
+// above it is kept: a glossy lobe of roughness 0.05 is a few 1e-3 rad wide, and gi_material_weight's
+// lift of every direction by 1e-2 would move its peak off the reflection direction.
+float gi_lobe_material_weight(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, float metallic,
+                              uint weight) {
+    if (weight == kBrdfLobeBoth) {
+        return gi_material_weight(n, wo, wi, base_color, roughness, metallic);
+    }
+    float along = dot(n, wi);
+    vec3 above = along >= 1e-2 ? wi : normalize(wi - n * (min(along, 0.0) - 1e-2));
+    vec3 f = brdf_evaluate_lobe(n, wo, above, base_color, roughness, metallic, gi_weight_lobe(weight));
+    return dot(f, vec3(0.2126, 0.7152, 0.0722));
+}
+
+// seed 004 sec. 4.1's heuristic for the glossy lobe's material term: the perfect reflection
+// R of the view vector about n; if the ray x + t R (t >= 0) meets the box, the BRDF is evaluated
+// in direction R, otherwise in the direction of the box's point nearest the ray (the paper's R',
+// "the direction that does intersect the box and differs least from R"). That point is found
+// approximately: the ray's point nearest the box centre, clamped into the box, then the ray's
+// point nearest that, clamped again. Any direction into the box keeps the estimator unbiased
+// (it only steers the choice); this one is near the BRDF's largest value over the box, so the
+// weight stays close to a bound and rare children are not hugely over-weighted.
+vec3 gi_glossy_direction(vec3 x, vec3 n, vec3 wo, vec3 lo, vec3 hi) {
+    vec3 r = reflect(-wo, n);
+    // Slab test; an axis the ray runs along gets a tiny slope instead of a division by 0.
+    vec3 safe = vec3(abs(r.x) > 1e-30 ? r.x : 1e-30, abs(r.y) > 1e-30 ? r.y : 1e-30, abs(r.z) > 1e-30 ? r.z : 1e-30);
+    vec3 t0 = (lo - x) / safe, t1 = (hi - x) / safe;
+    vec3 near = min(t0, t1), far = max(t0, t1);
+    float t_enter = max(max(near.x, near.y), max(near.z, 0.0));
+    float t_exit = min(min(far.x, far.y), far.z);
+    if (t_exit >= t_enter) {
+        return r;
+    }
+    vec3 q = clamp(x + r * max(dot(0.5 * (lo + hi) - x, r), 0.0), lo, hi);
+    q = clamp(x + r * max(dot(q - x, r), 0.0), lo, hi);
+    vec3 d = q - x;
+    float len2 = dot(d, d);
+    return len2 > 0.0 ? d * inversesqrt(len2) : r;
+}
+
 // The probability of the left child when the weights are w = a / d2 (a: material x cosine x
 // intensity, d2: a squared distance clamped away from 0), in the cross-multiplied form
 // a_l d2_r / (a_l d2_r + a_r d2_l): no 1/d2 is formed, so no inf/inf. Returns a negative value

@@ -11,10 +11,11 @@
 // false skips the shadow ray (the unbiasedness tests compare with an unshadowed sum). The
 // shadow ray goes to `shadow_position` (normal `shadow_normal`, facing x when lit): the light
 // itself, or for a substitute the real VPL that stands for its visibility (sst_shadow_target).
-void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
-                   vec3 shadow_position, vec3 shadow_normal, float min_distance, float scale, bool visibility,
-                   inout vec3 total, inout uint dropped) {
-    vec3 c = vpl_contribution(x, n, ng, wo, albedo, roughness, metallic, light, min_distance);
+// `lobe`: the part of the BRDF the sample stands for (gi_lobe.glsl; kBrdfLobeBoth: all of it).
+void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, uint lobe,
+                   Vpl light, vec3 shadow_position, vec3 shadow_normal, float min_distance, float scale,
+                   bool visibility, inout vec3 total, inout uint dropped) {
+    vec3 c = vpl_contribution_lobe(x, n, ng, wo, albedo, roughness, metallic, light, min_distance, lobe);
     vec3 next = total + c;
     if (!vpl_finite(c) || !vpl_finite(next)) {
         ++dropped;
@@ -28,6 +29,13 @@ void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughnes
         return;
     }
     total = next;
+}
+
+void gi_add_sample(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 albedo, float roughness, float metallic, Vpl light,
+                   vec3 shadow_position, vec3 shadow_normal, float min_distance, float scale, bool visibility,
+                   inout vec3 total, inout uint dropped) {
+    gi_add_sample(x, n, ng, wo, albedo, roughness, metallic, kBrdfLobeBoth, light, shadow_position, shadow_normal,
+                  min_distance, scale, visibility, total, dropped);
 }
 
 #endif

@@ -33,11 +33,18 @@ struct RtslcShading {
 // kRtslcMinMaterialWeight, because a black metal seen head-on has a BRDF of exactly 0 at one
 // direction (Fresnel F(0) = base colour = 0) but not around it. Any positive weight keeps the
 // estimator unbiased; the weight only steers the variance.
-float rtslc_material_weight(RtslcShading s, LightTreeNode node) {
+//
+// `lobe` (gi_lobe.glsl): the part of the BRDF the sample stands for; the glossy lobe looks in
+// gi_glossy_direction's direction (seed 004 sec. 4.1's perfect-reflection heuristic), the same
+// lobe choice as sst's and hybrid's, so that the methods compare fairly.
+float rtslc_material_weight(RtslcShading s, LightTreeNode node, uint lobe) {
     vec3 to_centre = 0.5 * (node.box_min + node.box_max) - s.position;
     float along_normal = dot(s.normal, to_centre);
     vec3 wi = along_normal > 0.0 ? normalize(to_centre) : s.normal;
-    float weight = gi_material_weight(s.normal, s.wo, wi, s.base_color, s.roughness, s.metallic);
+    if (lobe == kBrdfLobeGlossy) {
+        wi = gi_glossy_direction(s.position, s.normal, s.wo, node.box_min, node.box_max);
+    }
+    float weight = gi_lobe_material_weight(s.normal, s.wo, wi, s.base_color, s.roughness, s.metallic, lobe);
     // Written so that a NaN weight stays NaN (max(NaN, c) may return c).
     return weight < kRtslcMinMaterialWeight ? kRtslcMinMaterialWeight : weight;
 }
@@ -48,7 +55,7 @@ float rtslc_material_weight(RtslcShading s, LightTreeNode node) {
 // (all flux black), or a box wholly behind the shading normal (vpl_geometry gives those VPLs
 // 0). A NaN intensity (non-finite flux below) stays NaN, so the sample it leads to is dropped
 // and counted, not silently weighted.
-float rtslc_node_importance(RtslcShading s, LightTreeNode node) {
+float rtslc_node_importance(RtslcShading s, LightTreeNode node, uint lobe) {
     if (light_tree_is_bogus(node) || node.intensity == 0.0) {
         return 0.0;
     }
@@ -56,7 +63,11 @@ float rtslc_node_importance(RtslcShading s, LightTreeNode node) {
     if (cosine == 0.0) {
         return 0.0;
     }
-    return cosine * rtslc_material_weight(s, node) * node.intensity;
+    return cosine * rtslc_material_weight(s, node, lobe) * node.intensity;
+}
+
+float rtslc_node_importance(RtslcShading s, LightTreeNode node) {
+    return rtslc_node_importance(s, node, kBrdfLobeBoth);
 }
 
 // The lightcuts-style bound of a cut node at the representative pixel, F I / max(d_min^2, eps^2):
@@ -100,10 +111,10 @@ struct RtslcChildProbability {
 // probability it actually sampled with. A child of zero weight gets exactly 0 and is never
 // chosen; one of positive weight is never rounded to 0 (that would bias), whatever its ratio.
 RtslcChildProbability rtslc_child_probability(RtslcShading s, LightTreeNode left, LightTreeNode right,
-                                              float min_distance2) {
+                                              float min_distance2, uint lobe) {
     RtslcChildProbability result;
-    float a_left = rtslc_node_importance(s, left);
-    float a_right = rtslc_node_importance(s, right);
+    float a_left = rtslc_node_importance(s, left, lobe);
+    float a_right = rtslc_node_importance(s, right, lobe);
     result.dead = a_left == 0.0 && a_right == 0.0;
     result.left = 0.0;
     if (result.dead) {
@@ -135,6 +146,12 @@ RtslcChildProbability rtslc_child_probability(RtslcShading s, LightTreeNode left
     // A NaN (from a NaN intensity) is passed on as it is: the sample is dropped and counted.
     result.left = gi_grid_probability(p);
     return result;
+}
+
+// The whole BRDF's probabilities (every sample without the glossy branch).
+RtslcChildProbability rtslc_child_probability(RtslcShading s, LightTreeNode left, LightTreeNode right,
+                                              float min_distance2) {
+    return rtslc_child_probability(s, left, right, min_distance2, kBrdfLobeBoth);
 }
 
 // The child pick of the traversal and its probability (the sample / pmf pair): u from

@@ -18,28 +18,48 @@ LightTreeNode sst_as_light_tree_node(SstNode node) {
     return LightTreeNode(node.box_lo, node.intensity, node.box_hi, node.leaf_count);
 }
 
-// Descends from `start` to a leaf; s.data is the leaf, s.probability the path's probability.
-SstSample sst_traverse_lightcuts(GiPoint p, uint start, uint leaf_count, uint count, float min_distance,
+// Descends from `start` to a leaf with the weights of the sample's lobe (gi_lobe.glsl); s.data
+// is the leaf, s.probability the lobe's probability x the path's.
+SstSample sst_traverse_lightcuts(GiPoint p, uint start, uint leaf_count, uint count, GiLobe lobe, float min_distance,
                                  inout Rng rng) {
     RtslcShading shading = RtslcShading(p.position, p.normal, p.wo, p.albedo, p.roughness, p.metallic);
-    SstSample s = sst_sample_at(start, leaf_count, count);
+    SstSample s = sst_sample_at(start, leaf_count, count, lobe.probability);
+    bool glossy = lobe.kind == kBrdfLobeGlossy;
+    GiGlossyPath path = GiGlossyPath(true, 1.0, 1.0);
+    if (glossy) {
+        path = gi_glossy_path_start(rng);  // gi_lobe.glsl: the glossy lobe's two-strategy mixture
+    }
     for (uint level = 0u; level < kSstMaxLevels; ++level) {
         if (sst_is_leaf(s.node, leaf_count)) {
             break;
         }
         uint left = sst_left_child(s.node), right = sst_right_child(s.node);
         SstNode l = sst_fetch(left, leaf_count, count), r = sst_fetch(right, leaf_count, count);
-        RtslcChildProbability c = rtslc_child_probability(shading, sst_as_light_tree_node(l),
-                                                          sst_as_light_tree_node(r), min_distance * min_distance);
-        if (c.dead) {
+        LightTreeNode node_left = sst_as_light_tree_node(l), node_right = sst_as_light_tree_node(r);
+        RtslcChildProbability c =
+            rtslc_child_probability(shading, node_left, node_right, min_distance * min_distance, lobe.kind);
+        RtslcChildProbability at_mean = c;
+        if (glossy) {
+            at_mean = rtslc_child_probability(shading, node_left, node_right, min_distance * min_distance,
+                                              kGiWeightGlossyAtMean);
+        }
+        bool by_reflection = !glossy || path.by_reflection;
+        if (by_reflection ? c.dead : at_mean.dead) {
             s.dead = true;
             break;
         }
-        bool go_left = rtslc_choose_left(c.left, rng_next_float(rng));
+        bool go_left = rtslc_choose_left(by_reflection ? c.left : at_mean.left, rng_next_float(rng));
         s.node = go_left ? left : right;
         s.data = go_left ? l : r;
-        s.probability *= rtslc_choice_probability(c.left, go_left);
+        if (glossy) {
+            gi_glossy_path_step(path, c.dead ? -1.0 : c.left, at_mean.dead ? -1.0 : at_mean.left, go_left);
+        } else {
+            s.probability *= rtslc_choice_probability(c.left, go_left);
+        }
         ++s.levels;
+    }
+    if (glossy) {
+        s.probability = lobe.probability * gi_glossy_path_probability(path);
     }
     return s;
 }

@@ -8,7 +8,7 @@
 //
 // Define VPLKIT_SST_NODES_BINDING and VPLKIT_SST_LEAVES_BINDING, and include vplkit/brdf.glsl,
 // vplkit/vpl.glsl, vplkit/vpl_eval.glsl, vplkit/gi_bounds.glsl, vplkit/sst.glsl and
-// vplkit/rng.glsl first. Node indices are sst.glsl's: inner nodes 0 .. L - 2, leaf c - (L - 1).
+// vplkit/rng.glsl and vplkit/gi_lobe.glsl first. Node indices are sst.glsl's: inner nodes 0 .. L - 2, leaf c - (L - 1).
 
 layout(std430, set = 0, binding = VPLKIT_SST_NODES_BINDING) readonly buffer SstNodeBuffer { SstNode items[]; } sst_nodes;
 layout(std430, set = 0, binding = VPLKIT_SST_LEAVES_BINDING) readonly buffer SstLeafBuffer { Vpl items[]; } sst_leaves;
@@ -56,7 +56,11 @@ SstNode sst_fetch(uint node, uint leaf_count, uint count) {
 // the light is drawn rarely and weighed hugely (the unbiasedness test's mean over 256 seeds came
 // out 10x low at some pixels, the heavy tail never drawn). RTSLC tames this by averaging its
 // min- and max-distance probabilities (rtslc.glsl); the SST has its means.
-float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_distance, out float d2) {
+//
+// The material term is that of the sample's lobe (`lobe`: brdf.glsl's kBrdfLobe*, or
+// kGiWeightGlossyAtMean): the whole BRDF, the diffuse lobe or the glossy lobe towards the node's
+// mean, or for kBrdfLobeGlossy in gi_glossy_direction's direction into its box (gi_lobe.glsl).
+float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, uint lobe, float min_distance, out float d2) {
     vec3 to_mean = node.mean - p.position;
     d2 = max(dot(to_mean, to_mean), min_distance * min_distance);
     if (node.leaf_count == 0u || !(node.intensity > 0.0)) {
@@ -70,14 +74,23 @@ float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_
     }
     float len2 = dot(to_mean, to_mean);
     vec3 wi = len2 > 0.0 ? to_mean * inversesqrt(len2) : p.normal;
-    return gi_material_weight(p.normal, p.wo, wi, p.albedo, p.roughness, p.metallic) * cosine * node.intensity;
+    if (lobe == kBrdfLobeGlossy) {
+        wi = gi_glossy_direction(p.position, p.normal, p.wo, node.box_lo, node.box_hi);
+    }
+    return gi_lobe_material_weight(p.normal, p.wo, wi, p.albedo, p.roughness, p.metallic, lobe) * cosine *
+           node.intensity;
+}
+
+// The whole BRDF's weight (cut selection, and every sample without the glossy branch).
+float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_distance, out float d2) {
+    return sst_weight_numerator(p, node, weight_kind, kBrdfLobeBoth, min_distance, d2);
 }
 
 // The end of one traversal: the node reached and the probability of the path to it.
 struct SstSample {
     uint node;
     SstNode data;
-    float probability;  // product of the child probabilities from the start node (1 at the start)
+    float probability;  // the lobe's probability x the child probabilities from the start node
     uint levels;        // levels descended from the start node
     bool dead;          // ended where both children weigh 0: no light (seed 004 sec. 4.1)
 };
@@ -85,34 +98,56 @@ struct SstSample {
 // Kept below 32 so that a tree of up to 2^31 leaves always reaches a leaf.
 const uint kSstMaxLevels = 32u;
 
-// A traversal standing at `start`, before its first step.
-SstSample sst_sample_at(uint start, uint leaf_count, uint count) {
+// A traversal standing at `start`, before its first step, in a lobe chosen with probability
+// lobe_probability (1: the whole BRDF): the start node's share of the estimate is weighed by it.
+SstSample sst_sample_at(uint start, uint leaf_count, uint count, float lobe_probability) {
     SstSample s;
     s.node = start;
     s.data = sst_fetch(start, leaf_count, count);
-    s.probability = 1.0;
+    s.probability = lobe_probability;
     s.levels = 0u;
     s.dead = false;
     return s;
 }
 
+SstSample sst_sample_at(uint start, uint leaf_count, uint count) {
+    return sst_sample_at(start, leaf_count, count, 1.0);
+}
+
 // Descends from `start` until a leaf or a suitable node (eq. 5.6), picking a child with
-// probability w / (w_left + w_right) (seed 000 eq. 5.4) and a fresh random number per level.
-SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, float min_distance,
-                       inout Rng rng) {
-    SstSample s = sst_sample_at(start, leaf_count, count);
+// probability w / (w_left + w_right) (seed 000 eq. 5.4) and a fresh random number per level,
+// with the weights of the sample's lobe. The glossy lobe ignores the substitutes and descends to
+// a leaf VPL (seed 004 sec. 4.2: a substitute would blur a sharp reflection).
+// The glossy lobe steers by the mixture of gi_lobe.glsl (GiGlossyPath), and its probability is
+// the mixture's.
+SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, GiLobe lobe,
+                       float min_distance, inout Rng rng) {
+    SstSample s = sst_sample_at(start, leaf_count, count, lobe.probability);
+    bool glossy = lobe.kind == kBrdfLobeGlossy;
+    GiGlossyPath path = GiGlossyPath(true, 1.0, 1.0);
+    if (glossy) {
+        path = gi_glossy_path_start(rng);
+    }
     for (uint level = 0u; level < kSstMaxLevels; ++level) {
-        if (sst_is_leaf(s.node, leaf_count) || (s.data.flags & kSstFlagSuitable) != 0u) {
+        if (sst_is_leaf(s.node, leaf_count) || (!glossy && (s.data.flags & kSstFlagSuitable) != 0u)) {
             break;
         }
         uint left = sst_left_child(s.node), right = sst_right_child(s.node);
         SstNode l = sst_fetch(left, leaf_count, count), r = sst_fetch(right, leaf_count, count);
         float d2_left, d2_right;
-        float a_left = sst_weight_numerator(p, l, weight_kind, min_distance, d2_left);
-        float a_right = sst_weight_numerator(p, r, weight_kind, min_distance, d2_right);
+        float a_left = sst_weight_numerator(p, l, weight_kind, lobe.kind, min_distance, d2_left);
+        float a_right = sst_weight_numerator(p, r, weight_kind, lobe.kind, min_distance, d2_right);
         // Cross-multiplied (gi_left_probability): no 1/d2, no inf/inf; < 0 marks a dead branch,
         // where the sample ends with no light (backtracking would cost a shader loop per level).
         float p_left = gi_child_probability(a_left, d2_left, a_right, d2_right);
+        float p_left_reflection = p_left, p_left_at_mean = p_left;
+        if (glossy) {
+            float a_left_at_mean = sst_weight_numerator(p, l, weight_kind, kGiWeightGlossyAtMean, min_distance, d2_left);
+            float a_right_at_mean =
+                sst_weight_numerator(p, r, weight_kind, kGiWeightGlossyAtMean, min_distance, d2_right);
+            p_left_at_mean = gi_child_probability(a_left_at_mean, d2_left, a_right_at_mean, d2_right);
+            p_left = gi_glossy_path_left(path, p_left, p_left_at_mean);
+        }
         if (p_left < 0.0) {
             s.dead = true;
             break;
@@ -123,10 +158,22 @@ SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint 
         bool go_left = rng_next_float(rng) < p_left;
         s.node = go_left ? left : right;
         s.data = go_left ? l : r;
-        s.probability *= go_left ? p_left : 1.0 - p_left;
+        if (glossy) {
+            gi_glossy_path_step(path, p_left_reflection, p_left_at_mean, go_left);
+        } else {
+            s.probability *= go_left ? p_left : 1.0 - p_left;
+        }
         ++s.levels;
     }
+    if (glossy) {
+        s.probability = lobe.probability * gi_glossy_path_probability(path);
+    }
     return s;
+}
+
+SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, float min_distance,
+                       inout Rng rng) {
+    return sst_traverse(p, start, leaf_count, count, weight_kind, gi_lobe_both(), min_distance, rng);
 }
 
 // Two independent standard normal numbers (Box-Muller); 1 - u keeps the logarithm finite.

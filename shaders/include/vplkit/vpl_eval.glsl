@@ -68,6 +68,20 @@ vec3 vpl_contribution(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 base_color, float r
     return brdf_evaluate(n, wo, wi, base_color, roughness, metallic) * vpl.flux * (geometry / kPi);
 }
 
+// The same for one lobe of the BRDF (brdf_evaluate_lobe; kBrdfLobeBoth: vpl_contribution).
+vec3 vpl_contribution_lobe(vec3 x, vec3 n, vec3 ng, vec3 wo, vec3 base_color, float roughness, float metallic, Vpl vpl,
+                           float min_distance, uint lobe) {
+    if (lobe == kBrdfLobeBoth) {
+        return vpl_contribution(x, n, ng, wo, base_color, roughness, metallic, vpl, min_distance);
+    }
+    vec3 wi;
+    float geometry = vpl_geometry(x, n, ng, vpl.position, vpl.normal, min_distance, wi);
+    if (geometry == 0.0) {
+        return vec3(0.0);
+    }
+    return brdf_evaluate_lobe(n, wo, wi, base_color, roughness, metallic, lobe) * vpl.flux * (geometry / kPi);
+}
+
 bool vpl_finite(vec3 v) {
     return !any(isnan(v)) && !any(isinf(v));
 }

@@ -14,6 +14,7 @@
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/steps.hpp"
 #include "vplkit/stages/views.hpp"
@@ -50,6 +51,7 @@ struct HybridOptions {
     // mock cut with in ch. 7.3).
     bool mock_cuts = true;
     HybridTraversal traversal = HybridTraversal::substitute;
+    GlossyLobeOptions glossy;  // the glossy branch (glossy_lobe.hpp); off unless the planner finds a glossy material
 };
 
 // Throws vplkit::Error naming the bad option.

@@ -23,6 +23,7 @@
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/steps.hpp"
 #include "vplkit/stages/views.hpp"
@@ -58,6 +59,7 @@ struct RtslcOptions {
     // hundreds of BVH steps in the kit's scenes). 16 slots stay well below; a dispatch cut short
     // anyway is counted (GiCounts::cut_short) and its image must not be trusted.
     uint32_t slots_per_dispatch = 16;
+    GlossyLobeOptions glossy;  // the glossy branch (glossy_lobe.hpp); off unless the planner finds a glossy material
 };
 
 // Throws vplkit::Error naming the first bad option.

@@ -13,6 +13,7 @@
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/steps.hpp"
 #include "vplkit/stages/views.hpp"
@@ -27,8 +28,9 @@ namespace vplkit::stages {
 struct SstGiOptions {
     uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (seed 004 uses 1)
     uint32_t seed = 0;
-    uint32_t frame = 0;      // the frame counter: each frame draws other random numbers
-    bool visibility = true;  // false: no shadow rays (tests)
+    uint32_t frame = 0;        // the frame counter: each frame draws other random numbers
+    bool visibility = true;    // false: no shadow rays (tests)
+    GlossyLobeOptions glossy;  // the glossy branch (glossy_lobe.hpp); off unless the planner finds a glossy material
 };
 
 // Throws vplkit::Error naming the bad option.
