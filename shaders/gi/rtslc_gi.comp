@@ -29,7 +29,8 @@
 #include "vplkit/rng.glsl"
 #include "vplkit/vpl.glsl"
 #include "vplkit/vpl_eval.glsl"
-#include "vplkit/rtslc.glsl"
+#define VPLKIT_LIGHT_TREE_BINDING 6
+#include "vplkit/rtslc_tree_sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -41,7 +42,6 @@ layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
 layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
-layout(std430, set = 0, binding = 6) readonly buffer LightTreeBuffer { LightTreeNode items[]; } light_tree;
 layout(std430, set = 0, binding = 7) readonly buffer LeafBuffer { Vpl items[]; } leaves;
 layout(std430, set = 0, binding = 8) readonly buffer RtslcCutBuffer { uint items[]; } cuts;
 layout(set = 0, binding = 10, rgba32f) uniform image2D radiance;
@@ -58,9 +58,6 @@ layout(push_constant) uniform RtslcGiPush {
     uint slot_first;  // this dispatch samples the slots [slot_first, slot_end) of the pixel's share
     uint slot_end;
 } push;
-
-// The tree has at most 2^31 leaves: a traversal descends at most 31 levels.
-const uint kRtslcMaxLevels = 31u;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -99,7 +96,6 @@ void main() {
     // dispatches, and never the cut shader's stream (that one is salted).
     uint frame_seed = pcg_hash(push.seed ^ pcg_hash(push.frame));
     uint pixel_index = uint(pixel.y) * uint(size.x) + uint(pixel.x);
-    uint first_leaf = push.leaf_count - 1u;
     uint dropped = 0u, traversals = 0u, levels = 0u, dead = 0u;
     // lavapipe (llvmpipe) ends every loop of an invocation, silently, once its loops together
     // have run 65535 iterations (exact_gi.comp). The slot loop runs one sentinel iteration past
@@ -115,35 +111,17 @@ void main() {
         uint node = cuts.items[base + slot];
         Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
         ++traversals;
-        float path_probability = 1.0;
-        bool dead_branch = false;
-        bool at_leaf = false;
-        for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
-            if (node >= first_leaf) {
-                at_leaf = true;
-                break;
-            }
-            uint left = light_tree_left_child(node);
-            RtslcChildProbability choice =
-                rtslc_child_probability(s, light_tree.items[left], light_tree.items[left + 1u], min_distance2);
-            // seed 003 sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly
-            // 0 then: every VPL below has zero weight, so none of them could light this pixel.
-            if (choice.dead) {
-                dead_branch = true;
-                break;
-            }
-            bool go_left = rtslc_choose_left(choice.left, rng_next_float(rng));
-            path_probability *= rtslc_choice_probability(choice.left, go_left);
-            node = go_left ? left : left + 1u;
-            ++levels;
-        }
-        if (dead_branch) {
+        RtslcTraversal t = rtslc_traverse(s, node, push.leaf_count, min_distance2, rng);
+        levels += t.levels;
+        if (t.status == kRtslcDeadBranch) {
             ++dead;
             continue;
         }
-        if (!at_leaf) {
+        if (t.status != kRtslcReachedLeaf) {
             break;  // cut short inside the traversal: `completed` stays false
         }
+        float path_probability = t.path_probability;
+        node = t.node;
         Vpl vpl = leaves.items[light_tree_node_leaf(push.leaf_count, node)];
         vec3 c = vpl_contribution(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness, g.metallic,
                                   vpl, min_distance);

@@ -1,11 +1,11 @@
 #include "vplkit/stages/rtslc.hpp"
 
 #include "vplkit/error.hpp"
-#include "vplkit/shaders/rtslc_cut.hpp"
 #include "vplkit/shaders/rtslc_gi.hpp"
 #include "vplkit/shaders/rtslc_interleave.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "gi_inputs.hpp"
+#include "rtslc_cut_pass.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -101,30 +101,8 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     add_gi_counters_clear(passes, counters, "gi counters clear");
 
-    const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>();
-    passes.add("rtslc cuts",
-               gbuffer_bvh_uses(gbuffer, bvh,
-                                {Use::read(trees.light_tree), Use::write(scratch.cuts),
-                                 Use::write(scratch.representatives), Use::read_write(counters)}),
-               [&cut_pipeline, gbuffer, bvh, trees, scratch, counters, camera, options](VkCommandBuffer cmd) {
-                   shaders::rtslc_cut::Bindings b;
-                   bind_bvh(b, bvh);
-                   bind_gbuffer(b, gbuffer);
-                   b.light_tree = trees.light_tree.descriptor();
-                   b.cuts = scratch.cuts.descriptor();
-                   b.representatives = scratch.representatives.descriptor();
-                   b.gi_counters = counters.descriptor();
-                   shaders::rtslc_cut::Push push{};
-                   push.camera_position = camera;
-                   push.seed = options.seed;
-                   push.frame = options.frame;
-                   push.block_size = options.block_size;
-                   push.cut_size = options.samples_per_pixel;
-                   push.blocks_x = scratch.blocks_x();
-                   push.blocks_y = scratch.blocks_y();
-                   push.leaf_count = trees.leaf_count;
-                   cut_pipeline.dispatch(cmd, b, push, scratch.block_count());
-               });
+    add_rtslc_cut_pass(device, passes, gbuffer, bvh, trees.light_tree, trees.leaf_count, camera_position, counters,
+                       options, options.seed, scratch);
 
     shaders::rtslc_gi::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
