@@ -68,10 +68,8 @@ GpuLights upload_lights(Context& context, std::span<const scene::Light> lights) 
     return out;
 }
 
-GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
-    std::vector<shaders::EmissiveTriangle> triangles;
-    std::vector<double> powers;
-    GpuEmitters out;
+std::vector<EmitterTriangle> emitter_triangles(const scene::Scene& scene) {
+    std::vector<EmitterTriangle> out;
     for (uint32_t t : scene.emissive_triangles) {
         const glm::vec3 a = scene.vertices[scene.indices[3 * t]].position;
         const glm::vec3 b = scene.vertices[scene.indices[3 * t + 1]].position;
@@ -79,22 +77,35 @@ GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
         const scene::Material& material = scene.materials[scene.triangle_materials[t]];
         const glm::vec3 radiance = material.emission();
         const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
-        // Luminance (Rec. 709) weights: the power a viewer sees, so bright emitters get the samples.
         // A double-sided emitter sends as much from its back (glTF doubleSided; as trace_vpls.comp).
-        const double luminance = 0.2126 * radiance.x + 0.7152 * radiance.y + 0.0722 * radiance.z;
         const double sides = material.double_sided ? 2.0 : 1.0;
-        const double power = luminance * area * std::numbers::pi * sides;
-        if (!(power > 0.0) || !std::isfinite(power)) continue;  // a dark or degenerate emitter lights nothing
-        shaders::EmissiveTriangle e{};
-        e.v0 = {a.x, a.y, a.z};
-        e.v1 = {b.x, b.y, b.z};
-        e.v2 = {c.x, c.y, c.z};
-        e.area = float(area);
-        e.double_sided = material.double_sided ? 1u : 0u;
-        e.radiance = {radiance.x, radiance.y, radiance.z};
-        triangles.push_back(e);
-        powers.push_back(power);
-        out.total_power += power;
+        const glm::dvec3 power = glm::dvec3(radiance) * (area * std::numbers::pi * sides);
+        // Luminance (Rec. 709) weights: the power a viewer sees, so bright emitters get the samples.
+        const double luminance =
+            (0.2126 * radiance.x + 0.7152 * radiance.y + 0.0722 * radiance.z) * area * std::numbers::pi * sides;
+        if (!(luminance > 0.0) || !std::isfinite(luminance)) continue;  // a dark or degenerate emitter lights nothing
+        EmitterTriangle e;
+        e.triangle.v0 = {a.x, a.y, a.z};
+        e.triangle.v1 = {b.x, b.y, b.z};
+        e.triangle.v2 = {c.x, c.y, c.z};
+        e.triangle.area = float(area);
+        e.triangle.double_sided = material.double_sided ? 1u : 0u;
+        e.triangle.radiance = {radiance.x, radiance.y, radiance.z};
+        e.power = power;
+        e.luminance_power = luminance;
+        out.push_back(e);
+    }
+    return out;
+}
+
+GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
+    std::vector<shaders::EmissiveTriangle> triangles;
+    std::vector<double> powers;
+    GpuEmitters out;
+    for (const EmitterTriangle& e : emitter_triangles(scene)) {
+        triangles.push_back(e.triangle);
+        powers.push_back(e.luminance_power);
+        out.total_power += e.luminance_power;
     }
     if (!triangles.empty()) {
         const std::vector<float> cdf = selection_cdf(powers);

@@ -9,6 +9,9 @@
 #include "vplkit/planner.hpp"
 #include "vplkit/stages/compose.hpp"
 #include "vplkit/camera_view.hpp"
+#include "vplkit/gi_counters_buffer.hpp"
+#include "vplkit/rtslc_scratch.hpp"
+#include "vplkit/stages/direct_light_tree.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/brsm_buffers.hpp"
 #include "vplkit/shadow_map.hpp"
@@ -35,6 +38,7 @@ Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(conte
     bvh_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu_bvh_ = upload_bvh(context, bvh_);
     lights_ = stages::upload_lights(context, scene.lights);
+    directional_lights_ = stages::upload_lights(context, stages::directional_lights(scene));
     emitters_ = stages::upload_emitters(context, scene);
 }
 
@@ -171,16 +175,40 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         if (s.runs) out.stages_run.push_back(stage_name(s.stage));
     }
 
+    // Direct light through the tree: rtslc's cut options, the block size seed 003 sec. 4 uses.
+    const bool tree_direct = plan.runs(FrameStage::direct_tree);
+    stages::RtslcOptions tree_options;
+    tree_options.samples_per_pixel = settings.direct_samples;
+    tree_options.frame = settings.frame;
+    tree_options.seed = settings.seed;
+    if (tree_direct) stages::validate_direct_light_tree(tree_options);  // before any work
+
     PassList direct_passes("direct light");
     direct_passes.set_tag(stage_tag(FrameStage::gbuffer));
     stages::add_gbuffer_pass(context_, direct_passes, scene_, view, gbuffer);
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));
-    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_, lights_,
-                                  {view.position, settings.background}, direct);
+    // With the tree, the direct-light pass adds only the directional lights (they have no position).
+    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_,
+                                  tree_direct ? directional_lights_ : lights_, {view.position, settings.background},
+                                  direct);
     if (plan.runs(FrameStage::direct_emissive)) {
         direct_passes.set_tag(stage_tag(FrameStage::direct_emissive));
         stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
-                                         {view.position, settings.emissive_samples, settings.seed}, direct);
+                                         {view.position, settings.direct_samples, settings.seed}, direct);
+    }
+    std::optional<stages::RtslcScratch> tree_scratch;
+    std::optional<Buffer> tree_counters;
+    if (tree_direct) {
+        direct_passes.set_tag(stage_tag(FrameStage::direct_tree));
+        if (!light_tree_) {
+            // The lights never change within a renderer: the tree is built once, in its first frame.
+            light_tree_ = stages::GpuLightTree::create(context_, scene_source_, emitters_);
+            light_tree_->add_build_passes(context_, direct_passes);
+        }
+        tree_scratch = stages::RtslcScratch::create(context_, w, h, tree_options);
+        tree_counters = stages::create_gi_counters(context_, "direct tree counters");
+        stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, light_tree_->buffers(),
+                                             view.position, direct, *tree_counters, tree_options, *tree_scratch);
     }
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));  // the indirect image is cleared with it
     direct_passes.add("indirect clear", {Use::transfer_dst(indirect)}, [&indirect](VkCommandBuffer cmd) {
@@ -190,6 +218,19 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     });
     direct_passes.run(context_);
     append(out.timings, direct_passes.timings());
+    out.direct_sampler = plan.direct_sampler;
+    if (tree_direct) {
+        out.direct_counts = stages::read_gi_counters(*tree_counters);
+        if (out.direct_counts.cut_short > 0) {
+            throw Error("direct light tree: the driver ended " + std::to_string(out.direct_counts.cut_short) +
+                        " invocations early (a loop iteration limit): the image would be wrong");
+        }
+        if (out.direct_counts.dropped_samples > 0) {
+            out.notes.push_back(std::to_string(out.direct_counts.dropped_samples) + " direct-light samples in " +
+                                std::to_string(out.direct_counts.dropped_pixels) +
+                                " pixels were not finite and were left out");
+        }
+    }
 
     if (settings.vpls_only) {
         const GeneratedVpls& generated = frame_vpls(plan, view, gbuffer, settings, out);
