@@ -428,3 +428,43 @@ TEST_CASE("direct light tree: bad options and scenes without tree lights are ref
     CHECK_THROWS_WITH_AS(vplkit::stages::GpuLightTree::create(ctx, b.s, emitters), doctest::Contains("no"),
                          vplkit::Error);
 }
+
+TEST_CASE("triangle emission: an emissive texture counts with its mean over the triangle") {
+    // A 2 x 1 texture: texel 0 white, texel 1 sRGB (128, 0, 64). Triangles whose UVs lie in one
+    // texel emit factor x that texel (linear); one over both, factor x the area-weighted mean.
+    SceneBuilder b;
+    const uint32_t m = b.add_emissive({2.0f, 3.0f, 4.0f}, false);
+    b.s.materials[m].emissive_texture = 0;
+    b.s.textures.push_back({0, {}});
+    vplkit::scene::Image image;
+    image.width = 2;
+    image.height = 1;
+    image.rgba = {255, 255, 255, 255, 128, 0, 64, 255};
+    image.srgb = true;
+    b.s.images.push_back(image);
+    auto add = [&](glm::vec2 a, glm::vec2 c, glm::vec2 d) {
+        add_small_emitter(b, {0.0f, 1.0f, 0.0f}, 0.2f, true, m);
+        const size_t base = b.s.vertices.size() - 3;
+        b.s.vertices[base].uv0 = a;
+        b.s.vertices[base + 1].uv0 = c;
+        b.s.vertices[base + 2].uv0 = d;
+        return b.s.emissive_triangles.back();
+    };
+    const uint32_t white = add({0.05f, 0.1f}, {0.45f, 0.2f}, {0.2f, 0.9f});
+    const uint32_t coloured = add({1.55f, 0.1f}, {1.95f, 0.2f}, {1.7f, 0.9f});  // wraps to [0.55, 0.95] (repeat)
+    const uint32_t both = add({0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f});        // 3/4 of it has u < 1/2
+    auto linear = [](double c) { return std::pow((c / 255.0 + 0.055) / 1.055, 2.4); };
+    const glm::vec3 w = vplkit::stages::triangle_emission(b.s, white);
+    const glm::vec3 k = vplkit::stages::triangle_emission(b.s, coloured);
+    const glm::vec3 h = vplkit::stages::triangle_emission(b.s, both);
+    CHECK(w.x == doctest::Approx(2.0));
+    CHECK(w.z == doctest::Approx(4.0));
+    CHECK(k.x == doctest::Approx(2.0 * linear(128)));
+    CHECK(k.y == 0.0f);
+    CHECK(k.z == doctest::Approx(4.0 * linear(64)));
+    CHECK(h.y == doctest::Approx(3.0 * 0.75).epsilon(0.05));
+    // The tree's power and the flat sampler's triangles use it.
+    const auto triangles = vplkit::stages::emitter_triangles(b.s);
+    REQUIRE(triangles.size() == 3);
+    CHECK(triangles[1].triangle.radiance.x == doctest::Approx(k.x));
+}

@@ -44,6 +44,14 @@ struct GpuEmitters {
 };
 GpuEmitters upload_emitters(Context& context, const scene::Scene& scene);
 
+// The radiance emissive triangle t emits, constant over the triangle: the material's emissive
+// factor x strength, times the emissive texture's mean over the triangle where it has one (64
+// nearest-texel reads at the centroids of an 8 x 8 subdivision in UV space, sRGB decoded). The
+// G-buffer shows the texture itself; light leaving the triangle (direct light, the light tree's
+// power, light paths) uses this mean: its power is exact to the quadrature, its light's spatial
+// variation within one triangle is not kept.
+glm::vec3 triangle_emission(const scene::Scene& scene, uint32_t t);
+
 // One emissive triangle as upload_emitters uploads it (cdf unset), with its power.
 struct EmitterTriangle {
     shaders::EmissiveTriangle triangle{};
