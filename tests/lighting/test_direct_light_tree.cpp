@@ -348,6 +348,18 @@ TEST_CASE("direct light tree: one emitter, 2^k and 2^k + 1 emitters, a cut large
     }
 }
 
+TEST_CASE("direct light tree: shading points on an emitter (inside its flat box) stay finite and unbiased") {
+    // A double-sided emitter lying in the floor's plane under half the pixels: their distance to
+    // its box is 0 (the weights' clamp), their own light from it is 0 (grazing), and the lights
+    // above still arrive.
+    SceneBuilder b = many_emitters(6, 21u);
+    const uint32_t m = b.add_emissive({30, 30, 30}, true);
+    b.add_triangle({-1.8f, 0.0f, -1.8f}, {1.8f, 0.0f, -1.8f}, {0.0f, 0.0f, 0.2f}, m);
+    const Floor floor = make_floor();
+    Harness harness(b.s, floor);
+    check_unbiased(b.s, harness, floor, 64, 8);
+}
+
 TEST_CASE("direct light tree: a double-sided emitter lights with its back as with its front") {
     // The same emitter wound facing up: one-sided it lights nothing below, double-sided as much
     // as wound facing down.
