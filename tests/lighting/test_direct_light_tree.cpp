@@ -337,6 +337,79 @@ TEST_CASE("direct light tree: mean over seeds equals the exact light of 33 emitt
     MESSAGE("largest z: " << z64 << " (64 seeds), " << z256 << " (256 seeds)");
 }
 
+TEST_CASE(
+    "light tree over lights: every light in one leaf with the box of its corners and its RGB power and parents that "
+    "sum their children") {
+    // light_tree_scene_leaves.comp and the levels against a plain CPU reference: each leaf's light
+    // (a permutation of the lights), its box (a triangle's three corners, a light's position), its
+    // intensity (the RGB sum of radiance x area x pi x sides, or 4 pi I for a point light, in
+    // double: float rounding of the proxy's flux, relative 1e-5), bogus leaves empty; every
+    // internal node the union of its children's boxes and the sum of their intensities.
+    SceneBuilder b = many_emitters(13, 3u);  // 2^3 + 5: 3 bogus leaves
+    vplkit::scene::Light point;
+    point.position = {0.3f, 1.1f, -0.2f};
+    point.color = {1.0f, 0.5f, 0.25f};
+    point.intensity = 3.0f;
+    b.s.lights = {point};
+    const Floor floor = make_floor();
+    Harness harness(b.s, floor);
+    const uint32_t count = harness.tree().count();
+    REQUIRE(count == 14);
+    const uint32_t leaf_count = 16;
+    const auto leaves = harness.tree().leaf_lights().download<uint32_t>(count);
+    const auto nodes = harness.tree().nodes().download<vplkit::shaders::LightTreeNode>(2 * leaf_count - 1);
+    std::vector<bool> seen(count, false);
+    for (uint32_t i = 0; i < leaf_count; ++i) {
+        CAPTURE(i);
+        const auto& node = nodes[leaf_count - 1 + i];
+        if (i >= count) {
+            CHECK(node.vpl_count == 0);
+            CHECK(node.intensity == 0.0f);
+            continue;
+        }
+        const uint32_t light = leaves[i];
+        REQUIRE(light < count);
+        CHECK(!seen[light]);
+        seen[light] = true;
+        CHECK(node.vpl_count == 1);
+        glm::dvec3 lo, hi;
+        double intensity = 0.0;
+        if (light < 13) {
+            const uint32_t t = b.s.emissive_triangles[light];
+            const auto& mat = b.s.materials[b.s.triangle_materials[t]];
+            const glm::dvec3 p0 = b.s.vertices[b.s.indices[3 * t]].position;
+            const glm::dvec3 p1 = b.s.vertices[b.s.indices[3 * t + 1]].position;
+            const glm::dvec3 p2 = b.s.vertices[b.s.indices[3 * t + 2]].position;
+            lo = glm::min(glm::min(p0, p1), p2);
+            hi = glm::max(glm::max(p0, p1), p2);
+            const double area = 0.5 * glm::length(glm::cross(p1 - p0, p2 - p0));
+            const glm::dvec3 e = glm::dvec3(mat.emission());
+            intensity = (e.x + e.y + e.z) * area * std::numbers::pi * (mat.double_sided ? 2.0 : 1.0);
+        } else {
+            lo = hi = glm::dvec3(point.position);
+            intensity = 4.0 * std::numbers::pi * point.intensity * (1.0 + 0.5 + 0.25);
+        }
+        CHECK(node.box_min.x == float(lo.x));
+        CHECK(node.box_min.y == float(lo.y));
+        CHECK(node.box_min.z == float(lo.z));
+        CHECK(node.box_max.x == float(hi.x));
+        CHECK(node.box_max.y == float(hi.y));
+        CHECK(node.box_max.z == float(hi.z));
+        CHECK(node.intensity == doctest::Approx(intensity).epsilon(1e-5));
+    }
+    for (uint32_t n = 0; n + 1 < leaf_count; ++n) {
+        CAPTURE(n);
+        const auto& l = nodes[2 * n + 1];
+        const auto& r = nodes[2 * n + 2];
+        CHECK(nodes[n].vpl_count == l.vpl_count + r.vpl_count);
+        CHECK(nodes[n].intensity == l.intensity + r.intensity);  // float, left first (light_tree_merge)
+        if (nodes[n].vpl_count == 0) continue;
+        CHECK(nodes[n].box_min.x == std::min(l.box_min.x, r.box_min.x));
+        CHECK(nodes[n].box_max.y == std::max(l.box_max.y, r.box_max.y));
+        CHECK(nodes[n].box_max.z == std::max(l.box_max.z, r.box_max.z));
+    }
+}
+
 TEST_CASE("direct light tree: one emitter, 2^k and 2^k + 1 emitters, a cut larger than the tree") {
     const Floor floor = make_floor();
     for (uint32_t count : {1u, 8u, 9u}) {
