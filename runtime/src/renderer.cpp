@@ -181,6 +181,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     tree_options.samples_per_pixel = settings.direct_samples;
     tree_options.frame = settings.frame;
     tree_options.seed = settings.seed;
+    tree_options.interleave = settings.direct_interleave;
     if (tree_direct) stages::validate_direct_light_tree(tree_options);  // before any work
 
     PassList direct_passes("direct light");
@@ -198,6 +199,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     }
     std::optional<stages::RtslcScratch> tree_scratch;
     std::optional<Buffer> tree_counters;
+    std::optional<Image> tree_light, direct_total;
     if (tree_direct) {
         direct_passes.set_tag(stage_tag(FrameStage::direct_tree));
         if (!light_tree_) {
@@ -207,9 +209,21 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         }
         tree_scratch = stages::RtslcScratch::create(context_, w, h, tree_options);
         tree_counters = stages::create_gi_counters(context_, "direct tree counters");
-        stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, light_tree_->buffers(),
-                                             view.position, direct, *tree_counters, tree_options, *tree_scratch);
+        if (tree_options.interleave > 1) {
+            // Interleaved, the tree's light is reconstructed into an image of its own, then added.
+            tree_light.emplace(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "tree light"));
+            direct_total.emplace(
+                Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance total"));
+            stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_,
+                                                             light_tree_->buffers(), view.position, *tree_light,
+                                                             *tree_counters, tree_options, *tree_scratch);
+            stages::add_compose_pass(context_, direct_passes, direct, *tree_light, *direct_total);
+        } else {
+            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, light_tree_->buffers(),
+                                                 view.position, direct, *tree_counters, tree_options, *tree_scratch);
+        }
     }
+    Image& direct_out = direct_total ? *direct_total : direct;
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));  // the indirect image is cleared with it
     direct_passes.add("indirect clear", {Use::transfer_dst(indirect)}, [&indirect](VkCommandBuffer cmd) {
         const VkClearColorValue zero{};
@@ -250,7 +264,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
 
     PassList output_passes("output");
     output_passes.set_tag(stage_tag(FrameStage::compose));
-    stages::add_compose_pass(context_, output_passes, direct, indirect, composed);
+    stages::add_compose_pass(context_, output_passes, direct_out, indirect, composed);
     output_passes.set_tag(stage_tag(FrameStage::tonemap));
     stages::add_tonemap_passes(context_, output_passes, composed, display, stats, settings.exposure);
     output_passes.run(context_);
@@ -258,7 +272,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
 
     out.rgba8 = display.download<uint8_t>();
     out.radiance = rgb_of(composed);
-    out.direct = rgb_of(direct);
+    out.direct = rgb_of(direct_out);
     out.indirect = rgb_of(indirect);
     out.non_finite_pixels = stats.download<uint32_t>(1)[0];
     return out;

@@ -37,7 +37,8 @@ const char* const kRenderUsage =
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
-    "                     [--seed S] [--direct auto|tree|flat] [--direct-spp N] [--frames F]\n"
+    "                     [--seed S] [--direct auto|tree|flat] [--direct-spp N] [--direct-interleave M]\n"
+    "                     [--frames F]\n"
     "                     [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation] [--strict]\n"
@@ -98,6 +99,9 @@ const char* const kRenderUsage =
     "                   are evaluated one by one either way\n"
     "  --direct-spp N   samples per pixel of sampled direct light (default 16): flat: emitter\n"
     "                   samples; tree: cut nodes, one light sample each (at most 64)\n"
+    "  --direct-interleave M   tree: interleaved sampling over M x M sub-blocks of the 8 x 8 cut\n"
+    "                   blocks (default 1: off; M divides 8, M^2 <= --direct-spp), reconstructed\n"
+    "                   from similar neighbours (an approximation, as rtslc's --interleave)\n"
     "  --all-stages     run every stage the method can use, whatever the scene needs, and reuse\n"
     "                   nothing between frames (the planner's baseline)\n"
     "  --no-reuse       place the VPLs and build the trees every frame, even when nothing changed\n"
@@ -233,6 +237,8 @@ int render_or_plan(Args& args, bool plan_only) {
         }
         if (!known) throw UsageError("--direct expects auto, tree or flat, got '" + *text + "'");
     }
+    if (auto text = args.value("--direct-interleave"))
+        settings.direct_interleave = parse_whole_number("--direct-interleave", *text, 8);
     if (settings.direct_sampler == DirectSampler::tree && settings.direct_samples > 64) {
         throw UsageError("--direct-spp " + std::to_string(settings.direct_samples) +
                          ": the tree samples at most 64 cut nodes per pixel");

@@ -15,9 +15,10 @@
 // the cut is one of the direct light of all the tree's lights (tests/lighting checks the mean).
 // Directional lights are not in the tree (no position); direct_light.comp adds them.
 //
-// The first dispatch (slot_first 0) and every later one add to `radiance`, which already holds
-// emission, background and directional light. radiance.a is left as it is. Samples that are not
-// finite are left out and counted (gi_counters.dropped_samples).
+// Without interleaving every dispatch adds to `radiance`, which already holds emission,
+// background and directional light (radiance.a is left as it is); interleaved, `radiance` is the
+// scratch's estimates (see below). Samples that are not finite are left out and counted
+// (gi_counters.dropped_samples).
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
@@ -63,6 +64,7 @@ layout(push_constant) uniform DirectLightTreePush {
     uint triangle_count;  // lights [0, triangle_count) are emitters
     uint slot_first;      // this dispatch samples the cut slots [slot_first, slot_end)
     uint slot_end;
+    uint interleave;      // m: 1 = off; m > 1: the pixel's share of the cut, written for reconstruction
 } push;
 
 // One light's sample at x: the unshadowed estimate before dividing by the light's pmf, and the
@@ -152,8 +154,15 @@ void main() {
     // lights than cut_size): slot s samples cut node j = s mod c, and node j's n_j = cut_size / c
     // (+1 for j < cut_size mod c) samples are each weighted 1 / n_j, so the sum over the cut's
     // nodes stays unbiased; a lone emitter gets cut_size area samples rather than one.
-    uint first = push.slot_first;
-    uint end = max(min(cut_nodes == 0u ? 0u : push.cut_size, push.slot_end), first);
+    //
+    // Interleaved (m > 1, seed 003 sec. 3.4 and eq. 3, as rtslc GI): the pixel samples only its
+    // share of the cut's nodes (rtslc_interleave_slots), one sample each; rtslc_interleave.comp
+    // then rebuilds every pixel's light from its similar sub-block neighbours' shares.
+    bool interleaved = push.interleave > 1u;
+    uvec2 share = interleaved ? rtslc_interleave_slots(uvec2(pixel), push.interleave, push.frame, cut_nodes)
+                              : uvec2(0u, cut_nodes == 0u ? 0u : push.cut_size);
+    uint first = max(share.x, push.slot_first);
+    uint end = max(min(share.y, push.slot_end), first);
 
     uint frame_seed = pcg_hash((push.seed ^ kDirectTreeSalt) ^ pcg_hash(push.frame));
     uint pixel_index = uint(pixel.y) * uint(size.x) + uint(pixel.x);
@@ -170,8 +179,9 @@ void main() {
         }
         Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
         ++traversals;
-        uint j = slot % cut_nodes;
-        float node_samples = float(push.cut_size / cut_nodes + (j < push.cut_size % cut_nodes ? 1u : 0u));
+        uint j = interleaved ? slot : slot % cut_nodes;
+        float node_samples =
+            interleaved ? 1.0 : float(push.cut_size / cut_nodes + (j < push.cut_size % cut_nodes ? 1u : 0u));
         RtslcTraversal t = rtslc_traverse(s, cuts.items[base + j], push.leaf_count, min_distance2, rng);
         levels += t.levels;
         if (t.status == kRtslcDeadBranch) {
@@ -207,6 +217,13 @@ void main() {
         total = next;
     }
     gi_counters_add(dropped, traversals, levels, dead, false, completed);
+    if (interleaved) {
+        // `radiance` is the scratch's estimates: the first dispatch writes, later ones add; .a
+        // counts the dropped samples (rtslc_interleave.comp sums them).
+        vec4 previous = push.slot_first == 0u ? vec4(0.0) : imageLoad(radiance, pixel);
+        imageStore(radiance, pixel, vec4(previous.rgb + total, previous.a + float(dropped)));
+        return;
+    }
     vec4 current = imageLoad(radiance, pixel);
     imageStore(radiance, pixel, vec4(current.rgb + total, current.a));
 }

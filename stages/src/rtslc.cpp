@@ -2,7 +2,6 @@
 
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/rtslc_gi.hpp"
-#include "vplkit/shaders/rtslc_interleave.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "gi_inputs.hpp"
 #include "rtslc_cut_pass.hpp"
@@ -140,28 +139,7 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     }
 
     if (options.interleave > 1) {
-        const auto& interleave_pipeline = device.pipeline<shaders::rtslc_interleave::Pipeline>();
-        passes.add(
-            "rtslc interleave",
-            {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(scratch.cuts),
-             Use::read(scratch.estimates), Use::write(indirect)},
-            [&interleave_pipeline, gbuffer, scratch, indirect, options, similarity_distance](VkCommandBuffer cmd) {
-                shaders::rtslc_interleave::Bindings b;
-                b.gbuffer_position = gbuffer.position.descriptor();
-                b.gbuffer_normal = gbuffer.normal.descriptor();
-                b.cuts = scratch.cuts.descriptor();
-                b.estimates = scratch.estimates.descriptor();
-                b.indirect = indirect.descriptor();
-                shaders::rtslc_interleave::Push push{};
-                push.block_size = options.block_size;
-                push.cut_size = options.samples_per_pixel;
-                push.blocks_x = scratch.blocks_x();
-                push.interleave = options.interleave;
-                push.frame = options.frame;
-                push.similarity_min_cos = options.similarity_min_cos;
-                push.similarity_max_distance = similarity_distance;
-                interleave_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
-            });
+        add_rtslc_interleave_pass(device, passes, gbuffer, scratch, indirect, options, similarity_distance);
     }
 }
 

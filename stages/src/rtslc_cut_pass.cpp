@@ -1,6 +1,7 @@
 #include "rtslc_cut_pass.hpp"
 
 #include "vplkit/shaders/rtslc_cut.hpp"
+#include "vplkit/shaders/rtslc_interleave.hpp"
 
 #include "gi_inputs.hpp"
 
@@ -35,6 +36,32 @@ void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gb
                    push.blocks_y = scratch.blocks_y();
                    push.leaf_count = leaf_count;
                    cut_pipeline.dispatch(cmd, b, push, scratch.block_count());
+               });
+}
+
+void add_rtslc_interleave_pass(Device& device, StepList& passes, const GbufferViews& gbuffer,
+                               const RtslcScratchBuffers& scratch, const ImageView& target, const RtslcOptions& options,
+                               float similarity_distance) {
+    const auto& interleave_pipeline = device.pipeline<shaders::rtslc_interleave::Pipeline>();
+    passes.add("rtslc interleave",
+               {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(scratch.cuts),
+                Use::read(scratch.estimates), Use::write(target)},
+               [&interleave_pipeline, gbuffer, scratch, target, options, similarity_distance](VkCommandBuffer cmd) {
+                   shaders::rtslc_interleave::Bindings b;
+                   b.gbuffer_position = gbuffer.position.descriptor();
+                   b.gbuffer_normal = gbuffer.normal.descriptor();
+                   b.cuts = scratch.cuts.descriptor();
+                   b.estimates = scratch.estimates.descriptor();
+                   b.indirect = target.descriptor();
+                   shaders::rtslc_interleave::Push push{};
+                   push.block_size = options.block_size;
+                   push.cut_size = options.samples_per_pixel;
+                   push.blocks_x = scratch.blocks_x();
+                   push.interleave = options.interleave;
+                   push.frame = options.frame;
+                   push.similarity_min_cos = options.similarity_min_cos;
+                   push.similarity_max_distance = similarity_distance;
+                   interleave_pipeline.dispatch(cmd, b, push, target.width, target.height);
                });
 }
 

@@ -1,6 +1,7 @@
 #pragma once
-// The "rtslc cuts" pass (shaders/gi/rtslc_cut.comp) over any perfect light tree: rtslc GI runs it
-// over the VPLs' tree (rtslc.cpp), direct light over the scene lights' tree
+// The "rtslc cuts" pass (shaders/gi/rtslc_cut.comp) over any perfect light tree, and the "rtslc
+// interleave" reconstruction (shaders/gi/rtslc_interleave.comp) of interleaved estimates: rtslc
+// GI runs them over the VPLs' tree (rtslc.cpp), direct light over the scene lights' tree
 // (direct_light_tree.cpp). Private to the stage sources.
 
 #include "vplkit/stages/bvh_buffers.hpp"
@@ -23,5 +24,12 @@ void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gb
                         const BufferView& light_tree, uint32_t leaf_count, glm::vec3 camera_position,
                         const BufferView& counters, const RtslcOptions& options, uint32_t seed,
                         const RtslcScratchBuffers& scratch);
+
+// Adds the pass: each pixel of `target` gets the rescaled sum of its similar sub-block
+// neighbours' estimates (scratch.estimates, written per pixel over its interleaved share of the
+// cut). `similarity_distance` absolute (world units).
+void add_rtslc_interleave_pass(Device& device, StepList& passes, const GbufferViews& gbuffer,
+                               const RtslcScratchBuffers& scratch, const ImageView& target, const RtslcOptions& options,
+                               float similarity_distance);
 
 }  // namespace vplkit::stages

@@ -66,6 +66,9 @@ struct RenderSettings {
     // (averaged); tree: cut nodes per block, one light sample each (summed), 1..64.
     uint32_t direct_samples = 16;
     DirectSampler direct_sampler = DirectSampler::automatic;
+    // tree: interleaved sampling over m x m sub-blocks of the 8 x 8 cut blocks (1: off; m divides
+    // 8, m^2 <= direct_samples), reconstructed from similar neighbours (an approximation).
+    uint32_t direct_interleave = 1;
     uint32_t seed = 0;  // the same seed gives the same image
     GiMethod method = GiMethod::none;
     VplSource vpl_source = VplSource::automatic;
