@@ -17,6 +17,8 @@ const char* stage_name(FrameStage stage) {
             return "direct light";
         case FrameStage::direct_emissive:
             return "direct emissive";
+        case FrameStage::direct_tree:
+            return "direct tree";
         case FrameStage::vpl_paths:
             return "vpl paths";
         case FrameStage::brsm_vpls:
@@ -71,6 +73,18 @@ std::string FramePlan::describe() const {
     s << (glossy_branch ? "  on    " : "  off   ") << "glossy branch: " << glossy_reason << "\n";
     for (const std::string& note : notes) s << "note: " << note << "\n";
     return s.str();
+}
+
+const char* direct_sampler_name(DirectSampler sampler) {
+    switch (sampler) {
+        case DirectSampler::flat:
+            return "flat";
+        case DirectSampler::tree:
+            return "tree";
+        case DirectSampler::automatic:
+            return "auto";
+    }
+    return "?";
 }
 
 std::vector<GlossyMaterial> glossy_materials(const scene::Scene& scene, float max_roughness) {
@@ -197,13 +211,43 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                        (!needs_light_tree || previous.light_tree) && (!needs_sst || previous.sst);
 
     add(FrameStage::gbuffer, true, "every frame: the surfaces the camera sees");
+    // Direct light: the flat sampler or the light tree, and why.
+    uint32_t directional = 0;
+    for (const scene::Light& light : scene.lights) directional += light.type == scene::LightType::directional ? 1 : 0;
+    const uint32_t positioned = uint32_t(scene.lights.size()) - directional;
+    const uint32_t tree_lights = uint32_t(scene.emissive_triangles.size()) + positioned;
+    const std::string counted = std::to_string(scene.emissive_triangles.size()) + " emissive triangle(s) and " +
+                                std::to_string(positioned) + " point/spot light(s)";
+    std::string sampler_reason;
+    if (tree_lights == 0) {
+        plan.direct_sampler = DirectSampler::flat;
+        sampler_reason = "no emissive triangle, point or spot light: no light tree to build";
+    } else if (settings.direct_sampler == DirectSampler::automatic) {
+        plan.direct_sampler = tree_lights > kDirectTreeMinLights ? DirectSampler::tree : DirectSampler::flat;
+        sampler_reason = counted + (plan.direct_sampler == DirectSampler::tree
+                                        ? ": more than " + std::to_string(kDirectTreeMinLights) +
+                                              ", so one light tree samples them (cost per sample grows with log n, "
+                                              "not n; near lights get the samples)"
+                                        : ": " + std::to_string(kDirectTreeMinLights) +
+                                              " or fewer, so each point light is evaluated exactly and emitters "
+                                              "are drawn by power (--direct tree to sample them through the tree)");
+    } else {
+        plan.direct_sampler = settings.direct_sampler;
+        sampler_reason =
+            std::string("--direct ") + direct_sampler_name(settings.direct_sampler) + " asked for (" + counted + ")";
+    }
+    const bool tree = plan.direct_sampler == DirectSampler::tree;
     add(FrameStage::direct_light, true,
-        punctual ? std::to_string(scene.lights.size()) + " punctual light(s), plus emission and background"
-                 : "no punctual light: emission and background only");
-    add(FrameStage::direct_emissive, emissive || force,
-        emissive ? std::to_string(scene.emissive_triangles.size()) + " emissive triangles"
-        : force  ? "forced on (--all-stages); no emissive triangle"
-                 : "no emissive triangle");
+        tree ? "emission, background and " + std::to_string(directional) +
+                   " directional light(s); the tree samples the rest"
+        : punctual ? std::to_string(scene.lights.size()) + " punctual light(s), plus emission and background"
+                   : "no punctual light: emission and background only");
+    add(FrameStage::direct_emissive, !tree && (emissive || force),
+        tree       ? "the light tree samples the emissive triangles: " + sampler_reason
+        : emissive ? std::to_string(scene.emissive_triangles.size()) + " emissive triangles, flat: " + sampler_reason
+        : force    ? "forced on (--all-stages); no emissive triangle"
+                   : "no emissive triangle");
+    add(FrameStage::direct_tree, tree, tree ? sampler_reason : "flat sampler: " + sampler_reason);
 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
     const bool make_vpls = indirect && lit && !plan.reuse_vpls;

@@ -9,6 +9,9 @@
 #include "vplkit/planner.hpp"
 #include "vplkit/stages/compose.hpp"
 #include "vplkit/camera_view.hpp"
+#include "vplkit/gi_counters_buffer.hpp"
+#include "vplkit/rtslc_scratch.hpp"
+#include "vplkit/stages/direct_light_tree.hpp"
 #include "vplkit/gbuffer_images.hpp"
 #include "vplkit/brsm_buffers.hpp"
 #include "vplkit/shadow_map.hpp"
@@ -35,6 +38,7 @@ Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(conte
     bvh_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu_bvh_ = upload_bvh(context, bvh_);
     lights_ = stages::upload_lights(context, scene.lights);
+    directional_lights_ = stages::upload_lights(context, stages::directional_lights(scene));
     emitters_ = stages::upload_emitters(context, scene);
 }
 
@@ -171,17 +175,55 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         if (s.runs) out.stages_run.push_back(stage_name(s.stage));
     }
 
+    // Direct light through the tree: rtslc's cut options, the block size seed 003 sec. 4 uses.
+    const bool tree_direct = plan.runs(FrameStage::direct_tree);
+    stages::RtslcOptions tree_options;
+    tree_options.samples_per_pixel = settings.direct_samples;
+    tree_options.frame = settings.frame;
+    tree_options.seed = settings.seed;
+    tree_options.interleave = settings.direct_interleave;
+    if (tree_direct) stages::validate_direct_light_tree(tree_options);  // before any work
+
     PassList direct_passes("direct light");
     direct_passes.set_tag(stage_tag(FrameStage::gbuffer));
     stages::add_gbuffer_pass(context_, direct_passes, scene_, view, gbuffer);
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));
-    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_, lights_,
-                                  {view.position, settings.background}, direct);
+    // With the tree, the direct-light pass adds only the directional lights (they have no position).
+    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_,
+                                  tree_direct ? directional_lights_ : lights_, {view.position, settings.background},
+                                  direct);
     if (plan.runs(FrameStage::direct_emissive)) {
         direct_passes.set_tag(stage_tag(FrameStage::direct_emissive));
         stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
-                                         {view.position, settings.emissive_samples, settings.seed}, direct);
+                                         {view.position, settings.direct_samples, settings.seed}, direct);
     }
+    std::optional<stages::RtslcScratch> tree_scratch;
+    std::optional<Buffer> tree_counters;
+    std::optional<Image> tree_light, direct_total;
+    if (tree_direct) {
+        direct_passes.set_tag(stage_tag(FrameStage::direct_tree));
+        if (!light_tree_) {
+            // The lights never change within a renderer: the tree is built once, in its first frame.
+            light_tree_ = stages::GpuLightTree::create(context_, scene_source_, emitters_);
+            light_tree_->add_build_passes(context_, direct_passes);
+        }
+        tree_scratch = stages::RtslcScratch::create(context_, w, h, tree_options);
+        tree_counters = stages::create_gi_counters(context_, "direct tree counters");
+        if (tree_options.interleave > 1) {
+            // Interleaved, the tree's light is reconstructed into an image of its own, then added.
+            tree_light.emplace(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "tree light"));
+            direct_total.emplace(
+                Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance total"));
+            stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_,
+                                                             light_tree_->buffers(), view.position, *tree_light,
+                                                             *tree_counters, tree_options, *tree_scratch);
+            stages::add_compose_pass(context_, direct_passes, direct, *tree_light, *direct_total);
+        } else {
+            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, light_tree_->buffers(),
+                                                 view.position, direct, *tree_counters, tree_options, *tree_scratch);
+        }
+    }
+    Image& direct_out = direct_total ? *direct_total : direct;
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));  // the indirect image is cleared with it
     direct_passes.add("indirect clear", {Use::transfer_dst(indirect)}, [&indirect](VkCommandBuffer cmd) {
         const VkClearColorValue zero{};
@@ -190,6 +232,19 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     });
     direct_passes.run(context_);
     append(out.timings, direct_passes.timings());
+    out.direct_sampler = plan.direct_sampler;
+    if (tree_direct) {
+        out.direct_counts = stages::read_gi_counters(*tree_counters);
+        if (out.direct_counts.cut_short > 0) {
+            throw Error("direct light tree: the driver ended " + std::to_string(out.direct_counts.cut_short) +
+                        " invocations early (a loop iteration limit): the image would be wrong");
+        }
+        if (out.direct_counts.dropped_samples > 0) {
+            out.notes.push_back(std::to_string(out.direct_counts.dropped_samples) + " direct-light samples in " +
+                                std::to_string(out.direct_counts.dropped_pixels) +
+                                " pixels were not finite and were left out");
+        }
+    }
 
     if (settings.vpls_only) {
         const GeneratedVpls& generated = frame_vpls(plan, view, gbuffer, settings, out);
@@ -209,7 +264,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
 
     PassList output_passes("output");
     output_passes.set_tag(stage_tag(FrameStage::compose));
-    stages::add_compose_pass(context_, output_passes, direct, indirect, composed);
+    stages::add_compose_pass(context_, output_passes, direct_out, indirect, composed);
     output_passes.set_tag(stage_tag(FrameStage::tonemap));
     stages::add_tonemap_passes(context_, output_passes, composed, display, stats, settings.exposure);
     output_passes.run(context_);
@@ -217,7 +272,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
 
     out.rgba8 = display.download<uint8_t>();
     out.radiance = rgb_of(composed);
-    out.direct = rgb_of(direct);
+    out.direct = rgb_of(direct_out);
     out.indirect = rgb_of(indirect);
     out.non_finite_pixels = stats.download<uint32_t>(1)[0];
     return out;

@@ -132,7 +132,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
         const glm::vec3 v1 = scene.vertices[scene.indices[3 * t + 1]].position;
         const glm::vec3 v2 = scene.vertices[scene.indices[3 * t + 2]].position;
         const double area = 0.5 * glm::length(glm::cross(glm::dvec3(v1 - v0), glm::dvec3(v2 - v0)));
-        const glm::vec3 radiance = material.emission();
+        const glm::vec3 radiance = triangle_emission(scene, t);  // the emissive texture's mean included
         if (!(area > 0.0) || !material.emits()) {
             continue;
         }

@@ -37,7 +37,9 @@ const char* const kRenderUsage =
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
-    "                     [--seed S] [--emissive-samples N] [--frames F] [--all-stages] [--no-reuse]\n"
+    "                     [--seed S] [--direct auto|tree|flat] [--direct-spp N] [--direct-interleave M]\n"
+    "                     [--frames F]\n"
+    "                     [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation] [--strict]\n"
     "\n"
@@ -93,7 +95,17 @@ const char* const kRenderUsage =
     "  --brdf B         gltf (default): the file's metallic-roughness materials; lambert: every\n"
     "                   material a pure Lambertian of its base colour (for diffuse-only references)\n"
     "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
-    "  --emissive-samples N  area-light samples per pixel for emissive triangles (default 16)\n"
+    "  --direct D       how direct light from emissive triangles, point and spot lights is sampled:\n"
+    "                   tree: one light tree over them all, a cut per 8 x 8 block and a traversal\n"
+    "                   per cut node to one light (stochastic lightcuts); flat: point and spot lights\n"
+    "                   one by one, emitters drawn by power; auto (default): tree when the scene has\n"
+    "                   more than 8 such lights (the plan says which and why). Directional lights\n"
+    "                   are evaluated one by one either way\n"
+    "  --direct-spp N   samples per pixel of sampled direct light (default 16): flat: emitter\n"
+    "                   samples; tree: cut nodes, one light sample each (at most 64)\n"
+    "  --direct-interleave M   tree: interleaved sampling over M x M sub-blocks of the 8 x 8 cut\n"
+    "                   blocks (default 1: off; M divides 8, M^2 <= --direct-spp), reconstructed\n"
+    "                   from similar neighbours (an approximation, as rtslc's --interleave)\n"
     "  --all-stages     run every stage the method can use, whatever the scene needs, and reuse\n"
     "                   nothing between frames (the planner's baseline)\n"
     "  --no-reuse       place the VPLs and build the trees every frame, even when nothing changed\n"
@@ -217,8 +229,24 @@ int render_or_plan(Args& args, bool plan_only) {
     RenderSettings settings;
     if (auto text = args.value("--exposure")) settings.exposure = parse_exposure(*text);
     if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
-    if (auto text = args.value("--emissive-samples"))
-        settings.emissive_samples = parse_whole_number("--emissive-samples", *text, 65536);
+    if (auto text = args.value("--direct-spp"))
+        settings.direct_samples = parse_whole_number("--direct-spp", *text, 65536);
+    if (auto text = args.value("--direct")) {
+        bool known = false;
+        for (DirectSampler d : {DirectSampler::automatic, DirectSampler::tree, DirectSampler::flat}) {
+            if (*text == direct_sampler_name(d)) {
+                settings.direct_sampler = d;
+                known = true;
+            }
+        }
+        if (!known) throw UsageError("--direct expects auto, tree or flat, got '" + *text + "'");
+    }
+    if (auto text = args.value("--direct-interleave"))
+        settings.direct_interleave = parse_whole_number("--direct-interleave", *text, 8);
+    if (settings.direct_sampler == DirectSampler::tree && settings.direct_samples > 64) {
+        throw UsageError("--direct-spp " + std::to_string(settings.direct_samples) +
+                         ": the tree samples at most 64 cut nodes per pixel");
+    }
     if (auto text = args.value("--method")) {
         bool known = false;
         for (GiMethod m : {GiMethod::none, GiMethod::exact, GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid}) {

@@ -27,5 +27,7 @@ extern const char* const kCompareUsage;
 // usage is part of kBenchUsage).
 int run_bench_tree(Args& args);
 int run_bench_gi(Args& args, const std::string& scene);
+// `vplkit bench direct --scene NAME`: the flat and the tree direct-light samplers, RMSE vs time.
+int run_bench_direct(Args& args, const std::string& scene);
 
 }  // namespace vplkit::cli

@@ -2,12 +2,10 @@
 #extension GL_GOOGLE_include_directive : require
 // Real-time stochastic lightcuts, cut selection (seed 003 sec. 3.2-3.3): one invocation per
 // k x k pixel block. A representative pixel is drawn uniformly among the block's covered pixels;
-// starting from the root, the cut node with the largest bound F I / max(d_min^2, eps^2) at that
-// pixel (rtslc_node_bound) is split into its children until the cut holds cut_size nodes or only
-// leaves. Every real child enters the cut, even one of zero weight at the representative pixel:
-// the other pixels of the block see other weights, and leaving its VPLs out of the cut would
-// lose their light there (bias). Bogus children are dropped: they hold no VPL. So the cut always
-// partitions the real VPLs.
+// at that pixel rtslc_select_cut (rtslc_tree_sampling.glsl) splits the cut from the root by the
+// largest bound F I / max(d_min^2, eps^2) until it holds cut_size nodes or only leaves; the cut
+// always partitions the tree's real leaves. The tree's leaves may be VPLs (rtslc GI) or the
+// scene's lights (direct light through the light tree): this pass is the same for both.
 //
 // cuts[block * cut_size + i]: the cut's nodes first, then kRtslcNoNode; a block without covered
 // pixels has an empty cut. representatives[block]: the pixel y * width + x whose bounds chose
@@ -27,7 +25,8 @@
 #include "vplkit/rng.glsl"
 #include "vplkit/vpl.glsl"
 #include "vplkit/vpl_eval.glsl"
-#include "vplkit/rtslc.glsl"
+#define VPLKIT_LIGHT_TREE_BINDING 6
+#include "vplkit/rtslc_tree_sampling.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -35,7 +34,6 @@ layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
 layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
-layout(std430, set = 0, binding = 6) readonly buffer LightTreeBuffer { LightTreeNode items[]; } light_tree;
 layout(std430, set = 0, binding = 7) writeonly buffer RtslcCutBuffer { uint items[]; } cuts;
 layout(std430, set = 0, binding = 9) writeonly buffer RtslcRepresentativeBuffer { uint items[]; } representatives;
 
@@ -120,54 +118,8 @@ void main() {
     float min_distance2 = min_distance * min_distance;
 
     uint cut[kRtslcMaxCutSize];
-    float bound[kRtslcMaxCutSize];
-    uint cut_nodes = 1u;
-    cut[0] = 0u;  // the root: real, VPLs exist (VplTrees has at least one)
-    bound[0] = rtslc_node_bound(s, light_tree.items[0], min_distance2);
-    uint first_leaf = push.leaf_count - 1u;
-    uint target = min(push.cut_size, kRtslcMaxCutSize);
-    // A split adds a node (at most n - 1 times) or, where a node has one real child, replaces it
-    // by that child: only nodes on the path to the last real leaf have a bogus child, one per
-    // level, so at most 31 such splits. 128 passes cannot run out before the cut is done.
-    bool selected = false;
-    for (uint pass = 0u; pass < 128u; ++pass) {
-        if (cut_nodes >= target) {
-            selected = true;
-            break;
-        }
-        uint best = kRtslcNoNode;
-        for (uint i = 0u; i < cut_nodes; ++i) {
-            if (cut[i] >= first_leaf) {
-                continue;  // a leaf cannot be split
-            }
-            if (best == kRtslcNoNode || bound[i] > bound[best] || (bound[i] == bound[best] && cut[i] < cut[best])) {
-                best = i;
-            }
-        }
-        if (best == kRtslcNoNode) {
-            selected = true;  // only leaves left
-            break;
-        }
-        uint left = light_tree_left_child(cut[best]);
-        uint right = light_tree_right_child(cut[best]);
-        LightTreeNode left_node = light_tree.items[left];
-        LightTreeNode right_node = light_tree.items[right];
-        // A real node's left child is real (the real leaves come first); written for either.
-        bool left_real = !light_tree_is_bogus(left_node);
-        bool right_real = !light_tree_is_bogus(right_node);
-        if (left_real) {
-            cut[best] = left;
-            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
-            if (right_real) {
-                cut[cut_nodes] = right;
-                bound[cut_nodes] = rtslc_node_bound(s, right_node, min_distance2);
-                ++cut_nodes;
-            }
-        } else {
-            cut[best] = right;
-            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
-        }
-    }
+    bool selected;
+    uint cut_nodes = rtslc_select_cut(s, push.leaf_count, push.cut_size, min_distance2, cut, selected);
     completed = completed && selected;
     for (uint i = 0u; i < push.cut_size; ++i) {
         cuts.items[out_base + i] = i < cut_nodes ? cut[i] : kRtslcNoNode;

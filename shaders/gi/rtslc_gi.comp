@@ -31,8 +31,8 @@
 #include "vplkit/rng.glsl"
 #include "vplkit/vpl.glsl"
 #include "vplkit/vpl_eval.glsl"
-#include "vplkit/rtslc.glsl"
-#include "vplkit/gi_lobe.glsl"
+#define VPLKIT_LIGHT_TREE_BINDING 6
+#include "vplkit/rtslc_tree_sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -44,7 +44,6 @@ layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
 layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
-layout(std430, set = 0, binding = 6) readonly buffer LightTreeBuffer { LightTreeNode items[]; } light_tree;
 layout(std430, set = 0, binding = 7) readonly buffer LeafBuffer { Vpl items[]; } leaves;
 layout(std430, set = 0, binding = 8) readonly buffer RtslcCutBuffer { uint items[]; } cuts;
 layout(set = 0, binding = 10, rgba32f) uniform image2D radiance;
@@ -61,9 +60,6 @@ layout(push_constant) uniform RtslcGiPush {
     uint slot_first;  // this dispatch samples the slots [slot_first, slot_end) of the pixel's share
     uint slot_end;
 } push;
-
-// The tree has at most 2^31 leaves: a traversal descends at most 31 levels.
-const uint kRtslcMaxLevels = 31u;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -102,7 +98,6 @@ void main() {
     // dispatches, and never the cut shader's stream (that one is salted).
     uint frame_seed = pcg_hash(push.seed ^ pcg_hash(push.frame));
     uint pixel_index = uint(pixel.y) * uint(size.x) + uint(pixel.x);
-    uint first_leaf = push.leaf_count - 1u;
     uint dropped = 0u, traversals = 0u, levels = 0u, dead = 0u;
     // lavapipe (llvmpipe) ends every loop of an invocation, silently, once its loops together
     // have run 65535 iterations (exact_gi.comp). The slot loop runs one sentinel iteration past
@@ -119,53 +114,17 @@ void main() {
         Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
         ++traversals;
         GiLobe lobe = gi_choose_lobe(g.normal, s.wo, g.albedo, g.roughness, g.metallic, rng);
-        bool glossy = lobe.kind == kBrdfLobeGlossy;
-        GiGlossyPath glossy_path = GiGlossyPath(true, 1.0, 1.0);
-        if (glossy) {
-            glossy_path = gi_glossy_path_start(rng);  // gi_lobe.glsl: the glossy lobe's two-strategy mixture
-        }
-        float path_probability = lobe.probability;
-        bool dead_branch = false;
-        bool at_leaf = false;
-        for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
-            if (node >= first_leaf) {
-                at_leaf = true;
-                break;
-            }
-            uint left = light_tree_left_child(node);
-            LightTreeNode node_left = light_tree.items[left], node_right = light_tree.items[left + 1u];
-            RtslcChildProbability choice = rtslc_child_probability(s, node_left, node_right, min_distance2, lobe.kind);
-            RtslcChildProbability at_mean = choice;
-            if (glossy) {
-                at_mean = rtslc_child_probability(s, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
-            }
-            bool by_reflection = !glossy || glossy_path.by_reflection;
-            // seed 003 sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly
-            // 0 then: every VPL below has zero weight, so none of them could light this pixel.
-            if (by_reflection ? choice.dead : at_mean.dead) {
-                dead_branch = true;
-                break;
-            }
-            bool go_left = rtslc_choose_left(by_reflection ? choice.left : at_mean.left, rng_next_float(rng));
-            if (glossy) {
-                gi_glossy_path_step(glossy_path, choice.dead ? -1.0 : choice.left, at_mean.dead ? -1.0 : at_mean.left,
-                                    go_left);
-            } else {
-                path_probability *= rtslc_choice_probability(choice.left, go_left);
-            }
-            node = go_left ? left : left + 1u;
-            ++levels;
-        }
-        if (dead_branch) {
+        RtslcTraversal t = rtslc_traverse(s, node, push.leaf_count, min_distance2, lobe, rng);
+        levels += t.levels;
+        if (t.status == kRtslcDeadBranch) {
             ++dead;
             continue;
         }
-        if (!at_leaf) {
+        if (t.status != kRtslcReachedLeaf) {
             break;  // cut short inside the traversal: `completed` stays false
         }
-        if (glossy) {
-            path_probability = lobe.probability * gi_glossy_path_probability(glossy_path);
-        }
+        float path_probability = t.path_probability;
+        node = t.node;
         Vpl vpl = leaves.items[light_tree_node_leaf(push.leaf_count, node)];
         vec3 c = vpl_contribution_lobe(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness,
                                        g.metallic, vpl, min_distance, lobe.kind);

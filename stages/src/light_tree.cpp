@@ -91,38 +91,18 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
     return dispatches;
 }
 
-void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
-                           uint32_t count, const LightTreeOptions& options) {
+void add_light_tree_level_passes(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
+                                 const LightTreeOptions& options) {
     check(device, count, options);
     const uint32_t leaf_count = light_tree_leaf_count(count);
-    const VkDeviceSize leaf_bytes = VkDeviceSize(leaf_count) * sizeof(shaders::Vpl);
     const VkDeviceSize node_bytes = VkDeviceSize(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
-    if (leaves.size < leaf_bytes) {
-        throw Error("light tree: buffer '" + leaves.name + "' holds fewer than the " + std::to_string(leaf_count) +
-                    " leaves of " + std::to_string(count) + " VPLs");
-    }
     if (nodes.size < node_bytes) {
         throw Error("light tree: buffer '" + nodes.name + "' holds fewer than the " +
-                    std::to_string(light_tree_node_count(count)) + " nodes of " + std::to_string(count) + " VPLs");
+                    std::to_string(light_tree_node_count(count)) + " nodes of " + std::to_string(count) + " lights");
     }
-
-    shaders::light_tree_leaves::Spec leaves_spec;
-    leaves_spec.local_size_x = options.workgroup_size;
     shaders::light_tree_levels::Spec levels_spec;
     levels_spec.local_size_x = options.workgroup_size;
-    const auto& leaves_pipeline = device.pipeline<shaders::light_tree_leaves::Pipeline>(leaves_spec);
     const auto& levels_pipeline = device.pipeline<shaders::light_tree_levels::Pipeline>(levels_spec);
-
-    shaders::light_tree_leaves::Bindings leaf_bindings;
-    leaf_bindings.leaves = leaves.descriptor(0, leaf_bytes);
-    leaf_bindings.nodes = nodes.descriptor(0, node_bytes);
-    passes.add("light tree leaves", binding_uses<shaders::light_tree_leaves::Module>(leaf_bindings),
-               [&leaves_pipeline, bindings = leaf_bindings, count, leaf_count](VkCommandBuffer cmd) {
-                   shaders::light_tree_leaves::Push push{};
-                   push.count = count;
-                   push.leaf_count = leaf_count;
-                   leaves_pipeline.dispatch(cmd, bindings, push, leaf_count);
-               });
     if (leaf_count == 1) {
         return;  // the root is the only leaf
     }
@@ -145,6 +125,38 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
                        levels_pipeline.dispatch(cmd, bindings, push, group_threads(source_level, levels));
                    });
                });
+}
+
+void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
+                           uint32_t count, const LightTreeOptions& options) {
+    check(device, count, options);
+    const uint32_t leaf_count = light_tree_leaf_count(count);
+    const VkDeviceSize leaf_bytes = VkDeviceSize(leaf_count) * sizeof(shaders::Vpl);
+    const VkDeviceSize node_bytes = VkDeviceSize(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
+    if (leaves.size < leaf_bytes) {
+        throw Error("light tree: buffer '" + leaves.name + "' holds fewer than the " + std::to_string(leaf_count) +
+                    " leaves of " + std::to_string(count) + " VPLs");
+    }
+    if (nodes.size < node_bytes) {
+        throw Error("light tree: buffer '" + nodes.name + "' holds fewer than the " +
+                    std::to_string(light_tree_node_count(count)) + " nodes of " + std::to_string(count) + " VPLs");
+    }
+
+    shaders::light_tree_leaves::Spec leaves_spec;
+    leaves_spec.local_size_x = options.workgroup_size;
+    const auto& leaves_pipeline = device.pipeline<shaders::light_tree_leaves::Pipeline>(leaves_spec);
+
+    shaders::light_tree_leaves::Bindings leaf_bindings;
+    leaf_bindings.leaves = leaves.descriptor(0, leaf_bytes);
+    leaf_bindings.nodes = nodes.descriptor(0, node_bytes);
+    passes.add("light tree leaves", binding_uses<shaders::light_tree_leaves::Module>(leaf_bindings),
+               [&leaves_pipeline, bindings = leaf_bindings, count, leaf_count](VkCommandBuffer cmd) {
+                   shaders::light_tree_leaves::Push push{};
+                   push.count = count;
+                   push.leaf_count = leaf_count;
+                   leaves_pipeline.dispatch(cmd, bindings, push, leaf_count);
+               });
+    add_light_tree_level_passes(device, passes, nodes, count, options);
 }
 
 }  // namespace vplkit::stages

@@ -2,11 +2,10 @@
 #include "vplkit/stages/glossy_lobe.hpp"
 
 #include "vplkit/error.hpp"
-#include "vplkit/shaders/rtslc_cut.hpp"
 #include "vplkit/shaders/rtslc_gi.hpp"
-#include "vplkit/shaders/rtslc_interleave.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "gi_inputs.hpp"
+#include "rtslc_cut_pass.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -103,30 +102,8 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     add_gi_counters_clear(passes, counters, "gi counters clear");
 
-    const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>();
-    passes.add("rtslc cuts",
-               gbuffer_bvh_uses(gbuffer, bvh,
-                                {Use::read(trees.light_tree), Use::write(scratch.cuts),
-                                 Use::write(scratch.representatives), Use::read_write(counters)}),
-               [&cut_pipeline, gbuffer, bvh, trees, scratch, counters, camera, options](VkCommandBuffer cmd) {
-                   shaders::rtslc_cut::Bindings b;
-                   bind_bvh(b, bvh);
-                   bind_gbuffer(b, gbuffer);
-                   b.light_tree = trees.light_tree.descriptor();
-                   b.cuts = scratch.cuts.descriptor();
-                   b.representatives = scratch.representatives.descriptor();
-                   b.gi_counters = counters.descriptor();
-                   shaders::rtslc_cut::Push push{};
-                   push.camera_position = camera;
-                   push.seed = options.seed;
-                   push.frame = options.frame;
-                   push.block_size = options.block_size;
-                   push.cut_size = options.samples_per_pixel;
-                   push.blocks_x = scratch.blocks_x();
-                   push.blocks_y = scratch.blocks_y();
-                   push.leaf_count = trees.leaf_count;
-                   cut_pipeline.dispatch(cmd, b, push, scratch.block_count());
-               });
+    add_rtslc_cut_pass(device, passes, gbuffer, bvh, trees.light_tree, trees.leaf_count, camera_position, counters,
+                       options, options.seed, scratch);
 
     shaders::rtslc_gi::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
@@ -165,28 +142,7 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     }
 
     if (options.interleave > 1) {
-        const auto& interleave_pipeline = device.pipeline<shaders::rtslc_interleave::Pipeline>();
-        passes.add(
-            "rtslc interleave",
-            {Use::read(gbuffer.position), Use::read(gbuffer.normal), Use::read(scratch.cuts),
-             Use::read(scratch.estimates), Use::write(indirect)},
-            [&interleave_pipeline, gbuffer, scratch, indirect, options, similarity_distance](VkCommandBuffer cmd) {
-                shaders::rtslc_interleave::Bindings b;
-                b.gbuffer_position = gbuffer.position.descriptor();
-                b.gbuffer_normal = gbuffer.normal.descriptor();
-                b.cuts = scratch.cuts.descriptor();
-                b.estimates = scratch.estimates.descriptor();
-                b.indirect = indirect.descriptor();
-                shaders::rtslc_interleave::Push push{};
-                push.block_size = options.block_size;
-                push.cut_size = options.samples_per_pixel;
-                push.blocks_x = scratch.blocks_x();
-                push.interleave = options.interleave;
-                push.frame = options.frame;
-                push.similarity_min_cos = options.similarity_min_cos;
-                push.similarity_max_distance = similarity_distance;
-                interleave_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
-            });
+        add_rtslc_interleave_pass(device, passes, gbuffer, scratch, indirect, options, similarity_distance);
     }
 }
 

@@ -131,7 +131,7 @@ vplkit::RenderSettings one_bounce(vplkit::VplSource source, uint32_t width, uint
     settings.vpl_paths = vpls;
     settings.brsm.vpl_count = vpls;
     settings.rsm_resolution = 128;
-    settings.emissive_samples = 4;
+    settings.direct_samples = 4;
     settings.block_size = 8;
     return settings;
 }
@@ -185,7 +185,7 @@ TEST_CASE("energy: half-resolution GI keeps full resolution's light (exact, 128 
     for (const auto& scene : scenes) {
         vplkit::Renderer renderer(vplkit::test::context(), scene);
         auto settings = one_bounce(vplkit::VplSource::ir, 128, 128, 1024);
-        settings.emissive_samples = 1;
+        settings.direct_samples = 1;
         settings.method = vplkit::GiMethod::exact;
         const double full = total(renderer.render(scene.camera(), settings).indirect);
         settings.half_resolution_gi = true;

@@ -217,7 +217,7 @@ TEST_CASE("direct render: an emissive quad without an emissive texture shows its
     vplkit::RenderSettings settings;
     settings.width = 64;
     settings.height = 64;
-    settings.emissive_samples = 4;
+    settings.direct_samples = 4;
     const auto image = renderer.render(scene.camera(), settings);
     CHECK(image.non_finite_pixels == 0);
     // Some pixel sees the quad itself: its radiance is the material's emission (factor x strength;
@@ -389,7 +389,7 @@ vplkit::RenderSettings sampled_settings(vplkit::GiMethod method, uint32_t width 
     settings.vpl_bounces = 2;
     settings.samples_per_pixel = 8;
     settings.block_size = 8;
-    settings.emissive_samples = 1;  // the scene has none
+    settings.direct_samples = 1;  // the scene has none
     return settings;
 }
 

@@ -64,8 +64,8 @@ TEST_CASE("the repository's set-ups file parses and names the standard set-ups")
     const Setups setups = load_setups(setups_file());
     CHECK(setups.default_name == "cornell");
     CHECK(setups.default_setup().name == "cornell");
-    for (const char* name : {"cornell", "cornell-emissive", "cornell-shared", "sponza-sun", "sponza-lite-sun",
-                             "breakfast-sun", "glossy"}) {
+    for (const char* name : {"cornell", "cornell-emissive", "many-lights", "cornell-shared", "sponza-sun",
+                             "sponza-lite-sun", "breakfast-sun", "glossy"}) {
         INFO(name);
         const Setup& setup = setups.find(name);
         CHECK(setup.scene.is_absolute());

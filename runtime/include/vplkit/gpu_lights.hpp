@@ -7,9 +7,13 @@
 #include "vplkit/scene_lights.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
+#include "vplkit/shaders/types.hpp"
+
+#include <glm/vec3.hpp>
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 namespace vplkit {
 class Context;
@@ -39,5 +43,23 @@ struct GpuEmitters {
     operator EmitterBuffers() const { return {triangles, count}; }
 };
 GpuEmitters upload_emitters(Context& context, const scene::Scene& scene);
+
+// The radiance emissive triangle t emits, constant over the triangle: the material's emissive
+// factor x strength, times the emissive texture's mean over the triangle where it has one (64
+// nearest-texel reads at the centroids of an 8 x 8 subdivision in UV space, sRGB decoded). The
+// G-buffer shows the texture itself; light leaving the triangle (direct light, the light tree's
+// power, light paths) uses this mean: its power is exact to the quadrature, its light's spatial
+// variation within one triangle is not kept.
+glm::vec3 triangle_emission(const scene::Scene& scene, uint32_t t);
+
+// One emissive triangle as upload_emitters uploads it (cdf unset), with its power.
+struct EmitterTriangle {
+    shaders::EmissiveTriangle triangle{};
+    glm::dvec3 power{0.0};         // RGB watts: radiance x area x pi x (2 when double-sided)
+    double luminance_power = 0.0;  // Rec. 709 luminance of `power`: the flat sampler's weight
+};
+// The scene's emissive triangles that emit (luminance power > 0 and finite), in
+// scene.emissive_triangles order: the entries of upload_emitters' buffer, one for one.
+std::vector<EmitterTriangle> emitter_triangles(const scene::Scene& scene);
 
 }  // namespace vplkit::stages

@@ -21,7 +21,8 @@ struct Scene;
 enum class FrameStage {
     gbuffer,          // raster pass: position, normals, material, emission
     direct_light,     // emission, background, punctual lights with shadow rays
-    direct_emissive,  // area-light sampling of emissive triangles
+    direct_emissive,  // area-light sampling of emissive triangles (the flat sampler)
+    direct_tree,      // the light tree over emitters, point and spot lights, and sampling through it
     vpl_paths,        // instant radiosity: light paths through the BVH
     brsm_vpls,        // reflective shadow maps and BRSM placement, light by light
     vpl_sort,         // keys, sort, leaves in sorted order
@@ -64,13 +65,14 @@ struct ReusableWork {
 };
 
 struct FramePlan {
-    std::vector<PlannedStage> stages;      // every stage, in frame order
-    VplSource vpl_source = VplSource::ir;  // the source chosen (VplSource::automatic resolved)
-    bool reuse_vpls = false;               // the previous frame's VPLs serve this frame
-    bool reuse_trees = false;              // and its trees
-    std::string vpl_key;                   // this frame's VPL set
-    std::string tree_key;                  // this frame's tree settings
-    std::vector<std::string> notes;        // e.g. "the scene has no light: the image would be black"
+    std::vector<PlannedStage> stages;                    // every stage, in frame order
+    VplSource vpl_source = VplSource::ir;                // the source chosen (VplSource::automatic resolved)
+    DirectSampler direct_sampler = DirectSampler::flat;  // the sampler chosen (automatic resolved)
+    bool reuse_vpls = false;                             // the previous frame's VPLs serve this frame
+    bool reuse_trees = false;                            // and its trees
+    std::string vpl_key;                                 // this frame's VPL set
+    std::string tree_key;                                // this frame's tree settings
+    std::vector<std::string> notes;                      // e.g. "the scene has no light: the image would be black"
     // The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp): compiled in or out,
     // and why (the materials that turned it on).
     bool glossy_branch = false;

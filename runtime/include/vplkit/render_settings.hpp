@@ -27,6 +27,22 @@ enum class GiMethod {
 // "direct", "exact", "sst", "rtslc", "hybrid".
 const char* gi_method_name(GiMethod method);
 
+// How direct light from emissive triangles, point and spot lights is sampled (directional lights
+// are evaluated one by one either way).
+enum class DirectSampler {
+    flat,       // point and spot lights one by one, emissive triangles from one power CDF
+    tree,       // one light tree over all of them, stochastic lightcuts (seed 003; direct_light_tree.hpp)
+    automatic,  // the planner's choice: the tree above kDirectTreeMinLights such lights
+};
+
+// "flat", "tree", "auto".
+const char* direct_sampler_name(DirectSampler sampler);
+
+// The planner samples direct light through the tree when the scene has more emissive triangles,
+// point and spot lights together than this ("more than a handful", issue 15): with a few, the
+// flat sampler evaluates each punctual light exactly and has few emitters to choose from.
+inline constexpr uint32_t kDirectTreeMinLights = 8;
+
 // Where the VPLs come from.
 enum class VplSource {
     ir,         // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
@@ -49,10 +65,16 @@ inline constexpr float kSigmaMaxSceneFraction = 0.012f;
 struct RenderSettings {
     uint32_t width = 640;
     uint32_t height = 360;
-    float exposure = 1.0f;           // linear scale before the tone curve
-    glm::vec3 background{0.0f};      // radiance where no surface was drawn
-    uint32_t emissive_samples = 16;  // area-light samples per pixel for emissive triangles
-    uint32_t seed = 0;               // the same seed gives the same image
+    float exposure = 1.0f;       // linear scale before the tone curve
+    glm::vec3 background{0.0f};  // radiance where no surface was drawn
+    // Samples per pixel of sampled direct light. flat: area samples of the emissive triangles
+    // (averaged); tree: cut nodes per block, one light sample each (summed), 1..64.
+    uint32_t direct_samples = 16;
+    DirectSampler direct_sampler = DirectSampler::automatic;
+    // tree: interleaved sampling over m x m sub-blocks of the 8 x 8 cut blocks (1: off; m divides
+    // 8, m^2 <= direct_samples), reconstructed from similar neighbours (an approximation).
+    uint32_t direct_interleave = 1;
+    uint32_t seed = 0;  // the same seed gives the same image
     GiMethod method = GiMethod::none;
     VplSource vpl_source = VplSource::automatic;
     uint32_t vpl_paths = 4096;  // ir: light paths traced for VPLs

@@ -5,6 +5,7 @@
 // built once, at construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
+#include "vplkit/gpu_light_tree.hpp"
 #include "vplkit/gpu_lights.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
@@ -43,21 +44,23 @@ struct VplPoint {
 struct RenderedImage {
     uint32_t width = 0;
     uint32_t height = 0;
-    std::vector<uint8_t> rgba8;              // tonemapped sRGB, rows top to bottom
-    std::vector<float> radiance;             // linear RGB, 3 floats per pixel, rows top to bottom: direct + indirect
-    std::vector<float> direct;               // the direct part alone (same layout)
-    std::vector<float> indirect;             // the indirect part alone (zero with GiMethod::none)
-    uint32_t vpl_count = 0;                  // VPLs the indirect light came from
-    std::vector<VplPoint> vpls;              // with vpls_only: the VPLs
-    std::vector<float> gbuffer_position;     // with vpls_only: xyz + covered (1/0), 4 floats per pixel
-    std::vector<std::string> notes;          // what a user should know about this frame (e.g. a light without VPLs)
-    uint32_t dropped_pixels = 0;             // pixels where a non-finite VPL contribution was left out
-    std::vector<PassTiming> timings;         // GPU time per pass
-    double exact_gi_wall_ms = 0.0;           // GiMethod::exact: the gather's host wall clock (ExactGiResult::wall_ms)
-    stages::GiCounts gi_counts;              // sst, rtslc, hybrid: traversals, levels, dropped samples, mock cuts
-    stages::UpsampleCounts upsample_counts;  // half_resolution_gi: pixels no similar sample reached
-    float sst_sigma_max = 0.0f;              // sst, hybrid: the sigma_max the tree was built with (world units)
-    uint32_t gi_width = 0;                   // the size indirect light was computed at
+    std::vector<uint8_t> rgba8;           // tonemapped sRGB, rows top to bottom
+    std::vector<float> radiance;          // linear RGB, 3 floats per pixel, rows top to bottom: direct + indirect
+    std::vector<float> direct;            // the direct part alone (same layout)
+    std::vector<float> indirect;          // the indirect part alone (zero with GiMethod::none)
+    uint32_t vpl_count = 0;               // VPLs the indirect light came from
+    std::vector<VplPoint> vpls;           // with vpls_only: the VPLs
+    std::vector<float> gbuffer_position;  // with vpls_only: xyz + covered (1/0), 4 floats per pixel
+    std::vector<std::string> notes;       // what a user should know about this frame (e.g. a light without VPLs)
+    uint32_t dropped_pixels = 0;          // pixels where a non-finite VPL contribution was left out
+    std::vector<PassTiming> timings;      // GPU time per pass
+    double exact_gi_wall_ms = 0.0;        // GiMethod::exact: the gather's host wall clock (ExactGiResult::wall_ms)
+    stages::GiCounts gi_counts;           // sst, rtslc, hybrid: traversals, levels, dropped samples, mock cuts
+    DirectSampler direct_sampler = DirectSampler::flat;  // how direct light was sampled (the plan's choice)
+    stages::GiCounts direct_counts;                      // the tree sampler's traversals, levels, dropped samples
+    stages::UpsampleCounts upsample_counts;              // half_resolution_gi: pixels no similar sample reached
+    float sst_sigma_max = 0.0f;  // sst, hybrid: the sigma_max the tree was built with (world units)
+    uint32_t gi_width = 0;       // the size indirect light was computed at
     uint32_t gi_height = 0;
     std::string plan_summary;              // the frame's plan in one line (FramePlan::summary, planner.hpp)
     std::vector<std::string> stages_run;   // the stages the plan ran (stage_name), in order
@@ -82,6 +85,8 @@ public:
     const Bvh& bvh() const { return bvh_; }
     uint32_t light_count() const { return lights_.count; }
     uint32_t emitter_count() const { return emitters_.count; }
+    // The direct light tree's lights (0 until a frame sampled direct light through it).
+    uint32_t light_tree_count() const { return light_tree_ ? light_tree_->count() : 0; }
 
 private:
     struct GeneratedVpls {
@@ -120,7 +125,9 @@ private:
     GpuBvh gpu_bvh_;
     stages::GpuLights lights_;
     stages::GpuEmitters emitters_;
-    const scene::Scene& scene_source_;  // for the VPL sources, uploaded on first use
+    stages::GpuLights directional_lights_;            // the direct-light pass's lights when the tree samples the rest
+    std::optional<stages::GpuLightTree> light_tree_;  // over emitters, point and spot lights; built on first use
+    const scene::Scene& scene_source_;                // for the VPL sources, uploaded on first use
     double bvh_build_ms_ = 0.0;
 };
 

@@ -3,9 +3,9 @@
 
 // Emissive triangles as area lights. Each emits radiance `radiance` from its front side (the
 // side its counter-clockwise winding faces), and from its back too when double-sided (glTF's
-// doubleSided), uniformly: glTF's emissive factor x strength (the emissive texture is not
-// sampled here: its mean would be needed for power, and the kit's scenes light with constant
-// emitters).
+// doubleSided), uniformly: glTF's emissive factor x strength x the emissive texture's mean over
+// the triangle (vplkit/gpu_lights.hpp: triangle_emission; the texture's variation within a
+// triangle is not kept).
 struct EmissiveTriangle {
     vec3 v0;
     float area;

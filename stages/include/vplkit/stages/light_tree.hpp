@@ -57,4 +57,11 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels);
 void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
                            uint32_t count, const LightTreeOptions& options = {});
 
+// Adds only the pass "light tree levels" (nothing for one leaf): the internal levels over a leaf
+// level someone else wrote into `nodes` (light_tree_node_count(count) nodes; the leaves at
+// leaf_count - 1 + i). add_light_tree_passes is the leaves pass followed by this one; the tree over
+// a scene's lights (scene_light_tree.hpp) writes its own leaves. Throws as add_light_tree_passes.
+void add_light_tree_level_passes(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
+                                 const LightTreeOptions& options = {});
+
 }  // namespace vplkit::stages

@@ -1,0 +1,162 @@
+#ifndef VPLKIT_RTSLC_TREE_SAMPLING_GLSL
+#define VPLKIT_RTSLC_TREE_SAMPLING_GLSL
+
+// Real-time stochastic lightcuts over one perfect light tree (seed 003 sec. 3.2-3.3): the cut
+// selection at a block's representative pixel and the traversal from a cut node to a leaf. What
+// the leaves are does not matter here: rtslc GI's trees hold VPLs (gi/rtslc_cut.comp,
+// gi/rtslc_gi.comp), direct light's tree the scene's lights (lighting/direct_light_tree.comp);
+// both select and traverse with these two functions, so they are one code path.
+//
+// Including it: define the set-0 binding of the light tree (LightTreeNode[]) first,
+//     #define VPLKIT_LIGHT_TREE_BINDING 6
+// and include vplkit/rng.glsl before (the traversal draws from an Rng).
+
+#if !defined(VPLKIT_LIGHT_TREE_BINDING)
+#error "define VPLKIT_LIGHT_TREE_BINDING before including vplkit/rtslc_tree_sampling.glsl"
+#endif
+
+#include "vplkit/brdf.glsl"
+#include "vplkit/gi_bounds.glsl"
+#include "vplkit/light_tree.glsl"
+#include "vplkit/rtslc.glsl"
+#include "vplkit/gi_lobe.glsl"
+
+layout(std430, set = 0, binding = VPLKIT_LIGHT_TREE_BINDING) readonly buffer LightTreeBuffer {
+    LightTreeNode items[];
+} light_tree;
+
+// The tree has at most 2^31 leaves: a traversal descends at most 31 levels.
+const uint kRtslcMaxLevels = 31u;
+
+// Selects the cut of at most min(cut_size, kRtslcMaxCutSize) nodes at shading point s: starting
+// from the root, the cut node with the largest bound F I / max(d_min^2, eps^2) (rtslc_node_bound)
+// is split into its children until the cut is full or holds only leaves. Every real child enters
+// the cut, even one of zero weight at s: other pixels of the block see other weights, and
+// leaving its lights out would lose their light there (bias). Bogus children are dropped: they
+// hold no light. So the cut always partitions the real leaves. Ties between bounds go to the
+// smaller node index, so the cut is a function of the tree and s alone. The tree must hold at
+// least one real leaf. Returns the number of nodes in `cut`; `selected` is false when the loop
+// ran out before the cut was done (lavapipe's loop limit: the caller counts it).
+uint rtslc_select_cut(RtslcShading s, uint leaf_count, uint cut_size, float min_distance2,
+                      out uint cut[kRtslcMaxCutSize], out bool selected) {
+    float bound[kRtslcMaxCutSize];
+    uint cut_nodes = 1u;
+    cut[0] = 0u;  // the root: real, the tree has a light
+    bound[0] = rtslc_node_bound(s, light_tree.items[0], min_distance2);
+    uint first_leaf = leaf_count - 1u;
+    uint target = min(cut_size, kRtslcMaxCutSize);
+    // A split adds a node (at most n - 1 times) or, where a node has one real child, replaces it
+    // by that child: only nodes on the path to the last real leaf have a bogus child, one per
+    // level, so at most 31 such splits. 128 passes cannot run out before the cut is done.
+    selected = false;
+    for (uint pass = 0u; pass < 128u; ++pass) {
+        if (cut_nodes >= target) {
+            selected = true;
+            break;
+        }
+        uint best = kRtslcNoNode;
+        for (uint i = 0u; i < cut_nodes; ++i) {
+            if (cut[i] >= first_leaf) {
+                continue;  // a leaf cannot be split
+            }
+            if (best == kRtslcNoNode || bound[i] > bound[best] || (bound[i] == bound[best] && cut[i] < cut[best])) {
+                best = i;
+            }
+        }
+        if (best == kRtslcNoNode) {
+            selected = true;  // only leaves left
+            break;
+        }
+        uint left = light_tree_left_child(cut[best]);
+        uint right = light_tree_right_child(cut[best]);
+        LightTreeNode left_node = light_tree.items[left];
+        LightTreeNode right_node = light_tree.items[right];
+        // A real node's left child is real (the real leaves come first); written for either.
+        bool left_real = !light_tree_is_bogus(left_node);
+        bool right_real = !light_tree_is_bogus(right_node);
+        if (left_real) {
+            cut[best] = left;
+            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
+            if (right_real) {
+                cut[cut_nodes] = right;
+                bound[cut_nodes] = rtslc_node_bound(s, right_node, min_distance2);
+                ++cut_nodes;
+            }
+        } else {
+            cut[best] = right;
+            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
+        }
+    }
+    return cut_nodes;
+}
+
+// How a traversal ended.
+const uint kRtslcReachedLeaf = 0u;   // `node` is a leaf, reached with `path_probability`
+const uint kRtslcDeadBranch = 1u;    // both children weigh 0: no light (seed 003 sec. 3.2)
+const uint kRtslcTraversalShort = 2u;  // the level loop ended early (lavapipe's loop limit)
+
+struct RtslcTraversal {
+    uint node;               // the node the traversal stopped at (a leaf when it reached one)
+    float path_probability;  // the product of the child choices' probabilities: the leaf's pmf
+    uint levels;             // levels descended
+    uint status;             // kRtslcReachedLeaf, kRtslcDeadBranch or kRtslcTraversalShort
+};
+
+// The traversal from cut node `node` to a leaf (seed 003 sec. 3.2) for the BRDF lobe `lobe`
+// (gi_lobe.glsl; gi_lobe_both() without the glossy branch): one child per level with the eq. 1-2
+// probabilities at s (rtslc_child_probability for the lobe), a fresh random number per level from
+// `rng`. The glossy lobe steers each path by the perfect-reflection weights or by the lobe at the
+// children's means (seed 004 sec. 4.2, gi_glossy_path_*), and its pmf is that mixture's. The pmf
+// of the leaf reached is path_probability: the lobe's probability times the path's, exactly the
+// probability of the path taken (each choice's probability is on rng_next_float's grid:
+// rtslc_choose_left).
+RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, GiLobe lobe,
+                              inout Rng rng) {
+    RtslcTraversal t = RtslcTraversal(node, lobe.probability, 0u, kRtslcTraversalShort);
+    bool glossy = lobe.kind == kBrdfLobeGlossy;
+    GiGlossyPath glossy_path = GiGlossyPath(true, 1.0, 1.0);
+    if (glossy) {
+        glossy_path = gi_glossy_path_start(rng);  // gi_lobe.glsl: the glossy lobe's two-strategy mixture
+    }
+    uint first_leaf = leaf_count - 1u;
+    for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
+        if (t.node >= first_leaf) {
+            t.status = kRtslcReachedLeaf;
+            break;
+        }
+        uint left = light_tree_left_child(t.node);
+        LightTreeNode node_left = light_tree.items[left], node_right = light_tree.items[left + 1u];
+        RtslcChildProbability choice = rtslc_child_probability(s, node_left, node_right, min_distance2, lobe.kind);
+        RtslcChildProbability at_mean = choice;
+        if (glossy) {
+            at_mean = rtslc_child_probability(s, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
+        }
+        bool by_reflection = !glossy || glossy_path.by_reflection;
+        // seed 003 sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly 0
+        // then: every light below has zero weight, so none of them could light s.
+        if (by_reflection ? choice.dead : at_mean.dead) {
+            t.status = kRtslcDeadBranch;
+            break;
+        }
+        bool go_left = rtslc_choose_left(by_reflection ? choice.left : at_mean.left, rng_next_float(rng));
+        if (glossy) {
+            gi_glossy_path_step(glossy_path, choice.dead ? -1.0 : choice.left, at_mean.dead ? -1.0 : at_mean.left,
+                                go_left);
+        } else {
+            t.path_probability *= rtslc_choice_probability(choice.left, go_left);
+        }
+        t.node = go_left ? left : left + 1u;
+        ++t.levels;
+    }
+    if (glossy && t.status == kRtslcReachedLeaf) {
+        t.path_probability = lobe.probability * gi_glossy_path_probability(glossy_path);
+    }
+    return t;
+}
+
+// The traversal for the whole BRDF (direct light's, and every sample without the glossy branch).
+RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, inout Rng rng) {
+    return rtslc_traverse(s, node, leaf_count, min_distance2, gi_lobe_both(), rng);
+}
+
+#endif

@@ -1,0 +1,57 @@
+#pragma once
+// Direct light through the light tree over the scene's lights (scene_light_tree.hpp), by real-time
+// stochastic lightcuts (seed 003 sec. 3.2-3.3) with rtslc GI's own cut and traversal code:
+//
+//   "gi counters clear"   zeroes `counters` (GiCounters, gi_counters.hpp)
+//   "rtslc cuts"          shaders/gi/rtslc_cut.comp, the pass rtslc GI runs, over this tree: a cut
+//                         of samples_per_pixel nodes per block_size x block_size block
+//   "direct light tree"   shaders/lighting/direct_light_tree.comp: per pixel, samples_per_pixel
+//                         samples, slot s from cut node s mod (nodes in the cut): a traversal to a
+//                         light (rtslc_traverse, pmf = the path's probability), one area sample
+//                         of a triangle (pdf 1 / area on it) or the point or spot light itself,
+//                         one shadow ray; one dispatch per slots_per_dispatch slots
+//
+// Adds to `radiance` (RGBA32F, the G-buffer's size: the direct-light pass's output, which holds
+// emission, background and the directional lights). Unbiased for the direct light of every
+// light in the tree.
+//
+// Interleaved (RtslcOptions::interleave m > 1, seed 003 sec. 3.4, as rtslc GI): each pixel of an
+// m x m sub-block samples its share of the cut into scratch.estimates, then "rtslc interleave"
+// (shaders/gi/rtslc_interleave.comp, rtslc GI's pass) writes every pixel the rescaled sum of its
+// similar neighbours' shares: an approximation, biased at edges (that shader says why). That
+// variant writes the tree's light alone into its own target (add_direct_light_tree_interleaved_passes);
+// the caller adds it to the rest (the renderer composes the two).
+
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/rtslc.hpp"
+#include "vplkit/stages/scene_light_tree.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+
+#include <glm/vec3.hpp>
+
+namespace vplkit::stages {
+
+// Throws vplkit::Error for bad options (rtslc's validate), naming "direct light tree".
+void validate_direct_light_tree(const RtslcOptions& options);
+
+// Adds the passes above (options.interleave must be 1). `scratch` as rtslc's
+// (rtslc_scratch_requirements(width, height, options)). Read `counters` afterwards and distrust the image when
+// cut_short > 0. Throws vplkit::Error for bad options, a tree without lights, a target of the wrong format or size, a
+// scratch made for other options, or a counters buffer too small.
+void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                                  const SceneLightTreeBuffers& tree, glm::vec3 camera_position,
+                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
+                                  const RtslcScratchBuffers& scratch);
+
+// The interleaved variant: writes the tree's direct light alone (reconstructed) into `tree_light`
+// (RGBA32F, storage, the G-buffer's size); needs options.interleave >= 2 and scratch.estimates.
+void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
+                                              const BvhBuffers& bvh, const SceneLightTreeBuffers& tree,
+                                              glm::vec3 camera_position, const ImageView& tree_light,
+                                              const BufferView& counters, const RtslcOptions& options,
+                                              const RtslcScratchBuffers& scratch);
+
+}  // namespace vplkit::stages

@@ -1,0 +1,35 @@
+#pragma once
+// The "rtslc cuts" pass (shaders/gi/rtslc_cut.comp) over any perfect light tree, and the "rtslc
+// interleave" reconstruction (shaders/gi/rtslc_interleave.comp) of interleaved estimates: rtslc
+// GI runs them over the VPLs' tree (rtslc.cpp), direct light over the scene lights' tree
+// (direct_light_tree.cpp). Private to the stage sources.
+
+#include "vplkit/stages/bvh_buffers.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
+#include "vplkit/stages/rtslc.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+
+namespace vplkit::stages {
+
+// Adds the pass: one cut of options.samples_per_pixel nodes of `light_tree` (LightTreeNode[2
+// leaf_count - 1]) per block into scratch.cuts and scratch.representatives, counting into
+// `counters`. `seed` replaces options.seed (direct light salts its own).
+void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                        const BufferView& light_tree, uint32_t leaf_count, glm::vec3 camera_position,
+                        const BufferView& counters, const RtslcOptions& options, uint32_t seed,
+                        const RtslcScratchBuffers& scratch);
+
+// Adds the pass: each pixel of `target` gets the rescaled sum of its similar sub-block
+// neighbours' estimates (scratch.estimates, written per pixel over its interleaved share of the
+// cut). `similarity_distance` absolute (world units).
+void add_rtslc_interleave_pass(Device& device, StepList& passes, const GbufferViews& gbuffer,
+                               const RtslcScratchBuffers& scratch, const ImageView& target, const RtslcOptions& options,
+                               float similarity_distance);
+
+}  // namespace vplkit::stages
