@@ -208,10 +208,10 @@ int run_sequence(Args& args) {
             std::snprintf(line, sizeof(line), "%u,%s,%.4f\n", f, name.c_str(), by_stage[name]);
             times += line;
         }
-        std::string status;
+        std::string status = ", " + std::to_string(image.vpl_count) + " VPLs";
         if (image.smc) {
-            status = ", smc " + std::to_string(image.smc->vpls) + " VPLs, " + std::to_string(image.smc->invalid) +
-                     " invalid, " + std::to_string(image.smc->moved) + " moved";
+            status += " (smc: " + std::to_string(image.smc->invalid) + " invalid, " + std::to_string(image.smc->moved) +
+                      " moved in)";
         }
         if (reference) {
             std::ostringstream key;
@@ -281,9 +281,10 @@ int run_sequence(Args& args) {
     std::ostringstream report;
     report << "# Sequence: " << loaded.described << "\n\n"
            << frames << " frames, " << settings.width << "x" << settings.height << ", "
-           << (keys ? "keyframes " + path_arg : "orbit of " + std::to_string(int(std::lround(orbit_degrees))) + " degrees") << "; method "
-           << gi_method_name(settings.method) << ", VPL source " << source << ", device " << context->info().name
-           << ".\n\n"
+           << (keys ? "keyframes " + path_arg
+                    : "orbit of " + std::to_string(int(std::lround(orbit_degrees))) + " degrees")
+           << "; method " << gi_method_name(settings.method) << ", VPL source " << source << ", device "
+           << context->info().name << ".\n\n"
            << "Reference per frame: exact gather over instant-radiosity VPLs from " << reference_paths
            << " light paths (" << settings.vpl_bounces << " bounces). Metrics (seed 001 sec. 5.2) on the "
            << "Reinhard-tonemapped luminance L / (1 + L) of the indirect light:\n\n"
