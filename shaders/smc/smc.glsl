@@ -23,6 +23,12 @@ struct SmcVpl {
     float intensity;  // lum(B) / p (eq. 6) at the last estimate
     vec3 anchor_normal;  // its geometric normal, on the camera's side
     uint flags;     // kSmcCovered | kSmcHit
+    // The radiosity estimate that chose it (as a candidate), which also ranks it while it lives
+    // (its intensity, eq. 6). `radiosity` above is a second, independent estimate it renders
+    // with: ranked by the estimate it renders with, the VPLs whose estimate came out low would
+    // be the first removed and the survivors' light biased high.
+    vec3 choice_radiosity;
+    uint pad;
 };
 
 // What one update counts (the first member persists: the size of the VPL set Y).

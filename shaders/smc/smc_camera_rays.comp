@@ -66,6 +66,8 @@ void main() {
     rec.intensity = 0.0;
     rec.anchor_normal = vec3(0.0, 0.0, 1.0);
     rec.flags = 0u;
+    rec.choice_radiosity = vec3(0.0);
+    rec.pad = 0u;
     uint key = kSmcNoKey;
     if (position.w > 0.5) {
         float scale = bvh_scene_scale();

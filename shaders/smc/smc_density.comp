@@ -11,7 +11,7 @@
 // thousand, so the O(I^2) scan is cheap next to the ray casting; the k best distances live in
 // registers, inserted by an unrolled network (no inner loop for lavapipe's loop limit to count).
 //
-// out[q] = (p, I(y) = lum(B) / p (eq. 6), the area one point stands for = 1 / (I p), r_k): a
+// out[q] = (p, I(y) = lum(B) / p (eq. 6, B: the estimate that chose y, see smc.glsl), the area one point stands for = 1 / (I p), r_k): a
 // VPL's flux is B / (I p) (smc_vpls.comp). For the VPLs, k + 1/2 points share the disc (see main).
 
 #include "smc.glsl"
@@ -79,7 +79,7 @@ void main() {
         area = 3.14159265358979 * max(best[k - 1u], push.min_distance2) / points;
     }
     float pdf = 1.0 / (float(max(n, 1u)) * area);
-    float intensity = smc_luminance(query.radiosity) / pdf;
+    float intensity = smc_luminance(query.choice_radiosity) / pdf;  // ranks: the choosing estimate
     density.items[q] = vec4(pdf, (!isnan(intensity) && !isinf(intensity)) ? intensity : 0.0, area,
                             k == 0u ? 0.0 : sqrt(max(best_distance2, 0.0)));
 }

@@ -10,7 +10,8 @@
 // with the same numbers, the candidates that won by a lucky high estimate would keep it (the
 // strongest are chosen), and the Cornell box's two-bounce light came out 1.5x the reference.
 // While it lives a VPL keeps its seed, so re-estimating it would give the same number (lights
-// and geometry are static for a renderer): survivors are not re-estimated.
+// and geometry are static for a renderer): survivors are not re-estimated. The first estimate
+// stays as choice_radiosity and ranks the VPL (see smc.glsl).
 //
 // Estimator. At a vertex p with normal n, one emitter i with probability pmf_i:
 //   punctual: E_i = irradiance(p) <n, wi> V / pmf_i
@@ -137,6 +138,9 @@ void main() {
     vec3 rho_y = v.triangle < push.triangle_count ? albedo.items[v.triangle].rgb : vec3(0.0);
     if (push.emitter_count == 0u || all(equal(rho_y, vec3(0.0)))) {
         records.items[c].radiosity = vec3(0.0);
+        if (push.moved_only == 0u) {
+            records.items[c].choice_radiosity = vec3(0.0);
+        }
         return;
     }
     float scale = bvh_scene_scale();
@@ -191,5 +195,9 @@ void main() {
         atomicAdd(counters.c.cut_short, 1u);
     }
     vec3 radiosity = rho_y * irradiance / float(max(push.samples, 1u));
-    records.items[c].radiosity = bvh_finite(radiosity) ? radiosity : vec3(0.0);
+    radiosity = bvh_finite(radiosity) ? radiosity : vec3(0.0);
+    records.items[c].radiosity = radiosity;
+    if (push.moved_only == 0u) {
+        records.items[c].choice_radiosity = radiosity;  // a candidate: the estimate that ranks it
+    }
 }

@@ -39,6 +39,7 @@ std::vector<SmcVpl> uniform_square(uint32_t count, uint32_t seed) {
         p.position = {unit(rng), unit(rng), 0.0f};
         p.normal = {0.0f, 0.0f, 1.0f};
         p.radiosity = {1.0f, 1.0f, 1.0f};
+        p.choice_radiosity = {1.0f, 1.0f, 1.0f};  // intensities rank by it
     }
     return points;
 }
