@@ -13,17 +13,23 @@ shift $(( $# < 3 ? $# : 3 ))
 vplkit=${VPLKIT:-build/release/samples/vplkit}
 width=${size%x*}
 height=${size#*x}
-common=(--width "$width" --height "$height" --frames "$frames" --orbit-degrees 6 --method exact --bounces 2
+common=(--width "$width" --height "$height" --frames "$frames" --orbit-degrees 6 --method exact
         --reference --reference-paths 2048 --cache "$out/cache" "$@")
 mkdir -p "$out"
 table="$out/table.md"
 printf '| scene | source | VPLs | average \\|E\\| | average \\|E'"'"'\\| |\n| --- | --- | --- | --- | --- |\n' > "$table"
 for scene in cornell-shared sponza-sun breakfast-sun; do
   for source in ir brsm smc; do
+    # Light paths for about 1000 IR VPLs (2 bounces; paths that leave the scene leave none).
+    case $scene in
+      cornell-shared) paths=820 ;;
+      sponza-sun) paths=1760 ;;
+      *) paths=1024 ;;
+    esac
     case $source in
-      ir) opts=(--vpl-source ir --vpls 512 --fresh-vpls) ;;       # 512 paths x 2 bounces: ~1000 VPLs
+      ir) opts=(--vpl-source ir --vpls "$paths" --bounces 2 --fresh-vpls) ;;
       brsm) opts=(--vpl-source brsm --vpls 1024 --fresh-vpls) ;;  # one bounce, punctual lights only
-      smc) opts=(--vpl-source smc --vpls 1024 --smc-warmup 30) ;;
+      smc) opts=(--vpl-source smc --vpls 1024 --bounces 2 --smc-warmup 30) ;;
     esac
     if [[ $source == brsm && $scene == cornell-shared ]]; then
       printf '| %s | brsm | - | (no punctual light) | |\n' "$scene" >> "$table"
