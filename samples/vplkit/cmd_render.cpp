@@ -76,6 +76,7 @@ const char* const kRenderUsage =
     "                   Monte Carlo instant radiosity (seed 001): a set of --vpls VPLs (default\n"
     "                   2048) on the surfaces the camera sees indirectly, multi-bounce, kept\n"
     "                   across frames; each frame moves at most --smc-max-moves of them (16)\n"
+    "  --smc-max-moves M    smc: VPLs that may leave the set per frame (default 16, the paper's M_max)\n"
     "  --smc-resample R     smc: camera rays per candidate VPL (default 16, the paper's 16:1)\n"
     "  --smc-radiosity-samples S   smc: paths per VPL radiosity estimate (default 16)\n"
     "  --smc-warmup W   smc: updates before the first frame (default 100, the paper's)\n"
