@@ -23,6 +23,8 @@ const char* stage_name(FrameStage stage) {
             return "vpl paths";
         case FrameStage::brsm_vpls:
             return "brsm vpls";
+        case FrameStage::smc_vpls:
+            return "smc vpls";
         case FrameStage::vpl_sort:
             return "vpl sort";
         case FrameStage::light_tree:
@@ -146,6 +148,12 @@ std::string vpl_set_key(const RenderSettings& settings, VplSource source, const 
             << settings.brsm.filter_radius << ' ' << settings.brsm.similarity_min_cos << ' '
             << settings.brsm.similarity_max_distance << ' ' << settings.brsm.defensive_fraction << ' '
             << settings.rsm_resolution << " seed " << settings.seed << " view " << view_key;
+    } else if (source == VplSource::smc) {
+        // The options of the persistent set; plan_frame never reuses an SMC set (it moves every frame).
+        const stages::SmcOptions& o = settings.smc;
+        key << "smc " << o.budget << ' ' << o.max_moves << ' ' << o.resample_ratio << ' ' << o.radiosity_samples << ' '
+            << o.bounces << ' ' << o.visibility_tries << ' ' << o.visibility_rounds << ' ' << o.strong_quantile
+            << " warmup " << settings.smc_warmup << " seed " << settings.seed;
     } else {
         // Light paths do not depend on the camera.
         key << "ir " << settings.vpl_paths << ' ' << settings.vpl_bounces << " seed " << settings.seed;
@@ -193,15 +201,22 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                                 : "multi-bounce (" + std::to_string(settings.vpl_bounces) + " bounces): light paths";
         }
     } else {
-        source_reason = plan.vpl_source == VplSource::brsm ? "BRSM asked for" : "light paths asked for";
+        source_reason = plan.vpl_source == VplSource::brsm  ? "BRSM asked for"
+                        : plan.vpl_source == VplSource::smc ? "SMC asked for: the set persists and moves at most " +
+                                                                  std::to_string(settings.smc.max_moves) +
+                                                                  " VPLs per frame; radiosities of surviving VPLs are "
+                                                                  "kept, not re-estimated (static lights)"
+                                                            : "light paths asked for";
     }
     plan.vpl_key = vpl_set_key(settings, plan.vpl_source, view_key);
     plan.tree_key = tree_settings_key(settings);
     // --all-stages: every stage that can run for this method does, nothing is reused (what the
     // planner saves is measured against this).
     const bool force = settings.force_all_stages;
+    // An SMC set changes every frame by design (its update is the frame's VPL stage), so neither
+    // it nor the trees over it are ever reused.
     plan.reuse_vpls = !force && settings.reuse_static_work && indirect && lit && !previous.vpl_key.empty() &&
-                      previous.vpl_key == plan.vpl_key;
+                      previous.vpl_key == plan.vpl_key && plan.vpl_source != VplSource::smc;
     // Which tree the method reads, and which ones this frame builds (all of them when forced).
     const bool reads_light_tree = settings.method == GiMethod::rtslc;
     const bool reads_sst = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
@@ -255,14 +270,16 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         if (!indirect) return "direct light only (--method direct): no VPLs";
         if (!lit) return "no light to place VPLs from";
         if (plan.vpl_source != source) {
-            return plan.vpl_source == VplSource::brsm ? "BRSM places this frame's VPLs"
-                                                      : "light paths place this frame's VPLs";
+            return plan.vpl_source == VplSource::brsm  ? "BRSM places this frame's VPLs"
+                   : plan.vpl_source == VplSource::smc ? "SMC updates this frame's VPLs"
+                                                       : "light paths place this frame's VPLs";
         }
         if (plan.reuse_vpls) return reused;
         return source_reason;
     };
     add(FrameStage::vpl_paths, make_vpls && plan.vpl_source == VplSource::ir, vpl_reason(VplSource::ir));
     add(FrameStage::brsm_vpls, make_vpls && plan.vpl_source == VplSource::brsm, vpl_reason(VplSource::brsm));
+    add(FrameStage::smc_vpls, make_vpls && plan.vpl_source == VplSource::smc, vpl_reason(VplSource::smc));
 
     const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
     // `reads`: the method reads this tree; `built`: the frame builds it (read, or forced on).
@@ -276,6 +293,10 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         if (!built) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + what;
         if (plan.reuse_trees) return "reused: built over the same VPLs with the same settings last frame";
         if (!reads) return "forced on (--all-stages); the method does not read it";
+        if (plan.vpl_source == VplSource::smc) {
+            return std::string("read by ") + gi_method_name(settings.method) +
+                   "; rebuilt every frame: the SMC set moves";
+        }
         return std::string("read by ") + gi_method_name(settings.method);
     };
     add(FrameStage::vpl_sort, build_trees, tree_reason(true, true, "sorted leaves"));

@@ -62,9 +62,51 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
                                                 stages::GbufferImages& gbuffer, const RenderSettings& settings,
                                                 RenderedImage& out) {
     GeneratedVpls generated;
+    if (source == VplSource::smc) {
+        // The persistent set: one update per frame (and the warm-up before the first).
+        stages::SmcOptions options = settings.smc;
+        options.seed = settings.seed;
+        const std::string key = vpl_set_key(settings, VplSource::smc, "");
+        if (!smc_ || smc_key_ != key) {
+            smc_ = stages::SmcState::create(context_, options);
+            smc_key_ = key;
+        }
+        const stages::SmcScene smc_scene{gpu_bvh_, vpl_sources()};
+        const uint32_t updates = smc_->empty() ? settings.smc_warmup + 1 : 1;
+        for (uint32_t u = 0; u < updates; ++u) {
+            PassList passes(u + 1 < updates ? "smc warm-up" : "smc vpls");
+            passes.set_tag(stage_tag(FrameStage::smc_vpls));
+            smc_->add_update(context_, passes, gbuffer, view, smc_scene);
+            passes.run(context_);
+            append(out.timings, passes.timings());
+            if (settings.smc_warmup_progress && updates > 1) settings.smc_warmup_progress(u + 1, updates);
+        }
+        const stages::SmcCounts counts = smc_->read_counts();
+        out.smc = counts;
+        generated.count = counts.vpls;
+        generated.vpls = Buffer::create(context_, std::max<uint64_t>(counts.vpls, 1) * sizeof(shaders::Vpl),
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "smc frame vpls");
+        if (counts.vpls > 0) {
+            PassList copy("smc vpl copy");
+            copy.set_tag(stage_tag(FrameStage::smc_vpls));
+            const BufferView from = smc_->vpls();
+            const BufferView to = generated.vpls;
+            const VkDeviceSize bytes = uint64_t(counts.vpls) * sizeof(shaders::Vpl);
+            copy.add("smc vpl copy", {Use::transfer_src(from), Use::transfer_dst(to)},
+                     [from, to, bytes](VkCommandBuffer cmd) {
+                         const VkBufferCopy region{0, 0, bytes};
+                         vkCmdCopyBuffer(cmd, from.buffer, to.buffer, 1, &region);
+                     });
+            copy.run(context_);
+            append(out.timings, copy.timings());
+        } else {
+            out.notes.push_back("SMC found no reflecting surface the camera sees indirectly: no VPLs");
+        }
+        return generated;
+    }
     if (source == VplSource::ir) {
         // Light paths from every emitter through the BVH.
-        const stages::VplSources sources = stages::upload_vpl_sources(context_, scene_source_);
+        const stages::VplSources& sources = vpl_sources();
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
         auto output = stages::VplTracingOutput::create(context_, tracing);
         PassList passes("vpls");
@@ -114,6 +156,11 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     generated.count = stages::download_brsm_vpl_count(output);
     generated.vpls = std::move(output.vpls);
     return generated;
+}
+
+const stages::VplSources& Renderer::vpl_sources() {
+    if (!vpl_sources_) vpl_sources_ = stages::upload_vpl_sources(context_, scene_source_);
+    return *vpl_sources_;
 }
 
 const Renderer::GeneratedVpls& Renderer::frame_vpls(const FramePlan& plan, const stages::CameraView& view,

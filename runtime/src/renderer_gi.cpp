@@ -84,6 +84,7 @@ void validate_gi_settings(const RenderSettings& settings) {
     if (settings.method == GiMethod::sst) stages::validate(o.sst);
     if (settings.method == GiMethod::rtslc) stages::validate(o.rtslc);
     if (settings.method == GiMethod::hybrid) stages::validate(o.hybrid);
+    if (settings.vpl_source == VplSource::smc) stages::validate(settings.smc);
     if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) ||
         settings.sst.sigma_max < 0.0f) {
         throw Error("render: nu_min must be finite and sigma_max finite and >= 0");

@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "render_request.hpp"
 #include "scene_warnings.hpp"
 #include "vpl_view.hpp"
 
@@ -35,7 +36,8 @@ const char* const kRenderUsage =
     "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
     "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
-    "                     [--vpl-source auto|ir|brsm] [--vpls N] [--bounces B]\n"
+    "                     [--vpl-source auto|ir|brsm|smc] [--vpls N] [--bounces B]\n"
+    "                     [--smc-max-moves M] [--smc-resample R] [--smc-radiosity-samples S] [--smc-warmup W]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
     "                     [--seed S] [--direct auto|tree|flat] [--direct-spp N] [--direct-interleave M]\n"
     "                     [--frames F]\n"
@@ -76,7 +78,14 @@ const char* const kRenderUsage =
     "  --vpl-source S   where the VPLs come from: auto (default): brsm for --bounces 1 from punctual\n"
     "                   lights, else ir; ir: instant radiosity, light paths through the scene,\n"
     "                   multi-bounce; brsm: bidirectional reflective shadow maps, one bounce, placed\n"
-    "                   where the camera sees their light (punctual lights only)\n"
+    "                   where the camera sees their light (punctual lights only); smc: sequential\n"
+    "                   Monte Carlo instant radiosity (seed 001): a set of --vpls VPLs (default\n"
+    "                   2048) on the surfaces the camera sees indirectly, multi-bounce, kept\n"
+    "                   across frames; each frame moves at most --smc-max-moves of them (16)\n"
+    "  --smc-max-moves M    smc: VPLs that may leave the set per frame (default 16, the paper's M_max)\n"
+    "  --smc-resample R     smc: camera rays per candidate VPL (default 16, the paper's 16:1)\n"
+    "  --smc-radiosity-samples S   smc: paths per VPL radiosity estimate (default 16)\n"
+    "  --smc-warmup W   smc: updates before the first frame (default 100, the paper's)\n"
     "  --vpls N         ir: light paths traced (default 4096; each leaves up to --bounces VPLs);\n"
     "                   brsm: VPLs over all lights, shared by power (default 4096)\n"
     "  --bounces B      ir: surface hits per light path (default 2)\n"
@@ -200,20 +209,30 @@ std::vector<std::pair<std::string, double>> median_stages(
     return out;
 }
 
+// --smc-* options (need --vpl-source smc).
+void parse_smc_options(Args& args, RenderSettings& settings, bool& given) {
+    const bool smc = settings.vpl_source == VplSource::smc;
+    auto take = [&](const char* option, uint64_t max, uint32_t& into, bool zero_ok = false) {
+        if (auto text = args.value(option)) {
+            if (!smc) throw UsageError(std::string(option) + " needs --vpl-source smc");
+            into = zero_ok ? parse_index(option, *text, max) : parse_whole_number(option, *text, max);
+            given = true;
+        }
+    };
+    take("--smc-max-moves", 1u << 20, settings.smc.max_moves);
+    take("--smc-resample", 1024, settings.smc.resample_ratio);
+    take("--smc-radiosity-samples", 4096, settings.smc.radiosity_samples);
+    take("--smc-warmup", 100000, settings.smc_warmup, true);
+}
+
 }  // namespace
 
-namespace {
-
-int render_or_plan(Args& args, bool plan_only) {
+RenderRequest parse_render_request(Args& args) {
     ContextOptions context_options;
     if (auto device = args.value("--device")) context_options.device = *device;
     context_options.validation = args.flag("--validation");
     const bool strict = args.flag("--strict");
     const std::string scene_arg = args.value("--scene").value_or("");
-    const std::filesystem::path out = args.value("--out").value_or("vplkit.png");
-    const auto out_hdr = args.value("--out-hdr");
-    const auto out_direct = args.value("--out-direct");
-    const auto out_indirect = args.value("--out-indirect");
     std::optional<uint32_t> width, height, camera;
     if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
     if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
@@ -317,22 +336,28 @@ int render_or_plan(Args& args, bool plan_only) {
             settings.vpl_source = VplSource::ir;
         else if (*text == "brsm")
             settings.vpl_source = VplSource::brsm;
+        else if (*text == "smc")
+            settings.vpl_source = VplSource::smc;
         else if (*text == "auto")
             settings.vpl_source = VplSource::automatic;
         else
-            throw UsageError("--vpl-source expects ir, brsm or auto, got '" + *text + "'");
+            throw UsageError("--vpl-source expects ir, brsm, smc or auto, got '" + *text + "'");
     }
     const bool brsm = settings.vpl_source == VplSource::brsm;
+    const bool smc = settings.vpl_source == VplSource::smc;
     if (auto text = args.value("--vpls")) {
         vpl_options_given = true;
         settings.vpl_paths = parse_whole_number("--vpls", *text, 1u << 24);
         settings.brsm.vpl_count = settings.vpl_paths;
+        if (smc) settings.smc.budget = parse_whole_number("--vpls", *text, stages::kSmcMaxBudget);
     }
     if (auto text = args.value("--bounces")) {
         vpl_options_given = true;
         if (brsm) throw UsageError("--bounces is for --vpl-source ir: BRSM VPLs are the first bounce only");
         settings.vpl_bounces = parse_whole_number("--bounces", *text, 16);
+        settings.smc.bounces = settings.vpl_bounces;
     }
+    parse_smc_options(args, settings, vpl_options_given);
     const auto rsm_resolution = args.value("--rsm-resolution");
     const auto brsm_samples = args.value("--brsm-samples");
     const auto brsm_defensive = args.value("--brsm-defensive");
@@ -352,41 +377,53 @@ int render_or_plan(Args& args, bool plan_only) {
     }
     settings.force_all_stages = args.flag("--all-stages");
     settings.reuse_static_work = !args.flag("--no-reuse");
-    uint32_t frames = 1;
-    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
     if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
         throw UsageError(
             "--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
             "or --vpls-only (direct light uses no VPLs)");
     }
-    if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
-        throw UsageError(
-            "--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
-    }
-    args.finish();
+    RenderRequest r;
+    r.context = context_options;
+    r.strict = strict;
+    r.scene_arg = scene_arg;
+    r.width = width;
+    r.height = height;
+    r.camera = camera;
+    r.extra_lights = std::move(extra_lights);
+    r.settings = settings;
+    r.lambertian = lambertian;
+    return r;
+}
+
+void validate_render_request(const RenderRequest& request) {
     // A sampling option the method refuses (e.g. an interleave that does not divide the block)
     // is a command-line mistake, found before any work.
     try {
-        validate_gi_settings(settings);
+        validate_gi_settings(request.settings);
     } catch (const Error& e) {
         throw UsageError(e.what());
     }
-    check_output("--out", out, ".png");
-    if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
-    if (out_direct) check_output("--out-direct", *out_direct, ".pfm");
-    if (out_indirect) check_output("--out-indirect", *out_indirect, ".pfm");
+}
 
+LoadedScene load_request_scene(RenderRequest& request) {
+    const std::optional<uint32_t>& camera = request.camera;
+    const std::string& scene_arg = request.scene_arg;
+    const std::optional<uint32_t>& width = request.width;
+    const std::optional<uint32_t>& height = request.height;
+    RenderSettings& settings = request.settings;
+    LoadedScene loaded;
+    scene::Scene& scene = loaded.scene;
+    std::string& described = loaded.described;
     // The scene: a set-up name, or a file.
     const auto load_start = std::chrono::steady_clock::now();
     scene::LoadOptions load_options;
     load_options.camera = camera;
-    scene::Scene scene;
-    std::string described;
     const bool is_file =
         scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
     if (is_file) {
         scene = scene::load_gltf(scene_arg, load_options);
         described = scene_arg;
+        loaded.target = scene.bounds.center();
         settings.width = width.value_or(640);
         settings.height = height.value_or(360);
     } else {
@@ -394,14 +431,48 @@ int render_or_plan(Args& args, bool plan_only) {
         const scene::Setup& setup = scene_arg.empty() ? setups.default_setup() : setups.find(scene_arg);
         scene = scene::load_setup_scene(setup, load_options);
         described = setup.name + " (" + setup.scene.string() + ")";
+        loaded.target = setup.camera.target;
         settings.width = width.value_or(setup.width ? setup.width : 640);
         settings.height = height.value_or(setup.height ? setup.height : 360);
     }
-    scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
-    report_scene_warnings(scene, strict);
-    if (lambertian) scene::use_lambertian_materials(scene);
-    const double load_ms =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
+    scene.lights.insert(scene.lights.end(), request.extra_lights.begin(), request.extra_lights.end());
+    report_scene_warnings(scene, request.strict);
+    if (request.lambertian) scene::use_lambertian_materials(scene);
+    loaded.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
+    return loaded;
+}
+
+namespace {
+
+int render_or_plan(Args& args, bool plan_only) {
+    RenderRequest request = parse_render_request(args);
+    RenderSettings& settings = request.settings;
+    const ContextOptions& context_options = request.context;
+    const bool sampled =
+        settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
+    const bool blocked = settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
+    const bool substitutes = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
+    const std::filesystem::path out = args.value("--out").value_or("vplkit.png");
+    const auto out_hdr = args.value("--out-hdr");
+    const auto out_direct = args.value("--out-direct");
+    const auto out_indirect = args.value("--out-indirect");
+    uint32_t frames = 1;
+    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
+    if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
+        throw UsageError(
+            "--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
+    }
+    args.finish();
+    validate_render_request(request);
+    check_output("--out", out, ".png");
+    if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
+    if (out_direct) check_output("--out-direct", *out_direct, ".pfm");
+    if (out_indirect) check_output("--out-indirect", *out_indirect, ".pfm");
+
+    LoadedScene loaded = load_request_scene(request);
+    const scene::Scene& scene = loaded.scene;
+    const std::string& described = loaded.described;
+    const double load_ms = loaded.load_ms;
 
     if (plan_only) {
         // No device work: the plan is a function of the scene and the settings.
@@ -433,6 +504,15 @@ int render_or_plan(Args& args, bool plan_only) {
         }
         std::fflush(stderr);
     };
+    settings.smc_warmup_progress = [terminal](uint32_t done, uint32_t total) {
+        if (terminal) {
+            std::fprintf(stderr, "\r[smc warm-up] %u/%u updates", done, total);
+            if (done == total) std::fprintf(stderr, "\r%40s\r", "");
+        } else if (done == total || done % 10 == 0) {
+            std::fprintf(stderr, "[smc warm-up] %u/%u updates\n", done, total);
+        }
+        std::fflush(stderr);
+    };
     // Several frames: the first pays for lavapipe's shader compiles at first dispatch (and a
     // GPU's warm-up); the times printed are each stage's median over the frames after it.
     std::vector<std::vector<std::pair<std::string, double>>> frame_stages;
@@ -450,6 +530,13 @@ int render_or_plan(Args& args, bool plan_only) {
             "%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
             settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
             settings.brsm.samples_per_texel, settings.brsm.defensive_fraction);
+    } else if (made_vpls && image.vpl_source == VplSource::smc && image.smc) {
+        const stages::SmcCounts& c = *image.smc;
+        std::printf(
+            "%s: %u VPLs by SMC (budget %u, %u bounces); this frame: %u invalid (%u revalidated), %u candidates, "
+            "M_strong %u, M_min %u, %u removed, %u moved in\n",
+            settings.vpls_only ? "vpls" : "indirect", image.vpl_count, settings.smc.budget, settings.smc.bounces,
+            c.invalid, c.revalidated, c.candidates, c.strong, c.min_moves, c.removed, c.moved);
     } else if (made_vpls) {
         std::printf("%s: %u VPLs from %u light paths x %u bounces\n", settings.vpls_only ? "vpls" : "indirect",
                     image.vpl_count, settings.vpl_paths, settings.vpl_bounces);

@@ -23,6 +23,10 @@ extern const char* const kBenchUsage;
 int run_compare(Args& args);
 extern const char* const kCompareUsage;
 
+// `vplkit sequence`: frames along a camera path, optionally with seed 001's temporal metrics.
+int run_sequence(Args& args);
+extern const char* const kSequenceUsage;
+
 // `vplkit bench tree` and `vplkit bench gi --scene NAME` (reached through run_bench; their
 // usage is part of kBenchUsage).
 int run_bench_tree(Args& args);

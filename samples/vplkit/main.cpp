@@ -28,6 +28,8 @@ const Command kCommands[] = {
      vplkit::cli::kBenchUsage, vplkit::cli::run_bench},
     {"compare", "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
      vplkit::cli::kCompareUsage, vplkit::cli::run_compare},
+    {"sequence", "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
+     vplkit::cli::kSequenceUsage, vplkit::cli::run_sequence},
 };
 
 void print_usage(std::FILE* out) {

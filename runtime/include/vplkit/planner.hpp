@@ -25,6 +25,7 @@ enum class FrameStage {
     direct_tree,      // the light tree over emitters, point and spot lights, and sampling through it
     vpl_paths,        // instant radiosity: light paths through the BVH
     brsm_vpls,        // reflective shadow maps and BRSM placement, light by light
+    smc_vpls,         // one SMC update of the persistent VPL set (seed 001 Alg. 1)
     vpl_sort,         // keys, sort, leaves in sorted order
     light_tree,       // the RTSLC light tree
     sst,              // the stochastic substitute tree

@@ -5,6 +5,7 @@
 
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
+#include "vplkit/stages/smc.hpp"
 #include "vplkit/stages/sst.hpp"
 
 #include <glm/vec3.hpp>
@@ -47,6 +48,8 @@ inline constexpr uint32_t kDirectTreeMinLights = 8;
 enum class VplSource {
     ir,         // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
     brsm,       // bidirectional reflective shadow maps: one-bounce VPLs where the camera sees their light
+    smc,        // sequential Monte Carlo instant radiosity (seed 001): a VPL set kept across frames,
+                // at most M_max moved per frame, on the surfaces the camera sees indirectly
     automatic,  // the planner's choice: BRSM for one bounce from punctual lights, else light paths
 };
 
@@ -83,6 +86,11 @@ struct RenderSettings {
     // replaced by `seed`), and the side of each light's RSM face.
     stages::BrsmOptions brsm;
     uint32_t rsm_resolution = 512;
+    // smc: its options (budget I, M_max, resampling ratio, radiosity samples and bounces; the
+    // seed is replaced by `seed`), and the updates run before the first frame's (the paper runs
+    // 100 so the first frame is already well distributed; each is a whole update).
+    stages::SmcOptions smc;
+    uint32_t smc_warmup = 100;
     // sst, rtslc, hybrid: samples per pixel (sst: traversals from the root, averaged; rtslc and
     // hybrid: the cut size, one traversal per cut node, summed), 1..64.
     uint32_t samples_per_pixel = 8;
@@ -116,6 +124,8 @@ struct RenderSettings {
     bool vpls_only = false;
     // Called during long indirect-light work with (done, total) units of work.
     std::function<void(uint32_t done, uint32_t total)> progress;
+    // Called during the SMC warm-up with (updates done, updates in all).
+    std::function<void(uint32_t done, uint32_t total)> smc_warmup_progress;
 };
 
 // Throws vplkit::Error naming the first bad sampling option of `settings` (samples per pixel,

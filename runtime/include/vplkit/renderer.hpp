@@ -14,6 +14,8 @@
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst.hpp"
+#include "vplkit/smc_state.hpp"
+#include "vplkit/vpl_tracing_buffers.hpp"
 #include "vplkit/stages/upsample.hpp"
 #include "vplkit/vpl_trees.hpp"
 
@@ -67,7 +69,8 @@ struct RenderedImage {
     VplSource vpl_source = VplSource::ir;  // where this frame's VPLs came from (automatic resolved)
     bool reused_vpls = false;              // the previous frame's VPLs (and, below, trees) served this one
     bool reused_trees = false;
-    uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
+    std::optional<stages::SmcCounts> smc;  // --vpl-source smc: what this frame's update counted
+    uint32_t non_finite_pixels = 0;        // shown magenta in rgba8; a correct frame has none
 };
 
 class Renderer {
@@ -118,6 +121,12 @@ private:
         bool sst = false;
     };
     FrameCache cache_;
+    // SMC: the persistent VPL set (while the SMC options stay the same) and the scene's emitters
+    // and reflectances it reads, uploaded on first use.
+    std::optional<stages::SmcState> smc_;
+    std::string smc_key_;
+    std::optional<stages::VplSources> vpl_sources_;
+    const stages::VplSources& vpl_sources();
 
     Context& context_;
     GpuScene scene_;

@@ -1,0 +1,300 @@
+// `vplkit sequence`: N frames along a camera path with render's options, written as PNG (PFM on
+// request) with each frame's stage times; with --reference also the per-frame ground truth and
+// seed 001's temporal metrics (|E|, |E'| on Reinhard-tonemapped indirect luminance) as CSV, a
+// plot and a report.
+
+#include "camera_path.hpp"
+#include "commands.hpp"
+#include "plot.hpp"
+#include "render_request.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/image_io.hpp"
+#include "vplkit/renderer.hpp"
+#include "vplkit/sequence_metrics.hpp"
+
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+namespace vplkit::cli {
+
+const char* const kSequenceUsage =
+    "usage: vplkit sequence --out DIR [--scene NAME|FILE] [--path orbit|FILE] [--frames N]\n"
+    "                       [--orbit-degrees D] [--pfm] [--fresh-vpls] [--reference] [--reference-paths P]\n"
+    "                       [--cache DIR] [render's options: --method, --vpl-source, --vpls, ...]\n"
+    "\n"
+    "Renders N frames along a camera path and writes DIR/frame_NNNN.png (and .pfm with --pfm,\n"
+    "linear radiance) and DIR/stage_times.csv (each frame's GPU time per stage). A renderer lives\n"
+    "for the whole sequence, so --vpl-source smc carries its VPLs from frame to frame.\n"
+    "  --path P          orbit (default): about the set-up's target (a file's: its bounds' centre),\n"
+    "                    turning --orbit-degrees (default 30) over the sequence; or a keyframe file,\n"
+    "                    one key per line: TIME PX PY PZ TX TY TZ (position, target), interpolated\n"
+    "  --frames N        frames (default 16)\n"
+    "  --fresh-vpls      ir, brsm: new VPLs every frame (seed + frame), as seed 001's comparison draws\n"
+    "                    them; without it they follow --seed, the same light paths every frame\n"
+    "  --reference       also the per-frame reference: the exact gather (--method exact) over\n"
+    "                    instant-radiosity VPLs from --reference-paths light paths (default 16384)\n"
+    "                    with the same bounces, cached in --cache (default out/sequence-cache) by\n"
+    "                    scene, camera, size and VPL set; and seed 001's metrics on the Reinhard-\n"
+    "                    tonemapped luminance of the indirect light: |E| (mean absolute error) and\n"
+    "                    |E'| (mean absolute change of the per-pixel error between frames, eq. 10)\n"
+    "                    in DIR/metrics.csv, DIR/metrics.png and DIR/report.md\n";
+
+namespace {
+
+// FNV-1a, 64 bit: a cache file name from a key.
+uint64_t fnv1a(const std::string& text) {
+    uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) {
+        h ^= c;
+        h *= 1099511628211ull;
+    }
+    return h;
+}
+
+std::string camera_key(const scene::Camera& c) {
+    std::ostringstream key;
+    key.precision(9);
+    key << c.position.x << ' ' << c.position.y << ' ' << c.position.z << ' ' << c.forward.x << ' ' << c.forward.y << ' '
+        << c.forward.z << ' ' << c.up.x << ' ' << c.up.y << ' ' << c.up.z << ' ' << c.yfov << ' ' << c.znear << ' '
+        << c.zfar;
+    return key.str();
+}
+
+std::string lights_key(const scene::Scene& scene) {
+    std::ostringstream key;
+    key.precision(9);
+    for (const scene::Light& l : scene.lights) {
+        key << int(l.type) << ' ' << l.position.x << ' ' << l.position.y << ' ' << l.position.z << ' ' << l.direction.x
+            << ' ' << l.direction.y << ' ' << l.direction.z << ' ' << l.color.x << ' ' << l.color.y << ' ' << l.color.z
+            << ' ' << l.intensity << ';';
+    }
+    return key.str();
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+    const std::filesystem::path partial = path.string() + ".partial";
+    {
+        std::ofstream out(partial);
+        out << text;
+        if (!out) throw Error("cannot write " + path.string());
+    }
+    std::filesystem::rename(partial, path);
+}
+
+std::string frame_name(uint32_t frame, const char* extension) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "frame_%04u.%s", frame, extension);
+    return name;
+}
+
+}  // namespace
+
+int run_sequence(Args& args) {
+    const auto out_text = args.value("--out");
+    const std::string path_arg = args.value("--path").value_or("orbit");
+    uint32_t frames = 16;
+    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 100000);
+    float orbit_degrees = 30.0f;
+    if (auto text = args.value("--orbit-degrees")) {
+        if (path_arg != "orbit") throw UsageError("--orbit-degrees is for --path orbit");
+        try {
+            size_t used = 0;
+            orbit_degrees = std::stof(*text, &used);
+            if (used != text->size() || !std::isfinite(orbit_degrees)) throw std::invalid_argument("");
+        } catch (const std::exception&) {
+            throw UsageError("--orbit-degrees expects a number, got '" + *text + "'");
+        }
+    }
+    const bool pfm = args.flag("--pfm");
+    const bool fresh_vpls = args.flag("--fresh-vpls");
+    const bool reference = args.flag("--reference");
+    uint32_t reference_paths = 16384;
+    if (auto text = args.value("--reference-paths")) {
+        if (!reference) throw UsageError("--reference-paths needs --reference");
+        reference_paths = parse_whole_number("--reference-paths", *text, 1u << 22);
+    }
+    const std::filesystem::path cache = args.value("--cache").value_or("out/sequence-cache");
+    RenderRequest request = parse_render_request(args);
+    args.finish();
+    if (!out_text) throw UsageError("--out DIR is required");
+    validate_render_request(request);
+    RenderSettings& settings = request.settings;
+    if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
+    if (fresh_vpls && settings.vpl_source == VplSource::smc) {
+        throw UsageError("--fresh-vpls is for --vpl-source ir or brsm: an SMC set persists by design");
+    }
+    const uint32_t base_seed = settings.seed;
+    if (reference && settings.method == GiMethod::none) {
+        throw UsageError("--reference compares indirect light: give an indirect-light --method");
+    }
+    std::optional<std::vector<CameraKey>> keys;
+    if (path_arg != "orbit") {
+        try {
+            keys = read_camera_keys(path_arg);
+        } catch (const Error& e) {
+            throw UsageError(std::string("--path: ") + e.what());
+        }
+    }
+    const std::filesystem::path out_dir = *out_text;
+    std::filesystem::create_directories(out_dir);
+    if (reference) std::filesystem::create_directories(cache);
+
+    LoadedScene loaded = load_request_scene(request);
+    const scene::Scene& scene = loaded.scene;
+    const std::vector<scene::Camera> path = keys ? keyframe_path(*keys, scene.camera(), frames)
+                                                 : orbit_path(scene.camera(), loaded.target, orbit_degrees, frames);
+
+    auto context = Context::create(request.context);
+    std::printf("device: %s (%s)\n", context->info().name.c_str(), context->info().type_name.c_str());
+    std::printf("scene: %s, %ux%u, %u frames along %s\n", loaded.described.c_str(), settings.width, settings.height,
+                frames, keys ? path_arg.c_str() : "an orbit");
+    Renderer renderer(*context, scene);
+    std::optional<Renderer> reference_renderer;
+    RenderSettings reference_settings = settings;
+    reference_settings.method = GiMethod::exact;
+    reference_settings.vpl_source = VplSource::ir;
+    reference_settings.vpl_paths = reference_paths;
+    reference_settings.seed = settings.seed + 1000003;  // another VPL set than the one measured
+    reference_settings.half_resolution_gi = false;
+    if (reference) reference_renderer.emplace(*context, scene);
+
+    const bool terminal = isatty(fileno(stderr));
+    settings.smc_warmup_progress = [terminal](uint32_t done, uint32_t total) {
+        if (terminal || done == total || done % 10 == 0) {
+            std::fprintf(stderr, terminal ? "\r[sequence] smc warm-up %u/%u" : "[sequence] smc warm-up %u/%u\n", done,
+                         total);
+            if (terminal && done == total) std::fprintf(stderr, "\n");
+            std::fflush(stderr);
+        }
+    };
+
+    std::string times = "frame,stage,gpu_ms\n";
+    std::string metrics_csv = "frame,mean_abs_error,mean_abs_error_change\n";
+    TemporalErrorMeter meter;
+    const auto start = std::chrono::steady_clock::now();
+    for (uint32_t f = 0; f < frames; ++f) {
+        settings.frame = f;
+        if (fresh_vpls) settings.seed = base_seed + f;
+        const RenderedImage image = renderer.render(path[f], settings);
+        if (image.non_finite_pixels > 0) {
+            throw Error("sequence: frame " + std::to_string(f) + " has " + std::to_string(image.non_finite_pixels) +
+                        " NaN or infinite pixels (a bug: please report it)");
+        }
+        write_png(out_dir / frame_name(f, "png"), image.width, image.height, image.rgba8);
+        if (pfm) write_pfm(out_dir / frame_name(f, "pfm"), image.width, image.height, image.radiance);
+        std::map<std::string, double> by_stage;
+        std::vector<std::string> order;
+        double total = 0.0;
+        for (const PassTiming& t : image.timings) {
+            if (!by_stage.count(t.name)) order.push_back(t.name);
+            by_stage[t.name] += t.gpu_ms;
+            total += t.gpu_ms;
+        }
+        for (const std::string& name : order) {
+            char line[256];
+            std::snprintf(line, sizeof(line), "%u,%s,%.4f\n", f, name.c_str(), by_stage[name]);
+            times += line;
+        }
+        std::string status = ", " + std::to_string(image.vpl_count) + " VPLs";
+        if (image.smc) {
+            status += " (smc: " + std::to_string(image.smc->invalid) + " invalid, " + std::to_string(image.smc->moved) +
+                      " moved in)";
+        }
+        if (reference) {
+            std::ostringstream key;
+            key << "sequence reference v1\n"
+                << loaded.described << "\n"
+                << camera_key(path[f]) << "\n"
+                << lights_key(scene) << "\n"
+                << settings.width << 'x' << settings.height << " paths " << reference_paths << " bounces "
+                << settings.vpl_bounces << " seed " << reference_settings.seed << " brdf "
+                << (request.lambertian ? "lambert" : "gltf") << "\n";
+            char hash[32];
+            std::snprintf(hash, sizeof(hash), "%016" PRIx64, fnv1a(key.str()));
+            const std::filesystem::path cached = cache / (std::string("reference_") + hash + ".pfm");
+            std::vector<float> truth;
+            if (std::filesystem::exists(cached)) {
+                PfmImage r = read_pfm(cached);
+                if (r.width != image.width || r.height != image.height) {
+                    throw Error(cached.string() + ": a cached reference of another size");
+                }
+                truth = std::move(r.rgb);
+            } else {
+                std::fprintf(stderr, "[sequence] frame %u/%u: reference (exact gather)...\n", f + 1, frames);
+                const RenderedImage r = reference_renderer->render(path[f], reference_settings);
+                truth = r.indirect;
+                write_pfm(cached, r.width, r.height, truth);
+                write_text(cached.string() + ".key", key.str());
+            }
+            meter.add_frame(reinhard_luminance(image.indirect, settings.exposure),
+                            reinhard_luminance(truth, settings.exposure));
+            const TemporalError& m = meter.result();
+            char line[128];
+            std::snprintf(line, sizeof(line), "%u,%.6f,%s\n", f, m.mean_abs_error.back(),
+                          f == 0 ? "" : std::to_string(m.mean_abs_error_change.back()).c_str());
+            metrics_csv += line;
+            status += ", |E| " + std::to_string(m.mean_abs_error.back());
+            if (f > 0) status += ", |E'| " + std::to_string(m.mean_abs_error_change.back());
+        }
+        const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        std::fprintf(stderr, "[sequence] frame %u/%u: %.1f ms GPU%s (%.0f s so far)\n", f + 1, frames, total,
+                     status.c_str(), elapsed);
+    }
+    write_text(out_dir / "stage_times.csv", times);
+    std::printf("wrote %u frames and stage_times.csv to %s\n", frames, out_dir.string().c_str());
+    if (!reference) return 0;
+
+    write_text(out_dir / "metrics.csv", metrics_csv);
+    const TemporalError& m = meter.result();
+    PlotSpec plot;
+    plot.title = "seed 001 temporal metrics: " + loaded.described;
+    plot.x_label = "frame";
+    plot.y_label = "Reinhard luminance error";
+    Series e{"|E| (mean abs. error)", {}, {}}, de{"|E'| (mean abs. error change, eq. 10)", {}, {}};
+    for (uint32_t f = 0; f < frames; ++f) {
+        e.x.push_back(f);
+        e.y.push_back(m.mean_abs_error[f]);
+        if (f > 0) {
+            de.x.push_back(f);
+            de.y.push_back(m.mean_abs_error_change[f]);
+        }
+    }
+    plot.series = {e, de};
+    write_plot_png(out_dir / "metrics.png", plot);
+    const char* source = settings.vpl_source == VplSource::smc    ? "smc"
+                         : settings.vpl_source == VplSource::brsm ? "brsm"
+                         : settings.vpl_source == VplSource::ir   ? "ir"
+                                                                  : "auto";
+    std::ostringstream report;
+    report << "# Sequence: " << loaded.described << "\n\n"
+           << frames << " frames, " << settings.width << "x" << settings.height << ", "
+           << (keys ? "keyframes " + path_arg
+                    : "orbit of " + std::to_string(int(std::lround(orbit_degrees))) + " degrees")
+           << "; method " << gi_method_name(settings.method) << ", VPL source " << source << ", device "
+           << context->info().name << ".\n\n"
+           << "Reference per frame: exact gather over instant-radiosity VPLs from " << reference_paths
+           << " light paths (" << settings.vpl_bounces << " bounces). Metrics (seed 001 sec. 5.2) on the "
+           << "Reinhard-tonemapped luminance L / (1 + L) of the indirect light:\n\n"
+           << "| average \\|E\\| | average \\|E'\\| |\n| --- | --- |\n"
+           << "| " << m.average_error() << " | " << m.average_error_change() << " |\n\n"
+           << "![metrics](metrics.png)\n\nPer frame: `metrics.csv`; stage times: `stage_times.csv`.\n";
+    write_text(out_dir / "report.md", report.str());
+    std::printf("average |E| %.5f, average |E'| %.5f\n", m.average_error(), m.average_error_change());
+    std::printf("wrote metrics.csv, metrics.png and report.md to %s\n", out_dir.string().c_str());
+    return 0;
+}
+
+}  // namespace vplkit::cli

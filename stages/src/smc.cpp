@@ -1,0 +1,323 @@
+#include "vplkit/stages/smc.hpp"
+
+#include "vplkit/error.hpp"
+#include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/shaders/smc_camera_rays.hpp"
+#include "vplkit/shaders/smc_density.hpp"
+#include "vplkit/shaders/smc_gather_candidates.hpp"
+#include "vplkit/shaders/smc_radiosity.hpp"
+#include "vplkit/shaders/smc_replace.hpp"
+#include "vplkit/shaders/smc_revalidate.hpp"
+#include "vplkit/shaders/smc_select.hpp"
+#include "vplkit/shaders/smc_selection_keys.hpp"
+#include "vplkit/shaders/smc_validate.hpp"
+#include "vplkit/shaders/smc_vpls.hpp"
+#include "gi_inputs.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+namespace vplkit::stages {
+
+void validate(const SmcOptions& o) {
+    auto fail = [](const std::string& what) { throw Error("smc: " + what); };
+    if (o.budget < 1 || o.budget > kSmcMaxBudget) {
+        fail("the VPL budget must be 1.." + std::to_string(kSmcMaxBudget) + ", got " + std::to_string(o.budget));
+    }
+    if (o.max_moves < 1) fail("max_moves (M_max) must be at least 1");
+    if (o.resample_ratio < 1) fail("the resampling ratio must be at least 1 (camera rays per candidate)");
+    if (o.radiosity_samples < 1 || o.radiosity_samples > 4096) {
+        fail("radiosity samples must be 1..4096, got " + std::to_string(o.radiosity_samples));
+    }
+    if (o.bounces < 1 || o.bounces > 64) fail("bounces must be 1..64, got " + std::to_string(o.bounces));
+    if (o.visibility_tries > 1024) fail("visibility tries must be 0..1024");
+    if (o.visibility_rounds > 16) fail("visibility rounds must be 0..16");
+    if (!(o.strong_quantile >= 0.0f && o.strong_quantile <= 1.0f)) fail("the strong quantile must be in [0, 1]");
+    (void)smc_pool_size(o);
+}
+
+uint32_t smc_render_neighbours(uint32_t budget) {
+    const uint32_t k = uint32_t(std::floor(std::sqrt(double(budget) / 32.0)));
+    return std::min(std::max(k, 1u), kSmcMaxNeighbours);
+}
+
+uint32_t smc_pool_size(const SmcOptions& o) {
+    const uint64_t pool = uint64_t(o.budget) * o.resample_ratio;
+    if (pool > (uint64_t(1) << 31)) {
+        throw Error("smc: budget x resampling ratio = " + std::to_string(pool) + " camera rays is more than 2^31");
+    }
+    return uint32_t(pool);
+}
+
+SmcRequirements smc_requirements(const SmcOptions& o) {
+    SmcRequirements r;
+    r.pool = smc_pool_size(o);
+    r.state_bytes = uint64_t(o.budget) * sizeof(shaders::SmcVpl);
+    r.word_bytes = uint64_t(o.budget) * sizeof(uint32_t);
+    r.key_bytes = uint64_t(o.budget) * sizeof(uint64_t);
+    r.density_bytes = uint64_t(o.budget) * 4 * sizeof(float);
+    r.move_bytes = uint64_t(o.budget) * 2 * sizeof(uint32_t);
+    r.hit_bytes = uint64_t(r.pool) * sizeof(shaders::SmcVpl);
+    r.pool_key_bytes = uint64_t(r.pool) * sizeof(uint64_t);
+    r.pool_value_bytes = uint64_t(r.pool) * sizeof(uint32_t);
+    r.counter_bytes = sizeof(shaders::SmcCounters);
+    r.vpl_bytes = uint64_t(o.budget) * sizeof(shaders::Vpl);
+    return r;
+}
+
+namespace {
+
+void check_size(const BufferView& view, uint64_t bytes, const char* what) {
+    if (!view || view.size < bytes) {
+        throw Error(std::string("smc: the ") + what + " buffer holds fewer than " + std::to_string(bytes) + " bytes");
+    }
+}
+
+void check_buffers(const SmcBuffers& b, const SmcRequirements& r) {
+    check_size(b.state, r.state_bytes, "state");
+    check_size(b.candidates, r.state_bytes, "candidates");
+    check_size(b.valid, r.word_bytes, "valid");
+    check_size(b.invalid_list, r.word_bytes, "invalid list");
+    check_size(b.vpl_values, r.word_bytes, "vpl values");
+    check_size(b.candidate_values, r.word_bytes, "candidate values");
+    check_size(b.vpl_keys, r.key_bytes, "vpl keys");
+    check_size(b.candidate_keys, r.key_bytes, "candidate keys");
+    check_size(b.candidate_density, r.density_bytes, "candidate density");
+    check_size(b.vpl_density, r.density_bytes, "vpl density");
+    check_size(b.moves, r.move_bytes, "moves");
+    check_size(b.hits, r.hit_bytes, "hits");
+    check_size(b.pool_keys, r.pool_key_bytes, "pool keys");
+    check_size(b.pool_values, r.pool_value_bytes, "pool values");
+    check_size(b.counters, r.counter_bytes, "counters");
+    check_size(b.vpls, r.vpl_bytes, "vpls");
+}
+
+// The fallback area of a lone VPL: a disc of the scene's size.
+float lone_vpl_area(float scene_scale) {
+    return 3.14159265f * scene_scale * scene_scale;
+}
+
+// Floor of r_k^2: coincident VPLs get the density of points 1e-4 of the scene apart.
+float min_neighbour_distance2(float scene_scale) {
+    const float d = 1e-4f * scene_scale;
+    return d * d;
+}
+
+}  // namespace
+
+void add_smc_density_pass(Device& device, StepList& passes, const BufferView& state, const BufferView& queries,
+                          const BufferView& density, const BufferView& counters, uint32_t budget, uint32_t k,
+                          bool queries_are_vpls, float scene_scale) {
+    if (k < 1 || k > kSmcMaxNeighbours) {
+        throw Error("smc density: k must be 1.." + std::to_string(kSmcMaxNeighbours) + ", got " + std::to_string(k));
+    }
+    const auto& pipeline = device.pipeline<shaders::smc_density::Pipeline>();
+    shaders::smc_density::Bindings b;
+    b.state = state.descriptor();
+    b.queries = queries.descriptor();
+    b.density = density.descriptor();
+    b.counters = counters.descriptor();
+    shaders::smc_density::Push push{};
+    push.budget = budget;
+    push.k = k;
+    push.queries_are_vpls = queries_are_vpls ? 1u : 0u;
+    push.min_distance2 = min_neighbour_distance2(scene_scale);
+    push.fallback_area = lone_vpl_area(scene_scale);
+    passes.add(queries_are_vpls ? "smc vpl density" : "smc candidate density",
+               binding_uses<shaders::smc_density::Module>(b, {}),
+               [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+}
+
+void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
+                           const SmcScene& scene, KeyValueSorter& sorter, const SmcBuffers& buffers,
+                           const SmcOptions& options, uint32_t iteration) {
+    validate(options);
+    const SmcRequirements needed = smc_requirements(options);
+    check_buffers(buffers, needed);
+    if (sorter.max_count() < needed.pool || sorter.options().key_bits < 32) {
+        throw Error("smc: the sorter must sort " + std::to_string(needed.pool) + " pairs by 32 or more key bits");
+    }
+    const BvhBuffers& bvh = scene.bvh;
+    const VplSourceBuffers& sources = scene.sources;
+    const uint32_t budget = options.budget;
+    const uint32_t pool = needed.pool;
+
+    // Line 7 over the candidates, line 18 over the VPLs that entered Y (their own seeds).
+    auto add_radiosity_pass = [&](const BufferView& records, bool moved_only) {
+        const auto& pipeline =
+            device.pipeline<shaders::smc_radiosity::Pipeline>(bvh_spec<shaders::smc_radiosity::Spec>(bvh));
+        shaders::smc_radiosity::Bindings b;
+        bind_bvh(b, bvh);
+        b.lights = sources.lights.descriptor();
+        b.emissive = sources.emissive.descriptor();
+        b.emitter_cdf = sources.emitter_cdf.descriptor();
+        b.albedo = sources.triangle_albedo.descriptor();
+        b.records = records.descriptor();
+        b.counters = buffers.counters.descriptor();
+        b.moves = buffers.moves.descriptor();
+        shaders::smc_radiosity::Push push{};
+        push.budget = budget;
+        push.samples = options.radiosity_samples;
+        push.sample_limit = options.radiosity_samples + 1;
+        push.bounces = options.bounces;
+        push.step_limit = options.bounces + 1;
+        push.punctual_count = sources.punctual_count;
+        push.emitter_count = sources.emitter_count;
+        push.triangle_count = sources.triangle_count;
+        push.moved_only = moved_only ? 1u : 0u;
+        passes.add(moved_only ? "smc radiosity of new vpls" : "smc radiosity",
+                   binding_uses<shaders::smc_radiosity::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    };
+
+    // Everything but |Y| (the first word) starts each update at zero.
+    const BufferView counters = buffers.counters;
+    passes.add("smc counters clear", {Use::transfer_dst(counters)}, [counters](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, counters.buffer, counters.offset + sizeof(uint32_t),
+                        sizeof(shaders::SmcCounters) - sizeof(uint32_t), 0u);
+    });
+
+    {
+        const auto& pipeline =
+            device.pipeline<shaders::smc_camera_rays::Pipeline>(bvh_spec<shaders::smc_camera_rays::Spec>(bvh));
+        shaders::smc_camera_rays::Bindings b;
+        bind_bvh(b, bvh);
+        b.gbuffer_position = gbuffer.position.descriptor();
+        b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+        b.albedo = sources.triangle_albedo.descriptor();
+        b.hits = buffers.hits.descriptor();
+        b.keys = buffers.pool_keys.descriptor();
+        b.values = buffers.pool_values.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_camera_rays::Push push{};
+        push.ray_count = pool;
+        push.seed = options.seed;
+        push.iteration = iteration;
+        push.triangle_count = sources.triangle_count;
+        passes.add("smc camera rays",
+                   binding_uses<shaders::smc_camera_rays::Module>(b, {gbuffer.position, gbuffer.geometric_normal}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.ray_count); });
+    }
+    {
+        const auto& pipeline =
+            device.pipeline<shaders::smc_validate::Pipeline>(bvh_spec<shaders::smc_validate::Spec>(bvh));
+        shaders::smc_validate::Bindings b;
+        bind_bvh(b, bvh);
+        b.state = buffers.state.descriptor();
+        b.valid = buffers.valid.descriptor();
+        b.invalid_list = buffers.invalid_list.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_validate::Push push{};
+        std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
+        push.camera_position = {view.position.x, view.position.y, view.position.z};
+        push.budget = budget;
+        passes.add("smc validate", binding_uses<shaders::smc_validate::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    }
+    for (uint32_t round = 0; round < options.visibility_rounds && options.visibility_tries > 0; ++round) {
+        const auto& pipeline =
+            device.pipeline<shaders::smc_revalidate::Pipeline>(bvh_spec<shaders::smc_revalidate::Spec>(bvh));
+        shaders::smc_revalidate::Bindings b;
+        bind_bvh(b, bvh);
+        b.hits = buffers.hits.descriptor();
+        b.state = buffers.state.descriptor();
+        b.valid = buffers.valid.descriptor();
+        b.invalid_list = buffers.invalid_list.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_revalidate::Push push{};
+        push.point_count = std::min(budget, pool);
+        push.tries = options.visibility_tries;
+        push.seed = options.seed;
+        push.iteration = iteration;
+        push.round = round;
+        passes.add("smc revalidate", binding_uses<shaders::smc_revalidate::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.point_count); });
+    }
+
+    sorter.add_pass(passes, buffers.pool_keys, buffers.pool_values, pool, "smc resample sort");
+    {
+        const auto& pipeline = device.pipeline<shaders::smc_gather_candidates::Pipeline>();
+        shaders::smc_gather_candidates::Bindings b;
+        b.keys = buffers.pool_keys.descriptor();
+        b.values = buffers.pool_values.descriptor();
+        b.hits = buffers.hits.descriptor();
+        b.candidates = buffers.candidates.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_gather_candidates::Push push{};
+        push.budget = budget;
+        push.pool_count = pool;
+        push.seed = options.seed;
+        push.iteration = iteration;
+        passes.add("smc gather candidates", binding_uses<shaders::smc_gather_candidates::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    }
+    add_radiosity_pass(buffers.candidates, false);
+    add_smc_density_pass(device, passes, buffers.state, buffers.candidates, buffers.candidate_density, counters, budget,
+                         1, false, bvh.scene_scale);
+    {
+        const auto& pipeline = device.pipeline<shaders::smc_selection_keys::Pipeline>();
+        shaders::smc_selection_keys::Bindings b;
+        b.state = buffers.state.descriptor();
+        b.candidate_density = buffers.candidate_density.descriptor();
+        b.vpl_keys = buffers.vpl_keys.descriptor();
+        b.vpl_values = buffers.vpl_values.descriptor();
+        b.candidate_keys = buffers.candidate_keys.descriptor();
+        b.candidate_values = buffers.candidate_values.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_selection_keys::Push push{};
+        push.budget = budget;
+        passes.add("smc selection keys", binding_uses<shaders::smc_selection_keys::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    }
+    sorter.add_pass(passes, buffers.vpl_keys, buffers.vpl_values, budget, "smc vpl intensity sort");
+    sorter.add_pass(passes, buffers.candidate_keys, buffers.candidate_values, budget, "smc candidate intensity sort");
+    {
+        const auto& pipeline = device.pipeline<shaders::smc_select::Pipeline>();
+        shaders::smc_select::Bindings b;
+        b.vpl_keys = buffers.vpl_keys.descriptor();
+        b.vpl_values = buffers.vpl_values.descriptor();
+        b.candidate_keys = buffers.candidate_keys.descriptor();
+        b.candidate_values = buffers.candidate_values.descriptor();
+        b.valid = buffers.valid.descriptor();
+        b.moves = buffers.moves.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_select::Push push{};
+        push.budget = budget;
+        push.max_moves = options.max_moves;
+        push.quantile = options.strong_quantile;
+        passes.add("smc select", binding_uses<shaders::smc_select::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, 1u); });
+    }
+    {
+        const auto& pipeline = device.pipeline<shaders::smc_replace::Pipeline>();
+        shaders::smc_replace::Bindings b;
+        b.candidates = buffers.candidates.descriptor();
+        b.moves = buffers.moves.descriptor();
+        b.state = buffers.state.descriptor();
+        b.valid = buffers.valid.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_replace::Push push{};
+        push.budget = budget;
+        passes.add("smc replace", binding_uses<shaders::smc_replace::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    }
+    add_radiosity_pass(buffers.state, true);
+    add_smc_density_pass(device, passes, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
+                         smc_render_neighbours(budget), true, bvh.scene_scale);
+    {
+        const auto& pipeline = device.pipeline<shaders::smc_vpls::Pipeline>();
+        shaders::smc_vpls::Bindings b;
+        b.state = buffers.state.descriptor();
+        b.density = buffers.vpl_density.descriptor();
+        b.vpls = buffers.vpls.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_vpls::Push push{};
+        push.budget = budget;
+        passes.add("smc vpls", binding_uses<shaders::smc_vpls::Module>(b, {}),
+                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    }
+}
+
+}  // namespace vplkit::stages
