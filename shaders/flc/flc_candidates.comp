@@ -10,6 +10,7 @@
 #define VPLKIT_SCENE_VERTICES_BINDING 0
 #define VPLKIT_SCENE_INDICES_BINDING 1
 #include "vplkit/raster_scene.glsl"
+#include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
 #include "vplkit/rng.glsl"
 
@@ -17,13 +18,6 @@ layout(local_size_x = 64) in;
 
 // scene::Scene::vertex_random, one per vertex.
 layout(std430, set = 0, binding = 2) readonly buffer VertexRandomBuffer { uint items[]; } vertex_random;
-
-struct FlcCandidate {
-    vec3 position;  // the triangle's centroid
-    float area;
-    vec3 normal;    // unit, front (counter-clockwise) side; zero for a triangle too thin for one
-    int level;      // 0..N, kFlcDiscarded or kFlcDivergent
-};
 
 layout(std430, set = 0, binding = 3) writeonly buffer FlcCandidateBuffer { FlcCandidate items[]; } candidates;
 

@@ -2,6 +2,7 @@
 
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/flc_candidates.hpp"
+#include "vplkit/shaders/flc_compact.hpp"
 #include "vplkit/stages/binding_uses.hpp"
 
 #include <cmath>
@@ -79,6 +80,37 @@ void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidat
     push.mu = partition.mu;
     passes.add("flc candidates", binding_uses<shader::Module>(bindings),
                [&pipeline, bindings, push, triangle_count](VkCommandBuffer cmd) {
+                   pipeline.dispatch(cmd, bindings, push, triangle_count);
+               });
+}
+
+void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
+                            uint32_t triangle_count) {
+    if (level_count < 1 || level_count > kFlcMaxLevels) {
+        throw Error("flc compact: level count " + std::to_string(level_count) + " is outside 1.." +
+                    std::to_string(kFlcMaxLevels));
+    }
+    if (triangle_count == 0) throw Error("flc compact: the scene has no triangle");
+    if (buffers.counts.size < flc_count_bytes(level_count)) {
+        throw Error("flc compact: the counts buffer has " + std::to_string(buffers.counts.size) + " bytes, " +
+                    std::to_string(flc_count_bytes(level_count)) + " needed for " + std::to_string(level_count) +
+                    " levels");
+    }
+    const BufferView counts = buffers.counts;
+    passes.add("flc counts clear", {Use::transfer_dst(counts)}, [counts, level_count](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, counts.buffer, counts.offset, flc_count_bytes(level_count), 0u);
+    });
+    namespace shader = shaders::flc_compact;
+    const auto& pipeline = device.pipeline<shader::Pipeline>();
+    shader::Bindings bindings;
+    bindings.candidates = buffers.candidates.descriptor();
+    bindings.counts = counts.descriptor();
+    bindings.kept_triangles = buffers.kept_triangles.descriptor();
+    bindings.divergent_triangles = buffers.divergent_triangles.descriptor();
+    passes.add("flc compact", binding_uses<shader::Module>(bindings),
+               [&pipeline, bindings, triangle_count](VkCommandBuffer cmd) {
+                   shader::Push push{};
+                   push.triangle_count = triangle_count;
                    pipeline.dispatch(cmd, bindings, push, triangle_count);
                });
 }

@@ -12,8 +12,12 @@
 
 #include "flc_reference.hpp"
 #include "flc_test_mesh.hpp"
+#include "vplkit/buffer.hpp"
+#include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
 #include "vplkit/stages/flc.hpp"
+#include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
 
@@ -268,4 +272,54 @@ TEST_CASE("flc partition: bad parameters are errors that name them") {
     const FlcPartition eq1 = vplkit::stages::flc_partition_for(10.0f, 256.0f, 4, 2.0f);
     CHECK(eq1.d0 == doctest::Approx(2.0));
     CHECK(eq1.s0 == doctest::Approx(4.0 * M_PI * 4.0 / 256.0));
+}
+
+TEST_CASE("flc compact: the kept and divergent lists hold each such triangle once, the level counts add up") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const FlcPartition partition = test_partition();
+    const Mesh mesh = random_triangles(3000, 0.6f, 21);
+    const uint32_t count = mesh.triangle_count();
+    const auto candidates = run_candidates(mesh, partition, 9);
+    auto create = [&](VkDeviceSize bytes, const char* name) {
+        return vplkit::Buffer::create(ctx, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, name);
+    };
+    auto candidate_buffer = create(count * sizeof(FlcCandidate), "flc candidates");
+    auto counts = create(vplkit::stages::flc_count_bytes(partition.level_count), "flc counts");
+    auto kept = create(count * sizeof(uint32_t), "flc kept triangles");
+    auto divergent = create(count * sizeof(uint32_t), "flc divergent triangles");
+    candidate_buffer.upload(candidates);
+    // Stale values from an earlier frame must not survive the clear.
+    counts.upload(std::vector<uint32_t>(2 + partition.level_count, 12345u));
+    vplkit::PassList passes("flc compact test");
+    vplkit::stages::add_flc_compact_passes(ctx, passes, {candidate_buffer, counts, kept, divergent},
+                                           partition.level_count, count);
+    passes.run(ctx);
+    const auto got = counts.download<uint32_t>(2 + partition.level_count);
+
+    std::vector<uint32_t> expected_kept, expected_divergent, expected_levels(partition.level_count, 0);
+    for (uint32_t t = 0; t < count; ++t) {
+        if (candidates[t].level >= 0) {
+            expected_kept.push_back(t);
+            ++expected_levels[candidates[t].level];
+        } else if (candidates[t].level == vplkit::stages::kFlcDivergent) {
+            expected_divergent.push_back(t);
+        }
+    }
+    REQUIRE(got[0] == expected_kept.size());
+    REQUIRE(got[1] == expected_divergent.size());
+    CHECK(!expected_kept.empty());
+    CHECK(!expected_divergent.empty());
+    for (uint32_t k = 0; k < partition.level_count; ++k) CHECK(got[2 + k] == expected_levels[k]);
+    auto kept_list = kept.download<uint32_t>(expected_kept.size());
+    auto divergent_list = divergent.download<uint32_t>(expected_divergent.size());
+    std::sort(kept_list.begin(), kept_list.end());
+    std::sort(divergent_list.begin(), divergent_list.end());
+    CHECK(kept_list == expected_kept);
+    CHECK(divergent_list == expected_divergent);
+
+    vplkit::Buffer small = create(8, "flc counts too small");
+    vplkit::PassList bad("flc compact bad input");
+    CHECK_THROWS_WITH_AS(vplkit::stages::add_flc_compact_passes(ctx, bad, {candidate_buffer, small, kept, divergent},
+                                                                partition.level_count, count),
+                         doctest::Contains("counts buffer has 8 bytes"), vplkit::Error);
 }

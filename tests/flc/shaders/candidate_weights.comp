@@ -4,16 +4,10 @@
 // stands for at receiver points (0 when discarded), through vplkit/flc_partition.glsl, and the
 // support distance d(t, x) (eq. 14).
 
+#include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
 
 layout(local_size_x = 64) in;
-
-struct FlcCandidate {
-    vec3 position;
-    float area;
-    vec3 normal;
-    int level;
-};
 
 layout(std430, set = 0, binding = 0) readonly buffer FlcCandidateBuffer { FlcCandidate items[]; } candidates;
 // Point i belongs to candidate i / points_per_candidate; xyz used.

@@ -1,9 +1,9 @@
 #pragma once
 // Forward light cuts (seed 002, Laurent et al. 2016), the foundations: the multiscale partition's
-// parameters and the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
-// scene triangle with the level Alg. 1 draws for it. The math (levels, pmf, the partition of unity
-// f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl.
-// Not yet here: light at the VPLs, the subdivision of divergent triangles, the splatting.
+// parameters, the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
+// scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
+// partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl. Not yet here:
+// light at the VPLs, the subdivision of divergent triangles, the splatting.
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/device.hpp"
@@ -50,5 +50,23 @@ struct FlcCandidateBuffers {
 // levels). triangle_count >= 1; throws vplkit::Error on a bad partition.
 void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidateBuffers& buffers,
                              const FlcPartition& partition, uint32_t triangle_count, uint32_t seed);
+
+struct FlcCompactBuffers {
+    BufferView candidates;           // shaders::FlcCandidate[triangle_count]; read
+    BufferView counts;               // flc_count_bytes(level_count): kept, divergent, per-level counts; written here
+    BufferView kept_triangles;       // uint32[triangle_count] (at most that many survive); written here
+    BufferView divergent_triangles;  // uint32[triangle_count]; written here
+};
+
+// Bytes of FlcCompactBuffers::counts (shaders::FlcCountBuffer): kept, divergent, one count per level.
+inline constexpr uint64_t flc_count_bytes(uint32_t level_count) {
+    return shaders::FlcCountBuffer::kLevelCountsOffset +
+           uint64_t(level_count) * shaders::FlcCountBuffer::kLevelCountsStride;
+}
+
+// Adds "flc counts clear" and "flc compact": the kept candidates' triangle indices and the
+// divergent ones as compact lists (in no particular order), and the count per level.
+void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
+                            uint32_t triangle_count);
 
 }  // namespace vplkit::stages
