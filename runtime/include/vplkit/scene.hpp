@@ -215,6 +215,11 @@ struct Scene {
     std::filesystem::path source;  // the file it was loaded from
 
     std::vector<Vertex> vertices;
+    // One random integer per vertex (seed 002 sec. 3), from the vertex's identity in the file
+    // (node, mesh, primitive, vertex index: see vertex_random_value), never from its position, so
+    // a triangle's random number (the xor of its three) stays the same when its node moves, turns,
+    // scales or is skinned. Forward light cuts read it; parallel to `vertices`.
+    std::vector<uint32_t> vertex_random;
     std::vector<uint32_t> indices;             // 3 per triangle; counter-clockwise = front
     std::vector<uint32_t> triangle_materials;  // one per triangle, index into materials
     std::vector<uint32_t> emissive_triangles;  // the triangles whose material emits, ascending
@@ -257,6 +262,10 @@ struct LoadOptions {
 // transform, no triangle left, an extension in extensionsRequired that vplkit does not support,
 // options.camera out of range.
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// The random integer load_gltf gives vertex `vertex` (the file's index within its primitive) of
+// `primitive` of `mesh` instanced by `node`: chained PCG hashes, uniform over 32 bits.
+uint32_t vertex_random_value(uint32_t node, uint32_t mesh, uint32_t primitive, uint32_t vertex);
 
 // The vertices of every triangle in order, 3 per triangle (for BVH builders and tests).
 std::vector<glm::vec3> triangle_positions(const Scene& scene);

@@ -151,6 +151,7 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
                 if (!data.colors.empty()) v.color = data.colors[i];
                 if (has_tangents) v.tangent = file_tangent(i, normal);
                 out.push_back(v);
+                scene.vertex_random.push_back(vertex_random_value(info.node, info.mesh, info.primitive, i));
                 local.push_back(uint32_t(k + j));
             }
         }
@@ -171,6 +172,7 @@ void append_instance(const GltfSource& source, Scene& scene, const PrimitiveData
             if (!data.uvs1.empty()) v.uv1 = data.uvs1[i];
             if (!data.colors.empty()) v.color = data.colors[i];
             out.push_back(v);
+            scene.vertex_random.push_back(vertex_random_value(info.node, info.mesh, info.primitive, uint32_t(i)));
         }
         if (!zero_normals.empty()) {
             // Exporters write zero normals for vertices they could not shade: use the area-weighted

@@ -1,0 +1,72 @@
+#pragma once
+// Forward light cuts (seed 002, Laurent et al. 2016), the foundations: the multiscale partition's
+// parameters, the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
+// scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
+// partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl. Not yet here:
+// light at the VPLs, the subdivision of divergent triangles, the splatting.
+
+#include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
+
+#include <cstdint>
+
+namespace vplkit::stages {
+
+// FlcCandidate::level beside 0..N (flc_partition.glsl's kFlcDiscarded, kFlcDivergent).
+inline constexpr int32_t kFlcDiscarded = -1;
+inline constexpr int32_t kFlcDivergent = -2;
+// More levels than this would put S_N = S_0 mu^N beyond any useful area; a guard, not a tuning.
+inline constexpr uint32_t kFlcMaxLevels = 32;
+
+// The partition: levels 0..N (level_count = N + 1), S_k = s0 mu^k (eq. 17), influence distances
+// D_k = d0 mu^(k/2) (eq. 18).
+struct FlcPartition {
+    uint32_t level_count = 4;
+    float s0 = 0.0f;  // S_0, world units squared (flc_partition_for gives eq. 1's)
+    float d0 = 0.0f;  // D_0, world units
+    float mu = 2.0f;  // > 1 (the paper uses 1.4 to 5)
+};
+
+// Eq. 1: D_near = 0.2 scene_radius, S_0 = 4 pi D_near^2 / n_avg (each point lit by about n_avg
+// VPLs at least D_near away), and D_0 = D_near. Throws vplkit::Error naming a bad argument.
+FlcPartition flc_partition_for(float scene_radius, float n_avg, uint32_t level_count, float mu);
+
+// Throws vplkit::Error naming the first bad field: level_count outside 1..kFlcMaxLevels, s0 or d0
+// not finite and positive, mu not finite and above 1, or S_N or D_N not finite.
+void validate(const FlcPartition& partition);
+
+// S~_N = 1 / (1/S_0 + ... + 1/S_N): triangles larger than this are divergent.
+double flc_divergence_area(const FlcPartition& partition);
+
+struct FlcCandidateBuffers {
+    BufferView vertices;       // scene::Vertex[] (72 bytes each); read
+    BufferView indices;        // uint32 x 3 per triangle; read
+    BufferView vertex_random;  // uint32 per vertex (scene::Scene::vertex_random); read
+    BufferView candidates;     // shaders::FlcCandidate[triangle_count]; written here
+};
+
+// Adds the pass "flc candidates". `seed` picks the frame's decimation (the same seed, the same
+// levels). triangle_count >= 1; throws vplkit::Error on a bad partition.
+void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidateBuffers& buffers,
+                             const FlcPartition& partition, uint32_t triangle_count, uint32_t seed);
+
+struct FlcCompactBuffers {
+    BufferView candidates;           // shaders::FlcCandidate[triangle_count]; read
+    BufferView counts;               // flc_count_bytes(level_count): kept, divergent, per-level counts; written here
+    BufferView kept_triangles;       // uint32[triangle_count] (at most that many survive); written here
+    BufferView divergent_triangles;  // uint32[triangle_count]; written here
+};
+
+// Bytes of FlcCompactBuffers::counts (shaders::FlcCountBuffer): kept, divergent, one count per level.
+inline constexpr uint64_t flc_count_bytes(uint32_t level_count) {
+    return shaders::FlcCountBuffer::kLevelCountsOffset +
+           uint64_t(level_count) * shaders::FlcCountBuffer::kLevelCountsStride;
+}
+
+// Adds "flc counts clear" and "flc compact": the kept candidates' triangle indices and the
+// divergent ones as compact lists (in no particular order), and the count per level.
+void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
+                            uint32_t triangle_count);
+
+}  // namespace vplkit::stages

@@ -1,0 +1,118 @@
+#include "vplkit/stages/flc.hpp"
+
+#include "vplkit/error.hpp"
+#include "vplkit/shaders/flc_candidates.hpp"
+#include "vplkit/shaders/flc_compact.hpp"
+#include "vplkit/stages/binding_uses.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+namespace vplkit::stages {
+
+namespace {
+
+bool positive(float v) {
+    return std::isfinite(v) && v > 0.0f;
+}
+
+}  // namespace
+
+FlcPartition flc_partition_for(float scene_radius, float n_avg, uint32_t level_count, float mu) {
+    if (!positive(scene_radius)) {
+        throw Error("flc: scene radius " + std::to_string(scene_radius) + " must be finite and positive");
+    }
+    if (!positive(n_avg)) {
+        throw Error("flc: VPLs per point (n_avg) " + std::to_string(n_avg) + " must be finite and positive");
+    }
+    const double d_near = 0.2 * double(scene_radius);
+    FlcPartition partition;
+    partition.level_count = level_count;
+    partition.mu = mu;
+    partition.s0 = float(4.0 * std::numbers::pi * d_near * d_near / double(n_avg));
+    partition.d0 = float(d_near);
+    validate(partition);
+    return partition;
+}
+
+void validate(const FlcPartition& p) {
+    if (p.level_count < 1 || p.level_count > kFlcMaxLevels) {
+        throw Error("flc: level count " + std::to_string(p.level_count) + " is outside 1.." +
+                    std::to_string(kFlcMaxLevels));
+    }
+    if (!positive(p.s0)) throw Error("flc: S_0 " + std::to_string(p.s0) + " must be finite and positive");
+    if (!positive(p.d0)) throw Error("flc: D_0 " + std::to_string(p.d0) + " must be finite and positive");
+    if (!std::isfinite(p.mu) || !(p.mu > 1.0f)) {
+        throw Error("flc: mu " + std::to_string(p.mu) + " must be finite and above 1 (S_k = S_0 mu^k must grow)");
+    }
+    const double last = double(p.level_count - 1);
+    const double s_last = double(p.s0) * std::pow(double(p.mu), last);
+    const double d_last = double(p.d0) * std::pow(double(p.mu), 0.5 * last);
+    if (!(s_last < 1e30) || !(d_last < 1e30)) {
+        throw Error("flc: S_N = " + std::to_string(s_last) + " or D_N = " + std::to_string(d_last) +
+                    " overflows float (fewer levels or a smaller mu)");
+    }
+}
+
+double flc_divergence_area(const FlcPartition& p) {
+    double inverse = 0.0;
+    for (uint32_t k = 0; k < p.level_count; ++k) inverse += 1.0 / (double(p.s0) * std::pow(double(p.mu), double(k)));
+    return 1.0 / inverse;
+}
+
+void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidateBuffers& buffers,
+                             const FlcPartition& partition, uint32_t triangle_count, uint32_t seed) {
+    validate(partition);
+    if (triangle_count == 0) throw Error("flc candidates: the scene has no triangle");
+    namespace shader = shaders::flc_candidates;
+    const auto& pipeline = device.pipeline<shader::Pipeline>();
+    shader::Bindings bindings;
+    bindings.scene_vertices = buffers.vertices.descriptor();
+    bindings.scene_indices = buffers.indices.descriptor();
+    bindings.vertex_random = buffers.vertex_random.descriptor();
+    bindings.candidates = buffers.candidates.descriptor();
+    shader::Push push{};
+    push.triangle_count = triangle_count;
+    push.seed = seed;
+    push.level_count = int32_t(partition.level_count);
+    push.s0 = partition.s0;
+    push.mu = partition.mu;
+    passes.add("flc candidates", binding_uses<shader::Module>(bindings),
+               [&pipeline, bindings, push, triangle_count](VkCommandBuffer cmd) {
+                   pipeline.dispatch(cmd, bindings, push, triangle_count);
+               });
+}
+
+void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
+                            uint32_t triangle_count) {
+    if (level_count < 1 || level_count > kFlcMaxLevels) {
+        throw Error("flc compact: level count " + std::to_string(level_count) + " is outside 1.." +
+                    std::to_string(kFlcMaxLevels));
+    }
+    if (triangle_count == 0) throw Error("flc compact: the scene has no triangle");
+    if (buffers.counts.size < flc_count_bytes(level_count)) {
+        throw Error("flc compact: the counts buffer has " + std::to_string(buffers.counts.size) + " bytes, " +
+                    std::to_string(flc_count_bytes(level_count)) + " needed for " + std::to_string(level_count) +
+                    " levels");
+    }
+    const BufferView counts = buffers.counts;
+    passes.add("flc counts clear", {Use::transfer_dst(counts)}, [counts, level_count](VkCommandBuffer cmd) {
+        vkCmdFillBuffer(cmd, counts.buffer, counts.offset, flc_count_bytes(level_count), 0u);
+    });
+    namespace shader = shaders::flc_compact;
+    const auto& pipeline = device.pipeline<shader::Pipeline>();
+    shader::Bindings bindings;
+    bindings.candidates = buffers.candidates.descriptor();
+    bindings.counts = counts.descriptor();
+    bindings.kept_triangles = buffers.kept_triangles.descriptor();
+    bindings.divergent_triangles = buffers.divergent_triangles.descriptor();
+    passes.add("flc compact", binding_uses<shader::Module>(bindings),
+               [&pipeline, bindings, triangle_count](VkCommandBuffer cmd) {
+                   shader::Push push{};
+                   push.triangle_count = triangle_count;
+                   pipeline.dispatch(cmd, bindings, push, triangle_count);
+               });
+}
+
+}  // namespace vplkit::stages
