@@ -2,6 +2,7 @@
 
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/glossy_lobe.hpp"
+#include "vplkit/stages/rtslc.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -237,6 +238,13 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     if (tree_lights == 0) {
         plan.direct_sampler = DirectSampler::flat;
         sampler_reason = "no emissive triangle, point or spot light: no light tree to build";
+    } else if (settings.direct_sampler == DirectSampler::automatic &&
+               settings.direct_samples > stages::kRtslcMaxSamplesPerPixel) {
+        // The tree's cut holds at most 64 nodes, one sample each: more samples go to the flat sampler.
+        plan.direct_sampler = DirectSampler::flat;
+        sampler_reason = counted + ", but --direct-spp " + std::to_string(settings.direct_samples) +
+                         " is above the tree's " + std::to_string(stages::kRtslcMaxSamplesPerPixel) +
+                         " samples per pixel, so emitters are drawn by power";
     } else if (settings.direct_sampler == DirectSampler::automatic) {
         plan.direct_sampler = tree_lights > kDirectTreeMinLights ? DirectSampler::tree : DirectSampler::flat;
         sampler_reason = counted + (plan.direct_sampler == DirectSampler::tree

@@ -176,6 +176,12 @@ TEST_CASE("planner: direct light through the light tree above 8 lights, flat bel
         CHECK(!plan.runs(FrameStage::direct_tree));
         CHECK(reason(plan, FrameStage::direct_tree).find("8 or fewer") != std::string::npos);
     }
+    // More samples than the tree's cut holds: auto falls back to the flat sampler and says why.
+    auto many_samples = small(GiMethod::none);
+    many_samples.direct_samples = 65;
+    const auto auto_many_samples = vplkit::plan_frame(many, many_samples, "v");
+    CHECK(auto_many_samples.direct_sampler == vplkit::DirectSampler::flat);
+    CHECK(reason(auto_many_samples, FrameStage::direct_tree).find("--direct-spp 65 is above") != std::string::npos);
     auto asked = small(GiMethod::none);
     asked.direct_sampler = vplkit::DirectSampler::tree;
     const auto tree_point = vplkit::plan_frame(point, asked, "v");
