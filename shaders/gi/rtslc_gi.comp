@@ -39,6 +39,11 @@ layout(local_size_x = 8, local_size_y = 8) in;
 // 0 turns the shadow rays off (every VPL visible): the estimator then has the unshadowed sum
 // over all VPLs as its mean, which the unbiasedness test checks.
 layout(constant_id = 0) const uint kShadowRays = 1u;
+// With the glossy branch: true (the default) takes one-sample MIS over the lobes
+// (rtslc_traverse_lobe_mis: the whole BRDF at the leaf over the lobes' mixture pmf); false keeps
+// the lobe split (only the chosen lobe evaluated, over its q x path pmf), for the test that
+// compares the two.
+layout(constant_id = 23) const bool kRtslcLobeMis = true;
 
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
@@ -114,7 +119,15 @@ void main() {
         Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
         ++traversals;
         GiLobe lobe = gi_choose_lobe(g.normal, s.wo, g.albedo, g.roughness, g.metallic, rng);
-        RtslcTraversal t = rtslc_traverse(s, node, push.leaf_count, min_distance2, lobe, rng);
+        // Only where a lobe was chosen: otherwise (branch off, rough receiver) the code as before.
+        bool lobe_mis = kRtslcLobeMis && lobe.kind != kBrdfLobeBoth;
+        RtslcTraversal t;
+        if (lobe_mis) {
+            float q_glossy = lobe.kind == kBrdfLobeGlossy ? lobe.probability : 1.0 - lobe.probability;
+            t = rtslc_traverse_lobe_mis(s, node, push.leaf_count, min_distance2, lobe, q_glossy, rng);
+        } else {
+            t = rtslc_traverse(s, node, push.leaf_count, min_distance2, lobe, rng);
+        }
         levels += t.levels;
         if (t.status == kRtslcDeadBranch) {
             ++dead;
@@ -127,7 +140,7 @@ void main() {
         node = t.node;
         Vpl vpl = leaves.items[light_tree_node_leaf(push.leaf_count, node)];
         vec3 c = vpl_contribution_lobe(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness,
-                                       g.metallic, vpl, min_distance, lobe.kind);
+                                       g.metallic, vpl, min_distance, lobe_mis ? kBrdfLobeBoth : lobe.kind);
         // Issue 6: the per-pixel result is finite or the sample is counted as dropped. The
         // division comes first, so a NaN path probability (from a NaN intensity in the tree) or
         // one that underflowed to 0 drops the sample even where the VPL gives 0; a dropped

@@ -107,6 +107,7 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
 
     shaders::rtslc_gi::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
+    spec.kRtslcLobeMis = options.glossy_lobe_mis ? VK_TRUE : VK_FALSE;
     const auto& gi_pipeline =
         device.pipeline<shaders::rtslc_gi::Pipeline>(bvh_spec(bvh, glossy_lobe_spec(options.glossy, spec)));
     const ImageView radiance = options.interleave > 1 ? scratch.estimates : indirect;

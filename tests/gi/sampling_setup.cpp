@@ -120,6 +120,7 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.frame = options.seed;
         o.visibility = options.visibility;
         o.glossy = options.glossy;
+        o.glossy_lobe_mis = options.rtslc_lobe_mis;
         auto scratch = stages::RtslcScratch::create(ctx, scene.width, scene.height, o);
         stages::add_rtslc_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o, scratch);
         passes.run(ctx);

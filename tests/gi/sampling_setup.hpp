@@ -72,6 +72,7 @@ struct RunOptions {
     stages::HybridTraversal traversal = stages::HybridTraversal::substitute;  // hybrid
     // The glossy branch, every method (max_roughness > 1: every receiver chooses a lobe).
     stages::GlossyLobeOptions glossy;
+    bool rtslc_lobe_mis = true;  // rtslc with the glossy branch: MIS over the lobes, or the lobe split
 };
 
 Rendered render(const Scene& scene, const RunOptions& options);

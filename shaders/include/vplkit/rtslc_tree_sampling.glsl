@@ -154,6 +154,59 @@ RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float 
     return t;
 }
 
+// The lobe-MIS traversal (one-sample MIS over the lobes, balance heuristic): it steers by the
+// lobe chosen (`lobe`, diffuse or glossy, as rtslc_traverse does) but tracks the path's
+// probability under both lobes at once, the diffuse one's and the glossy one's own mixture pmf
+// (gi_glossy_path_*), and returns as path_probability q_d P_d(path) + q_g P_g(path): exactly the
+// probability that a traversal from `node` reaches this leaf, whichever lobe it chose. The caller
+// evaluates the whole BRDF at the leaf and divides by it. Why: with one lobe per sample, each
+// lobe's estimate is weighed by 1 / q, and rtslc's leaf-only traversal was measured to lose to
+// the whole BRDF by that split (README, glossy table). A child the unchosen lobe gives
+// probability 0 (or a dead branch there) zeroes that lobe's term only; the chosen lobe's is > 0
+// (its choices were sampled with it), so the sum is too. `q_glossy` is gi_glossy_lobe_probability.
+RtslcTraversal rtslc_traverse_lobe_mis(RtslcShading s, uint node, uint leaf_count, float min_distance2, GiLobe lobe,
+                                       float q_glossy, inout Rng rng) {
+    RtslcTraversal t = RtslcTraversal(node, 0.0, 0u, kRtslcTraversalShort);
+    bool glossy = lobe.kind == kBrdfLobeGlossy;
+    // The diffuse choice draws no strategy: the glossy mixture's products do not depend on it.
+    GiGlossyPath glossy_path = GiGlossyPath(true, 1.0, 1.0);
+    if (glossy) {
+        glossy_path = gi_glossy_path_start(rng);
+    }
+    float diffuse_path = 1.0;
+    uint first_leaf = leaf_count - 1u;
+    for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
+        if (t.node >= first_leaf) {
+            t.status = kRtslcReachedLeaf;
+            break;
+        }
+        uint left = light_tree_left_child(t.node);
+        LightTreeNode node_left = light_tree.items[left], node_right = light_tree.items[left + 1u];
+        RtslcChildProbability diffuse =
+            rtslc_child_probability(s, node_left, node_right, min_distance2, kBrdfLobeDiffuse);
+        RtslcChildProbability reflection =
+            rtslc_child_probability(s, node_left, node_right, min_distance2, kBrdfLobeGlossy);
+        RtslcChildProbability at_mean =
+            rtslc_child_probability(s, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
+        RtslcChildProbability steer = !glossy ? diffuse : glossy_path.by_reflection ? reflection : at_mean;
+        if (steer.dead) {
+            t.status = kRtslcDeadBranch;
+            break;
+        }
+        bool go_left = rtslc_choose_left(steer.left, rng_next_float(rng));
+        diffuse_path *= diffuse.dead ? 0.0 : rtslc_choice_probability(diffuse.left, go_left);
+        gi_glossy_path_step(glossy_path, reflection.dead ? -1.0 : reflection.left, at_mean.dead ? -1.0 : at_mean.left,
+                            go_left);
+        t.node = go_left ? left : left + 1u;
+        ++t.levels;
+    }
+    if (t.status == kRtslcReachedLeaf) {
+        t.path_probability =
+            (1.0 - q_glossy) * diffuse_path + q_glossy * gi_glossy_path_probability(glossy_path);
+    }
+    return t;
+}
+
 // The traversal for the whole BRDF (direct light's, and every sample without the glossy branch).
 RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, inout Rng rng) {
     return rtslc_traverse(s, node, leaf_count, min_distance2, gi_lobe_both(), rng);

@@ -60,6 +60,9 @@ struct RtslcOptions {
     // anyway is counted (GiCounts::cut_short) and its image must not be trusted.
     uint32_t slots_per_dispatch = 16;
     GlossyLobeOptions glossy;  // the glossy branch (glossy_lobe.hpp); off unless the planner finds a glossy material
+    // With the glossy branch: one-sample MIS over the lobes (the whole BRDF at the leaf over the
+    // lobes' mixture pmf, rtslc_traverse_lobe_mis); false keeps the lobe split (for comparisons).
+    bool glossy_lobe_mis = true;
 };
 
 // Throws vplkit::Error naming the first bad option.
