@@ -7,8 +7,10 @@
 // with vpl_contribution (the evaluation every method shares) divided by the path's probability,
 // with one shadow ray. The cut partitions the real VPLs, so the sum over the cut's nodes is an
 // unbiased estimate of the sum over every VPL. With kGlossyLobe (gi_lobe.glsl), a glossy receiver
-// picks the diffuse or the glossy lobe per traversal as sst and hybrid do (seed 004 sec. 4.2):
-// the lobe's child weights, only that lobe evaluated, over the lobe's x the path's probability.
+// picks the diffuse or the glossy lobe per traversal as sst and hybrid do (seed 004 sec. 4.2) and
+// steers by that lobe's child weights; with kRtslcLobeMis (the default) the whole BRDF is
+// evaluated at the leaf over the lobes' mixture pmf (rtslc_traverse_lobe_mis), without it only
+// the chosen lobe over the lobe's x the path's probability (the split).
 //
 // The slots sampled: the whole cut, or with interleave m > 1 the pixel's share (eq. 3,
 // rtslc_interleave_slots), and of those only the ones in [slot_first, slot_end): the host
