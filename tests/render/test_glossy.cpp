@@ -10,7 +10,7 @@
 // are unbiased, sst's and hybrid's substitutes blur light by about 1% (test_gi_energy.cpp); the
 // rest is the noise of the glossy samples, whose rare bright paths (a VPL near the floor's
 // reflection direction) move one frame's total by a percent or two (the spread is printed).
-// Measured RMSE with / without the lobe (16 spp, 48 x 48): sst 0.43 / 0.54, rtslc 0.46 / 0.69,
+// Measured RMSE with / without the lobe (16 spp, 48 x 48): sst 0.43 / 0.54, rtslc 0.43 / 0.69,
 // hybrid 0.56 / 0.74.
 
 #include "vplkit/context.hpp"
