@@ -145,6 +145,7 @@ std::vector<EmitterTriangle> emitter_triangles(const scene::Scene& scene) {
         e.triangle.radiance = {radiance.x, radiance.y, radiance.z};
         e.power = power;
         e.luminance_power = luminance;
+        e.scene_triangle = t;
         out.push_back(e);
     }
     return out;

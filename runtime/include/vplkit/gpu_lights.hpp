@@ -57,6 +57,7 @@ struct EmitterTriangle {
     shaders::EmissiveTriangle triangle{};
     glm::dvec3 power{0.0};         // RGB watts: radiance x area x pi x (2 when double-sided)
     double luminance_power = 0.0;  // Rec. 709 luminance of `power`: the flat sampler's weight
+    uint32_t scene_triangle = 0;   // its index among the scene's triangles
 };
 // The scene's emissive triangles that emit (luminance power > 0 and finite), in
 // scene.emissive_triangles order: the entries of upload_emitters' buffer, one for one.
