@@ -11,6 +11,7 @@
 #include "vplkit/brdf.glsl"
 #include "vplkit/gbuffer.glsl"
 #include "vplkit/lights.glsl"
+#include "vplkit/punctual_visibility.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -52,10 +53,7 @@ void main() {
         if (cos_theta <= 0.0 || dot(g.geometric_normal, light.wi) <= 0.0 || all(equal(light.irradiance, vec3(0.0)))) {
             continue;
         }
-        // A directional light is outside the scene: a ray of 4 x scale leaves the scene's box
-        // (half-diagonal at most sqrt(3) x scale) from any point in it.
-        float tmax = light.distance > 0.0 ? distance(origin, lights.items[i].position) : 4.0 * scale;
-        if (bvh_occluded(origin, light.wi, 0.0, tmax)) {
+        if (!punctual_light_visible(lights.items[i], light, origin, scale)) {
             continue;
         }
         total += brdf_evaluate(g.normal, wo, light.wi, g.albedo, g.roughness, g.metallic) * light.irradiance * cos_theta;

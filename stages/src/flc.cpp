@@ -3,7 +3,10 @@
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/flc_candidates.hpp"
 #include "vplkit/shaders/flc_compact.hpp"
+#include "vplkit/shaders/flc_vpl_light.hpp"
 #include "vplkit/stages/binding_uses.hpp"
+
+#include "gi_inputs.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -65,6 +68,15 @@ void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidat
                              const FlcPartition& partition, uint32_t triangle_count, uint32_t seed) {
     validate(partition);
     if (triangle_count == 0) throw Error("flc candidates: the scene has no triangle");
+    // One random integer per vertex (scene::Vertex is 72 bytes): a scene built by hand, or by a
+    // loader that left scene::Scene::vertex_random empty, must not read past it or a stale buffer.
+    const uint64_t vertex_count = buffers.vertices.size / sizeof(shaders::SceneVertex);
+    if (buffers.vertex_random.size != vertex_count * sizeof(uint32_t)) {
+        throw Error("flc candidates: vertex_random holds " +
+                    std::to_string(buffers.vertex_random.size / sizeof(uint32_t)) + " entries for " +
+                    std::to_string(vertex_count) +
+                    " vertices (one random integer per vertex: scene::Scene::vertex_random)");
+    }
     namespace shader = shaders::flc_candidates;
     const auto& pipeline = device.pipeline<shader::Pipeline>();
     shader::Bindings bindings;
@@ -111,6 +123,48 @@ void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBu
                [&pipeline, bindings, triangle_count](VkCommandBuffer cmd) {
                    shader::Push push{};
                    push.triangle_count = triangle_count;
+                   pipeline.dispatch(cmd, bindings, push, triangle_count);
+               });
+}
+
+void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
+                            const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
+                            const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params) {
+    validate(partition);
+    if (triangle_count == 0) throw Error("flc vpl light: the scene has no triangle");
+    if (params.emitter_samples == 0) throw Error("flc vpl light: emitter samples per VPL must be at least 1");
+    const auto need = [&](const BufferView& view, uint64_t stride, const char* what) {
+        if (view.size < uint64_t(triangle_count) * stride) {
+            throw Error("flc vpl light: '" + std::string(what) + "' has " + std::to_string(view.size) + " bytes, " +
+                        std::to_string(uint64_t(triangle_count) * stride) + " needed for " +
+                        std::to_string(triangle_count) + " triangles");
+        }
+    };
+    need(buffers.candidates, sizeof(shaders::FlcCandidate), "candidates");
+    need(buffers.kept_triangles, sizeof(uint32_t), "kept triangles");
+    need(buffers.triangle_albedo, 4 * sizeof(float), "triangle albedo");
+    need(buffers.vpls, sizeof(shaders::Vpl), "vpls");
+    namespace shader = shaders::flc_vpl_light;
+    const auto& pipeline = device.pipeline<shader::Pipeline>(bvh_spec<shader::Spec>(bvh));
+    shader::Bindings bindings;
+    bind_bvh(bindings, bvh);
+    bindings.candidates = buffers.candidates.descriptor();
+    bindings.counts = buffers.counts.descriptor();
+    bindings.kept_triangles = buffers.kept_triangles.descriptor();
+    bindings.triangle_albedo = buffers.triangle_albedo.descriptor();
+    bindings.lights = lights.lights.descriptor();
+    bindings.emitters = emitters.triangles.descriptor();
+    bindings.vpls = buffers.vpls.descriptor();
+    shader::Push push{};
+    push.triangle_count = triangle_count;
+    push.light_count = lights.count;
+    push.emitter_count = emitters.count;
+    push.emitter_samples = params.emitter_samples;
+    push.seed = params.seed;
+    push.s0 = partition.s0;
+    push.mu = partition.mu;
+    passes.add("flc vpl light", binding_uses<shader::Module>(bindings),
+               [&pipeline, bindings, push, triangle_count](VkCommandBuffer cmd) {
                    pipeline.dispatch(cmd, bindings, push, triangle_count);
                });
 }

@@ -2,11 +2,14 @@
 // Forward light cuts (seed 002, Laurent et al. 2016), the foundations: the multiscale partition's
 // parameters, the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
 // scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
-// partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl. Not yet here:
-// light at the VPLs, the subdivision of divergent triangles, the splatting.
+// partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl; the light at
+// the kept VPLs (flc_vpl_light.comp). Not yet here: the subdivision of divergent triangles, the splatting.
 
 #include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
+#include "vplkit/stages/direct_emissive.hpp"
+#include "vplkit/stages/direct_light.hpp"
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
@@ -47,7 +50,8 @@ struct FlcCandidateBuffers {
 };
 
 // Adds the pass "flc candidates". `seed` picks the frame's decimation (the same seed, the same
-// levels). triangle_count >= 1; throws vplkit::Error on a bad partition.
+// levels). triangle_count >= 1; throws vplkit::Error on a bad partition, or when vertex_random does
+// not hold exactly one entry per vertex (a scene whose loader did not fill scene::Scene::vertex_random).
 void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidateBuffers& buffers,
                              const FlcPartition& partition, uint32_t triangle_count, uint32_t seed);
 
@@ -68,5 +72,27 @@ inline constexpr uint64_t flc_count_bytes(uint32_t level_count) {
 // divergent ones as compact lists (in no particular order), and the count per level.
 void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
                             uint32_t triangle_count);
+
+struct FlcVplLightBuffers {
+    BufferView candidates;       // shaders::FlcCandidate[triangle_count] (add_flc_candidates_pass); read
+    BufferView counts;           // FlcCompactBuffers::counts; read
+    BufferView kept_triangles;   // FlcCompactBuffers::kept_triangles; read
+    BufferView triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per triangle (rgb); read
+    BufferView vpls;             // shaders::Vpl[triangle_count]: VPL i is kept_triangles[i]'s; written here
+};
+
+struct FlcVplLightParams {
+    uint32_t emitter_samples = 4;  // area samples of the emissive triangles per VPL
+    uint32_t seed = 0;             // the same seed, the same samples
+};
+
+// Adds the pass "flc vpl light": each kept VPL's flux E x rho x S_k (flc_vpl_light.comp): E the
+// direct irradiance on its triangle's front side at the centroid (punctual lights and emitters,
+// BVH shadow rays), rho its albedo, S_k = S_0 mu^k the area a level-k VPL stands for. The
+// partition must be the candidates pass's. Throws vplkit::Error on a bad partition, zero
+// emitter samples, triangle_count 0, or a buffer too small for triangle_count.
+void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
+                            const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
+                            const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params);
 
 }  // namespace vplkit::stages
