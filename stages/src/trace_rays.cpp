@@ -11,6 +11,30 @@
 
 namespace vplkit::stages {
 
+namespace {
+
+// The two trace shaders share their bindings but for the result buffer's name.
+template <typename Pipeline, typename Bindings, typename Push, auto ResultBinding, typename Spec>
+void record_trace(Device& device, StepList& passes, const char* name, std::vector<Use> uses, const Spec& spec,
+                  BufferView nodes, BufferView triangles, BufferView alpha, BufferView rays, BufferView results,
+                  uint32_t ray_count) {
+    const auto& pipeline = device.pipeline<Pipeline>(spec);
+    passes.add(name, std::move(uses),
+               [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
+                   Bindings bindings;
+                   bindings.bvh_nodes = nodes.descriptor();
+                   bindings.bvh_triangles = triangles.descriptor();
+                   bindings.bvh_alpha = alpha.descriptor();
+                   bindings.rays = rays.descriptor();
+                   bindings.*ResultBinding = results.descriptor();
+                   Push push{};
+                   push.ray_count = ray_count;
+                   pipeline.dispatch(cmd, bindings, push, ray_count);
+               });
+}
+
+}  // namespace
+
 void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const BufferView& rays,
                          const BufferView& results, uint32_t ray_count, TraceMode mode) {
     const char* name = mode == TraceMode::closest_hit ? "trace closest" : "trace occlusion";
@@ -40,35 +64,15 @@ void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     std::vector<Use> uses = {Use::read(nodes), Use::read(triangles), Use::read(alpha), Use::read(rays),
                              Use::write(results)};
     if (mode == TraceMode::closest_hit) {
-        const auto& pipeline =
-            device.pipeline<shaders::trace_closest::Pipeline>(bvh_spec<shaders::trace_closest::Spec>(bvh));
-        passes.add(name, std::move(uses),
-                   [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
-                       shaders::trace_closest::Bindings bindings;
-                       bindings.bvh_nodes = nodes.descriptor();
-                       bindings.bvh_triangles = triangles.descriptor();
-                       bindings.bvh_alpha = alpha.descriptor();
-                       bindings.rays = rays.descriptor();
-                       bindings.hits = results.descriptor();
-                       shaders::trace_closest::Push push{};
-                       push.ray_count = ray_count;
-                       pipeline.dispatch(cmd, bindings, push, ray_count);
-                   });
+        record_trace<shaders::trace_closest::Pipeline, shaders::trace_closest::Bindings, shaders::trace_closest::Push,
+                     &shaders::trace_closest::Bindings::hits>(device, passes, name, std::move(uses),
+                                                              bvh_spec<shaders::trace_closest::Spec>(bvh), nodes,
+                                                              triangles, alpha, rays, results, ray_count);
     } else {
-        const auto& pipeline =
-            device.pipeline<shaders::trace_occlusion::Pipeline>(bvh_spec<shaders::trace_occlusion::Spec>(bvh));
-        passes.add(name, std::move(uses),
-                   [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
-                       shaders::trace_occlusion::Bindings bindings;
-                       bindings.bvh_nodes = nodes.descriptor();
-                       bindings.bvh_triangles = triangles.descriptor();
-                       bindings.bvh_alpha = alpha.descriptor();
-                       bindings.rays = rays.descriptor();
-                       bindings.occlusion = results.descriptor();
-                       shaders::trace_occlusion::Push push{};
-                       push.ray_count = ray_count;
-                       pipeline.dispatch(cmd, bindings, push, ray_count);
-                   });
+        record_trace<shaders::trace_occlusion::Pipeline, shaders::trace_occlusion::Bindings,
+                     shaders::trace_occlusion::Push, &shaders::trace_occlusion::Bindings::occlusion>(
+            device, passes, name, std::move(uses), bvh_spec<shaders::trace_occlusion::Spec>(bvh), nodes, triangles,
+            alpha, rays, results, ray_count);
     }
 }
 
