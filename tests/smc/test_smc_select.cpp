@@ -1,7 +1,8 @@
 // Alg. 1 lines 9-17 (seed 001 sec. 3.2.5), shader by shader, exactly:
 // - smc_selection_keys.comp: Y's keys are its intensities' bits (ascending), the candidates' the
-//   bits' complement (strongest first); empty slots, and candidates without light (0, < 0, NaN,
-//   inf), get kSmcNoKey. Fails if a key is off by one bit or a dark candidate gets a key.
+//   bits' complement (strongest first); empty slots, and candidates without light (0, -0, < 0,
+//   NaN, inf), get kSmcNoKey (VPLs without light key 0: the weakest). Fails if a key is off by one bit or a dark
+//   candidate gets a key.
 // - smc_select.comp, on keys sorted here: M_strong, M_min, the removed slots (invalid weakest
 //   first, at most M_max, then weak valid ones up to M_min), the moves (freed slots first, then
 //   the empty ones, strongest candidate first) and the counters, against smc_select of
@@ -213,8 +214,9 @@ vplkit::reference::SmcSelection check_select(const std::vector<float>& vpl_inten
 TEST_CASE("smc selection keys: intensity bits ascending, complements for candidates, no key without light") {
     const uint32_t budget = 12;
     const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-    const std::vector<float> vpls = {3.5f, 0.25f, 0.0f, nan, 1e-20f, -2.0f, inf, 7.0f};
-    const std::vector<float> candidates = {2.0f, 0.0f, 9.5f, nan, -1.0f, 1e-3f, inf, 0.5f, 4.0f};
+    // -0.0 has the sign bit: taken as a key, it would rank above every positive intensity.
+    const std::vector<float> vpls = {3.5f, 0.25f, 0.0f, nan, 1e-20f, -2.0f, inf, 7.0f, -0.0f};
+    const std::vector<float> candidates = {2.0f, 0.0f, 9.5f, nan, -1.0f, 1e-3f, inf, 0.5f, 4.0f, -0.0f};
     const Keys k = run_selection_keys(vpls, candidates, budget);
     auto light_bits = [](float v) -> uint32_t {  // a usable intensity's bits, else 0
         return (v > 0.0f && std::isfinite(v)) ? std::bit_cast<uint32_t>(v) : 0u;

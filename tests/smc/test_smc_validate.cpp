@@ -3,9 +3,9 @@
 // - smc_validate.comp: a VPL stays valid while the camera sees its anchor (in the frustum, on the
 //   anchor's front side, no triangle between). On a floor with an occluding plate seen from
 //   above: anchors under the plate, outside the frustum, facing away or behind the camera are
-//   invalid, the others valid; valid[] must equal the reference exactly and the invalid list hold
-//   exactly the invalid VPLs (each once). Fails on a wrong frustum, facing or shadow test, a lost
-//   or doubled list entry, or a slot past |Y| touched. Hard cases: every VPL invalid, |Y| = 0.
+//   invalid (and one nearer than the near plane), the others valid; valid[] must equal the reference exactly and the
+//   invalid list hold exactly the invalid VPLs (each once). Fails on a wrong frustum, facing or shadow test, a lost or
+//   doubled list entry, or a slot past |Y| touched. Hard cases: every VPL invalid, |Y| = 0.
 // - smc_revalidate.comp: each camera point draws `tries` entries of the invalid list from its own
 //   stream (replayed here) and claims a drawn VPL it sees, each facing the other. The VPLs it
 //   validates must be exactly those some point drew and saw (the reference's seers), their new
@@ -318,12 +318,13 @@ TEST_CASE("smc validate: an anchor the camera sees keeps its VPL valid, the othe
         with_anchor({0.1, -0.2, 2.0}, up),                // on the plate itself, facing the camera: seen
         with_anchor({2.5, -2.5, 0.0}, up),                // seen, near the corner of the view
         with_anchor({-1.0, -1.0, 1.0}, {1.0, 0.0, 0.3}),  // seen at an angle (a wall's point)
+        with_anchor({0.01, 0.01, 4.95}, up),              // before the near plane (0.1): clip z < 0
     };
     const uint32_t count = uint32_t(state.size());
     state.push_back(with_anchor({0.5, 0.5, 0.0}, up));  // past |Y|
     state.push_back(with_anchor({0.6, 0.5, 0.0}, up));
     const uint32_t invalid = check_validate(state, count);
-    CHECK(invalid == 5);
+    CHECK(invalid == 6);
 }
 
 TEST_CASE("smc validate: every VPL invalid, and an empty set") {
