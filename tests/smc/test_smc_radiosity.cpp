@@ -14,6 +14,10 @@
 //   quadrature, for two record counts (64 and 512). Fails if the second vertex's light is lost,
 //   doubled, or not weighted by the ceiling's rho (the bounce is ~15% of the total; 4 sigma of
 //   the mean is ~1% at n = 512).
+// - One bounce from a point light and an emissive triangle together, chosen by their CDF (0.4,
+//   0.6): the mean over 64 and 512 records against the point light's closed form plus the
+//   triangle's L cos cos / d^2 integrated by a 300^2-cell quadrature, within 4 sigma / sqrt(n) +
+//   1e-3 relative. Fails on a wrong pmf, area, emitter side or cosine.
 // No path may be cut short by lavapipe's loop limit (counters.cut_short = 0).
 
 #include "smc_reference.hpp"
@@ -37,6 +41,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <vector>
 
 namespace {
@@ -72,6 +77,9 @@ struct Setup {
     std::vector<glm::vec4> albedo;     // per triangle
     glm::vec3 light{0.0f};
     glm::vec3 intensity{0.0f};  // colour x candela
+    // An emissive triangle besides the point light, chosen with probability 1 - light_share.
+    std::optional<vplkit::shaders::EmitterTriangle> emitter;
+    float light_share = 1.0f;
 };
 
 SmcVpl record(glm::vec3 p, glm::vec3 n, uint32_t triangle, uint32_t seed) {
@@ -103,10 +111,11 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     light.intensity = 10.0f;
     const std::vector<vplkit::scene::Light> lights = {light};
     const auto gpu_lights = vplkit::stages::upload_lights(ctx, lights);
-    auto emissive = make(64, "emissive (none)");
-    emissive.upload(std::vector<float>(16, 0.0f));
+    auto emissive = make(sizeof(vplkit::shaders::EmitterTriangle), "emissive");
+    emissive.upload(
+        std::vector<vplkit::shaders::EmitterTriangle>{s.emitter.value_or(vplkit::shaders::EmitterTriangle{})});
     auto cdf = make(16, "emitter cdf");
-    cdf.upload(std::vector<float>{1.0f, 1.0f, 1.0f, 1.0f});
+    cdf.upload(std::vector<float>{s.emitter ? s.light_share : 1.0f, 1.0f, 1.0f, 1.0f});
     auto albedo = make(s.albedo.size() * sizeof(glm::vec4), "albedo");
     albedo.upload(s.albedo);
     auto record_buffer = make(budget * sizeof(SmcVpl), "records");
@@ -142,7 +151,7 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     push.bounces = bounces;
     push.step_limit = bounces + 1;
     push.punctual_count = 1;
-    push.emitter_count = 1;
+    push.emitter_count = s.emitter ? 2 : 1;
     push.triangle_count = uint32_t(s.albedo.size());
     push.moved_only = moves.empty() ? 0u : 1u;
     vplkit::PassList passes("smc radiosity test");
@@ -282,6 +291,75 @@ TEST_CASE("smc radiosity: two bounces between a floor and a ceiling, mean over s
             CAPTURE(expected[c]);
             CAPTURE(sigma);
             CHECK(std::abs(mean - expected[c]) <= 4.0 * sigma / std::sqrt(double(n)) + 1e-3 * expected[c]);
+        }
+    }
+}
+
+TEST_CASE("smc radiosity: a point light and an emissive triangle chosen by their CDF, mean against a quadrature") {
+    Setup s;
+    add_square(s.triangles, -3.0f, 3.0f, 0.0f, true);
+    // The emitter, facing down at z = 1 (also in the BVH: its own shadow rays must pass it).
+    const glm::vec3 q0{-0.5f, -0.5f, 1.0f}, q1{-0.5f, 0.5f, 1.0f}, q2{0.5f, -0.5f, 1.0f};
+    s.triangles.insert(s.triangles.end(), {q0, q1, q2});
+    const glm::dvec3 rho{0.5, 0.6, 0.7}, radiance{3.0, 2.0, 1.0};
+    s.albedo = {glm::vec4(glm::vec3(rho), 0.0f), glm::vec4(glm::vec3(rho), 0.0f), glm::vec4(0.0f)};
+    s.light = {1.0f, 1.0f, 2.0f};
+    s.intensity = {10.0f, 10.0f, 10.0f};
+    vplkit::shaders::EmitterTriangle e{};
+    e.v0 = {q0.x, q0.y, q0.z};
+    e.v1 = {q1.x, q1.y, q1.z};
+    e.v2 = {q2.x, q2.y, q2.z};
+    e.triangle = 2;
+    e.area = 0.5f;
+    e.radiance = {3.0f, 2.0f, 1.0f};
+    s.emitter = e;
+    s.light_share = 0.4f;
+    const glm::dvec3 y{0.3, -0.2, 0.0}, up{0.0, 0.0, 1.0};
+
+    // The triangle's irradiance at y: cells of a regular N^2 subdivision, each at its centroid.
+    const glm::dvec3 a(q0), b(q1), c(q2), nq{0.0, 0.0, -1.0};
+    const int cells = 300;
+    double emitted = 0.0;
+    for (int i = 0; i < cells; ++i) {
+        for (int j = 0; i + j < cells; ++j) {
+            // The upright cell (i, j) and, where it exists, the inverted one beside it.
+            for (int flip = 0; flip < 2; ++flip) {
+                if (flip == 1 && i + j + 1 >= cells) continue;
+                const double u = (i + (flip == 0 ? 1.0 / 3.0 : 2.0 / 3.0)) / cells;
+                const double v = (j + (flip == 0 ? 1.0 / 3.0 : 2.0 / 3.0)) / cells;
+                const glm::dvec3 q = a + u * (b - a) + v * (c - a);
+                const glm::dvec3 w = q - y;
+                const double d2 = glm::dot(w, w);
+                const double cos_y = glm::dot(up, w) / std::sqrt(d2), cos_q = -glm::dot(nq, w) / std::sqrt(d2);
+                emitted += cos_y * cos_q / d2 * (0.5 / (double(cells) * cells));
+            }
+        }
+    }
+    const auto triangles = reference_triangles(s.triangles);
+    const glm::dvec3 expected = vplkit::reference::smc_point_light_radiosity(y, up, rho, glm::dvec3(s.light),
+                                                                             glm::dvec3(s.intensity), triangles) +
+                                rho * radiance * emitted;
+    for (const uint32_t n : {64u, 512u}) {
+        std::vector<SmcVpl> records;
+        for (uint32_t r = 0; r < n; ++r) records.push_back(record(glm::vec3(y), glm::vec3(up), 0, 77u + 104729u * r));
+        const Estimated est = run(s, records, n, 8, 1);
+        CHECK(est.cut_short == 0);
+        for (int ch = 0; ch < 3; ++ch) {
+            double sum = 0.0, sum2 = 0.0;
+            for (const SmcVpl& r : est.records) {
+                const double v = ch == 0 ? r.radiosity.x : ch == 1 ? r.radiosity.y : r.radiosity.z;
+                sum += v;
+                sum2 += v * v;
+            }
+            const double mean = sum / n;
+            const double sigma = std::sqrt(std::max(sum2 / n - mean * mean, 0.0) * n / (n - 1));
+            CAPTURE(n);
+            CAPTURE(ch);
+            CAPTURE(mean);
+            CAPTURE(expected[ch]);
+            CAPTURE(sigma);
+            CHECK(sigma > 0.0);  // two emitters: the choice varies
+            CHECK(std::abs(mean - expected[ch]) <= 4.0 * sigma / std::sqrt(double(n)) + 1e-3 * expected[ch]);
         }
     }
 }
