@@ -18,6 +18,9 @@
 //   the sum of those probabilities (light ranks merged until each bin expects 5): chi-square
 //   below its 99.9% quantile, for 256 and 2048 groups (every pixel covered here). A key
 //   of E x w (weights inverted) or without the exponential would fail by far.
+// - The 16:1 resampling as an update runs it (camera rays, the radix sort, gather candidates):
+//   the candidates are the hits of the budget-many smallest keys of the unsorted pool, in key
+//   order. Fails if the sort loses key bits or gather takes entries from elsewhere.
 // - A black box: no ray has a reflecting hit, so no entry gets a key (zero candidates).
 
 #include "smc_reference.hpp"
@@ -28,8 +31,10 @@
 #include "vplkit/context.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/smc_camera_rays.hpp"
+#include "vplkit/shaders/smc_gather_candidates.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/sort.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
@@ -41,6 +46,7 @@
 #include <bit>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -106,9 +112,14 @@ struct Rays {
     std::vector<uint64_t> keys;
     std::vector<uint32_t> values;
     uint32_t hit_count = 0;
+    std::vector<SmcVpl> candidates;  // with a budget: after the sort and smc_gather_candidates
+    uint32_t candidate_count = 0;
 };
 
-Rays run(uint32_t ray_count, uint32_t seed, uint32_t iteration, bool black = false, bool all_covered = false) {
+// The camera rays pass; with a budget, then the resampling sort (as the update sorts: radix, 32
+// key bits) and smc_gather_candidates.
+Rays run(uint32_t ray_count, uint32_t seed, uint32_t iteration, bool black = false, bool all_covered = false,
+         uint32_t budget = 0) {
     vplkit::Context& ctx = vplkit::test::context();
     const auto triangles = box_triangles();
     const auto pixels = camera_points(all_covered);
@@ -148,9 +159,37 @@ Rays run(uint32_t ray_count, uint32_t seed, uint32_t iteration, bool black = fal
     passes.add("smc camera rays",
                vplkit::stages::binding_uses<shader::Module>(b, {gbuffer.position, gbuffer.geometric_normal}),
                [&](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, ray_count); });
+    auto candidates = make(std::max(budget, 1u) * sizeof(SmcVpl), "candidates");
+    std::optional<vplkit::stages::KeyValueSorter> sorter;
+    namespace gather = vplkit::shaders::smc_gather_candidates;
+    gather::Bindings gb;
+    gather::Push gp{};
+    if (budget > 0) {
+        vplkit::stages::SortOptions sort;
+        sort.key_bits = 32;
+        sorter.emplace(ctx, ray_count, sort);
+        sorter->add_pass(passes, keys, values, ray_count, "smc resample sort");
+        gb.keys = keys.descriptor();
+        gb.values = values.descriptor();
+        gb.hits = hits.descriptor();
+        gb.candidates = candidates.descriptor();
+        gb.counters = counters.descriptor();
+        gp.budget = budget;
+        gp.pool_count = ray_count;
+        gp.seed = seed;
+        gp.iteration = iteration;
+        const auto& gather_pipeline = ctx.pipeline<gather::Pipeline>();
+        passes.add("smc gather candidates", vplkit::stages::binding_uses<gather::Module>(gb, {}),
+                   [&](VkCommandBuffer cmd) { gather_pipeline.dispatch(cmd, gb, gp, budget); });
+    }
     passes.run(ctx);
-    return {hits.download<SmcVpl>(ray_count), keys.download<uint64_t>(ray_count), values.download<uint32_t>(ray_count),
-            counters.download<SmcCounters>(1)[0].hit_count};
+    const auto counts = counters.download<SmcCounters>(1)[0];
+    return {hits.download<SmcVpl>(ray_count),
+            keys.download<uint64_t>(ray_count),
+            values.download<uint32_t>(ray_count),
+            counts.hit_count,
+            budget > 0 ? candidates.download<SmcVpl>(budget) : std::vector<SmcVpl>{},
+            counts.candidate_count};
 }
 
 glm::dvec3 d3(const vplkit::shaders::vec3& v) {
@@ -329,5 +368,29 @@ TEST_CASE("smc camera rays: a black box gives no hit and no key") {
     for (uint32_t i = 0; i < 512; ++i) {
         CHECK(r.keys[i] == kNoKey);
         CHECK((r.hits[i].flags & 2u) == 0u);
+    }
+}
+
+TEST_CASE("smc camera rays: 16 to 1 resampling keeps the hits of the smallest keys") {
+    const uint32_t budget = 64, rays = 16 * budget;
+    const Rays pool = run(rays, 31, 2);
+    const Rays resampled = run(rays, 31, 2, false, false, budget);
+    std::vector<std::pair<uint64_t, uint32_t>> expected;
+    for (uint32_t i = 0; i < rays; ++i) expected.push_back({pool.keys[i], i});
+    std::sort(expected.begin(), expected.end());
+    uint32_t keyed = 0;
+    for (uint32_t e = 0; e < rays; ++e) {
+        CHECK(resampled.keys[e] == expected[e].first);
+        CHECK(pool.keys[resampled.values[e]] == resampled.keys[e]);
+        if (expected[e].first != kNoKey) ++keyed;
+    }
+    REQUIRE(keyed > budget);
+    REQUIRE(resampled.candidate_count == budget);
+    for (uint32_t c = 0; c < budget; ++c) {
+        CAPTURE(c);
+        const SmcVpl& hit = pool.hits[expected[c].second];
+        CHECK(d3(resampled.candidates[c].position) == d3(hit.position));
+        CHECK(d3(resampled.candidates[c].anchor) == d3(hit.anchor));
+        CHECK(resampled.candidates[c].triangle == hit.triangle);
     }
 }
