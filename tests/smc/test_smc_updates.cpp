@@ -1,7 +1,9 @@
-// The shaders these updates drive, none of them against a per-shader CPU reference yet (only
-// smc_density has one, test_smc_density.cpp): smc_camera_rays, smc_validate, smc_revalidate,
-// smc_gather_candidates, smc_radiosity, smc_selection_keys, smc_select, smc_replace, smc_vpls.
-// They are checked here by the invariants of their output below.
+// The shaders these updates drive each have a per-shader test against a double-precision CPU
+// reference (tests/reference/smc_reference.cpp) in the other files of this folder:
+// test_smc_camera_rays.cpp, test_smc_validate.cpp (smc_validate, smc_revalidate),
+// test_smc_gather_candidates.cpp, test_smc_radiosity.cpp, test_smc_density.cpp,
+// test_smc_select.cpp (smc_selection_keys, smc_select, smc_replace) and test_smc_vpls.cpp.
+// Here they run together, checked by the invariants of their output below.
 //
 // Whole SMC updates (seed 001 Alg. 1) through the Renderer on the in-repo Cornell box (point
 // light), small: 32x32 pixels, a budget of 256 VPLs, 8 camera rays per candidate, 4 radiosity
