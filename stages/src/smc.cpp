@@ -196,9 +196,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.seed = options.seed;
         push.iteration = iteration;
         push.triangle_count = sources.triangle_count;
-        passes.add("smc camera rays",
-                   binding_uses<shaders::smc_camera_rays::Module>(b, {gbuffer.position, gbuffer.geometric_normal}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.ray_count); });
+        add_dispatch<shaders::smc_camera_rays::Module>(passes, "smc camera rays", pipeline, b, push, push.ray_count,
+                                                       {gbuffer.position, gbuffer.geometric_normal});
     }
     {
         const auto& pipeline =
@@ -213,8 +212,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
         push.camera_position = {view.position.x, view.position.y, view.position.z};
         push.budget = budget;
-        passes.add("smc validate", binding_uses<shaders::smc_validate::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+        add_dispatch<shaders::smc_validate::Module>(passes, "smc validate", pipeline, b, push, push.budget);
     }
     for (uint32_t round = 0; round < options.visibility_rounds && options.visibility_tries > 0; ++round) {
         const auto& pipeline =
@@ -232,8 +230,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.seed = options.seed;
         push.iteration = iteration;
         push.round = round;
-        passes.add("smc revalidate", binding_uses<shaders::smc_revalidate::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.point_count); });
+        add_dispatch<shaders::smc_revalidate::Module>(passes, "smc revalidate", pipeline, b, push, push.point_count);
     }
 
     sorter.add_pass(passes, buffers.pool_keys, buffers.pool_values, pool, "smc resample sort");
@@ -250,8 +247,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.pool_count = pool;
         push.seed = options.seed;
         push.iteration = iteration;
-        passes.add("smc gather candidates", binding_uses<shaders::smc_gather_candidates::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+        add_dispatch<shaders::smc_gather_candidates::Module>(passes, "smc gather candidates", pipeline, b, push,
+                                                             push.budget);
     }
     add_radiosity_pass(buffers.candidates, false);
     add_smc_density_pass(device, passes, buffers.state, buffers.candidates, buffers.candidate_density, counters, budget,
@@ -268,8 +265,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         b.counters = counters.descriptor();
         shaders::smc_selection_keys::Push push{};
         push.budget = budget;
-        passes.add("smc selection keys", binding_uses<shaders::smc_selection_keys::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+        add_dispatch<shaders::smc_selection_keys::Module>(passes, "smc selection keys", pipeline, b, push, push.budget);
     }
     sorter.add_pass(passes, buffers.vpl_keys, buffers.vpl_values, budget, "smc vpl intensity sort");
     sorter.add_pass(passes, buffers.candidate_keys, buffers.candidate_values, budget, "smc candidate intensity sort");
@@ -287,8 +283,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.budget = budget;
         push.max_moves = options.max_moves;
         push.quantile = options.strong_quantile;
-        passes.add("smc select", binding_uses<shaders::smc_select::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, 1u); });
+        add_dispatch<shaders::smc_select::Module>(passes, "smc select", pipeline, b, push, 1u);
     }
     {
         const auto& pipeline = device.pipeline<shaders::smc_replace::Pipeline>();
@@ -300,8 +295,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         b.counters = counters.descriptor();
         shaders::smc_replace::Push push{};
         push.budget = budget;
-        passes.add("smc replace", binding_uses<shaders::smc_replace::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+        add_dispatch<shaders::smc_replace::Module>(passes, "smc replace", pipeline, b, push, push.budget);
     }
     add_radiosity_pass(buffers.state, true);
     add_smc_density_pass(device, passes, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
@@ -315,8 +309,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         b.counters = counters.descriptor();
         shaders::smc_vpls::Push push{};
         push.budget = budget;
-        passes.add("smc vpls", binding_uses<shaders::smc_vpls::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+        add_dispatch<shaders::smc_vpls::Module>(passes, "smc vpls", pipeline, b, push, push.budget);
     }
 }
 

@@ -73,4 +73,16 @@ std::vector<Use> binding_uses(const typename Module::Bindings& bindings, const s
     return uses;
 }
 
+// One dispatch of Module's `pipeline` over `threads` threads as a step, its uses from the
+// bindings (the shape every compute step of the kit has):
+//   add_dispatch<shaders::smc_vpls::Module>(passes, "smc vpls", pipeline, b, push, budget);
+template <class Module, class Pipeline>
+void add_dispatch(StepList& passes, std::string name, const Pipeline& pipeline,
+                  const typename Module::Bindings& bindings, const typename Pipeline::Push& push, uint32_t threads,
+                  const std::vector<ImageView>& images = {}) {
+    passes.add(
+        std::move(name), binding_uses<Module>(bindings, images),
+        [&pipeline, bindings, push, threads](VkCommandBuffer cmd) { pipeline.dispatch(cmd, bindings, push, threads); });
+}
+
 }  // namespace vplkit::stages
