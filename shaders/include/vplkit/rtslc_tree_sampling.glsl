@@ -5,7 +5,9 @@
 // selection at a block's representative pixel and the traversal from a cut node to a leaf. What
 // the leaves are does not matter here: rtslc GI's trees hold VPLs (gi/rtslc_cut.comp,
 // gi/rtslc_gi.comp), direct light's tree the scene's lights (lighting/direct_light_tree.comp);
-// both select and traverse with these two functions, so they are one code path.
+// both select and traverse with these two functions, so they are one code path. A two-level tree
+// (two_level_light_tree.glsl) selects its cut in the top tree and traverses each level with
+// rtslc_traverse_in, the traversal of a tree at any offset of the node array.
 //
 // Including it: define the set-0 binding of the light tree (LightTreeNode[]) first,
 //     #define VPLKIT_LIGHT_TREE_BINDING 6
