@@ -10,6 +10,11 @@ panel by its power alone, wherever the shading point is, while the tree's cut an
 prefer the panels near it. Run from anywhere: python3 scenes/make_many_lights.py (the committed
 .gltf is what vplkit loads). Deterministic: a fixed random seed. With --emitters N OUT.gltf it
 writes the same box lit by N small triangles on the ceiling instead (cost per emitter count).
+With --mesh-lights OUT.gltf it writes the box lit by irregular mesh lights instead (one- vs
+two-level trees, seed 003 sec. 3.1): 40 round lamps (triangle fans) of 1 to 1536 triangles and
+3 to 25 cm radius on the ceiling and the back wall, and two 1.6 m strip lights of 1024 triangles
+along the ceiling's sides; each lamp its own mesh (one primitive: one mesh light), in one of the
+12 classes. 12,317 emissive triangles in 42 mesh lights.
 
 Panels (one-sided squares, facing into the box, 1 cm off their wall):
   ceiling: 16 x 12 jittered grid over x, z in [-0.9, 0.9], 6 cm squares, facing down;
@@ -94,7 +99,65 @@ def ceiling_triangles(count, rng):
     return out
 
 
-def build(emitters=None):
+def lamps(rng):
+    """(triangles, class) per mesh light for --mesh-lights: each triangle 3 corners and the normal."""
+    out = []
+    counts = [1, 2, 6, 24, 96, 384, 1536]
+    for k in range(40):
+        n = counts[k % len(counts)] if k < 35 else 1 + rng.randrange(8)
+        radius = 0.03 + 0.22 * rng.random()
+        on_ceiling = k % 4 != 3
+        if on_ceiling:
+            centre = (-0.8 + 1.6 * rng.random(), 1.99, -0.8 + 1.6 * rng.random())
+            normal = (0, -1, 0)
+        else:
+            centre = (-0.8 + 1.6 * rng.random(), 0.3 + 1.4 * rng.random(), -0.99)
+            normal = (0, 0, 1)
+        fan = []
+        # A fan of n triangles (n = 1, 2: a triangle, a square), CCW seen from the side it faces.
+        sides = max(n, 3)
+        for i in range(n):
+            a0 = 2 * math.pi * i / sides
+            a1 = 2 * math.pi * (i + 1) / sides
+            if n == 1:
+                ring = [2 * math.pi * j / 3 for j in range(3)]
+                offsets = [(radius * math.cos(a), radius * math.sin(a)) for a in ring]
+            elif n == 2:
+                corners = [(-1, -1), (1, -1), (1, 1), (-1, 1)]
+                quad = [(radius * u, radius * v) for u, v in corners]
+                offsets = [quad[0], quad[1], quad[2]] if i == 0 else [quad[0], quad[2], quad[3]]
+            else:
+                offsets = [(0.0, 0.0), (radius * math.cos(a0), radius * math.sin(a0)),
+                           (radius * math.cos(a1), radius * math.sin(a1))]
+            fan.append(([in_plane(centre, normal, du, dv) for du, dv in offsets], normal))
+        out.append((fan, rng.randrange(CLASSES)))
+    for x in (-0.85, 0.85):
+        strip = []
+        for i in range(512):
+            z0, z1 = -0.8 + 1.6 * i / 512, -0.8 + 1.6 * (i + 1) / 512
+            strip.append((square_between((x - 0.01, 1.99, z0), (x + 0.01, 1.99, z1)), (0, -1, 0)))
+        out.append((strip, rng.randrange(CLASSES)))
+    return out
+
+
+def in_plane(centre, normal, du, dv):
+    """centre + du u + dv v, (u, v, normal) right-handed, so (du, dv) CCW is CCW seen from the normal."""
+    axis = [i for i in range(3) if normal[i] != 0][0]
+    u, v = (axis + 1) % 3, (axis + 2) % 3
+    if normal[axis] < 0:
+        u, v = v, u
+    p = list(centre)
+    p[u] += du
+    p[v] += dv
+    return tuple(p)
+
+
+def square_between(lo, hi):
+    """A ceiling square (y = lo[1]) between two x-z corners, CCW seen from below: 4 corners."""
+    return [(lo[0], lo[1], lo[2]), (hi[0], lo[1], lo[2]), (hi[0], lo[1], hi[2]), (lo[0], lo[1], hi[2])]
+
+
+def build(emitters=None, mesh_lights=False):
     # The box and blocks as make_cornell.py writes them, in one builder so one buffer holds all.
     b = cornell.Builder()
     wall_material = {"floor": cornell.WHITE, "ceiling": cornell.WHITE, "back_wall": cornell.WHITE,
@@ -114,7 +177,7 @@ def build(emitters=None):
                  cornell.material("green", (0.12, 0.45, 0.15))]
 
     rng = random.Random(15)
-    small = panels(rng) if emitters is None else ceiling_triangles(emitters, rng)
+    small = [] if mesh_lights else panels(rng) if emitters is None else ceiling_triangles(emitters, rng)
     for k in range(CLASSES):
         strength = 0.5 * math.pow(32.0, k / (CLASSES - 1))
         colour = PALETTE[k % len(PALETTE)]
@@ -125,7 +188,11 @@ def build(emitters=None):
             name = "panels_%d_%d" % (k, part // 16384)
             nodes.append({"name": name, "mesh": b.mesh(name, *mesh_of(shapes[part:part + 16384]),
                                                        len(materials) - 1)})
-    bright = [] if emitters is not None else [((-0.6, 1.99, -0.6), 0.1, (0, -1, 0), 40.0, (1.0, 0.9, 0.75)),
+    for i, (shapes, k) in enumerate(lamps(rng) if mesh_lights else []):
+        # One mesh per lamp: its emitters are one primitive instance, one mesh light.
+        name = "lamp_%d" % i
+        nodes.append({"name": name, "mesh": b.mesh(name, *mesh_of(shapes), 3 + k)})
+    bright = [] if emitters is not None or mesh_lights else [((-0.6, 1.99, -0.6), 0.1, (0, -1, 0), 40.0, (1.0, 0.9, 0.75)),
               ((0.55, 1.99, 0.25), 0.1, (0, -1, 0), 40.0, (0.75, 0.85, 1.0)),
               ((0.99, 1.2, -0.3), 0.1, (-1, 0, 0), 25.0, (1.0, 0.7, 0.5))]
     for i, (centre, half, normal, strength, colour) in enumerate(bright):
@@ -156,14 +223,17 @@ def build(emitters=None):
 def main():
     # --emitters N OUT.gltf: the same box lit by N small triangles on the ceiling instead (the
     # README's cost-per-emitter measurements; not committed).
-    if len(sys.argv) == 4 and sys.argv[1] == "--emitters":
+    if len(sys.argv) == 3 and sys.argv[1] == "--mesh-lights":
+        path = Path(sys.argv[2])
+        gltf = build(mesh_lights=True)
+    elif len(sys.argv) == 4 and sys.argv[1] == "--emitters":
         path = Path(sys.argv[3])
         gltf = build(emitters=int(sys.argv[2]))
     elif len(sys.argv) == 1:
         path = HERE / "many_lights" / "many_lights.gltf"
         gltf = build()
     else:
-        sys.exit("usage: make_many_lights.py [--emitters N OUT.gltf]")
+        sys.exit("usage: make_many_lights.py [--emitters N OUT.gltf | --mesh-lights OUT.gltf]")
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(gltf, indent=1) + "\n")
     print("wrote", path)

@@ -249,7 +249,12 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     std::optional<Image> tree_light, direct_total;
     if (tree_direct) {
         direct_passes.set_tag(stage_tag(FrameStage::direct_tree));
-        if (!light_tree_) {
+        const bool two_level = plan.direct_sampler == DirectSampler::tree2;
+        if (two_level && !two_level_light_tree_) {
+            // Built on the host and uploaded once, both levels (gpu_two_level_light_tree.hpp).
+            two_level_light_tree_ = stages::GpuTwoLevelLightTree::create(context_, scene_source_, emitters_);
+        }
+        if (!two_level && !light_tree_) {
             // The lights never change within a renderer: the tree is built once, in its first frame.
             light_tree_ = stages::GpuLightTree::create(context_, scene_source_, emitters_);
             light_tree_->add_build_passes(context_, direct_passes);
@@ -261,10 +266,20 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
             tree_light.emplace(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "tree light"));
             direct_total.emplace(
                 Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance total"));
-            stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_,
-                                                             light_tree_->buffers(), view.position, *tree_light,
-                                                             *tree_counters, tree_options, *tree_scratch);
+            if (two_level) {
+                stages::add_direct_light_tree_interleaved_passes(
+                    context_, direct_passes, gbuffer, gpu_bvh_, two_level_light_tree_->buffers(), view.position,
+                    *tree_light, *tree_counters, tree_options, *tree_scratch);
+            } else {
+                stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_,
+                                                                 light_tree_->buffers(), view.position, *tree_light,
+                                                                 *tree_counters, tree_options, *tree_scratch);
+            }
             stages::add_compose_pass(context_, direct_passes, direct, *tree_light, *direct_total);
+        } else if (two_level) {
+            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_,
+                                                 two_level_light_tree_->buffers(), view.position, direct,
+                                                 *tree_counters, tree_options, *tree_scratch);
         } else {
             stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, light_tree_->buffers(),
                                                  view.position, direct, *tree_counters, tree_options, *tree_scratch);

@@ -1,6 +1,7 @@
 // `vplkit bench direct --scene NAME`: what direct light's accuracy costs with the flat sampler
 // (point and spot lights one by one, emitters from one power CDF) and with the light tree over
-// all of them (stochastic lightcuts, direct_light_tree.hpp), at 1..64 samples per pixel, against
+// all of them (stochastic lightcuts, direct_light_tree.hpp), one-level and two-level (a bottom tree
+// per mesh light under a top tree, seed 003 sec. 3.1), at 1..64 samples per pixel, against
 // a converged reference (the flat sampler's mean over many frames: it is unbiased, as the tree
 // is). Writes DIR/points.csv, two plots (PNG), a frame of each (PNG) and DIR/report.md with the
 // equal-time comparison.
@@ -152,7 +153,8 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
     const std::vector<uint32_t> spps =
         quick ? std::vector<uint32_t>{1, 4} : std::vector<uint32_t>{1, 2, 4, 8, 16, 32, 64};
     const uint32_t picture_spp = quick ? 4 : 16;  // the frames written as pictures
-    const size_t total = reference_frames + 2 * spps.size() * frames;
+    const std::vector<DirectSampler> samplers = {DirectSampler::flat, DirectSampler::tree, DirectSampler::tree2};
+    const size_t total = reference_frames + samplers.size() * spps.size() * frames;
     size_t done = 0;
 
     // The reference: the flat sampler's mean over reference_frames frames of 64 samples each.
@@ -170,7 +172,7 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
     for (size_t i = 0; i < sum.size(); ++i) reference[i] = float(sum[i] / reference_frames);
 
     std::vector<DirectPoint> points;
-    for (DirectSampler sampler : {DirectSampler::flat, DirectSampler::tree}) {
+    for (DirectSampler sampler : samplers) {
         for (uint32_t spp : spps) {
             RenderSettings settings = base;
             settings.direct_sampler = sampler;
@@ -219,7 +221,7 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
     PlotSpec spp_plot = time_plot;
     spp_plot.title = "direct light: relative RMSE vs samples per pixel (" + setup.name + ")";
     spp_plot.x_label = "samples per pixel";
-    for (DirectSampler sampler : {DirectSampler::flat, DirectSampler::tree}) {
+    for (DirectSampler sampler : samplers) {
         Series by_time, by_spp;
         by_time.name = by_spp.name = direct_sampler_name(sampler);
         for (const DirectPoint& p : points) {
@@ -237,7 +239,7 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
 
     // report.md
     std::ostringstream md;
-    md << "# Direct light: flat sampler vs light tree (" << setup.name << ")\n\n"
+    md << "# Direct light: flat sampler vs one- and two-level light trees (" << setup.name << ")\n\n"
        << "Device: " << device.name << " (" << device.type_name << "). " << base.width << "x" << base.height << ", "
        << renderer.emitter_count() << " emissive triangles, " << scene.lights.size() << " punctual lights. "
        << "Reference: the flat sampler's mean over " << reference_frames << " frames of "
@@ -247,12 +249,12 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
        << " (the light tree's one-time build is not in it). Command: `vplkit bench direct --scene " << scene_name
        << (quick ? " --quick" : "") << "`.\n\n"
        << "![relative RMSE vs time](rmse_vs_time.png)\n\n![relative RMSE vs spp](rmse_vs_spp.png)\n\n"
-       << "| sampler | spp | direct ms | relative RMSE | flat's RMSE at the same time | tree / flat |\n"
+       << "| sampler | spp | direct ms | relative RMSE | flat's RMSE at the same time | tree(2) / flat |\n"
        << "| --- | --- | --- | --- | --- | --- |\n";
     char line[256];
     for (const DirectPoint& p : points) {
         std::string equal = "", ratio = "";
-        if (p.sampler == DirectSampler::tree) {
+        if (p.sampler != DirectSampler::flat) {
             if (auto flat = flat_rmse_at(points, p.direct_ms)) {
                 std::snprintf(line, sizeof line, "%.4f", *flat);
                 equal = line;
@@ -266,7 +268,10 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
                       p.direct_ms, p.relative_rmse, equal.c_str(), ratio.c_str());
         md << line;
     }
-    md << "\n" << picture_spp << " samples per pixel, flat and tree: ![flat](flat_spp.png) ![tree](tree_spp.png)\n";
+    md << "\n"
+       << picture_spp
+       << " samples per pixel, flat, tree and tree2: ![flat](flat_spp.png) ![tree](tree_spp.png) "
+          "![tree2](tree2_spp.png)\n";
     write_text(out / "report.md", md.str());
     std::printf("wrote %s\n", (out / "report.md").string().c_str());
     return 0;

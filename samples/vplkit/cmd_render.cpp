@@ -39,7 +39,7 @@ const char* const kRenderUsage =
     "                     [--vpl-source auto|ir|brsm|smc] [--vpls N] [--bounces B]\n"
     "                     [--smc-max-moves M] [--smc-resample R] [--smc-radiosity-samples S] [--smc-warmup W]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
-    "                     [--seed S] [--direct auto|tree|flat] [--direct-spp N] [--direct-interleave M]\n"
+    "                     [--seed S] [--direct auto|tree|tree2|flat] [--direct-spp N] [--direct-interleave M]\n"
     "                     [--frames F]\n"
     "                     [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
@@ -108,7 +108,8 @@ const char* const kRenderUsage =
     "                   tree: one light tree over them all, a cut per 8 x 8 block and a traversal\n"
     "                   per cut node to one light (stochastic lightcuts); flat: point and spot lights\n"
     "                   one by one, emitters drawn by power; auto (default): tree when the scene has\n"
-    "                   more than 8 such lights (the plan says which and why). Directional lights\n"
+    "                   more than 8 such lights (the plan says which and why); tree2: the tree in\n"
+    "                   two levels, a bottom tree per mesh light under a top tree. Directional lights\n"
     "                   are evaluated one by one either way\n"
     "  --direct-spp N   samples per pixel of sampled direct light (default 16): flat: emitter\n"
     "                   samples; tree: cut nodes, one light sample each (at most 64)\n"
@@ -252,17 +253,19 @@ RenderRequest parse_render_request(Args& args) {
         settings.direct_samples = parse_whole_number("--direct-spp", *text, 65536);
     if (auto text = args.value("--direct")) {
         bool known = false;
-        for (DirectSampler d : {DirectSampler::automatic, DirectSampler::tree, DirectSampler::flat}) {
+        for (DirectSampler d :
+             {DirectSampler::automatic, DirectSampler::tree, DirectSampler::tree2, DirectSampler::flat}) {
             if (*text == direct_sampler_name(d)) {
                 settings.direct_sampler = d;
                 known = true;
             }
         }
-        if (!known) throw UsageError("--direct expects auto, tree or flat, got '" + *text + "'");
+        if (!known) throw UsageError("--direct expects auto, tree, tree2 or flat, got '" + *text + "'");
     }
     if (auto text = args.value("--direct-interleave"))
         settings.direct_interleave = parse_whole_number("--direct-interleave", *text, 8);
-    if (settings.direct_sampler == DirectSampler::tree && settings.direct_samples > 64) {
+    if ((settings.direct_sampler == DirectSampler::tree || settings.direct_sampler == DirectSampler::tree2) &&
+        settings.direct_samples > 64) {
         throw UsageError("--direct-spp " + std::to_string(settings.direct_samples) +
                          ": the tree samples at most 64 cut nodes per pixel");
     }

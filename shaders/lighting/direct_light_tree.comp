@@ -15,6 +15,11 @@
 // the cut is one of the direct light of all the tree's lights (tests/lighting checks the mean).
 // Directional lights are not in the tree (no position); direct_light.comp adds them.
 //
+// Two-level (kTwoLevel = 1, seed 003 sec. 3.1, two_level_light_tree.glsl): the cut is in the top
+// tree (leaf_count = its leaves) and the traversal from the cut node ends at a top leaf i; a second
+// traversal (the same rtslc_traverse_in) descends bottom tree i to a light. P(light) is the
+// product of the two paths' probabilities, exactly the probability of the path taken.
+//
 // Without interleaving every dispatch adds to `radiance`, which already holds emission,
 // background and directional light (radiance.a is left as it is); interleaved, `radiance` is the
 // scratch's estimates (see below). Samples that are not finite are left out and counted
@@ -35,23 +40,29 @@
 #include "vplkit/vpl_eval.glsl"
 #define VPLKIT_LIGHT_TREE_BINDING 6
 #include "vplkit/rtslc_tree_sampling.glsl"
+#include "vplkit/two_level_light_tree.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // 0 turns the shadow rays off (every light visible): the estimator's mean is then the unshadowed
 // direct light, which the unbiasedness test checks.
 layout(constant_id = 0) const uint kShadowRays = 1u;
+// 1: `light_tree` is a two-level tree and `bottoms` says where its bottom trees are (see above).
+layout(constant_id = 1) const uint kTwoLevel = 0u;
 
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
 layout(set = 0, binding = 5, rgba16f) uniform readonly image2D gbuffer_albedo;
-// Leaf i's light (the key sort's values): < triangle_count an emitter, else a point or spot light.
+// Leaf i's light (the key sort's values; two-level: bottoms' light_base + leaf): < triangle_count
+// an emitter, else a point or spot light.
 layout(std430, set = 0, binding = 7) readonly buffer LeafLightBuffer { uint items[]; } leaf_lights;
 layout(std430, set = 0, binding = 8) readonly buffer EmissiveTriangleBuffer { EmissiveTriangle items[]; } emitters;
 layout(std430, set = 0, binding = 9) readonly buffer PunctualLightBuffer { PunctualLight items[]; } lights;
 layout(std430, set = 0, binding = 10) readonly buffer RtslcCutBuffer { uint items[]; } cuts;
 layout(set = 0, binding = 11, rgba32f) uniform image2D radiance;
+// Two-level only: top leaf i's bottom tree (one-level, any buffer: it is not read).
+layout(std430, set = 0, binding = 14) readonly buffer LightTreeBottomBuffer { LightTreeBottom items[]; } bottoms;
 
 layout(push_constant) uniform DirectLightTreePush {
     vec3 camera_position;
@@ -60,7 +71,7 @@ layout(push_constant) uniform DirectLightTreePush {
     uint block_size;      // k
     uint cut_size;        // n: slots per block in `cuts`
     uint blocks_x;
-    uint leaf_count;      // a power of two
+    uint leaf_count;      // a power of two (two-level: the top tree's)
     uint triangle_count;  // lights [0, triangle_count) are emitters
     uint slot_first;      // this dispatch samples the cut slots [slot_first, slot_end)
     uint slot_end;
@@ -191,7 +202,23 @@ void main() {
         if (t.status != kRtslcReachedLeaf) {
             break;
         }
-        uint light = leaf_lights.items[light_tree_node_leaf(push.leaf_count, t.node)];
+        uint leaf = light_tree_node_leaf(push.leaf_count, t.node);
+        float light_probability = t.path_probability;
+        if (kTwoLevel != 0u) {
+            LightTreeBottom bottom = bottoms.items[leaf];
+            RtslcTraversal b = rtslc_traverse_in(s, bottom.node_base, 0u, bottom.leaf_count, min_distance2, rng);
+            levels += b.levels;
+            if (b.status == kRtslcDeadBranch) {
+                ++dead;
+                continue;
+            }
+            if (b.status != kRtslcReachedLeaf) {
+                break;
+            }
+            light_probability *= b.path_probability;
+            leaf = bottom.light_base + light_tree_node_leaf(bottom.leaf_count, b.node);
+        }
+        uint light = leaf_lights.items[leaf];
         LightSample sample_;
         if (light < push.triangle_count) {
             float u = rng_next_float(rng);
@@ -202,7 +229,7 @@ void main() {
         }
         // The division first: a pmf that is NaN or underflowed to 0 drops the sample even where
         // the light gives 0 (issue 6: a pixel is finite or its dropped samples are counted).
-        vec3 estimate = sample_.value / (t.path_probability * node_samples);
+        vec3 estimate = sample_.value / (light_probability * node_samples);
         vec3 next = total + estimate;
         if (!vpl_finite(estimate) || !vpl_finite(next)) {
             ++dropped;

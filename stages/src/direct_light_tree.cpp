@@ -36,14 +36,34 @@ void validate_direct_light_tree(const RtslcOptions& options) {
 
 namespace {
 
+// Either tree as the passes read it: one-level is a two-level tree without bottoms.
+struct TreeView {
+    uint32_t leaf_count = 0;  // the (top) tree's leaves: the cut's and the first traversal's
+    uint32_t triangle_count = 0;
+    bool two_level = false;
+    BufferView nodes, bottoms, leaf_lights, emitters, punctual;
+};
+
+TreeView view_of(const SceneLightTreeBuffers& tree) {
+    if (tree.count == 0 || tree.leaf_count == 0) refuse("the tree holds no lights");
+    // One-level, the shader does not read `bottoms`; the binding still needs a buffer.
+    return {tree.leaf_count,  tree.triangle_count, false,         tree.nodes,
+            tree.leaf_lights, tree.leaf_lights,    tree.emitters, tree.punctual};
+}
+
+TreeView view_of(const TwoLevelLightTreeBuffers& tree) {
+    if (tree.top_leaf_count == 0) refuse("the two-level tree holds no lights");
+    return {tree.top_leaf_count, tree.triangle_count, true,          tree.nodes,
+            tree.bottoms,        tree.leaf_lights,    tree.emitters, tree.punctual};
+}
+
 // The passes of both entry points: sampling into `radiance` (added) or, interleaved, into the
 // scratch's estimates and then the reconstruction into `radiance` (written).
 void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                const SceneLightTreeBuffers& tree, glm::vec3 camera_position, const ImageView& radiance,
-                const BufferView& counters, const RtslcOptions& options, const RtslcScratchBuffers& scratch) {
+                const TreeView& tree, glm::vec3 camera_position, const ImageView& radiance, const BufferView& counters,
+                const RtslcOptions& options, const RtslcScratchBuffers& scratch) {
     validate_direct_light_tree(options);
     check_gbuffer_target("direct light tree", gbuffer, radiance);
-    if (tree.count == 0 || tree.leaf_count == 0) refuse("the tree holds no lights");
     if (scratch.width != gbuffer.width() || scratch.height != gbuffer.height() ||
         scratch.block_size != options.block_size || scratch.cut_size != options.samples_per_pixel ||
         scratch.interleave != options.interleave) {
@@ -65,6 +85,7 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
 
     shaders::direct_light_tree::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;
+    spec.kTwoLevel = tree.two_level ? 1u : 0u;
     const auto& pipeline = device.pipeline<shaders::direct_light_tree::Pipeline>(bvh_spec(bvh, spec));
     const ImageView samples_target = options.interleave > 1 ? scratch.estimates : radiance;
     shaders::direct_light_tree::Bindings b;
@@ -74,6 +95,7 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
     b.leaf_lights = tree.leaf_lights.descriptor();
     b.emitters = tree.emitters.descriptor();
     b.lights = tree.punctual.descriptor();
+    b.bottoms = tree.bottoms.descriptor();
     b.cuts = scratch.cuts.descriptor();
     b.gi_counters = counters.descriptor();
     b.radiance = samples_target.descriptor();
@@ -113,7 +135,26 @@ void add_direct_light_tree_passes(Device& device, StepList& passes, const Gbuffe
     if (options.interleave != 1) {
         refuse("interleaved sampling writes the tree's light alone: use add_direct_light_tree_interleaved_passes");
     }
-    add_passes(device, passes, gbuffer, bvh, tree, camera_position, radiance, counters, options, scratch);
+    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, radiance, counters, options, scratch);
+}
+
+void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                                  const TwoLevelLightTreeBuffers& tree, glm::vec3 camera_position,
+                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
+                                  const RtslcScratchBuffers& scratch) {
+    if (options.interleave != 1) {
+        refuse("interleaved sampling writes the tree's light alone: use add_direct_light_tree_interleaved_passes");
+    }
+    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, radiance, counters, options, scratch);
+}
+
+void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
+                                              const BvhBuffers& bvh, const TwoLevelLightTreeBuffers& tree,
+                                              glm::vec3 camera_position, const ImageView& tree_light,
+                                              const BufferView& counters, const RtslcOptions& options,
+                                              const RtslcScratchBuffers& scratch) {
+    if (options.interleave < 2) refuse("interleaved passes need interleave >= 2");
+    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, tree_light, counters, options, scratch);
 }
 
 void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
@@ -122,7 +163,7 @@ void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, 
                                               const BufferView& counters, const RtslcOptions& options,
                                               const RtslcScratchBuffers& scratch) {
     if (options.interleave < 2) refuse("interleaved passes need interleave >= 2");
-    add_passes(device, passes, gbuffer, bvh, tree, camera_position, tree_light, counters, options, scratch);
+    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, tree_light, counters, options, scratch);
 }
 
 }  // namespace vplkit::stages

@@ -33,10 +33,11 @@ const char* gi_method_name(GiMethod method);
 enum class DirectSampler {
     flat,       // point and spot lights one by one, emissive triangles from one power CDF
     tree,       // one light tree over all of them, stochastic lightcuts (seed 003; direct_light_tree.hpp)
+    tree2,      // the same with a two-level tree: a bottom tree per mesh light under a top tree (seed 003 sec. 3.1)
     automatic,  // the planner's choice: the tree above kDirectTreeMinLights such lights
 };
 
-// "flat", "tree", "auto".
+// "flat", "tree", "tree2", "auto".
 const char* direct_sampler_name(DirectSampler sampler);
 
 // The planner samples direct light through the tree when the scene has more emissive triangles,

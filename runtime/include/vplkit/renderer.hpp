@@ -7,6 +7,7 @@
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/gpu_light_tree.hpp"
 #include "vplkit/gpu_lights.hpp"
+#include "vplkit/gpu_two_level_light_tree.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/render_settings.hpp"
@@ -136,7 +137,9 @@ private:
     stages::GpuEmitters emitters_;
     stages::GpuLights directional_lights_;            // the direct-light pass's lights when the tree samples the rest
     std::optional<stages::GpuLightTree> light_tree_;  // over emitters, point and spot lights; built on first use
-    const scene::Scene& scene_source_;                // for the VPL sources, uploaded on first use
+    std::optional<stages::GpuTwoLevelLightTree>
+        two_level_light_tree_;          // the same lights in two levels (--direct tree2)
+    const scene::Scene& scene_source_;  // for the VPL sources, uploaded on first use
     double bvh_build_ms_ = 0.0;
 };
 

@@ -11,7 +11,8 @@
 // A sampler selects its cut in the top tree, descends it to a top leaf, then continues in that
 // leaf's bottom tree to a light; the light's pmf is the product of every choice on the way.
 //
-// Not yet used by a renderer or shader: this is the data layout and host build only.
+// Uploaded by vplkit/gpu_two_level_light_tree.hpp and sampled by direct_light_tree.comp
+// (kTwoLevel): `vplkit render --direct tree2`.
 
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/types.hpp"
@@ -30,13 +31,8 @@ struct TwoLevelLight {
     shaders::vec3 power{};
 };
 
-// Where top leaf i's bottom tree lives.
-struct TwoLevelTopLeaf {
-    uint32_t node_base = 0;   // its root's index in TwoLevelLightTree::nodes
-    uint32_t leaf_count = 0;  // its leaves, a power of two
-    uint32_t light_base = 0;  // its leaf j's light is leaf_lights[light_base + j] (j < light_count)
-    uint32_t light_count = 0;
-};
+// Where top leaf i's bottom tree lives: the struct the shaders read (vplkit/two_level_light_tree.glsl).
+using TwoLevelTopLeaf = shaders::LightTreeBottom;
 
 struct TwoLevelLightTree {
     uint32_t top_leaf_count = 0;  // light_tree_leaf_count(mesh lights)

@@ -5,7 +5,9 @@
 // selection at a block's representative pixel and the traversal from a cut node to a leaf. What
 // the leaves are does not matter here: rtslc GI's trees hold VPLs (gi/rtslc_cut.comp,
 // gi/rtslc_gi.comp), direct light's tree the scene's lights (lighting/direct_light_tree.comp);
-// both select and traverse with these two functions, so they are one code path.
+// both select and traverse with these two functions, so they are one code path. A two-level tree
+// (two_level_light_tree.glsl) selects its cut in the top tree and traverses each level with
+// rtslc_traverse_in, the traversal of a tree at any offset of the node array.
 //
 // Including it: define the set-0 binding of the light tree (LightTreeNode[]) first,
 //     #define VPLKIT_LIGHT_TREE_BINDING 6
@@ -110,8 +112,12 @@ struct RtslcTraversal {
 // of the leaf reached is path_probability: the lobe's probability times the path's, exactly the
 // probability of the path taken (each choice's probability is on rng_next_float's grid:
 // rtslc_choose_left).
-RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, GiLobe lobe,
-                              inout Rng rng) {
+//
+// The tree is the perfect tree whose root is light_tree.items[base] (`node` and the result's node
+// are heap indices within it, light_tree.glsl): base 0 for a tree alone in the buffer, a bottom
+// tree's node_base in a two-level tree (two_level_light_tree.glsl).
+RtslcTraversal rtslc_traverse_in(RtslcShading s, uint base, uint node, uint leaf_count, float min_distance2,
+                                 GiLobe lobe, inout Rng rng) {
     RtslcTraversal t = RtslcTraversal(node, lobe.probability, 0u, kRtslcTraversalShort);
     bool glossy = lobe.kind == kBrdfLobeGlossy;
     GiGlossyPath glossy_path = GiGlossyPath(true, 1.0, 1.0);
@@ -125,7 +131,7 @@ RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float 
             break;
         }
         uint left = light_tree_left_child(t.node);
-        LightTreeNode node_left = light_tree.items[left], node_right = light_tree.items[left + 1u];
+        LightTreeNode node_left = light_tree.items[base + left], node_right = light_tree.items[base + left + 1u];
         RtslcChildProbability choice = rtslc_child_probability(s, node_left, node_right, min_distance2, lobe.kind);
         RtslcChildProbability at_mean = choice;
         if (glossy) {
@@ -152,6 +158,12 @@ RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float 
         t.path_probability = lobe.probability * gi_glossy_path_probability(glossy_path);
     }
     return t;
+}
+
+// rtslc_traverse_in over the tree alone in the buffer (root light_tree.items[0]).
+RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, GiLobe lobe,
+                              inout Rng rng) {
+    return rtslc_traverse_in(s, 0u, node, leaf_count, min_distance2, lobe, rng);
 }
 
 // The lobe-MIS traversal (one-sample MIS over the lobes, balance heuristic): it steers by the
@@ -207,9 +219,14 @@ RtslcTraversal rtslc_traverse_lobe_mis(RtslcShading s, uint node, uint leaf_coun
     return t;
 }
 
-// The traversal for the whole BRDF (direct light's, and every sample without the glossy branch).
+// The traversals for the whole BRDF (direct light's, and every sample without the glossy branch).
 RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, inout Rng rng) {
     return rtslc_traverse(s, node, leaf_count, min_distance2, gi_lobe_both(), rng);
+}
+
+RtslcTraversal rtslc_traverse_in(RtslcShading s, uint base, uint node, uint leaf_count, float min_distance2,
+                                 inout Rng rng) {
+    return rtslc_traverse_in(s, base, node, leaf_count, min_distance2, gi_lobe_both(), rng);
 }
 
 #endif

@@ -21,6 +21,11 @@
 // similar neighbours' shares: an approximation, biased at edges (that shader says why). That
 // variant writes the tree's light alone into its own target (add_direct_light_tree_interleaved_passes);
 // the caller adds it to the rest (the renderer composes the two).
+//
+// Two-level (seed 003 sec. 3.1; the overloads taking TwoLevelLightTreeBuffers): the same passes
+// with the cut in the top tree and a second traversal into the chosen mesh light's bottom tree
+// (vplkit/two_level_light_tree.glsl; direct_light_tree.comp's kTwoLevel). The lights and the
+// estimator are the same: only the tree the pmf comes from differs.
 
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
@@ -33,6 +38,17 @@
 #include <glm/vec3.hpp>
 
 namespace vplkit::stages {
+
+// A two-level tree as the sampling reads it (built by vplkit/two_level_light_tree.hpp).
+struct TwoLevelLightTreeBuffers {
+    uint32_t top_leaf_count = 0;  // the top tree's leaves, a power of two
+    uint32_t triangle_count = 0;  // lights [0, triangle_count) are emitters, as SceneLightTreeBuffers
+    BufferView nodes;             // LightTreeNode[]: the top tree, then every bottom tree
+    BufferView bottoms;           // LightTreeBottom[top leaves]: where top leaf i's bottom tree is
+    BufferView leaf_lights;       // uint32[]: bottom leaf j of top leaf i holds leaf_lights[light_base + j]
+    BufferView emitters;          // as SceneLightTreeBuffers
+    BufferView punctual;
+};
 
 // Throws vplkit::Error for bad options (rtslc's validate), naming "direct light tree".
 void validate_direct_light_tree(const RtslcOptions& options);
@@ -50,6 +66,17 @@ void add_direct_light_tree_passes(Device& device, StepList& passes, const Gbuffe
 // (RGBA32F, storage, the G-buffer's size); needs options.interleave >= 2 and scratch.estimates.
 void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
                                               const BvhBuffers& bvh, const SceneLightTreeBuffers& tree,
+                                              glm::vec3 camera_position, const ImageView& tree_light,
+                                              const BufferView& counters, const RtslcOptions& options,
+                                              const RtslcScratchBuffers& scratch);
+
+// The two-level tree's variants of the two above.
+void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                                  const TwoLevelLightTreeBuffers& tree, glm::vec3 camera_position,
+                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
+                                  const RtslcScratchBuffers& scratch);
+void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
+                                              const BvhBuffers& bvh, const TwoLevelLightTreeBuffers& tree,
                                               glm::vec3 camera_position, const ImageView& tree_light,
                                               const BufferView& counters, const RtslcOptions& options,
                                               const RtslcScratchBuffers& scratch);
