@@ -132,6 +132,10 @@ int run_sequence(Args& args) {
     if (!out_text) throw UsageError("--out DIR is required");
     validate_render_request(request);
     RenderSettings& settings = request.settings;
+    // Sequences are what the filter is for: svgf unless asked otherwise (never for exact).
+    if (!request.denoise_given && settings.method != GiMethod::none && settings.method != GiMethod::exact) {
+        settings.denoise = DenoiseMode::svgf;
+    }
     if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
     if (fresh_vpls && settings.vpl_source == VplSource::smc) {
         throw UsageError("--fresh-vpls is for --vpl-source ir or brsm: an SMC set persists by design");
@@ -169,6 +173,7 @@ int run_sequence(Args& args) {
     reference_settings.vpl_paths = reference_paths;
     reference_settings.seed = settings.seed + 1000003;  // another VPL set than the one measured
     reference_settings.half_resolution_gi = false;
+    reference_settings.denoise = DenoiseMode::off;
     if (reference) reference_renderer.emplace(*context, scene);
 
     const bool terminal = isatty(fileno(stderr));
