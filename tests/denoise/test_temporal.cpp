@@ -270,3 +270,55 @@ TEST_CASE("denoise temporal: error against the exact mean falls like 1 over sqrt
         }
     }
 }
+
+TEST_CASE("denoise temporal: no ghost of the old surface after a disocclusion") {
+    // Six frames see a closer face (x >= 32, z = -3) of radiance 5; then it is gone and the back
+    // plane (exact value 1, noise +-1) shows. In the k-th frame after, the revealed pixels must hold
+    // a running mean of k frames of the plane: their mean error within 4 sigma / sqrt(k n) of 0
+    // (n = 1024 pixels x 3 channels: a ghost of 4 / k would be hundreds of sigma away).
+    Context& ctx = context();
+    const glm::mat4 vp = denoise_camera({0, 0, 0}, kSize, kSize);
+    const DenoiseGeometry flat = plane_geometry(vp, kSize, kSize, flat_plane());
+    const DenoiseGeometry stepped = plane_geometry(vp, kSize, kSize, stepped_plane());
+    const stages::DenoiseOptions options = test_options();
+    struct Slot {
+        Image position, normal, color, moments;
+    };
+    Slot slots[2];
+    for (auto& s : slots)
+        s = {float4_image(ctx, kSize, kSize, "history position"), float4_image(ctx, kSize, kSize, "history normal"),
+             float4_image(ctx, kSize, kSize, "history color"), float4_image(ctx, kSize, kSize, "history moments")};
+    std::mt19937 rng(31);
+    const double sigma = 1.0 / std::sqrt(3.0);
+    for (int f = 1; f <= 10; ++f) {
+        const bool revealed = f > 6;
+        const DenoiseGeometry& g = revealed ? flat : stepped;
+        DenoiseImage frame = random_image(rng, 0.0, 2.0);
+        if (!revealed)
+            for (int y = 0; y < int(kSize); ++y)
+                for (int x = 32; x < int(kSize); ++x) frame.at(x, y) = {5.0, 5.0, 5.0, 0.0};
+        auto in = upload_image(ctx, frame, "irradiance");
+        auto position = upload_image(ctx, g.position, "position");
+        auto normal = upload_image(ctx, g.normal, "normal");
+        Slot& previous = slots[(f + 1) % 2];
+        Slot& next = slots[f % 2];
+        PassList passes("ghosting");
+        stages::add_temporal_accumulate_pass(
+            ctx, passes, in, position, normal, {previous.position, previous.normal, previous.color, previous.moments},
+            {next.position, next.normal, next.color, next.moments}, next.color, next.moments, vp, f > 1, options);
+        passes.run(ctx);
+        if (!revealed) continue;
+        const int k = f - 6;
+        const DenoiseImage out = download_image(next.color);
+        double sum = 0.0;
+        int count = 0;
+        for (int y = 0; y < int(kSize); ++y)
+            for (int x = 32; x < int(kSize); ++x)
+                for (int c = 0; c < 3; ++c, ++count) sum += out.at(x, y)[c] - 1.0;
+        const double bound = 4.0 * sigma / std::sqrt(double(k) * count);
+        CAPTURE(k);
+        MESSAGE("mean error in the revealed region, frame " << k << " after: " << sum / count << " (bound " << bound
+                                                            << ")");
+        CHECK(std::abs(sum / count) < bound);
+    }
+}
