@@ -42,6 +42,8 @@ const char* const kSequenceUsage =
     "                    turning --orbit-degrees (default 30) over the sequence; or a keyframe file,\n"
     "                    one key per line: TIME PX PY PZ TX TY TZ (position, target), interpolated\n"
     "  --frames N        frames (default 16)\n"
+    "  --denoise D       svgf (default for sampled methods), temporal or off: the indirect-light\n"
+    "                    filter, its history carried along the path (exact is never filtered)\n"
     "  --fresh-vpls      ir, brsm: new VPLs every frame (seed + frame), as seed 001's comparison draws\n"
     "                    them; without it they follow --seed, the same light paths every frame\n"
     "  --reference       also the per-frame reference: the exact gather (--method exact) over\n"
