@@ -201,6 +201,7 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
     if (!denoiser_ || denoiser_->width() != gbuffer.width() || denoiser_->height() != gbuffer.height()) {
         denoiser_ = Denoiser::create(context_, gbuffer.width(), gbuffer.height());
     }
+    if (settings.frame == 0) denoiser_->reset();
     stages::DenoiseOptions options = settings.denoise_options;
     options.scene_scale = gpu_bvh_.scene_scale;
     PassList passes("denoise");
@@ -230,8 +231,9 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     out.height = h;
     out.sst_sigma_max = settings.sst.sigma_max;
     // The plan decides every stage below; the passes recorded are exactly the stages it runs.
-    const bool denoise_history =
-        denoiser_ && denoiser_->width() == w && denoiser_->height() == h && denoiser_->has_history();
+    // Frame 0 starts a new sequence: the denoiser's history is dropped.
+    const bool denoise_history = settings.frame > 0 && denoiser_ && denoiser_->width() == w &&
+                                 denoiser_->height() == h && denoiser_->has_history();
     const FramePlan plan =
         plan_frame(scene_source_, settings, view_key_of(view, w, h),
                    {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key, denoise_history});

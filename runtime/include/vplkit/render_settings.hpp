@@ -109,6 +109,7 @@ struct RenderSettings {
     uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
     // The frame counter: sst, rtslc and hybrid draw other random numbers in each frame (for
     // temporal accumulation); rtslc also rotates its interleaved shares. The VPLs follow `seed`.
+    // Frame 0 also starts the denoiser's history afresh (--denoise).
     uint32_t frame = 0;
     bool mock_cuts = true;  // hybrid: mock cuts where no block is alike (false: root traversals)
     // hybrid: the traversal below the cut nodes (lightcuts: the thesis' comparison protocol).
