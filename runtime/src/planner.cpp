@@ -44,6 +44,8 @@ const char* stage_name(FrameStage stage) {
             return "gi hybrid";
         case FrameStage::gi_upsample:
             return "gi upsample";
+        case FrameStage::denoise:
+            return "denoise";
         case FrameStage::compose:
             return "compose";
         case FrameStage::tonemap:
@@ -343,6 +345,18 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         !gi    ? no_gi + ": no indirect light"
         : half ? "GI at half resolution"
                : "GI resolution equals the output: no upsampling");
+    // The filter only where it can help: exact is the ground truth, and a temporal-only filter
+    // without history has nothing to average (it still runs then, to start the history).
+    const bool denoise = gi && settings.denoise != DenoiseMode::off && settings.method != GiMethod::exact;
+    add(FrameStage::denoise, denoise,
+        !gi                                    ? no_gi + ": nothing to filter"
+        : settings.denoise == DenoiseMode::off ? "--denoise off"
+        : settings.method == GiMethod::exact   ? "exact is the ground truth: nothing to filter"
+        : settings.denoise == DenoiseMode::svgf
+            ? std::string("svgf: temporal accumulation and the a-trous filter") +
+                  (previous.denoise_history ? "" : " (no history yet: spatial only)")
+        : previous.denoise_history ? "temporal: accumulation with the previous frames"
+                                   : "temporal: no history yet, this frame starts it (image unchanged)");
     plan.glossy_reason = glossy_branch_reason(scene, settings, gi && sampled, plan.glossy_branch);
     add(FrameStage::compose, true, "every frame: direct + indirect");
     add(FrameStage::tonemap, true, "every frame: the picture");

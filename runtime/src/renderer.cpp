@@ -196,6 +196,23 @@ std::string view_key_of(const stages::CameraView& view, uint32_t w, uint32_t h) 
 
 }  // namespace
 
+void Renderer::denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
+                                stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, RenderedImage& out) {
+    if (!denoiser_ || denoiser_->width() != gbuffer.width() || denoiser_->height() != gbuffer.height()) {
+        denoiser_ = Denoiser::create(context_, gbuffer.width(), gbuffer.height());
+    }
+    if (settings.frame == 0) denoiser_->reset();
+    stages::DenoiseOptions options = settings.denoise_options;
+    options.scene_scale = gpu_bvh_.scene_scale;
+    PassList passes("denoise");
+    passes.set_tag(stage_tag(FrameStage::denoise));
+    denoiser_->add_passes(context_, passes, settings.denoise, gbuffer, indirect, options, demodulated);
+    passes.run(context_);
+    append(out.timings, passes.timings());
+    denoiser_->end_frame(view.view_projection);
+    out.firefly_removed_fraction = denoiser_->firefly_removed_fraction();
+}
+
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {
     validate_gi_settings(requested);
     const RenderSettings settings = with_scene_relative_thresholds(requested, gpu_bvh_.scene_scale);
@@ -214,8 +231,12 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     out.height = h;
     out.sst_sigma_max = settings.sst.sigma_max;
     // The plan decides every stage below; the passes recorded are exactly the stages it runs.
-    const FramePlan plan = plan_frame(scene_source_, settings, view_key_of(view, w, h),
-                                      {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key});
+    // Frame 0 starts a new sequence: the denoiser's history is dropped.
+    const bool denoise_history = settings.frame > 0 && denoiser_ && denoiser_->width() == w &&
+                                 denoiser_->height() == h && denoiser_->has_history();
+    const FramePlan plan =
+        plan_frame(scene_source_, settings, view_key_of(view, w, h),
+                   {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key, denoise_history});
     out.plan_summary = plan.summary();
     out.vpl_source = plan.vpl_source;
     for (const PlannedStage& s : plan.stages) {
@@ -321,7 +342,8 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         out.gbuffer_position = gbuffer.position.download<float>();
     } else if (settings.method != GiMethod::none) {
         out.vpl_count = frame_vpls(plan, view, gbuffer, settings, out).count;
-        render_indirect(plan, view, gbuffer, settings, indirect, out);
+        const bool demodulated = render_indirect(plan, view, gbuffer, settings, indirect, out);
+        if (plan.runs(FrameStage::denoise)) denoise_indirect(settings, view, gbuffer, indirect, demodulated, out);
     }
 
     PassList output_passes("output");

@@ -11,6 +11,7 @@
 #include "vplkit/image.hpp"
 #include "vplkit/planner.hpp"
 #include "vplkit/rtslc_scratch.hpp"
+#include "vplkit/stages/denoise.hpp"
 #include "vplkit/upsample_counters.hpp"
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
@@ -38,6 +39,18 @@ const char* gi_method_name(GiMethod method) {
             return "rtslc";
         case GiMethod::hybrid:
             return "hybrid";
+    }
+    return "?";
+}
+
+const char* denoise_mode_name(DenoiseMode mode) {
+    switch (mode) {
+        case DenoiseMode::off:
+            return "off";
+        case DenoiseMode::temporal:
+            return "temporal";
+        case DenoiseMode::svgf:
+            return "svgf";
     }
     return "?";
 }
@@ -100,7 +113,7 @@ RenderSettings with_scene_relative_thresholds(RenderSettings settings, float sce
     return settings;
 }
 
-void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
+bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
                                const RenderSettings& settings, Image& indirect, RenderedImage& out) {
     const GeneratedVpls& vpls = cache_.vpls;
     const bool half = settings.half_resolution_gi;
@@ -110,7 +123,7 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     out.gi_height = h;
     if (vpls.count == 0) {
         out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
-        return;
+        return false;
     }
     GiStageOptions options = gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
     options.sst.glossy.enabled = options.rtslc.glossy.enabled = options.hybrid.glossy.enabled = plan.glossy_branch;
@@ -201,16 +214,32 @@ void Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         }
     }
 
-    if (half) {
-        auto counters = stages::create_upsample_counters(context_);
-        PassList passes("gi upsample");
-        passes.set_tag(stage_tag(FrameStage::gi_upsample));
-        stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, *half_indirect, indirect, counters,
-                                  stages::upsample_options_for_scene(gpu_bvh_.scene_scale));
-        passes.run(context_);
-        append(out.timings, passes.timings());
-        out.upsample_counts = stages::read_upsample_counters(counters);
+    if (!half) return false;
+    // Upsampling blurs what it is given: give it irradiance (radiance / albedo at the half
+    // G-buffer), and multiply the full-resolution albedo back after it (or after the denoiser).
+    const bool denoised = plan.runs(FrameStage::denoise);
+    stages::DenoiseOptions modulation = settings.denoise_options;
+    modulation.scene_scale = gpu_bvh_.scene_scale;
+    auto half_irradiance = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
+                                         "half indirect irradiance");
+    std::optional<Image> full_irradiance;
+    if (!denoised) {
+        full_irradiance = Image::create(context_, gbuffer.width(), gbuffer.height(), VK_FORMAT_R32G32B32A32_SFLOAT,
+                                        VK_IMAGE_USAGE_STORAGE_BIT, "indirect irradiance");
     }
+    auto counters = stages::create_upsample_counters(context_);
+    PassList passes("gi upsample");
+    passes.set_tag(stage_tag(FrameStage::gi_upsample));
+    stages::add_demodulate_pass(context_, passes, *half_indirect, half_gbuffer->albedo, half_gbuffer->position,
+                                half_irradiance, modulation);
+    Image& upsampled = denoised ? indirect : *full_irradiance;
+    stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, half_irradiance, upsampled, counters,
+                              stages::upsample_options_for_scene(gpu_bvh_.scene_scale));
+    if (!denoised) stages::add_remodulate_pass(context_, passes, upsampled, gbuffer.albedo, indirect, modulation);
+    passes.run(context_);
+    append(out.timings, passes.timings());
+    out.upsample_counts = stages::read_upsample_counters(counters);
+    return denoised;
 }
 
 }  // namespace vplkit

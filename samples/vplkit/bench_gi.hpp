@@ -21,6 +21,7 @@ struct BenchPoint {
     bool half = false;        // GI at half resolution
     bool mock_cuts = true;    // hybrid
     unsigned vpls = 0;        // VPLs placed
+    bool denoised = false;    // --denoise svgf, accumulated over the point's frames (static camera)
 
     // Times (GPU timestamps), median over the timed frames, and the spread (min, max).
     double frame_ms = 0, frame_min_ms = 0, frame_max_ms = 0;  // every pass of the frame

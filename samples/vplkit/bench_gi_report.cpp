@@ -165,10 +165,12 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         if (!gi_only) plot.highlight_label = "Pareto front";
         const auto front = pareto_front(run);
         for (const char* m : kMethods) {
-            for (bool half : {false, true}) {
+            for (const std::string sweep : {"spp", "resolution", "denoise"}) {
                 Series series;
-                series.name = std::string(m) + (half ? " (half res)" : "");
-                for (const BenchPoint* p : select(run, m, half ? "resolution" : "spp")) {
+                series.name = std::string(m) + (sweep == "resolution" ? " (half res)"
+                                                : sweep == "denoise"  ? " (svgf)"
+                                                                      : "");
+                for (const BenchPoint* p : select(run, m, sweep)) {
                     series.x.push_back(gi_only ? p->gi_ms + p->trees_ms : p->frame_ms);
                     series.y.push_back(p->rmse);
                     if (!gi_only && std::find(front.begin(), front.end(), p) != front.end()) {
@@ -364,6 +366,12 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
                    << " | " << fixed(p->rmse, 4) << " | " << fixed(p->gi_ms, 1) << " |\n";
             }
         }
+    }
+    md << "\n## Denoised (svgf)\n\nEach point's frames accumulated on the static camera and filtered "
+          "(`--denoise svgf`); the RMSE is the last frame's, the frame time includes the filter's passes.\n\n"
+       << kTableHead;
+    for (const char* m : kMethods) {
+        for (const BenchPoint* p : select(run, m, "denoise")) md << row(*p);
     }
     md << "\n## Interleaved sampling (rtslc, 2 x 2)\n\n" << kTableHead;
     for (const BenchPoint* p : select(run, "rtslc", "interleave")) md << row(*p);

@@ -123,6 +123,13 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
     }
     for (unsigned spp : some) add("rtslc", "interleave", spp, 8, 2, false, true, vpl_budget);
     for (unsigned spp : some) add("hybrid", "mock", spp, 8, 1, false, false, vpl_budget);
+    // The denoised curves: svgf over the point's frames, its passes in the frame time.
+    for (const char* m : {"sst", "rtslc", "hybrid"}) {
+        for (unsigned spp : some) {
+            add(m, "denoise", spp, 8, 1, false, true, vpl_budget);
+            points.back().denoised = true;
+        }
+    }
     const std::vector<unsigned> counts =
         quick ? std::vector<unsigned>{vpl_budget * 4} : std::vector<unsigned>{1024, 16384, 65536, 262144, 1048576};
     for (unsigned n : counts) {
@@ -200,6 +207,7 @@ std::string BenchPoint::label() const {
     if (interleave > 1) s += " m" + std::to_string(interleave);
     if (half) s += " half";
     if (!mock_cuts) s += " no-mock";
+    if (denoised) s += " svgf";
     if (sweep == "vpls") s += " " + std::to_string(vpls) + " vpls";
     return s;
 }
@@ -238,7 +246,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     // --sweeps spp,resolution,...: only those sweeps (a shorter run, e.g. scripts/gpu_report.sh).
     std::vector<std::string> sweeps;
     if (auto text = args.value("--sweeps")) {
-        const std::vector<std::string> known = {"spp", "block", "resolution", "interleave", "mock", "vpls"};
+        const std::vector<std::string> known = {"spp", "block", "resolution", "interleave", "mock", "vpls", "denoise"};
         size_t start = 0;
         while (start <= text->size()) {
             const size_t comma = std::min(text->find(',', start), text->size());
@@ -246,7 +254,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             if (std::find(known.begin(), known.end(), name) == known.end()) {
                 throw UsageError(
                     "--sweeps expects a comma-separated list of spp, block, resolution, interleave, mock, "
-                    "vpls, got '" +
+                    "vpls, denoise, got '" +
                     *text + "'");
             }
             sweeps.push_back(name);
@@ -360,6 +368,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         s.interleave = p.interleave;
         s.half_resolution_gi = p.half;
         s.mock_cuts = p.mock_cuts;
+        s.denoise = p.denoised ? DenoiseMode::svgf : DenoiseMode::off;
         if (p.method == "hybrid-lightcuts") s.hybrid_traversal = vplkit::stages::HybridTraversal::lightcuts;
         // Light paths leave up to one VPL per bounce: aim the path count at the VPL count.
         s.vpl_paths =
@@ -372,6 +381,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         std::string failure;
         for (uint32_t f = 0; f < frames && failure.empty(); ++f) {
             try {
+                if (p.denoised) s.frame = f;  // new samples each frame; frame 0 restarts the history
                 image = renderer.render(scene.camera(), s);
             } catch (const Error& e) {
                 // A point the device cannot run (e.g. a tree beyond its storage-buffer range) is

@@ -40,7 +40,7 @@ const char* const kRenderUsage =
     "                     [--smc-max-moves M] [--smc-resample R] [--smc-radiosity-samples S] [--smc-warmup W]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
     "                     [--seed S] [--direct auto|tree|tree2|flat] [--direct-spp N] [--direct-interleave M]\n"
-    "                     [--frames F]\n"
+    "                     [--frames F] [--denoise off|temporal|svgf] [--firefly-sigma K]\n"
     "                     [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--device SEL] [--validation] [--strict]\n"
@@ -119,7 +119,12 @@ const char* const kRenderUsage =
     "  --all-stages     run every stage the method can use, whatever the scene needs, and reuse\n"
     "                   nothing between frames (the planner's baseline)\n"
     "  --no-reuse       place the VPLs and build the trees every frame, even when nothing changed\n"
+    "  --denoise D      off (default), temporal (reprojected accumulation) or svgf (accumulation +\n"
+    "                   the variance-guided a-trous filter) on the indirect light; left out for exact\n"
+    "  --firefly-sigma K  with --denoise: clamp indirect luminance above the neighbours' mean + K sigma\n"
+    "                   (default 4; 0: off); the share removed is printed\n"
     "  --frames F       render the frame F times and print each stage's median time over frames\n"
+    "                   (with --denoise: F frames accumulated on the static camera)\n"
     "                   2..F (the first pays for shader compiles); the image is the same each time\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
     "  --validation     run with the Vulkan validation layer on\n"
@@ -332,6 +337,25 @@ RenderRequest parse_render_request(Args& args) {
         else if (*text != "full")
             throw UsageError("--gi-resolution expects full or half, got '" + *text + "'");
     }
+    bool denoise_given = false;
+    if (auto text = args.value("--denoise")) {
+        denoise_given = true;
+        if (*text == "temporal")
+            settings.denoise = DenoiseMode::temporal;
+        else if (*text == "svgf")
+            settings.denoise = DenoiseMode::svgf;
+        else if (*text != "off")
+            throw UsageError("--denoise expects off, temporal or svgf, got '" + *text + "'");
+        if (settings.denoise != DenoiseMode::off && settings.method == GiMethod::none) {
+            throw UsageError("--denoise filters indirect light: give an indirect-light --method");
+        }
+    }
+    if (auto text = args.value("--firefly-sigma")) {
+        if (settings.denoise == DenoiseMode::off) throw UsageError("--firefly-sigma needs --denoise temporal or svgf");
+        const auto value = finite_number(*text);
+        if (!value || *value < 0.0f) throw UsageError("--firefly-sigma expects a number >= 0, got '" + *text + "'");
+        settings.denoise_options.firefly_k_sigma = *value;
+    }
     bool vpl_options_given = false;
     if (auto text = args.value("--vpl-source")) {
         vpl_options_given = true;
@@ -395,6 +419,7 @@ RenderRequest parse_render_request(Args& args) {
     r.extra_lights = std::move(extra_lights);
     r.settings = settings;
     r.lambertian = lambertian;
+    r.denoise_given = denoise_given;
     return r;
 }
 
@@ -522,6 +547,8 @@ int render_or_plan(Args& args, bool plan_only) {
     RenderedImage image;
     for (uint32_t frame = 0; frame < frames; ++frame) {
         if (frames > 1) std::fprintf(stderr, "[render] frame %u/%u\n", frame + 1, frames);
+        // Accumulating: every frame draws new samples (the frame counter) over the same VPLs.
+        if (settings.denoise != DenoiseMode::off) settings.frame = frame;
         image = renderer.render(scene.camera(), settings);
         if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
     }
@@ -563,6 +590,13 @@ int render_or_plan(Args& args, bool plan_only) {
         std::printf("gi at %ux%u, upsampled: %u pixels took the nearest sample (no similar one), %u got none\n",
                     image.gi_width, image.gi_height, image.upsample_counts.fallback_pixels,
                     image.upsample_counts.empty_pixels);
+    }
+    if (settings.denoise != DenoiseMode::off && !settings.vpls_only && settings.method != GiMethod::exact) {
+        std::printf(
+            "denoise %s over %u frame(s); firefly clamp (mean + %.1f sigma) removed %.4f%% of the indirect "
+            "irradiance's luminance in the last\n",
+            denoise_mode_name(settings.denoise), frames, settings.denoise_options.firefly_k_sigma,
+            100.0 * image.firefly_removed_fraction);
     }
     if (image.non_finite_pixels > 0) {
         throw Error("render: " + std::to_string(image.non_finite_pixels) +

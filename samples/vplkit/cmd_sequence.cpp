@@ -42,6 +42,8 @@ const char* const kSequenceUsage =
     "                    turning --orbit-degrees (default 30) over the sequence; or a keyframe file,\n"
     "                    one key per line: TIME PX PY PZ TX TY TZ (position, target), interpolated\n"
     "  --frames N        frames (default 16)\n"
+    "  --denoise D       svgf (default for sampled methods), temporal or off: the indirect-light\n"
+    "                    filter, its history carried along the path (exact is never filtered)\n"
     "  --fresh-vpls      ir, brsm: new VPLs every frame (seed + frame), as seed 001's comparison draws\n"
     "                    them; without it they follow --seed, the same light paths every frame\n"
     "  --reference       also the per-frame reference: the exact gather (--method exact) over\n"
@@ -132,6 +134,10 @@ int run_sequence(Args& args) {
     if (!out_text) throw UsageError("--out DIR is required");
     validate_render_request(request);
     RenderSettings& settings = request.settings;
+    // Sequences are what the filter is for: svgf unless asked otherwise (never for exact).
+    if (!request.denoise_given && settings.method != GiMethod::none && settings.method != GiMethod::exact) {
+        settings.denoise = DenoiseMode::svgf;
+    }
     if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
     if (fresh_vpls && settings.vpl_source == VplSource::smc) {
         throw UsageError("--fresh-vpls is for --vpl-source ir or brsm: an SMC set persists by design");
@@ -169,6 +175,7 @@ int run_sequence(Args& args) {
     reference_settings.vpl_paths = reference_paths;
     reference_settings.seed = settings.seed + 1000003;  // another VPL set than the one measured
     reference_settings.half_resolution_gi = false;
+    reference_settings.denoise = DenoiseMode::off;
     if (reference) reference_renderer.emplace(*context, scene);
 
     const bool terminal = isatty(fileno(stderr));

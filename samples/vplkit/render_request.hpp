@@ -25,7 +25,8 @@ struct RenderRequest {
     std::optional<uint32_t> width, height, camera;
     std::vector<scene::Light> extra_lights;  // --sun, --point
     RenderSettings settings;
-    bool lambertian = false;  // --brdf lambert
+    bool lambertian = false;     // --brdf lambert
+    bool denoise_given = false;  // --denoise was on the command line (sequence's default differs)
 };
 
 // Reads render's options except the outputs and --frames (UsageError for a mistake).

@@ -38,7 +38,7 @@ const FrameStage kAllStages[] = {FrameStage::gbuffer,       FrameStage::direct_l
                                  FrameStage::vpl_sort,      FrameStage::light_tree,   FrameStage::sst,
                                  FrameStage::gi_downsample, FrameStage::gi_exact,     FrameStage::gi_sst,
                                  FrameStage::gi_rtslc,      FrameStage::gi_hybrid,    FrameStage::gi_upsample,
-                                 FrameStage::compose,       FrameStage::tonemap};
+                                 FrameStage::denoise,       FrameStage::compose,      FrameStage::tonemap};
 
 std::set<FrameStage> running(const FramePlan& plan) {
     std::set<FrameStage> out;
@@ -247,6 +247,11 @@ TEST_CASE("planner: every frame records exactly the stages its plan runs") {
         cases.push_back(tree);
         tree.force_all_stages = true;  // forcing must not add the flat sampler's emitters a second time
         cases.push_back(tree);
+        auto denoised = small(GiMethod::hybrid);
+        denoised.denoise = vplkit::DenoiseMode::svgf;
+        cases.push_back(denoised);
+        denoised.half_resolution_gi = true;  // demodulated before upsampling, remodulated by the filter
+        cases.push_back(denoised);
         for (size_t i = 0; i < cases.size(); ++i) {
             CAPTURE(file);
             CAPTURE(i);
@@ -381,4 +386,23 @@ TEST_CASE("planner: a matte scene's frame is bit-identical with the glossy branc
         CHECK(a.rgba8 == b.rgba8);
         CHECK(a.radiance == b.radiance);
     }
+}
+
+TEST_CASE("planner: the denoiser is left out where it cannot help, and says why") {
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    auto reason_of = [&](const RenderSettings& settings, bool history) {
+        const FramePlan plan = vplkit::plan_frame(scene, settings, "view", {"", false, false, "", history});
+        for (const auto& s : plan.stages)
+            if (s.stage == FrameStage::denoise) return std::pair{s.runs, s.reason};
+        return std::pair{false, std::string("missing")};
+    };
+    auto exact = small(GiMethod::exact);
+    exact.denoise = vplkit::DenoiseMode::svgf;
+    CHECK(reason_of(exact, true) == std::pair{false, std::string("exact is the ground truth: nothing to filter")});
+    auto off = small(GiMethod::hybrid);
+    CHECK(reason_of(off, true) == std::pair{false, std::string("--denoise off")});
+    auto temporal = small(GiMethod::hybrid);
+    temporal.denoise = vplkit::DenoiseMode::temporal;
+    CHECK(reason_of(temporal, false).second.find("no history yet") != std::string::npos);
+    CHECK(reason_of(temporal, true) == std::pair{true, std::string("temporal: accumulation with the previous frames")});
 }

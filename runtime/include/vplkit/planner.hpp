@@ -35,6 +35,7 @@ enum class FrameStage {
     gi_rtslc,
     gi_hybrid,
     gi_upsample,  // joint bilateral upsampling to full resolution
+    denoise,      // demodulation, temporal accumulation, a-trous, remodulation (stages/denoise.hpp)
     compose,      // direct + indirect
     tonemap,
 };
@@ -63,6 +64,7 @@ struct ReusableWork {
     bool light_tree = false;  // the cached VPLs' trees, built with the cached tree key
     bool sst = false;
     std::string tree_key;
+    bool denoise_history = false;  // the denoiser holds a previous frame of this size
 };
 
 struct FramePlan {

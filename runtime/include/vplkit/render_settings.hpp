@@ -4,6 +4,7 @@
 // includes this header, so neither needs the other.
 
 #include "vplkit/stages/brsm.hpp"
+#include "vplkit/stages/denoise.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/smc.hpp"
 #include "vplkit/stages/sst.hpp"
@@ -54,6 +55,16 @@ enum class VplSource {
     automatic,  // the planner's choice: BRSM for one bounce from punctual lights, else light paths
 };
 
+// Filtering of the indirect light (stages/denoise.hpp; the runtime's Denoiser keeps the history).
+enum class DenoiseMode {
+    off,       // the raw Monte Carlo frame
+    temporal,  // reprojected temporal accumulation only (a running mean on a static camera)
+    svgf,      // temporal accumulation, then the variance-guided a-trous filter (SVGF)
+};
+
+// "off", "temporal", "svgf".
+const char* denoise_mode_name(DenoiseMode mode);
+
 // The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp, seed 004 sec. 4.2): a glossy
 // receiver picks the diffuse or the glossy lobe per sample. automatic: the planner turns it on
 // when a material of the scene can be smoother than stages::kGlossyMaxRoughness.
@@ -99,6 +110,7 @@ struct RenderSettings {
     uint32_t interleave = 1;  // rtslc: interleaved sampling over m x m sub-blocks (1: off)
     // The frame counter: sst, rtslc and hybrid draw other random numbers in each frame (for
     // temporal accumulation); rtslc also rotates its interleaved shares. The VPLs follow `seed`.
+    // Frame 0 also starts the denoiser's history afresh (--denoise).
     uint32_t frame = 0;
     bool mock_cuts = true;  // hybrid: mock cuts where no block is alike (false: root traversals)
     // hybrid: the traversal below the cut nodes (lightcuts: the thesis' comparison protocol).
@@ -120,6 +132,10 @@ struct RenderSettings {
     // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
     // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.
     bool half_resolution_gi = false;
+    // Indirect light filtered (demodulated, accumulated over frames with reprojection, a-trous)
+    // before compose; the history lives in the Renderer from frame to frame.
+    DenoiseMode denoise = DenoiseMode::off;
+    stages::DenoiseOptions denoise_options;  // scene_scale is the renderer's (the BVH's)
     // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
     // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
     bool vpls_only = false;

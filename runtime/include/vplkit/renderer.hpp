@@ -5,6 +5,7 @@
 // built once, at construction; render() can then be called for any camera and size.
 
 #include "vplkit/bvh_gpu.hpp"
+#include "vplkit/denoiser.hpp"
 #include "vplkit/gpu_light_tree.hpp"
 #include "vplkit/gpu_lights.hpp"
 #include "vplkit/gpu_two_level_light_tree.hpp"
@@ -72,6 +73,8 @@ struct RenderedImage {
     bool reused_trees = false;
     std::optional<stages::SmcCounts> smc;  // --vpl-source smc: what this frame's update counted
     uint32_t non_finite_pixels = 0;        // shown magenta in rgba8; a correct frame has none
+    // --denoise: the firefly clamp's luminance removed over the luminance it was given (its bias).
+    double firefly_removed_fraction = 0.0;
 };
 
 class Renderer {
@@ -105,9 +108,16 @@ private:
     const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view,
                                     stages::GbufferImages& gbuffer, const RenderSettings& settings, RenderedImage& out);
     // Indirect light from the cached VPLs by settings.method into `indirect` (full size), at full
-    // or half resolution, with the trees the plan builds or reuses (renderer_gi.cpp).
-    void render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
+    // or half resolution, with the trees the plan builds or reuses (renderer_gi.cpp). At half
+    // resolution the light is demodulated before upsampling (texture stays sharp); returns true
+    // when `indirect` is left as irradiance for the denoiser to remodulate.
+    bool render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
                          const RenderSettings& settings, Image& indirect, RenderedImage& out);
+
+    // --denoise: filters `indirect` in place (radiance, or irradiance when `demodulated`) with the
+    // history of the previous frames, and keeps this frame as the next one's history.
+    void denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
+                          stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, RenderedImage& out);
 
     // What a frame leaves for the next: its VPLs and the trees over them, while the plan's keys
     // (VPL settings, view for BRSM, tree settings) stay the same. Scene geometry and lights are
@@ -125,6 +135,8 @@ private:
     // SMC: the persistent VPL set (while the SMC options stay the same) and the scene's emitters
     // and reflectances it reads, uploaded on first use.
     std::optional<stages::SmcState> smc_;
+    // --denoise: the filter's history, while the frame size stays the same.
+    std::optional<Denoiser> denoiser_;
     std::string smc_key_;
     std::optional<stages::VplSources> vpl_sources_;
     const stages::VplSources& vpl_sources();

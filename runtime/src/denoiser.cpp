@@ -1,0 +1,88 @@
+#include "vplkit/denoiser.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+
+#include <array>
+
+namespace vplkit {
+
+namespace {
+
+Image float4(Context& context, uint32_t w, uint32_t h, const char* name) {
+    return Image::create(context, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, name);
+}
+
+}  // namespace
+
+Denoiser Denoiser::create(Context& context, uint32_t w, uint32_t h) {
+    Denoiser d;
+    d.irradiance_ = float4(context, w, h, "denoise irradiance");
+    d.clamped_ = float4(context, w, h, "denoise clamped");
+    d.accumulated_ = float4(context, w, h, "denoise accumulated");
+    d.estimated_ = float4(context, w, h, "denoise variance");
+    d.ping_ = float4(context, w, h, "denoise a-trous ping");
+    d.pong_ = float4(context, w, h, "denoise a-trous pong");
+    for (History& s : d.history_) {
+        s = {float4(context, w, h, "denoise history position"), float4(context, w, h, "denoise history normal"),
+             float4(context, w, h, "denoise history color"), float4(context, w, h, "denoise history moments")};
+    }
+    return d;
+}
+
+void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, const stages::GbufferViews& gbuffer,
+                          Image& indirect, const stages::DenoiseOptions& options, bool demodulated) {
+    if (mode == DenoiseMode::off) throw Error("denoiser: no filter asked for (--denoise off)");
+    if (gbuffer.width() != width() || gbuffer.height() != height()) {
+        throw Error("denoiser: the G-buffer's size differs from the denoiser's");
+    }
+    History& previous = history_[1 - current_];
+    History& next = history_[current_];
+    ImageView input = indirect;
+    if (!demodulated) {
+        stages::add_demodulate_pass(context, passes, indirect, gbuffer.albedo, gbuffer.position, irradiance_, options);
+        input = irradiance_;
+    }
+    clamped_this_frame_ = options.firefly_k_sigma > 0.0f;
+    if (clamped_this_frame_) {
+        stages::add_firefly_clamp_pass(context, passes, input, gbuffer.position, clamped_, options);
+        input = clamped_;
+    }
+    // Temporal only: the accumulated colour is the history. SVGF: the first a-trous iteration is.
+    const bool spatial = mode == DenoiseMode::svgf && options.atrous_iterations > 0;
+    Image& accumulated = spatial ? accumulated_ : next.color;
+    stages::add_temporal_accumulate_pass(context, passes, input, gbuffer.position, gbuffer.normal, previous.views(),
+                                         next.views(), accumulated, next.moments, previous_view_projection_,
+                                         has_history_, options);
+    ImageView result = accumulated;
+    if (spatial) {
+        stages::add_variance_estimate_pass(context, passes, accumulated_, next.moments, gbuffer.position,
+                                           gbuffer.normal, estimated_, options);
+        ImageView source = estimated_;
+        for (uint32_t i = 0; i < options.atrous_iterations; ++i) {
+            ImageView target = i == 0 ? ImageView(next.color) : (i % 2 == 1 ? ImageView(ping_) : ImageView(pong_));
+            stages::add_atrous_pass(context, passes, source, gbuffer.position, gbuffer.normal, target, 1 << i, options);
+            source = target;
+        }
+        result = source;
+    }
+    stages::add_remodulate_pass(context, passes, result, gbuffer.albedo, indirect, options);
+}
+
+void Denoiser::end_frame(const glm::mat4& view_projection) {
+    previous_view_projection_ = view_projection;
+    has_history_ = true;
+    current_ = 1 - current_;
+}
+
+double Denoiser::firefly_removed_fraction() {
+    if (!clamped_this_frame_) return 0.0;
+    double removed = 0.0, total = 0.0;
+    for (const auto& t : clamped_.download<std::array<float, 4>>()) {
+        removed += t[3];
+        total += 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2] + t[3];
+    }
+    return total > 0.0 ? removed / total : 0.0;
+}
+
+}  // namespace vplkit

@@ -1,0 +1,99 @@
+#pragma once
+// Denoising indirect light (shaders/denoise/): SVGF's shape (Schied et al. 2017) as separate
+// passes a renderer can take one by one. A frame, with the runtime's Denoiser doing the
+// bookkeeping (vplkit/denoiser.hpp):
+//
+//   add_demodulate_pass(...)            radiance / albedo -> irradiance (before any upsampling)
+//   ... upsample the irradiance to full size if GI ran at half ...
+//   add_firefly_clamp_pass(...)         luminance above neighbours' mean + k sigma clamped, tracked
+//   add_temporal_accumulate_pass(...)   reprojected history, running mean, moments -> variance
+//   add_variance_estimate_pass(...)     spatial variance where the history is short
+//   add_atrous_pass(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history
+//   add_remodulate_pass(...)            irradiance x albedo -> radiance, then compose as before
+//
+// Every image is RGBA32F except the albedo (the G-buffer's RGBA16F), all of one size, storage
+// usage, GENERAL layout. Errors: vplkit::Error naming the image or option.
+
+#include "vplkit/stages/device.hpp"
+#include "vplkit/stages/steps.hpp"
+#include "vplkit/stages/views.hpp"
+
+#include <glm/mat4x4.hpp>
+
+#include <cstdint>
+
+namespace vplkit::stages {
+
+struct DenoiseOptions {
+    // Albedo channels at or below this are not divided by (demodulate.comp, remodulate.comp).
+    float min_albedo = 1e-3f;
+    // Firefly clamp: the limit is the neighbours' mean + firefly_k_sigma standard deviations;
+    // 0 turns the pass off in the runtime. Its cost in bias is measured (README, *Denoising*).
+    float firefly_k_sigma = 4.0f;
+    // History length cap: alpha = 1 / min(n, max_history) (a running mean for max_history frames,
+    // then an exponential moving average).
+    uint32_t max_history = 32;
+    // The scene's size (GpuBvh::scene_scale): the lengths below are shares of it.
+    float scene_scale = 1.0f;
+    // Reprojection: a history tap farther than this share of scene_scale from the pixel's tangent
+    // plane, or with normals below min_normal_cos, is another surface.
+    float max_plane_distance_fraction = 0.01f;
+    float min_normal_cos = 0.9f;
+    // A-trous edge weights (SVGF's sigma_z, sigma_n, sigma_l; the plane one as a share of
+    // scene_scale, see vplkit/denoise.glsl).
+    float sigma_plane_fraction = 0.005f;
+    float sigma_normal = 128.0f;
+    float sigma_luminance = 4.0f;
+    uint32_t atrous_iterations = 5;
+    // Below this history length the a-trous filter's variance is estimated spatially (SVGF: 4).
+    uint32_t min_temporal_history = 4;
+};
+
+// Throws vplkit::Error naming the first option that is out of range (not finite, negative, a
+// cap of 0, more than 10 a-trous iterations).
+void validate_denoise_options(const DenoiseOptions& options);
+
+// One frame's history as temporal_accumulate.comp reads (previous) or writes (next) it.
+struct DenoiseHistory {
+    ImageView position;  // the G-buffer's position of that frame
+    ImageView normal;    // its shading normal
+    ImageView color;     // filtered irradiance (rgb), a: variance
+    ImageView moments;   // m1, m2 of luminance, n (history length), 0
+};
+
+// "denoise demodulate": irradiance = radiance / albedo (rule in vplkit/denoise.glsl), 0 on the
+// background (position.w = 0).
+void add_demodulate_pass(Device& device, StepList& passes, const ImageView& radiance, const ImageView& albedo,
+                         const ImageView& position, const ImageView& irradiance, const DenoiseOptions& options);
+
+// "denoise remodulate": radiance = irradiance x albedo.
+void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
+                         const ImageView& radiance, const DenoiseOptions& options);
+
+// "denoise firefly clamp": clamped.rgb = irradiance scaled down to the 5 x 5 neighbours' (covered,
+// itself left out) mean + k sigma of luminance; clamped.a = the luminance removed.
+void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& position,
+                            const ImageView& clamped, const DenoiseOptions& options);
+
+// "denoise temporal": accumulated (rgb, a = variance) and moments (m1, m2, n) from `irradiance`
+// and the `previous` history reprojected with previous_view_projection; writes this frame's
+// position and normal into next.position / next.normal (next.color and next.moments are not
+// touched: the caller points `accumulated` / `moments` at them, or at the a-trous input).
+// has_history false: every pixel starts over (n = 1), the previous images are not read.
+void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageView& irradiance,
+                                  const ImageView& position, const ImageView& normal, const DenoiseHistory& previous,
+                                  const DenoiseHistory& next, const ImageView& accumulated, const ImageView& moments,
+                                  const glm::mat4& previous_view_projection, bool has_history,
+                                  const DenoiseOptions& options);
+
+// "denoise variance": estimated = accumulated, with a = the 7 x 7 spatial variance where
+// moments' n < min_temporal_history.
+void add_variance_estimate_pass(Device& device, StepList& passes, const ImageView& accumulated,
+                                const ImageView& moments, const ImageView& position, const ImageView& normal,
+                                const ImageView& estimated, const DenoiseOptions& options);
+
+// "denoise a-trous <step>": one a-trous iteration with taps `step` pixels apart (step >= 1).
+void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
+                     const ImageView& normal, const ImageView& filtered, int step, const DenoiseOptions& options);
+
+}  // namespace vplkit::stages

@@ -1,0 +1,113 @@
+// demodulate.comp, remodulate.comp and firefly_clamp.comp against the double reference
+// (tests/reference/denoise_reference.cpp) on 64 x 64 images.
+// Tolerances: demodulation is one float division per channel (relative 1e-6: two roundings);
+// the firefly limit sums 24 float luminances (relative 1e-5 of the limit, absolute 1e-6).
+
+#include "denoise_setup.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/denoise.hpp"
+#include "vplkit_test/context.hpp"
+
+#include <doctest/doctest.h>
+
+#include <random>
+
+using namespace vplkit;
+using namespace vplkit::test;
+
+namespace {
+
+constexpr uint32_t kSize = 64;
+
+// Covered everywhere but a 10 x 10 corner (background).
+DenoiseImage coverage() {
+    DenoiseImage p(kSize, kSize);
+    for (int y = 0; y < int(kSize); ++y)
+        for (int x = 0; x < int(kSize); ++x) p.at(x, y) = {double(x), double(y), -3.0, (x < 10 && y < 10) ? 0.0 : 1.0};
+    return p;
+}
+
+DenoiseImage random_image(uint32_t seed, double scale) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, scale);
+    DenoiseImage image(kSize, kSize);
+    for (auto& t : image.texels) t = {u(rng), u(rng), u(rng), 0.0};
+    return to_float_precision(image);
+}
+
+}  // namespace
+
+TEST_CASE("denoise demodulate: radiance over albedo, and remodulate gives it back") {
+    Context& ctx = context();
+    stages::DenoiseOptions options;
+    // Albedos on the half-float grid (k / 64), some channels 0 or below min_albedo (left alone).
+    std::mt19937 rng(3);
+    std::uniform_int_distribution<int> k(0, 64);
+    DenoiseImage albedo(kSize, kSize);
+    for (auto& t : albedo.texels) t = {k(rng) / 64.0, k(rng) / 64.0, (k(rng) % 4 == 0) ? 0.0 : k(rng) / 64.0, 1.0};
+    const DenoiseImage radiance = random_image(4, 10.0), position = coverage();
+    auto radiance_image = upload_image(ctx, radiance, "radiance");
+    auto albedo_image = upload_albedo(ctx, albedo, "albedo");
+    auto position_image = upload_image(ctx, position, "position");
+    auto irradiance_image = float4_image(ctx, kSize, kSize, "irradiance");
+    auto back_image = float4_image(ctx, kSize, kSize, "remodulated");
+    PassList passes("demodulate test");
+    stages::add_demodulate_pass(ctx, passes, radiance_image, albedo_image, position_image, irradiance_image, options);
+    stages::add_remodulate_pass(ctx, passes, irradiance_image, albedo_image, back_image, options);
+    passes.run(ctx);
+    const DenoiseImage irradiance = download_image(irradiance_image);
+    const DenoiseImage expected = reference::demodulate(radiance, albedo, position, options.min_albedo);
+    CHECK(max_relative_error(irradiance, expected, 1e-12) < 1e-6);
+    // The round trip is the identity on covered pixels (background: 0).
+    const DenoiseImage back = download_image(back_image);
+    const DenoiseImage expected_back = reference::remodulate(expected, albedo, options.min_albedo);
+    CHECK(max_relative_error(back, expected_back, 1e-12) < 1e-6);
+    for (int y = 10; y < int(kSize); ++y)
+        for (int c = 0; c < 3; ++c) CHECK(back.at(20, y)[c] == doctest::Approx(radiance.at(20, y)[c]).epsilon(1e-6));
+    CHECK(back.at(3, 3)[0] == 0.0);
+}
+
+TEST_CASE("denoise firefly clamp: against the reference, and a lone firefly is cut to the limit") {
+    Context& ctx = context();
+    stages::DenoiseOptions options;
+    DenoiseImage irradiance = random_image(7, 1.0);
+    // Two planted fireflies in uniform noise (luminance at most its mean + 2.3 sigma).
+    irradiance.at(30, 30) = {50.0, 50.0, 50.0, 0.0};
+    irradiance.at(12, 40) = {0.0, 80.0, 0.0, 0.0};
+    const DenoiseImage position = coverage();
+    auto in = upload_image(ctx, irradiance, "irradiance");
+    auto pos = upload_image(ctx, position, "position");
+    auto out = float4_image(ctx, kSize, kSize, "clamped");
+    PassList passes("firefly test");
+    stages::add_firefly_clamp_pass(ctx, passes, in, pos, out, options);
+    passes.run(ctx);
+    const DenoiseImage clamped = download_image(out);
+    const DenoiseImage expected = reference::firefly_clamp(irradiance, position, options.firefly_k_sigma);
+    CHECK(max_relative_error(clamped, expected, 1e-6) < 1e-5);
+    int clamped_pixels = 0, expected_pixels = 0;
+    for (size_t i = 0; i < clamped.texels.size(); ++i) {
+        clamped_pixels += clamped.texels[i][3] > 0.0 ? 1 : 0;
+        expected_pixels += expected.texels[i][3] > 0.0 ? 1 : 0;
+    }
+    CHECK(clamped_pixels == expected_pixels);
+    CHECK(clamped.at(12, 40)[3] > 0.0);
+    // Cut to the limit: about the noise's mean + 4 sigma (0.5 + 4 x 0.29 ~ 1.65 at most).
+    CHECK(reference::luminance(clamped.at(30, 30)) < 2.0);
+    CHECK(clamped.at(30, 30)[3] == doctest::Approx(50.0 - reference::luminance(clamped.at(30, 30))).epsilon(1e-5));
+}
+
+TEST_CASE("denoise options: bad values are refused by name") {
+    Context& ctx = context();
+    auto a = float4_image(ctx, 4, 4, "a");
+    auto b = float4_image(ctx, 4, 4, "b");
+    auto small = float4_image(ctx, 4, 3, "small");
+    PassList passes;
+    stages::DenoiseOptions options;
+    options.max_history = 0;
+    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, b, a, options),
+                         doctest::Contains("max_history"), Error);
+    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, small, b, {}), doctest::Contains("'small'"),
+                         Error);
+    CHECK_THROWS_WITH_AS(stages::add_atrous_pass(ctx, passes, a, a, a, b, 0, {}), doctest::Contains("step"), Error);
+}

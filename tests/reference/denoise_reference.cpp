@@ -1,0 +1,228 @@
+#include "denoise_reference.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vplkit::reference {
+
+namespace {
+
+using Vec3d = std::array<double, 3>;
+
+Vec3d xyz(const Texel4& t) {
+    return {t[0], t[1], t[2]};
+}
+double dot3(const Vec3d& a, const Vec3d& b) {
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec3d sub(const Vec3d& a, const Vec3d& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
+double divisor(double albedo, double min_albedo) {
+    return albedo > min_albedo ? albedo : 1.0;
+}
+
+double plane_weight(const Vec3d& p, const Vec3d& n, const Vec3d& q, double sigma) {
+    return std::exp(-std::abs(dot3(n, sub(q, p))) / sigma);
+}
+double normal_weight(const Vec3d& n, const Vec3d& m, double sigma) {
+    return std::pow(std::max(dot3(n, m), 0.0), sigma);
+}
+
+}  // namespace
+
+double luminance(const Texel4& c) {
+    return 0.2126 * c[0] + 0.7152 * c[1] + 0.0722 * c[2];
+}
+
+DenoiseImage demodulate(const DenoiseImage& radiance, const DenoiseImage& albedo, const DenoiseImage& position,
+                        double min_albedo) {
+    DenoiseImage out(radiance.width, radiance.height);
+    for (size_t i = 0; i < out.texels.size(); ++i) {
+        if (position.texels[i][3] <= 0.5) continue;
+        for (int c = 0; c < 3; ++c) out.texels[i][c] = radiance.texels[i][c] / divisor(albedo.texels[i][c], min_albedo);
+    }
+    return out;
+}
+
+DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albedo, double min_albedo) {
+    DenoiseImage out(irradiance.width, irradiance.height);
+    for (size_t i = 0; i < out.texels.size(); ++i) {
+        for (int c = 0; c < 3; ++c)
+            out.texels[i][c] = irradiance.texels[i][c] * divisor(albedo.texels[i][c], min_albedo);
+    }
+    return out;
+}
+
+DenoiseImage firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma) {
+    DenoiseImage out(irradiance.width, irradiance.height);
+    for (int y = 0; y < int(out.height); ++y) {
+        for (int x = 0; x < int(out.width); ++x) {
+            if (position.at(x, y)[3] <= 0.5) continue;
+            std::vector<double> neighbours;
+            for (int dy = -2; dy <= 2; ++dy) {
+                for (int dx = -2; dx <= 2; ++dx) {
+                    if ((dx == 0 && dy == 0) || !position.inside(x + dx, y + dy) ||
+                        position.at(x + dx, y + dy)[3] <= 0.5) {
+                        continue;
+                    }
+                    neighbours.push_back(luminance(irradiance.at(x + dx, y + dy)));
+                }
+            }
+            Texel4 c = irradiance.at(x, y);
+            c[3] = 0.0;
+            const double l = luminance(c);
+            if (neighbours.size() >= 4) {
+                double mean = 0.0;
+                for (double v : neighbours) mean += v;
+                mean /= double(neighbours.size());
+                double variance = 0.0;  // two-pass: the plain definition
+                for (double v : neighbours) variance += (v - mean) * (v - mean);
+                variance /= double(neighbours.size());
+                const double limit = mean + k_sigma * std::sqrt(variance);
+                if (l > limit) {
+                    for (int k = 0; k < 3; ++k) c[k] *= limit / l;
+                    c[3] = l - limit;
+                }
+            }
+            out.at(x, y) = c;
+        }
+    }
+    return out;
+}
+
+bool reproject(const std::array<double, 16>& m, const std::array<double, 3>& p, uint32_t width, uint32_t height,
+               double& x, double& y) {
+    // Column-major: clip_r = sum_c m[c * 4 + r] p_c (p_3 = 1).
+    double clip[4];
+    for (int r = 0; r < 4; ++r) clip[r] = m[0 * 4 + r] * p[0] + m[1 * 4 + r] * p[1] + m[2 * 4 + r] * p[2] + m[12 + r];
+    if (!(clip[3] > 0.0)) return false;
+    x = (clip[0] / clip[3] * 0.5 + 0.5) * width - 0.5;
+    y = (clip[1] / clip[3] * 0.5 + 0.5) * height - 0.5;
+    return true;
+}
+
+TemporalResult temporal_accumulate(const DenoiseImage& irradiance, const DenoiseGeometry& current,
+                                   const DenoiseGeometry& previous, const DenoiseImage& previous_color,
+                                   const DenoiseImage& previous_moments, const TemporalParameters& parameters) {
+    const uint32_t w = irradiance.width, h = irradiance.height;
+    TemporalResult result{DenoiseImage(w, h), DenoiseImage(w, h)};
+    for (int y = 0; y < int(h); ++y) {
+        for (int x = 0; x < int(w); ++x) {
+            if (!current.covered(x, y)) continue;
+            const Vec3d p = xyz(current.position.at(x, y));
+            const Vec3d n = xyz(current.normal.at(x, y));
+            const Texel4& c = irradiance.at(x, y);
+            const double l = luminance(c);
+            double color[3] = {c[0], c[1], c[2]};
+            double m1 = l, m2 = l * l, count = 1.0;
+            double hx = 0.0, hy = 0.0;
+            if (parameters.has_history && reproject(parameters.previous_view_projection, p, w, h, hx, hy)) {
+                const int bx = int(std::floor(hx)), by = int(std::floor(hy));
+                const double fx = hx - bx, fy = hy - by;
+                double hc[3] = {0, 0, 0}, hm[3] = {0, 0, 0}, weights = 0.0;
+                for (int oy = 0; oy <= 1; ++oy) {
+                    for (int ox = 0; ox <= 1; ++ox) {
+                        const int qx = bx + ox, qy = by + oy;
+                        const double bilinear = (ox ? fx : 1.0 - fx) * (oy ? fy : 1.0 - fy);
+                        if (bilinear <= 0.0 || !previous.covered(qx, qy)) continue;
+                        const Vec3d pq = xyz(previous.position.at(qx, qy));
+                        if (std::abs(dot3(n, sub(pq, p))) > parameters.max_plane_distance ||
+                            dot3(n, xyz(previous.normal.at(qx, qy))) < parameters.min_normal_cos) {
+                            continue;
+                        }
+                        for (int k = 0; k < 3; ++k) {
+                            hc[k] += bilinear * previous_color.at(qx, qy)[k];
+                            hm[k] += bilinear * previous_moments.at(qx, qy)[k];
+                        }
+                        weights += bilinear;
+                    }
+                }
+                if (weights > 0.01) {
+                    count = std::min(std::floor(hm[2] / weights + 0.5) + 1.0, double(parameters.max_history));
+                    const double alpha = 1.0 / count;
+                    for (int k = 0; k < 3; ++k) color[k] = (1.0 - alpha) * hc[k] / weights + alpha * color[k];
+                    m1 = (1.0 - alpha) * hm[0] / weights + alpha * m1;
+                    m2 = (1.0 - alpha) * hm[1] / weights + alpha * m2;
+                }
+            }
+            result.accumulated.at(x, y) = {color[0], color[1], color[2], std::max(m2 - m1 * m1, 0.0)};
+            result.moments.at(x, y) = {m1, m2, count, 0.0};
+        }
+    }
+    return result;
+}
+
+DenoiseImage variance_estimate(const DenoiseImage& accumulated, const DenoiseImage& moments,
+                               const DenoiseGeometry& geometry, const FilterParameters& parameters) {
+    DenoiseImage out = accumulated;
+    for (int y = 0; y < int(out.height); ++y) {
+        for (int x = 0; x < int(out.width); ++x) {
+            if (!geometry.covered(x, y) || moments.at(x, y)[2] >= parameters.min_history) continue;
+            const Vec3d p = xyz(geometry.position.at(x, y));
+            const Vec3d n = xyz(geometry.normal.at(x, y));
+            double s1 = 0.0, s2 = 0.0, weights = 0.0;
+            for (int dy = -3; dy <= 3; ++dy) {
+                for (int dx = -3; dx <= 3; ++dx) {
+                    if (!geometry.covered(x + dx, y + dy)) continue;
+                    const double wq =
+                        plane_weight(p, n, xyz(geometry.position.at(x + dx, y + dy)), parameters.sigma_plane) *
+                        normal_weight(n, xyz(geometry.normal.at(x + dx, y + dy)), parameters.sigma_normal);
+                    s1 += wq * moments.at(x + dx, y + dy)[0];
+                    s2 += wq * moments.at(x + dx, y + dy)[1];
+                    weights += wq;
+                }
+            }
+            s1 /= weights;
+            s2 /= weights;
+            out.at(x, y)[3] = std::max(s2 - s1 * s1, 0.0);
+        }
+    }
+    return out;
+}
+
+DenoiseImage atrous(const DenoiseImage& source, const DenoiseGeometry& geometry, int step,
+                    const FilterParameters& parameters) {
+    DenoiseImage out(source.width, source.height);
+    const double h[3] = {3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0};
+    for (int y = 0; y < int(out.height); ++y) {
+        for (int x = 0; x < int(out.width); ++x) {
+            if (!geometry.covered(x, y)) continue;
+            const Vec3d p = xyz(geometry.position.at(x, y));
+            const Vec3d n = xyz(geometry.normal.at(x, y));
+            const double l_p = luminance(source.at(x, y));
+            double g_sum = 0.0, g_weights = 0.0;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    if (!geometry.covered(x + dx, y + dy)) continue;
+                    const double g = (2 - std::abs(dx)) * (2 - std::abs(dy));
+                    g_sum += g * source.at(x + dx, y + dy)[3];
+                    g_weights += g;
+                }
+            }
+            const double scale = parameters.sigma_luminance * std::sqrt(std::max(g_sum / g_weights, 0.0)) + 1e-10;
+            double color[3] = {0, 0, 0}, variance = 0.0, weights = 0.0;
+            for (int dy = -2; dy <= 2; ++dy) {
+                for (int dx = -2; dx <= 2; ++dx) {
+                    const int qx = x + step * dx, qy = y + step * dy;
+                    if (!geometry.covered(qx, qy)) continue;
+                    const Texel4& s = source.at(qx, qy);
+                    double wq = h[std::abs(dx)] * h[std::abs(dy)];
+                    if (dx != 0 || dy != 0) {
+                        wq *= plane_weight(p, n, xyz(geometry.position.at(qx, qy)), parameters.sigma_plane) *
+                              normal_weight(n, xyz(geometry.normal.at(qx, qy)), parameters.sigma_normal) *
+                              std::exp(-std::abs(l_p - luminance(s)) / scale);
+                    }
+                    for (int k = 0; k < 3; ++k) color[k] += wq * s[k];
+                    variance += wq * wq * s[3];
+                    weights += wq;
+                }
+            }
+            out.at(x, y) = {color[0] / weights, color[1] / weights, color[2] / weights, variance / (weights * weights)};
+        }
+    }
+    return out;
+}
+
+}  // namespace vplkit::reference
