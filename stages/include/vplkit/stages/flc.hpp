@@ -3,13 +3,16 @@
 // parameters, the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
 // scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
 // partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl; the light at
-// the kept VPLs (flc_vpl_light.comp). Not yet here: the subdivision of divergent triangles, the splatting.
+// the kept VPLs (flc_vpl_light.comp); the splatting raster pipeline (flc_splat_proxy.vert + flc_splat_shade.frag).
+// Not yet here: the subdivision of divergent triangles.
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
+#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
@@ -94,5 +97,30 @@ struct FlcVplLightParams {
 void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
                             const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
                             const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params);
+
+struct FlcSplatBuffers {
+    BufferView candidates;      // shaders::FlcCandidate[] (their levels); read
+    BufferView counts;          // FlcCompactBuffers::counts (the kept count); read
+    BufferView kept_triangles;  // FlcCompactBuffers::kept_triangles; read
+    BufferView vpls;            // shaders::Vpl[vpl_capacity] (add_flc_vpl_light_pass); read
+    BufferView draw_args;       // kFlcDrawArgsBytes, the indirect draw's VkDrawIndirectCommand; written here
+};
+
+inline constexpr uint64_t kFlcDrawArgsBytes = 4 * sizeof(uint32_t);
+// The indirect image's format: float, so that blending adds without clamping.
+inline constexpr VkFormat kFlcIndirectFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+// Adds "flc splat args" (a compute pass: the kept count as an indirect draw) and "flc splat" (the
+// raster pipeline, seed 002 sec. 5): `indirect` (kFlcIndirectFormat, colour attachment usage) is
+// cleared to 0, then every kept VPL i < min(kept, vpl_capacity) is drawn as a screen-space
+// rectangle bounding its support and adds, at every G-buffer pixel x inside, its unshadowed light
+// (vpl_eval.glsl) times f~^k(d(x)) with additive blending. rgb: the one-bounce indirect radiance,
+// a: 0. `scene_scale` (BvhBuffers::scene_scale) sets the 1/d^2 clamp as exact_gi does. The
+// partition must be the candidates pass's. `gbuffer` is read in GENERAL layout (storage images).
+// Throws vplkit::Error on a bad partition, vpl_capacity 0, a buffer too small, an indirect image of
+// another size or format than the G-buffer's, or a scene_scale that is not finite and positive.
+void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffers& buffers, const GbufferViews& gbuffer,
+                          const ImageView& indirect, const CameraView& view, const FlcPartition& partition,
+                          uint32_t vpl_capacity, float scene_scale);
 
 }  // namespace vplkit::stages
