@@ -4,7 +4,7 @@
 // scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
 // partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl; the light at
 // the kept VPLs (flc_vpl_light.comp); the splatting raster pipeline (flc_splat_proxy.vert + flc_splat_shade.frag).
-// Not yet here: the subdivision of divergent triangles.
+// The divergent triangles' subdivision (flc_subdivide.comp).
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
@@ -16,6 +16,8 @@
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 namespace vplkit::stages {
 
@@ -97,6 +99,41 @@ struct FlcVplLightParams {
 void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
                             const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
                             const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params);
+
+// Candidates (scene triangles + sub-triangles) in all: every flc pass is one dispatch of 64-thread
+// groups, at most 65535 of them.
+inline constexpr uint64_t kFlcMaxCandidates = 65535ull * 64ull;
+
+// The divergent triangles' subdivision (seed 002 sec. 6): which triangles are cut, into how many.
+struct FlcSubdivision {
+    std::vector<shaders::FlcSubdivisionEntry> entries;  // by `first`, ascending
+    uint32_t sub_count = 0;                             // sub-triangles in all
+};
+
+// Every triangle of area A > 0.99 S~_N (a 1% margin over the candidates pass's float test) gets
+// side m = ceil(sqrt(A / (0.99 S~_N))): m^2 sub-triangles of area A / m^2 <= 0.99 S~_N, regular.
+// Throws vplkit::Error when triangle_count + sub_count would exceed kFlcMaxCandidates (fewer VPLs
+// per point, more levels or a larger mu), or on a bad partition. Non-finite areas are left alone.
+FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition);
+
+struct FlcSubdivideBuffers {
+    BufferView vertices;          // scene::Vertex[]; read
+    BufferView indices;           // uint32 x 3 per triangle; read
+    BufferView vertex_random;     // uint32 per vertex; read
+    BufferView entries;           // FlcSubdivision::entries (at least one entry's bytes); read
+    BufferView candidates;        // FlcCandidate[triangle_count + sub_count]: the head read, the tail written
+    BufferView triangle_albedo;   // vec4[triangle_count]; read
+    BufferView candidate_albedo;  // vec4[triangle_count + sub_count]: the albedo per candidate; written
+};
+
+// Adds "flc subdivide" (flc_subdivide.comp), after the candidates pass: candidate triangle_count + s
+// is sub-triangle s with its own level (discarded if its parent was not divergent), and
+// candidate_albedo holds every candidate's albedo (a sub-triangle's is its parent's). The
+// compaction and the light pass then run over triangle_count + sub_count candidates. Throws
+// vplkit::Error on a bad partition, a buffer too small, or too many candidates.
+void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivideBuffers& buffers,
+                            const FlcPartition& partition, const FlcSubdivision& subdivision, uint32_t triangle_count,
+                            uint32_t seed);
 
 struct FlcSplatBuffers {
     BufferView candidates;      // shaders::FlcCandidate[] (their levels); read
