@@ -11,6 +11,11 @@
 // a corner is behind the eye. (The paper's far levels are crescents, the ball less the sphere
 // d = D_{k-1}; the fragment stage's f~^k is 0 there, so a ball is a bounded, conservative proxy.)
 // A VPL with no light, no normal or a non-finite field draws nothing (a degenerate rectangle).
+//
+// Interleaved sub-tiles (sec. 6, subtiles = n > 1): the target holds n x n sub-images, sub-tile
+// (a, b) the pixels x = u n + a, y = v n + b at (a w + u, b h + v) (w x h the sub-tile size). VPL i
+// is drawn into sub-tile i mod n^2 only, its rectangle mapped there and clamped to it: each
+// sub-tile sees 1/n^2 of the VPLs at 1/n^2 of the pixels (flc_untile.comp puts them back).
 
 #include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
@@ -24,7 +29,9 @@ layout(push_constant) uniform FlcSplatPush {
     mat4 view_projection;  // world -> Vulkan clip space (the G-buffer's camera)
     vec3 camera_position;
     float scene_scale;     // for vpl_min_distance, as exact_gi.comp clamps 1/d^2
-    vec2 pixel_size;       // 2 / width, 2 / height: one pixel in normalized device coordinates
+    uvec2 image_size;      // the G-buffer's
+    uvec2 subtile_size;    // ceil(image_size / subtiles): the target is subtiles x that
+    uint subtiles;         // n: n x n interleaved sub-tiles (1: off)
     uint level_count;
     float d0;
     float mu;
@@ -58,7 +65,7 @@ void main() {
     float reach = flc_influence_distance(min(level + 1, last), push.d0, push.mu);
     float radius = 0.5 * reach;
     vec3 centre = vpl.position + vpl.normal * radius;
-    vec2 lo = vec2(1.0), hi = vec2(-1.0);
+    vec2 lo = vec2(0.0), hi = vec2(0.0);
     bool whole_screen = false;
     for (int c = 0; c < 8; ++c) {
         vec3 corner = centre + radius * vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0,
@@ -72,17 +79,26 @@ void main() {
         lo = c == 0 ? ndc : min(lo, ndc);
         hi = c == 0 ? ndc : max(hi, ndc);
     }
-    if (whole_screen) {
-        lo = vec2(-1.0);
-        hi = vec2(1.0);
-    } else {
-        lo = max(lo - push.pixel_size, vec2(-1.0));
-        hi = min(hi + push.pixel_size, vec2(1.0));
-        if (any(greaterThanEqual(lo, hi))) {
+    uint n = push.subtiles;
+    uint s = i % (n * n);
+    vec2 tile = vec2(float(s % n), float(s / n));
+    vec2 size = vec2(push.subtile_size);
+    vec2 region_lo = tile * size, region_hi = region_lo + size;  // the sub-tile, in target pixels
+    vec2 t_lo = region_lo, t_hi = region_hi;
+    if (!whole_screen) {
+        // In image pixels, one pixel wider; image pixel x = u n + a (centre x + 0.5) sits at target
+        // centre a w + u + 0.5, so the rectangle maps by (x - 0.5 - a) / n + 0.5, one target pixel wider.
+        vec2 image = vec2(push.image_size);
+        vec2 p_lo = (lo * 0.5 + 0.5) * image - 1.0;
+        vec2 p_hi = (hi * 0.5 + 0.5) * image + 1.0;
+        t_lo = max(region_lo + (p_lo - 0.5 - tile) / float(n) - 0.5, region_lo);
+        t_hi = min(region_lo + (p_hi - 0.5 - tile) / float(n) + 1.5, region_hi);
+        if (any(greaterThanEqual(t_lo, t_hi))) {
             return;  // off screen
         }
     }
+    vec2 target = float(n) * size;
     // Two triangles: (0,0) (1,0) (0,1), (1,0) (1,1) (0,1).
     const vec2 corners[6] = vec2[6](vec2(0, 0), vec2(1, 0), vec2(0, 1), vec2(1, 0), vec2(1, 1), vec2(0, 1));
-    gl_Position = vec4(mix(lo, hi, corners[gl_VertexIndex % 6]), 0.0, 1.0);
+    gl_Position = vec4(mix(t_lo, t_hi, corners[gl_VertexIndex % 6]) / target * 2.0 - 1.0, 0.0, 1.0);
 }

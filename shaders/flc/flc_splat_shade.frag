@@ -8,6 +8,9 @@
 // and the shares of all levels sum to the one-bounce light (eq. 11). The light is the formula
 // every indirect method uses (vpl_eval.glsl), so flc differs from `exact` only in which VPLs it
 // sums, their weights and the missing visibility. Background pixels and non-finite results add 0.
+// With n x n interleaved sub-tiles (flc_splat_proxy.vert) the fragment's target pixel stands for
+// image pixel (u n + a, v n + b), and each VPL's light is scaled by n^2: its sub-tile sees one VPL
+// in n^2, so the sub-tile's sum stays an unbiased estimate of the whole.
 
 #include "vplkit/brdf.glsl"
 #include "vplkit/flc_partition.glsl"
@@ -24,7 +27,9 @@ layout(push_constant) uniform FlcSplatPush {
     mat4 view_projection;
     vec3 camera_position;
     float scene_scale;
-    vec2 pixel_size;
+    uvec2 image_size;
+    uvec2 subtile_size;
+    uint subtiles;
     uint level_count;
     float d0;
     float mu;
@@ -39,7 +44,13 @@ layout(location = 0) out vec4 indirect;
 
 void main() {
     indirect = vec4(0.0);
-    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    uvec2 target = uvec2(gl_FragCoord.xy);
+    uvec2 tile = target / push.subtile_size;
+    uvec2 image_pixel = (target % push.subtile_size) * push.subtiles + tile;
+    if (any(greaterThanEqual(image_pixel, push.image_size))) {
+        return;  // a sub-tile's padding: the image size is not a multiple of n
+    }
+    ivec2 pixel = ivec2(image_pixel);
     vec4 position = imageLoad(gbuffer_position, pixel);
     if (position.w <= 0.5) {
         return;
@@ -57,7 +68,7 @@ void main() {
     vpl.position = vpl_position;
     vpl.normal = vpl_normal;
     vpl.flux = vpl_flux;
-    vec3 c = weight * vpl_contribution(g.position, g.normal, g.geometric_normal, wo, g.albedo, g.roughness, g.metallic,
+    vec3 c = weight * float(push.subtiles * push.subtiles) * vpl_contribution(g.position, g.normal, g.geometric_normal, wo, g.albedo, g.roughness, g.metallic,
                                        vpl, vpl_min_distance(push.scene_scale));
     if (vpl_finite(c)) {
         indirect = vec4(c, 0.0);

@@ -3,8 +3,10 @@
 #include "vplkit/shaders/flc_splat_shade.hpp"
 #include "vplkit/shaders/flc_splat_args.hpp"
 #include "vplkit/shaders/flc_splat_proxy.hpp"
+#include "vplkit/shaders/flc_untile.hpp"
 #include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/flc.hpp"
+#include "vplkit/stages/gi_similarity.hpp"
 
 #include <cmath>
 #include <cstring>
@@ -33,8 +35,14 @@ using FlcSplatPipeline = RasterPipeline<vert::Module, frag::Module, FlcSplatPipe
 
 void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffers& buffers, const GbufferViews& gbuffer,
                           const ImageView& indirect, const CameraView& view, const FlcPartition& partition,
-                          uint32_t vpl_capacity, float scene_scale) {
+                          uint32_t vpl_capacity, float scene_scale, const FlcSplatOptions& options,
+                          const ImageView& tiled) {
     validate(partition);
+    const uint32_t n = options.subtiles;
+    if (n < 1 || n > kFlcMaxSubtiles) {
+        throw Error("flc splat: " + std::to_string(n) + " sub-tiles per side, expected 1.." +
+                    std::to_string(kFlcMaxSubtiles));
+    }
     if (vpl_capacity == 0) throw Error("flc splat: the VPL buffer holds no VPL");
     if (!std::isfinite(scene_scale) || !(scene_scale > 0.0f)) {
         throw Error("flc splat: scene scale " + std::to_string(scene_scale) + " must be finite and positive");
@@ -55,6 +63,14 @@ void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffer
                     std::to_string(gbuffer.height()));
     }
     if (indirect.format != kFlcIndirectFormat) throw Error("flc splat: the indirect image must be RGBA32F");
+    const uint32_t side_x = flc_subtile_side(indirect.width, n), side_y = flc_subtile_side(indirect.height, n);
+    if (n > 1 &&
+        (!tiled || tiled.width != n * side_x || tiled.height != n * side_y || tiled.format != kFlcIndirectFormat)) {
+        throw Error("flc splat: " + std::to_string(n) + "x" + std::to_string(n) +
+                    " sub-tiles need an RGBA32F tiled image of " + std::to_string(n * side_x) + "x" +
+                    std::to_string(n * side_y));
+    }
+    const ImageView target = n > 1 ? tiled : indirect;
 
     namespace args = shaders::flc_splat_args;
     const auto& args_pipeline = device.pipeline<args::Pipeline>();
@@ -82,7 +98,9 @@ void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffer
     std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
     push.camera_position = {view.position.x, view.position.y, view.position.z};
     push.scene_scale = scene_scale;
-    push.pixel_size = {2.0f / float(indirect.width), 2.0f / float(indirect.height)};
+    push.image_size = {indirect.width, indirect.height};
+    push.subtile_size = {side_x, side_y};
+    push.subtiles = n;
     push.level_count = partition.level_count;
     push.d0 = partition.d0;
     push.mu = partition.mu;
@@ -92,18 +110,41 @@ void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffer
         Stage::fragment);
     uses.insert(uses.end(), reads.begin(), reads.end());
     uses.push_back(Use::indirect(buffers.draw_args));
-    uses.push_back(Use::color_attachment(indirect));
+    uses.push_back(Use::color_attachment(target));
     const BufferView draw_args = buffers.draw_args;
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     passes.add("flc splat", uses,
-               [&pipeline, vpl_bindings, gbuffer_bindings, push, indirect, draw_args](VkCommandBuffer cmd) {
-                   begin_rendering(cmd, {{indirect}, {VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}}}, {}, 1.0f});
+               [&pipeline, vpl_bindings, gbuffer_bindings, push, target, draw_args](VkCommandBuffer cmd) {
+                   begin_rendering(cmd, {{target}, {VkClearColorValue{{0.0f, 0.0f, 0.0f, 0.0f}}}, {}, 1.0f});
                    pipeline.bind(cmd);
                    pipeline.push_descriptors<vert::Module, frag::Module>(cmd, vpl_bindings, gbuffer_bindings);
                    pipeline.push_constants(cmd, push);
                    vkCmdDrawIndirect(cmd, draw_args.buffer, draw_args.offset, 1, sizeof(VkDrawIndirectCommand));
                    end_rendering(cmd);
                });
+    if (n == 1) return;
+
+    namespace untile = shaders::flc_untile;
+    const auto& untile_pipeline = device.pipeline<untile::Pipeline>();
+    untile::Bindings untile_bindings;
+    untile_bindings.tiled = tiled.descriptor();
+    untile_bindings.gbuffer_position = gbuffer.position.descriptor();
+    untile_bindings.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+    untile_bindings.indirect = indirect.descriptor();
+    untile::Push untile_push{};
+    untile_push.image_size = {indirect.width, indirect.height};
+    untile_push.subtile_size = {side_x, side_y};
+    untile_push.subtiles = n;
+    untile_push.blur = options.blur ? 1u : 0u;
+    untile_push.max_distance = gi_similarity_distance(options.blur_max_distance, scene_scale);
+    untile_push.min_cos = options.blur_min_cos;
+    const uint32_t w = indirect.width, h = indirect.height;
+    passes.add(
+        "flc untile",
+        binding_uses<untile::Module>(untile_bindings, {tiled, gbuffer.position, gbuffer.geometric_normal, indirect}),
+        [&untile_pipeline, untile_bindings, untile_push, w, h](VkCommandBuffer cmd) {
+            untile_pipeline.dispatch(cmd, untile_bindings, untile_push, w, h);
+        });
 }
 
 }  // namespace vplkit::stages

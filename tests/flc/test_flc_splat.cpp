@@ -14,6 +14,10 @@
 // Supports: a pixel that every VPL's support misses by more than 1e-4 relative must be exactly 0,
 // and background pixels too. Blending: two VPLs drawn together give exactly what each gives alone,
 // summed in float (1e-6 relative for the order of the two float additions).
+// Interleaved sub-tiles (n = 2, and n = 3 on a size that is not a multiple of it): untiled, pixel
+// (x, y) must be n^2 x the reference sum over the VPLs i with i mod n^2 = (x mod n) + n (y mod n)
+// (same tolerance); blurred, the mean of that over the n x n window's covered pixels (the floor is
+// one plane: every covered neighbour is on p's surface), within the window's largest tolerance.
 
 #include "synthetic_scene.hpp"
 #include "vplkit/buffer.hpp"
@@ -106,7 +110,8 @@ Floor make_floor() {
     return f;
 }
 
-std::vector<Texel> run_gpu(const Floor& floor, const std::vector<SplatVpl>& vpls) {
+std::vector<Texel> run_gpu(const Floor& floor, const std::vector<SplatVpl>& vpls,
+                           const vplkit::stages::FlcSplatOptions& options = {}) {
     vplkit::Context& ctx = vplkit::test::context();
     std::vector<TestVpl> plain;
     for (const auto& v : vpls) plain.push_back(v.vpl);
@@ -136,9 +141,13 @@ std::vector<Texel> run_gpu(const Floor& floor, const std::vector<SplatVpl>& vpls
     count_buffer.upload(counts);
     auto indirect = vplkit::Image::create(ctx, kSize, kSize, vplkit::stages::kFlcIndirectFormat,
                                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
+    const uint32_t tiled_side = options.subtiles * vplkit::stages::flc_subtile_side(kSize, options.subtiles);
+    auto tiled = vplkit::Image::create(ctx, tiled_side, tiled_side, vplkit::stages::kFlcIndirectFormat,
+                                       VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "tiled");
     vplkit::PassList passes("flc splat test");
     vplkit::stages::add_flc_splat_passes(ctx, passes, {candidate_buffer, count_buffer, kept_buffer, scene.vpls, args},
-                                         scene.gbuffer, indirect, floor.view, partition(), count, kSceneScale);
+                                         scene.gbuffer, indirect, floor.view, partition(), count, kSceneScale, options,
+                                         tiled);
     passes.run(ctx);
     return indirect.download<Texel>();
 }
@@ -150,12 +159,16 @@ struct Expected {
     std::vector<bool> outside;  // beyond every support by more than 1e-4 relative
 };
 
-Expected run_reference(const Floor& floor, const std::vector<SplatVpl>& vpls) {
+// subtiles n > 1: pixel (x, y) sums only its sub-tile's VPLs, x n^2 (untiled, no blur).
+Expected run_reference(const Floor& floor, const std::vector<SplatVpl>& vpls, uint32_t subtiles = 1) {
     const ref::FlcParameters p = reference_partition();
     const double min_distance = ref::kVplMinDistanceFraction * kSceneScale;
     const double last_reach = ref::flc_influence_distance(p, p.level_count - 1);
     Expected e;
-    for (const Pixel& px : floor.pixels) {
+    for (size_t pixel = 0; pixel < floor.pixels.size(); ++pixel) {
+        const Pixel& px = floor.pixels[pixel];
+        const size_t tile = (pixel % kSize) % subtiles + subtiles * ((pixel / kSize) % subtiles);
+        const double share = double(subtiles * subtiles);
         std::array<double, 3> sum{0, 0, 0};
         double unweighted = 0.0;
         bool skip = false, outside = true;
@@ -163,7 +176,9 @@ Expected run_reference(const Floor& floor, const std::vector<SplatVpl>& vpls) {
             const ref::ShadingPoint x = vplkit::test::shading_point(px);
             const glm::dvec3 to_eye = glm::normalize(glm::dvec3(floor.camera) - glm::dvec3(px.position));
             const ref::Vec3 wo = {to_eye.x, to_eye.y, to_eye.z};
-            for (const SplatVpl& v : vpls) {
+            for (size_t i = 0; i < vpls.size(); ++i) {
+                if (i % (subtiles * subtiles) != tile) continue;
+                const SplatVpl& v = vpls[i];
                 const ref::VplDesc desc = vplkit::test::reference_vpls(std::vector<TestVpl>{v.vpl})[0];
                 const double d = ref::flc_support_distance(x.position, desc.position, desc.normal);
                 const double reach = ref::flc_influence_distance(p, std::min(v.level + 1, p.level_count - 1));
@@ -171,8 +186,8 @@ Expected run_reference(const Floor& floor, const std::vector<SplatVpl>& vpls) {
                 if (v.level == p.level_count - 1 && std::abs(d - last_reach) <= 1e-4 * last_reach) skip = true;
                 const ref::Vec3 c = ref::vpl_contribution(x, wo, desc, min_distance);
                 const double w = ref::flc_partition_weight(p, v.level, d);
-                for (int k = 0; k < 3; ++k) sum[k] += w * c[k];
-                unweighted += std::max({c[0], c[1], c[2]});
+                for (int k = 0; k < 3; ++k) sum[k] += share * w * c[k];
+                unweighted += share * std::max({c[0], c[1], c[2]});
             }
         }
         e.radiance.push_back(sum);
@@ -264,6 +279,71 @@ TEST_CASE("flc splat: blending adds, two VPLs give the sum of each alone") {
         }
     }
     CHECK(overlap > 20);  // the supports overlap (37 pixels): an overwrite would show
+}
+
+TEST_CASE("flc splat: interleaved sub-tiles, untiled and blurred, match the reference's sub-tile sums") {
+    const Floor floor = make_floor();
+    const auto vpls = scattered_vpls();
+    for (uint32_t n : {2u, 3u}) {
+        CAPTURE(n);
+        const Expected expected = run_reference(floor, vpls, n);
+        vplkit::stages::FlcSplatOptions options;
+        options.subtiles = n;
+        options.blur = false;
+        const auto untiled = run_gpu(floor, vpls, options);
+        int compared = 0, skipped = 0;
+        for (size_t i = 0; i < untiled.size(); ++i) {
+            CAPTURE(i);
+            if (!floor.pixels[i].covered || expected.outside[i]) {
+                CHECK(untiled[i] == Texel{0, 0, 0, 0});
+                continue;
+            }
+            if (expected.skipped[i]) {
+                ++skipped;
+                continue;
+            }
+            ++compared;
+            for (int k = 0; k < 3; ++k) {
+                CHECK(std::abs(double(untiled[i][k]) - expected.radiance[i][k]) <= expected.bound[i]);
+            }
+        }
+        CHECK(skipped * 50 <= compared);
+        options.blur = true;
+        const auto blurred = run_gpu(floor, vpls, options);
+        const int first = -int(n / 2);
+        int blurred_compared = 0;
+        for (int y = 0; y < int(kSize); ++y) {
+            for (int x = 0; x < int(kSize); ++x) {
+                const size_t i = size_t(y) * kSize + x;
+                CAPTURE(i);
+                if (!floor.pixels[i].covered) {
+                    CHECK(blurred[i] == Texel{0, 0, 0, 0});
+                    continue;
+                }
+                std::array<double, 3> sum{0, 0, 0};
+                double bound = 0.0, count = 0.0;
+                bool skip = false;
+                for (int dy = first; dy < first + int(n); ++dy) {
+                    for (int dx = first; dx < first + int(n); ++dx) {
+                        const int qx = x + dx, qy = y + dy;
+                        if (qx < 0 || qy < 0 || qx >= int(kSize) || qy >= int(kSize)) continue;
+                        const size_t q = size_t(qy) * kSize + qx;
+                        if (!floor.pixels[q].covered) continue;
+                        skip = skip || expected.skipped[q];
+                        for (int k = 0; k < 3; ++k) sum[k] += expected.radiance[q][k];
+                        bound = std::max(bound, expected.bound[q]);
+                        count += 1.0;
+                    }
+                }
+                if (skip) continue;
+                ++blurred_compared;
+                for (int k = 0; k < 3; ++k) CHECK(std::abs(double(blurred[i][k]) - sum[k] / count) <= bound);
+            }
+        }
+        MESSAGE(n << "x" << n << " sub-tiles: untiled " << compared << " pixels compared, blurred "
+                  << blurred_compared);
+        CHECK(blurred_compared > 2000);
+    }
 }
 
 TEST_CASE("flc splat: bad arguments are refused with a clear error") {

@@ -147,6 +147,21 @@ inline constexpr uint64_t kFlcDrawArgsBytes = 4 * sizeof(uint32_t);
 // The indirect image's format: float, so that blending adds without clamping.
 inline constexpr VkFormat kFlcIndirectFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
+// Interleaved sub-tiles (seed 002 sec. 6): n x n sub-images of ceil(size / n) pixels each, VPL i
+// splatted into sub-tile i mod n^2 only (its light x n^2), then untiled and blurred over n x n
+// windows on the same surface. Cost of the splat's fragments / n^2; the blur's price is detail.
+inline constexpr uint32_t kFlcMaxSubtiles = 8;
+struct FlcSplatOptions {
+    uint32_t subtiles = 1;  // n, 1..kFlcMaxSubtiles (1: off)
+    bool blur = true;       // false: untiling only (each pixel its own sub-tile's estimate)
+    float blur_min_cos = 0.9f;
+    float blur_max_distance = 0.0f;  // world units from the tangent plane; 0: gi_similarity_distance's default
+};
+// The side of a sub-tile: ceil(size / subtiles).
+inline uint32_t flc_subtile_side(uint32_t size, uint32_t subtiles) {
+    return (size + subtiles - 1) / subtiles;
+}
+
 // Adds "flc splat args" (a compute pass: the kept count as an indirect draw) and "flc splat" (the
 // raster pipeline, seed 002 sec. 5): `indirect` (kFlcIndirectFormat, colour attachment usage) is
 // cleared to 0, then every kept VPL i < min(kept, vpl_capacity) is drawn as a screen-space
@@ -156,8 +171,12 @@ inline constexpr VkFormat kFlcIndirectFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 // partition must be the candidates pass's. `gbuffer` is read in GENERAL layout (storage images).
 // Throws vplkit::Error on a bad partition, vpl_capacity 0, a buffer too small, an indirect image of
 // another size or format than the G-buffer's, or a scene_scale that is not finite and positive.
+// With options.subtiles > 1 the splat draws into `tiled` (kFlcIndirectFormat, subtiles x
+// flc_subtile_side each way, colour attachment and storage usage) and "flc untile" writes
+// `indirect` (storage usage) from it; a bad subtile count or a tiled image of another size throws.
 void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffers& buffers, const GbufferViews& gbuffer,
                           const ImageView& indirect, const CameraView& view, const FlcPartition& partition,
-                          uint32_t vpl_capacity, float scene_scale);
+                          uint32_t vpl_capacity, float scene_scale, const FlcSplatOptions& options = {},
+                          const ImageView& tiled = {});
 
 }  // namespace vplkit::stages
