@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,10 @@ void validate_flc_settings(const RenderSettings& settings) {
         throw Error("flc: --flc-navg " + std::to_string(settings.flc_vpls_per_point) + " must be finite and positive");
     }
     if (settings.flc_emitter_samples < 1) throw Error("flc: emitter samples per VPL must be at least 1");
+    if (settings.flc_subtiles < 1 || settings.flc_subtiles > stages::kFlcMaxSubtiles) {
+        throw Error("flc: --flc-subtiles " + std::to_string(settings.flc_subtiles) + " is outside 1.." +
+                    std::to_string(stages::kFlcMaxSubtiles));
+    }
     if (settings.half_resolution_gi) {
         throw Error("flc: --gi-resolution half is not available: flc splats at the G-buffer's resolution");
     }
@@ -94,6 +99,17 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
     auto vpls = storage(n * sizeof(shaders::Vpl), "flc vpls");
     auto draw_args = storage(stages::kFlcDrawArgsBytes, "flc draw args", VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
 
+    // Interleaved sub-tiles: the splat's target, n sub-tiles of ceil(size / n) each way.
+    stages::FlcSplatOptions splat_options;
+    splat_options.subtiles = settings.flc_subtiles;
+    std::optional<Image> tiled;
+    if (splat_options.subtiles > 1) {
+        const uint32_t n = splat_options.subtiles;
+        tiled.emplace(Image::create(context_, n * stages::flc_subtile_side(gbuffer.width(), n),
+                                    n * stages::flc_subtile_side(gbuffer.height(), n), stages::kFlcIndirectFormat,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "flc sub-tiles"));
+    }
+
     PassList passes("flc");
     passes.set_tag(stage_tag(FrameStage::flc_vpls));
     stages::add_flc_candidates_pass(context_, passes,
@@ -110,7 +126,8 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
                                    {settings.flc_emitter_samples, settings.seed});
     passes.set_tag(stage_tag(FrameStage::gi_flc));
     stages::add_flc_splat_passes(context_, passes, {candidates, counts, kept, vpls, draw_args}, gbuffer, indirect, view,
-                                 partition, candidate_count, gpu_bvh_.scene_scale);
+                                 partition, candidate_count, gpu_bvh_.scene_scale, splat_options,
+                                 tiled ? ImageView(*tiled) : ImageView{});
     passes.run(context_);
     out.timings.insert(out.timings.end(), passes.timings().begin(), passes.timings().end());
 

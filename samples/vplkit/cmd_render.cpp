@@ -35,7 +35,7 @@ const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
     "                     [--method direct|exact|sst|rtslc|hybrid|flc] [--spp N] [--block K] [--interleave M]\n"
-    "                     [--flc-levels N] [--flc-mu MU] [--flc-navg A]\n"
+    "                     [--flc-levels N] [--flc-mu MU] [--flc-navg A] [--flc-subtiles N]\n"
     "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm|smc] [--vpls N] [--bounces B]\n"
@@ -68,6 +68,8 @@ const char* const kRenderUsage =
     "  --flc-mu MU      flc: ratio of consecutive levels' areas, S_k = S_0 MU^k (default 2, above 1)\n"
     "  --flc-navg A     flc: about how many VPLs light each point (eq. 1, default 64; the paper's\n"
     "                   64..1024): more VPLs, less noise, more time\n"
+    "  --flc-subtiles N flc: N x N interleaved sub-tiles (default 1: off, at most 8): each VPL is\n"
+    "                   splatted into one sub-tile (1/N^2 of the pixels), then untiled and blurred\n"
     "  --spp N          sst: traversals per pixel; rtslc, hybrid: the cut size, one traversal per cut\n"
     "                   node (default 8, at most 64); each is one shadow ray\n"
     "  --block K        rtslc, hybrid: pixels share a cut per K x K block (default 8, at most 32)\n"
@@ -188,9 +190,11 @@ void parse_flc_options(Args& args, RenderSettings& settings) {
     const auto levels = args.value("--flc-levels");
     const auto mu = args.value("--flc-mu");
     const auto navg = args.value("--flc-navg");
-    if ((levels || mu || navg) && settings.method != GiMethod::flc) {
-        throw UsageError("--flc-levels, --flc-mu and --flc-navg are for --method flc");
+    const auto subtiles = args.value("--flc-subtiles");
+    if ((levels || mu || navg || subtiles) && settings.method != GiMethod::flc) {
+        throw UsageError("--flc-levels, --flc-mu, --flc-navg and --flc-subtiles are for --method flc");
     }
+    if (subtiles) settings.flc_subtiles = parse_whole_number("--flc-subtiles", *subtiles, stages::kFlcMaxSubtiles);
     if (levels) settings.flc_levels = parse_whole_number("--flc-levels", *levels, stages::kFlcMaxLevels);
     if (mu) {
         const auto value = finite_number(*mu);

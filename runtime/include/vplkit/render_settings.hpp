@@ -131,6 +131,9 @@ struct RenderSettings {
     float flc_mu = 2.0f;
     float flc_vpls_per_point = 64.0f;
     uint32_t flc_emitter_samples = 4;
+    // flc: n x n interleaved sub-tiles (seed 002 sec. 6; 1: off): the splat's cost / n^2, then
+    // untiling and a geometry-aware n x n blur.
+    uint32_t flc_subtiles = 1;
     // Called during long indirect-light work with (done, total) units of work.
     std::function<void(uint32_t done, uint32_t total)> progress;
     // Called during the SMC warm-up with (updates done, updates in all).
