@@ -26,6 +26,8 @@ const char* stage_name(FrameStage stage) {
             return "brsm vpls";
         case FrameStage::smc_vpls:
             return "smc vpls";
+        case FrameStage::flc_vpls:
+            return "flc vpls";
         case FrameStage::vpl_sort:
             return "vpl sort";
         case FrameStage::light_tree:
@@ -42,6 +44,8 @@ const char* stage_name(FrameStage stage) {
             return "gi rtslc";
         case FrameStage::gi_hybrid:
             return "gi hybrid";
+        case FrameStage::gi_flc:
+            return "gi flc";
         case FrameStage::gi_upsample:
             return "gi upsample";
         case FrameStage::denoise:
@@ -183,6 +187,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool sampled =
         settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
     const bool half = settings.half_resolution_gi && settings.method != GiMethod::none && !settings.vpls_only;
+    // flc places its own VPLs (one per kept triangle) and splats them: no VPL source, no tree.
+    const bool flc = settings.method == GiMethod::flc && !settings.vpls_only;
     auto add = [&plan](FrameStage stage, bool runs, std::string reason) {
         plan.stages.push_back({stage, runs, std::move(reason)});
     };
@@ -220,7 +226,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool force = settings.force_all_stages;
     // An SMC set changes every frame by design (its update is the frame's VPL stage), so neither
     // it nor the trees over it are ever reused.
-    plan.reuse_vpls = !force && settings.reuse_static_work && indirect && lit && !previous.vpl_key.empty() &&
+    plan.reuse_vpls = !force && settings.reuse_static_work && indirect && !flc && lit && !previous.vpl_key.empty() &&
                       previous.vpl_key == plan.vpl_key && plan.vpl_source != VplSource::smc;
     // Which tree the method reads, and which ones this frame builds (all of them when forced).
     const bool reads_light_tree = settings.method == GiMethod::rtslc;
@@ -282,9 +288,10 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::direct_tree, tree, tree ? sampler_reason : "flat sampler: " + sampler_reason);
 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
-    const bool make_vpls = indirect && lit && !plan.reuse_vpls;
+    const bool make_vpls = indirect && lit && !plan.reuse_vpls && !flc;
     auto vpl_reason = [&](VplSource source) -> std::string {
         if (!indirect) return "direct light only (--method direct): no VPLs";
+        if (flc) return "flc places its own VPLs, one per kept triangle";
         if (!lit) return "no light to place VPLs from";
         if (plan.vpl_source != source) {
             return plan.vpl_source == VplSource::brsm  ? "BRSM places this frame's VPLs"
@@ -297,6 +304,11 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::vpl_paths, make_vpls && plan.vpl_source == VplSource::ir, vpl_reason(VplSource::ir));
     add(FrameStage::brsm_vpls, make_vpls && plan.vpl_source == VplSource::brsm, vpl_reason(VplSource::brsm));
     add(FrameStage::smc_vpls, make_vpls && plan.vpl_source == VplSource::smc, vpl_reason(VplSource::smc));
+    add(FrameStage::flc_vpls, flc && lit,
+        flc ? (lit ? "read by flc: a VPL per kept triangle, lit by the direct light (seed 002 sec. 4)"
+                   : "no light to light VPLs with")
+        : settings.method == GiMethod::none ? "direct light only (--method direct): no VPLs"
+                                            : std::string("--method ") + gi_method_name(settings.method));
 
     const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
     // `reads`: the method reads this tree; `built`: the frame builds it (read, or forced on).
@@ -305,6 +317,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         if (settings.vpls_only) return "VPLs only: no indirect light";
         if (!sampled) {
             return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree"
+                   : settings.method == GiMethod::flc ? "flc splats every kept VPL over its bounded support: no tree"
                                                       : "direct light only: no tree";
         }
         if (!built) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + what;
@@ -331,7 +344,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                : "GI resolution equals the output: no half G-buffer");
     for (auto [stage, method] :
          {std::pair{FrameStage::gi_exact, GiMethod::exact}, std::pair{FrameStage::gi_sst, GiMethod::sst},
-          std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid}}) {
+          std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid},
+          std::pair{FrameStage::gi_flc, GiMethod::flc}}) {
         const bool chosen = settings.method == method;
         std::string reason = std::string("--method ") + gi_method_name(settings.method);
         if (chosen) {

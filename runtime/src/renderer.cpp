@@ -220,7 +220,9 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     const uint32_t w = settings.width, h = settings.height;
     auto gbuffer = stages::GbufferImages::create(context_, w, h);
     auto direct = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance");
-    auto indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "indirect radiance");
+    // Also a colour attachment: flc splats into it with additive blending.
+    auto indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                  storage | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "indirect radiance");
     auto composed = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "radiance");
     auto display = Image::create(context_, w, h, VK_FORMAT_R8G8B8A8_UNORM, storage, "display");
     auto stats = Buffer::create(context_, stages::kTonemapStatsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
@@ -340,6 +342,8 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
             }
         }
         out.gbuffer_position = gbuffer.position.download<float>();
+    } else if (settings.method == GiMethod::flc) {
+        render_flc(view, gbuffer, settings, indirect, out);
     } else if (settings.method != GiMethod::none) {
         out.vpl_count = frame_vpls(plan, view, gbuffer, settings, out).count;
         const bool demodulated = render_indirect(plan, view, gbuffer, settings, indirect, out);

@@ -39,6 +39,8 @@ const char* gi_method_name(GiMethod method) {
             return "rtslc";
         case GiMethod::hybrid:
             return "hybrid";
+        case GiMethod::flc:
+            return "flc";
     }
     return "?";
 }
@@ -98,6 +100,7 @@ void validate_gi_settings(const RenderSettings& settings) {
     if (settings.method == GiMethod::rtslc) stages::validate(o.rtslc);
     if (settings.method == GiMethod::hybrid) stages::validate(o.hybrid);
     if (settings.vpl_source == VplSource::smc) stages::validate(settings.smc);
+    if (settings.method == GiMethod::flc) validate_flc_settings(settings);
     if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) ||
         settings.sst.sigma_max < 0.0f) {
         throw Error("render: nu_min must be finite and sigma_max finite and >= 0");

@@ -13,8 +13,8 @@ namespace vplkit::cli {
 
 // One measured configuration.
 struct BenchPoint {
-    std::string method;  // sst, rtslc, hybrid
-    std::string sweep;   // which knob this point varies: spp, block, resolution, interleave, mock, vpls
+    std::string method;  // sst, rtslc, hybrid, hybrid-lightcuts, flc
+    std::string sweep;   // which knob this point varies: spp, block, resolution, interleave, mock, vpls, navg (flc)
     unsigned spp = 0;
     unsigned block = 0;       // rtslc, hybrid
     unsigned interleave = 1;  // rtslc
@@ -22,6 +22,7 @@ struct BenchPoint {
     bool mock_cuts = true;    // hybrid
     unsigned vpls = 0;        // VPLs placed
     bool denoised = false;    // --denoise svgf, accumulated over the point's frames (static camera)
+    float flc_navg = 0;       // flc: N_avg, its quality knob (eq. 1)
 
     // Times (GPU timestamps), median over the timed frames, and the spread (min, max).
     double frame_ms = 0, frame_min_ms = 0, frame_max_ms = 0;  // every pass of the frame

@@ -23,7 +23,12 @@ namespace vplkit::cli {
 
 namespace {
 
-const char* const kMethods[] = {"sst", "rtslc", "hybrid", "hybrid-lightcuts"};
+const char* const kMethods[] = {"sst", "rtslc", "hybrid", "hybrid-lightcuts", "flc"};
+
+// The sweep of a method's quality knob: samples per pixel, or flc's N_avg.
+const char* quality_sweep(const std::string& method) {
+    return method == "flc" ? "navg" : "spp";
+}
 
 std::string fixed(double v, int digits) {
     char text[64];
@@ -89,7 +94,7 @@ std::string csv(const BenchRun& run) {
     std::ostringstream s;
     s << "scene,device,width,height,method,sweep,spp,block,interleave,half,mock_cuts,vpls,frames,frame_ms,frame_min_ms,"
          "frame_max_ms,gi_ms,trees_ms,vpls_ms,rmse,ssim,relmse,levels_per_traversal,mock_cut_pixels,dropped_samples,"
-         "image\n";
+         "image,flc_navg\n";
     s.precision(9);
     for (const BenchPoint& p : run.points) {
         s << run.scene << ",\"" << run.device << "\"," << run.width << ',' << run.height << ',' << p.method << ','
@@ -97,7 +102,7 @@ std::string csv(const BenchRun& run) {
           << (p.mock_cuts ? 1 : 0) << ',' << p.vpls << ',' << p.frames << ',' << p.frame_ms << ',' << p.frame_min_ms
           << ',' << p.frame_max_ms << ',' << p.gi_ms << ',' << p.trees_ms << ',' << p.vpls_ms << ',' << p.rmse << ','
           << p.ssim << ',' << p.relmse << ',' << p.levels_per_traversal << ',' << p.mock_cut_pixels << ','
-          << p.dropped_samples << ',' << p.image << '\n';
+          << p.dropped_samples << ',' << p.image << ',' << p.flc_navg << '\n';
     }
     return s.str();
 }
@@ -123,7 +128,7 @@ std::string json(const BenchRun& run) {
           << ", \"rmse\": " << p.rmse << ", \"ssim\": " << p.ssim << ", \"relmse\": " << p.relmse
           << ", \"levels_per_traversal\": " << p.levels_per_traversal << ", \"mock_cut_pixels\": " << p.mock_cut_pixels
           << ", \"dropped_samples\": " << p.dropped_samples << ", \"image\": " << json_string(p.image)
-          << ", \"stages\": [";
+          << ", \"flc_navg\": " << p.flc_navg << ", \"stages\": [";
         for (size_t k = 0; k < p.stages.size(); ++k) {
             const BenchPoint::StageTime& t = p.stages[k];
             s << (k ? ", " : "") << "{\"name\": " << json_string(t.name) << ", \"median_ms\": " << t.median_ms
@@ -165,12 +170,12 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         if (!gi_only) plot.highlight_label = "Pareto front";
         const auto front = pareto_front(run);
         for (const char* m : kMethods) {
-            for (const std::string sweep : {"spp", "resolution", "denoise"}) {
+            for (const std::string sweep : {"quality", "resolution", "denoise"}) {
                 Series series;
                 series.name = std::string(m) + (sweep == "resolution" ? " (half res)"
                                                 : sweep == "denoise"  ? " (svgf)"
                                                                       : "");
-                for (const BenchPoint* p : select(run, m, sweep)) {
+                for (const BenchPoint* p : select(run, m, sweep == "quality" ? quality_sweep(m) : sweep)) {
                     series.x.push_back(gi_only ? p->gi_ms + p->trees_ms : p->frame_ms);
                     series.y.push_back(p->rmse);
                     if (!gi_only && std::find(front.begin(), front.end(), p) != front.end()) {
@@ -190,6 +195,7 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         plot.y_label = "levels per traversal";
         plot.log_x = true;
         for (const char* m : kMethods) {
+            if (std::string(m) == "flc") continue;  // no tree
             Series series;
             series.name = m;
             for (const BenchPoint* p : select(run, m, "spp")) {
@@ -293,7 +299,9 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
        << "Methods: `sst` (root traversals of the substitute tree), `rtslc` (standalone stochastic lightcuts: "
        << "its own cuts per block, traversals to leaves), `hybrid` (the thesis' blended shallow cuts and early-stop "
        << "substitute traversals), `hybrid-lightcuts` (hybrid's cuts and blending with rtslc's traversal to a "
-       << "leaf: the thesis' sec. 7.1 protocol, where rtslc and hybrid differ only in the traversal).\n\n";
+       << "leaf: the thesis' sec. 7.1 protocol, where rtslc and hybrid differ only in the traversal), `flc` "
+       << "(forward light cuts, seed 002: its own VPLs, one per kept triangle, splatted unshadowed; its points sweep "
+       << "N_avg, the VPLs per point).\n\n";
 
     md << "## Equal time (thesis Fig. 7.1)\n\nEach method at the point whose frame time is closest to "
        << fixed(run.target_ms, 1) << " ms.\n\n"
@@ -337,7 +345,7 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
         md << p->label() << " (" << fixed(p->frame_ms, 1) << " ms, " << fixed(p->rmse, 4) << "); ";
     md << "\n\n" << kTableHead;
     for (const char* m : kMethods) {
-        for (const BenchPoint* p : select(run, m, "spp")) md << row(*p);
+        for (const BenchPoint* p : select(run, m, quality_sweep(m))) md << row(*p);
     }
     md << "\n## Tree levels per traversal (Fig. 7.2)\n\n![levels](levels.png)\n\n"
        << "## Cut block size (Fig. 7.5)\n\n![block size vs RMSE](block_size_rmse.png) ![block size vs "

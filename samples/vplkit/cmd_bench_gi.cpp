@@ -135,6 +135,13 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
     for (unsigned n : counts) {
         if (n != vpl_budget) add("hybrid", "vpls", 8, 8, 1, false, true, n);
     }
+    // flc (seed 002) places its own VPLs: its curve sweeps N_avg (eq. 1), the paper's 64..1024.
+    const std::vector<float> navgs =
+        quick ? std::vector<float>{32, 128} : std::vector<float>{32, 64, 128, 256, 512, 1024};
+    for (float navg : navgs) {
+        add("flc", "navg", 0, 0, 1, false, true, 0);
+        points.back().flc_navg = navg;
+    }
     return points;
 }
 
@@ -148,13 +155,13 @@ bool owned_by(const PassTiming& pass, std::initializer_list<FrameStage> stages) 
 
 bool is_gi_pass(const PassTiming& pass) {
     return owned_by(pass, {FrameStage::gi_downsample, FrameStage::gi_exact, FrameStage::gi_sst, FrameStage::gi_rtslc,
-                           FrameStage::gi_hybrid, FrameStage::gi_upsample});
+                           FrameStage::gi_hybrid, FrameStage::gi_flc, FrameStage::gi_upsample});
 }
 bool is_tree_pass(const PassTiming& pass) {
     return owned_by(pass, {FrameStage::vpl_sort, FrameStage::light_tree, FrameStage::sst});
 }
 bool is_vpl_pass(const PassTiming& pass) {
-    return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls});
+    return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls, FrameStage::flc_vpls});
 }
 
 double median(std::vector<double> v) {
@@ -187,6 +194,7 @@ private:
 GiMethod method_of(const std::string& name) {
     if (name == "sst") return GiMethod::sst;
     if (name == "rtslc") return GiMethod::rtslc;
+    if (name == "flc") return GiMethod::flc;
     return GiMethod::hybrid;
 }
 
@@ -202,6 +210,11 @@ std::vector<float> unit_rgb(const std::vector<uint8_t>& rgba) {
 }
 
 std::string BenchPoint::label() const {
+    if (method == "flc") {
+        char text[32];
+        std::snprintf(text, sizeof text, "flc navg %g", flc_navg);
+        return text;
+    }
     std::string s = method + " " + std::to_string(spp) + " spp";
     if (method != "sst") s += " k" + std::to_string(block);
     if (interleave > 1) s += " m" + std::to_string(interleave);
@@ -246,7 +259,8 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     // --sweeps spp,resolution,...: only those sweeps (a shorter run, e.g. scripts/gpu_report.sh).
     std::vector<std::string> sweeps;
     if (auto text = args.value("--sweeps")) {
-        const std::vector<std::string> known = {"spp", "block", "resolution", "interleave", "mock", "vpls", "denoise"};
+        const std::vector<std::string> known = {"spp",  "block", "resolution", "interleave",
+                                                "mock", "vpls",  "denoise",    "navg"};
         size_t start = 0;
         while (start <= text->size()) {
             const size_t comma = std::min(text->find(',', start), text->size());
@@ -254,7 +268,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             if (std::find(known.begin(), known.end(), name) == known.end()) {
                 throw UsageError(
                     "--sweeps expects a comma-separated list of spp, block, resolution, interleave, mock, "
-                    "vpls, denoise, got '" +
+                    "vpls, denoise, navg, got '" +
                     *text + "'");
             }
             sweeps.push_back(name);
@@ -370,6 +384,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         s.mock_cuts = p.mock_cuts;
         s.denoise = p.denoised ? DenoiseMode::svgf : DenoiseMode::off;
         if (p.method == "hybrid-lightcuts") s.hybrid_traversal = vplkit::stages::HybridTraversal::lightcuts;
+        if (p.method == "flc") s.flc_vpls_per_point = p.flc_navg;
         // Light paths leave up to one VPL per bounce: aim the path count at the VPL count.
         s.vpl_paths =
             base.vpl_source == VplSource::ir && p.sweep == "vpls" ? std::max(1u, p.vpls / base.vpl_bounces) : p.vpls;
@@ -455,7 +470,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     write_bench_report(out, run);
     // The headline on the terminal: each method's best error within the target frame time.
     std::printf("best RMSE within %.0f ms (the equal-time target):\n", run.target_ms);
-    for (const char* m : {"sst", "rtslc", "hybrid", "hybrid-lightcuts"}) {
+    for (const char* m : {"sst", "rtslc", "hybrid", "hybrid-lightcuts", "flc"}) {
         const BenchPoint* best = nullptr;
         for (const BenchPoint& p : run.points) {
             if (p.method == m && p.sweep != "vpls" && p.frame_ms <= run.target_ms && (!best || p.rmse < best->rmse))

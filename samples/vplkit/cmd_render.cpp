@@ -15,6 +15,7 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/scene_setups.hpp"
 #include "vplkit/camera_view.hpp"
+#include "vplkit/stages/flc.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -33,7 +34,8 @@ namespace vplkit::cli {
 const char* const kRenderUsage =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
-    "                     [--method direct|exact|sst|rtslc|hybrid] [--spp N] [--block K] [--interleave M]\n"
+    "                     [--method direct|exact|sst|rtslc|hybrid|flc] [--spp N] [--block K] [--interleave M]\n"
+    "                     [--flc-levels N] [--flc-mu MU] [--flc-navg A] [--flc-subtiles N]\n"
     "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
     "                     [--vpl-source auto|ir|brsm|smc] [--vpls N] [--bounces B]\n"
@@ -58,7 +60,16 @@ const char* const kRenderUsage =
     "                   sst: stochastic substitute tree traversals from the root;\n"
     "                   rtslc: real-time stochastic lightcuts (a cut per block, traversals to leaves);\n"
     "                   hybrid: the thesis method (shallow SST cuts per block, blended between\n"
-    "                   blocks, traversals that stop at flat clusters)\n"
+    "                   blocks, traversals that stop at flat clusters);\n"
+    "                   flc: forward light cuts (seed 002): a VPL per kept triangle (stochastic\n"
+    "                   decimation), splatted over bounded supports; unshadowed, one bounce\n"
+    "  --flc-levels N   flc: partition levels (default 8: with mu 2, D_N reaches past the scene\n"
+    "                   diameter; light beyond D_N is dropped, at most 32)\n"
+    "  --flc-mu MU      flc: ratio of consecutive levels' areas, S_k = S_0 MU^k (default 2, above 1)\n"
+    "  --flc-navg A     flc: about how many VPLs light each point (eq. 1, default 64; the paper's\n"
+    "                   64..1024): more VPLs, less noise, more time\n"
+    "  --flc-subtiles N flc: N x N interleaved sub-tiles (default 1: off, at most 8): each VPL is\n"
+    "                   splatted into one sub-tile (1/N^2 of the pixels), then untiled and blurred\n"
     "  --spp N          sst: traversals per pixel; rtslc, hybrid: the cut size, one traversal per cut\n"
     "                   node (default 8, at most 64); each is one shadow ray\n"
     "  --block K        rtslc, hybrid: pixels share a cut per K x K block (default 8, at most 32)\n"
@@ -180,6 +191,29 @@ float parse_fraction(const std::string& option, const std::string& text) {
     return *value;
 }
 
+// --flc-levels, --flc-mu, --flc-navg: only with --method flc.
+void parse_flc_options(Args& args, RenderSettings& settings) {
+    const auto levels = args.value("--flc-levels");
+    const auto mu = args.value("--flc-mu");
+    const auto navg = args.value("--flc-navg");
+    const auto subtiles = args.value("--flc-subtiles");
+    if ((levels || mu || navg || subtiles) && settings.method != GiMethod::flc) {
+        throw UsageError("--flc-levels, --flc-mu, --flc-navg and --flc-subtiles are for --method flc");
+    }
+    if (subtiles) settings.flc_subtiles = parse_whole_number("--flc-subtiles", *subtiles, stages::kFlcMaxSubtiles);
+    if (levels) settings.flc_levels = parse_whole_number("--flc-levels", *levels, stages::kFlcMaxLevels);
+    if (mu) {
+        const auto value = finite_number(*mu);
+        if (!value || !(*value > 1.0f)) throw UsageError("--flc-mu expects a number above 1, got '" + *mu + "'");
+        settings.flc_mu = *value;
+    }
+    if (navg) {
+        const auto value = finite_number(*navg);
+        if (!value || !(*value > 0.0f)) throw UsageError("--flc-navg expects a positive number, got '" + *navg + "'");
+        settings.flc_vpls_per_point = *value;
+    }
+}
+
 // Passes of one name (e.g. the importance mip levels) summed into one line, in first-seen order.
 std::vector<std::pair<std::string, double>> by_stage(const std::vector<PassTiming>& timings) {
     std::vector<std::pair<std::string, double>> stages;
@@ -276,14 +310,16 @@ RenderRequest parse_render_request(Args& args) {
     }
     if (auto text = args.value("--method")) {
         bool known = false;
-        for (GiMethod m : {GiMethod::none, GiMethod::exact, GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid}) {
+        for (GiMethod m :
+             {GiMethod::none, GiMethod::exact, GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid, GiMethod::flc}) {
             if (*text == gi_method_name(m)) {
                 settings.method = m;
                 known = true;
             }
         }
-        if (!known) throw UsageError("--method expects direct, exact, sst, rtslc or hybrid, got '" + *text + "'");
+        if (!known) throw UsageError("--method expects direct, exact, sst, rtslc, hybrid or flc, got '" + *text + "'");
     }
+    parse_flc_options(args, settings);
     const bool sampled =
         settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
     const bool blocked = settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
@@ -555,7 +591,10 @@ int render_or_plan(Args& args, bool plan_only) {
     std::printf("%s\n", image.plan_summary.c_str());
     for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
     const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
-    if (made_vpls && image.vpl_source == VplSource::brsm) {
+    if (settings.method == GiMethod::flc && !settings.vpls_only) {
+        std::printf("indirect: %u flc VPLs (%u levels, mu %g, N_avg %g), splatted unshadowed\n", image.vpl_count,
+                    settings.flc_levels, settings.flc_mu, settings.flc_vpls_per_point);
+    } else if (made_vpls && image.vpl_source == VplSource::brsm) {
         std::printf(
             "%s: %u VPLs by BRSM from %zu lights' %u^2 shadow maps (%u samples per texel, defensive share %.2f)\n",
             settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,

@@ -26,6 +26,7 @@ enum class FrameStage {
     vpl_paths,        // instant radiosity: light paths through the BVH
     brsm_vpls,        // reflective shadow maps and BRSM placement, light by light
     smc_vpls,         // one SMC update of the persistent VPL set (seed 001 Alg. 1)
+    flc_vpls,         // forward light cuts: candidates, decimation, compaction, light at the kept VPLs
     vpl_sort,         // keys, sort, leaves in sorted order
     light_tree,       // the RTSLC light tree
     sst,              // the stochastic substitute tree
@@ -34,6 +35,7 @@ enum class FrameStage {
     gi_sst,
     gi_rtslc,
     gi_hybrid,
+    gi_flc,       // forward light cuts' splatting (raster pipeline, additive blending)
     gi_upsample,  // joint bilateral upsampling to full resolution
     denoise,      // demodulation, temporal accumulation, a-trous, remodulation (stages/denoise.hpp)
     compose,      // direct + indirect

@@ -24,9 +24,10 @@ enum class GiMethod {
     sst,     // stochastic substitute tree traversals from the root (seed 004)
     rtslc,   // real-time stochastic lightcuts: a cut per block, traversals to leaves (seed 003)
     hybrid,  // the thesis method: shallow SST cuts per block, blended, early-stop traversals (seed 000)
+    flc,     // forward light cuts (seed 002): a VPL per kept triangle, splatted unshadowed, one bounce
 };
 
-// "direct", "exact", "sst", "rtslc", "hybrid".
+// "direct", "exact", "sst", "rtslc", "hybrid", "flc".
 const char* gi_method_name(GiMethod method);
 
 // How direct light from emissive triangles, point and spot lights is sampled (directional lights
@@ -139,6 +140,17 @@ struct RenderSettings {
     // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
     // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
     bool vpls_only = false;
+    // flc (seed 002): the partition's levels N + 1 and ratio mu (S_k = S_0 mu^k), and N_avg, about
+    // how many VPLs at least D_near away light each point (eq. 1: S_0 = 4 pi D_near^2 / N_avg, D_near
+    // = 0.2 x the scene radius): flc's quality knob, its VPL count grows with it. Emitter samples:
+    // area samples of the emissive triangles per VPL for its light.
+    uint32_t flc_levels = 8;  // with mu 2: D_N = 0.2 x 2^3.5 = 2.26 scene radii, past the scene diameter
+    float flc_mu = 2.0f;
+    float flc_vpls_per_point = 64.0f;
+    uint32_t flc_emitter_samples = 4;
+    // flc: n x n interleaved sub-tiles (seed 002 sec. 6; 1: off): the splat's cost / n^2, then
+    // untiling and a geometry-aware n x n blur.
+    uint32_t flc_subtiles = 1;
     // Called during long indirect-light work with (done, total) units of work.
     std::function<void(uint32_t done, uint32_t total)> progress;
     // Called during the SMC warm-up with (updates done, updates in all).
@@ -149,6 +161,8 @@ struct RenderSettings {
 // block size, interleave, SST thresholds) for its method; render() checks them first too, so a
 // bad option fails before any work, whether or not the frame gets VPLs.
 void validate_gi_settings(const RenderSettings& settings);
+// Throws vplkit::Error naming the first bad flc option (levels, mu, N_avg, emitter samples, half resolution).
+void validate_flc_settings(const RenderSettings& settings);
 
 // `settings` with the scene-relative thresholds made absolute for a scene of `scene_scale`
 // (sst.sigma_max from sigma_max_scene_fraction, when set); render() does this first.

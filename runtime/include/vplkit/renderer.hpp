@@ -119,6 +119,12 @@ private:
     void denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
                           stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, RenderedImage& out);
 
+    // Forward light cuts (seed 002): its own VPLs, splatted into `indirect` (renderer_flc.cpp).
+    void render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer, const RenderSettings& settings,
+                    Image& indirect, RenderedImage& out);
+    std::optional<Buffer> flc_vertex_random_;  // scene::Scene::vertex_random, uploaded on first use
+    std::vector<double> flc_triangle_areas_;   // each triangle's area, for the subdivision (first use)
+
     // What a frame leaves for the next: its VPLs and the trees over them, while the plan's keys
     // (VPL settings, view for BRSM, tree settings) stay the same. Scene geometry and lights are
     // fixed for a renderer's life.

@@ -34,6 +34,8 @@ struct RasterState {
     // Shadow maps push depth away from the surface they were rendered from.
     float depth_bias_constant = 0.0f;
     float depth_bias_slope = 0.0f;
+    // Every colour target adds the fragment's value to what it holds (ONE, ONE, ADD): splatting.
+    bool additive_blend = false;
 };
 
 // One shader stage as the generated Module type describes it.

@@ -3,16 +3,21 @@
 // parameters, the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
 // scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
 // partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl; the light at
-// the kept VPLs (flc_vpl_light.comp). Not yet here: the subdivision of divergent triangles, the splatting.
+// the kept VPLs (flc_vpl_light.comp); the splatting raster pipeline (flc_splat_proxy.vert + flc_splat_shade.frag).
+// The divergent triangles' subdivision (flc_subdivide.comp).
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/direct_emissive.hpp"
 #include "vplkit/stages/direct_light.hpp"
+#include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
+#include <span>
+#include <vector>
 
 namespace vplkit::stages {
 
@@ -94,5 +99,84 @@ struct FlcVplLightParams {
 void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
                             const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
                             const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params);
+
+// Candidates (scene triangles + sub-triangles) in all: every flc pass is one dispatch of 64-thread
+// groups, at most 65535 of them.
+inline constexpr uint64_t kFlcMaxCandidates = 65535ull * 64ull;
+
+// The divergent triangles' subdivision (seed 002 sec. 6): which triangles are cut, into how many.
+struct FlcSubdivision {
+    std::vector<shaders::FlcSubdivisionEntry> entries;  // by `first`, ascending
+    uint32_t sub_count = 0;                             // sub-triangles in all
+};
+
+// Every triangle of area A > 0.99 S~_N (a 1% margin over the candidates pass's float test) gets
+// side m = ceil(sqrt(A / (0.99 S~_N))): m^2 sub-triangles of area A / m^2 <= 0.99 S~_N, regular.
+// Throws vplkit::Error when triangle_count + sub_count would exceed kFlcMaxCandidates (fewer VPLs
+// per point, more levels or a larger mu), or on a bad partition. Non-finite areas are left alone.
+FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition);
+
+struct FlcSubdivideBuffers {
+    BufferView vertices;          // scene::Vertex[]; read
+    BufferView indices;           // uint32 x 3 per triangle; read
+    BufferView vertex_random;     // uint32 per vertex; read
+    BufferView entries;           // FlcSubdivision::entries (at least one entry's bytes); read
+    BufferView candidates;        // FlcCandidate[triangle_count + sub_count]: the head read, the tail written
+    BufferView triangle_albedo;   // vec4[triangle_count]; read
+    BufferView candidate_albedo;  // vec4[triangle_count + sub_count]: the albedo per candidate; written
+};
+
+// Adds "flc subdivide" (flc_subdivide.comp), after the candidates pass: candidate triangle_count + s
+// is sub-triangle s with its own level (discarded if its parent was not divergent), and
+// candidate_albedo holds every candidate's albedo (a sub-triangle's is its parent's). The
+// compaction and the light pass then run over triangle_count + sub_count candidates. Throws
+// vplkit::Error on a bad partition, a buffer too small, or too many candidates.
+void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivideBuffers& buffers,
+                            const FlcPartition& partition, const FlcSubdivision& subdivision, uint32_t triangle_count,
+                            uint32_t seed);
+
+struct FlcSplatBuffers {
+    BufferView candidates;      // shaders::FlcCandidate[] (their levels); read
+    BufferView counts;          // FlcCompactBuffers::counts (the kept count); read
+    BufferView kept_triangles;  // FlcCompactBuffers::kept_triangles; read
+    BufferView vpls;            // shaders::Vpl[vpl_capacity] (add_flc_vpl_light_pass); read
+    BufferView draw_args;       // kFlcDrawArgsBytes, the indirect draw's VkDrawIndirectCommand; written here
+};
+
+inline constexpr uint64_t kFlcDrawArgsBytes = 4 * sizeof(uint32_t);
+// The indirect image's format: float, so that blending adds without clamping.
+inline constexpr VkFormat kFlcIndirectFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+
+// Interleaved sub-tiles (seed 002 sec. 6): n x n sub-images of ceil(size / n) pixels each, VPL i
+// splatted into sub-tile i mod n^2 only (its light x n^2), then untiled and blurred over n x n
+// windows on the same surface. Cost of the splat's fragments / n^2; the blur's price is detail.
+inline constexpr uint32_t kFlcMaxSubtiles = 8;
+struct FlcSplatOptions {
+    uint32_t subtiles = 1;  // n, 1..kFlcMaxSubtiles (1: off)
+    bool blur = true;       // false: untiling only (each pixel its own sub-tile's estimate)
+    float blur_min_cos = 0.9f;
+    float blur_max_distance = 0.0f;  // world units from the tangent plane; 0: gi_similarity_distance's default
+};
+// The side of a sub-tile: ceil(size / subtiles).
+inline uint32_t flc_subtile_side(uint32_t size, uint32_t subtiles) {
+    return (size + subtiles - 1) / subtiles;
+}
+
+// Adds "flc splat args" (a compute pass: the kept count as an indirect draw) and "flc splat" (the
+// raster pipeline, seed 002 sec. 5): `indirect` (kFlcIndirectFormat, colour attachment usage) is
+// cleared to 0, then every kept VPL i < min(kept, vpl_capacity) is drawn as a screen-space
+// rectangle bounding its support and adds, at every G-buffer pixel x inside, its unshadowed light
+// (vpl_eval.glsl) times f~^k(d(x)) with additive blending. rgb: the one-bounce indirect radiance,
+// a: 0. `scene_scale` (BvhBuffers::scene_scale) sets the 1/d^2 clamp as exact_gi does. The
+// partition must be the candidates pass's. `gbuffer` is read in GENERAL layout (storage images).
+// Throws vplkit::Error on a bad partition, vpl_capacity 0, a buffer too small, an indirect image of
+// another size or format than the G-buffer's, or a scene_scale that is not finite and positive.
+// With options.subtiles > 1 the splat draws into `tiled` (kFlcIndirectFormat, subtiles x
+// flc_subtile_side each way, colour attachment and storage usage) and "flc untile" writes
+// `indirect` (storage usage) from it; a bad subtile count or a tiled image of another size throws.
+void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffers& buffers, const GbufferViews& gbuffer,
+                          const ImageView& indirect, const CameraView& view, const FlcPartition& partition,
+                          uint32_t vpl_capacity, float scene_scale, const FlcSplatOptions& options = {},
+                          const ImageView& tiled = {});
 
 }  // namespace vplkit::stages

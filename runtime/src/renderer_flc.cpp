@@ -1,0 +1,144 @@
+// The renderer's forward light cuts frame (seed 002): VPL candidates with the stochastic
+// decimation, their compaction, the light at the kept VPLs, and the splatting raster pipeline into
+// the indirect image. flc places its own VPLs (one per kept triangle), reads no VPL source and no
+// tree, and is unshadowed one-bounce light, as in the paper.
+
+#include "vplkit/renderer.hpp"
+
+#include "vplkit/buffer.hpp"
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/gbuffer_images.hpp"
+#include "vplkit/image.hpp"
+#include "vplkit/planner.hpp"
+#include "vplkit/stages/flc.hpp"
+
+#include <glm/geometric.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vplkit {
+
+void validate_flc_settings(const RenderSettings& settings) {
+    if (settings.flc_levels < 1 || settings.flc_levels > stages::kFlcMaxLevels) {
+        throw Error("flc: --flc-levels " + std::to_string(settings.flc_levels) + " is outside 1.." +
+                    std::to_string(stages::kFlcMaxLevels));
+    }
+    if (!std::isfinite(settings.flc_mu) || !(settings.flc_mu > 1.0f)) {
+        throw Error("flc: --flc-mu " + std::to_string(settings.flc_mu) + " must be finite and above 1");
+    }
+    if (!std::isfinite(settings.flc_vpls_per_point) || !(settings.flc_vpls_per_point > 0.0f)) {
+        throw Error("flc: --flc-navg " + std::to_string(settings.flc_vpls_per_point) + " must be finite and positive");
+    }
+    if (settings.flc_emitter_samples < 1) throw Error("flc: emitter samples per VPL must be at least 1");
+    if (settings.flc_subtiles < 1 || settings.flc_subtiles > stages::kFlcMaxSubtiles) {
+        throw Error("flc: --flc-subtiles " + std::to_string(settings.flc_subtiles) + " is outside 1.." +
+                    std::to_string(stages::kFlcMaxSubtiles));
+    }
+    if (settings.half_resolution_gi) {
+        throw Error("flc: --gi-resolution half is not available: flc splats at the G-buffer's resolution");
+    }
+}
+
+namespace {
+
+// Eq. 1 with the scene radius: half the diagonal of the scene's box.
+stages::FlcPartition flc_partition(const RenderSettings& settings, const scene::Bounds& bounds) {
+    const float radius = 0.5f * glm::length(bounds.extent());
+    return stages::flc_partition_for(radius, settings.flc_vpls_per_point, settings.flc_levels, settings.flc_mu);
+}
+
+// Each triangle's area in double, from the positions the GPU reads (the subdivision's m).
+std::vector<double> triangle_areas(const scene::Scene& scene) {
+    const std::vector<glm::vec3> corners = scene::triangle_positions(scene);
+    std::vector<double> areas(corners.size() / 3);
+    for (size_t t = 0; t < areas.size(); ++t) {
+        const glm::dvec3 a(corners[3 * t]), b(corners[3 * t + 1]), c(corners[3 * t + 2]);
+        areas[t] = 0.5 * glm::length(glm::cross(b - a, c - a));
+    }
+    return areas;
+}
+
+}  // namespace
+
+void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer,
+                          const RenderSettings& settings, Image& indirect, RenderedImage& out) {
+    const stages::FlcPartition partition = flc_partition(settings, scene_.bounds());
+    const uint32_t triangles = scene_.triangle_count();
+    if (flc_triangle_areas_.empty()) flc_triangle_areas_ = triangle_areas(scene_source_);
+    const stages::FlcSubdivision subdivision = stages::flc_subdivision_for(flc_triangle_areas_, partition);
+    const uint32_t candidate_count = triangles + subdivision.sub_count;
+    if (!flc_vertex_random_) {
+        if (scene_source_.vertex_random.size() != scene_source_.vertices.size()) {
+            throw Error(scene_source_.source.string() +
+                        ": flc needs one random integer per vertex (scene::Scene::vertex_random), and the scene "
+                        "has " +
+                        std::to_string(scene_source_.vertex_random.size()) + " for " +
+                        std::to_string(scene_source_.vertices.size()) + " vertices");
+        }
+        flc_vertex_random_ = Buffer::create(context_, scene_source_.vertex_random.size() * sizeof(uint32_t),
+                                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "flc vertex random");
+        flc_vertex_random_->upload(scene_source_.vertex_random);
+    }
+    auto storage = [&](VkDeviceSize bytes, const char* name, VkBufferUsageFlags more = 0) {
+        return Buffer::create(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | more, MemoryUse::device, name);
+    };
+    const uint64_t n = candidate_count;
+    auto candidates = storage(n * sizeof(shaders::FlcCandidate), "flc candidates");
+    auto entries = storage(std::max<uint64_t>(subdivision.entries.size(), 1) * sizeof(shaders::FlcSubdivisionEntry),
+                           "flc subdivision");
+    if (!subdivision.entries.empty()) entries.upload(subdivision.entries);
+    auto albedo = storage(n * 4 * sizeof(float), "flc candidate albedo");
+    auto counts = storage(stages::flc_count_bytes(partition.level_count), "flc counts");
+    auto kept = storage(n * sizeof(uint32_t), "flc kept triangles");
+    auto divergent = storage(n * sizeof(uint32_t), "flc divergent triangles");
+    auto vpls = storage(n * sizeof(shaders::Vpl), "flc vpls");
+    auto draw_args = storage(stages::kFlcDrawArgsBytes, "flc draw args", VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+
+    // Interleaved sub-tiles: the splat's target, n sub-tiles of ceil(size / n) each way.
+    stages::FlcSplatOptions splat_options;
+    splat_options.subtiles = settings.flc_subtiles;
+    std::optional<Image> tiled;
+    if (splat_options.subtiles > 1) {
+        const uint32_t n = splat_options.subtiles;
+        tiled.emplace(Image::create(context_, n * stages::flc_subtile_side(gbuffer.width(), n),
+                                    n * stages::flc_subtile_side(gbuffer.height(), n), stages::kFlcIndirectFormat,
+                                    VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "flc sub-tiles"));
+    }
+
+    PassList passes("flc");
+    passes.set_tag(stage_tag(FrameStage::flc_vpls));
+    stages::add_flc_candidates_pass(context_, passes,
+                                    {scene_.vertices(), scene_.indices(), *flc_vertex_random_, candidates}, partition,
+                                    triangles, settings.seed);
+    stages::add_flc_subdivide_pass(context_, passes,
+                                   {scene_.vertices(), scene_.indices(), *flc_vertex_random_, entries, candidates,
+                                    vpl_sources().triangle_albedo, albedo},
+                                   partition, subdivision, triangles, settings.seed);
+    stages::add_flc_compact_passes(context_, passes, {candidates, counts, kept, divergent}, partition.level_count,
+                                   candidate_count);
+    stages::add_flc_vpl_light_pass(context_, passes, gpu_bvh_, lights_, emitters_,
+                                   {candidates, counts, kept, albedo, vpls}, partition, candidate_count,
+                                   {settings.flc_emitter_samples, settings.seed});
+    passes.set_tag(stage_tag(FrameStage::gi_flc));
+    stages::add_flc_splat_passes(context_, passes, {candidates, counts, kept, vpls, draw_args}, gbuffer, indirect, view,
+                                 partition, candidate_count, gpu_bvh_.scene_scale, splat_options,
+                                 tiled ? ImageView(*tiled) : ImageView{});
+    passes.run(context_);
+    out.timings.insert(out.timings.end(), passes.timings().begin(), passes.timings().end());
+
+    const auto count = counts.download<uint32_t>(2);
+    out.vpl_count = count[0];
+    out.gi_width = gbuffer.width();
+    out.gi_height = gbuffer.height();
+    out.notes.push_back("flc: " + std::to_string(count[0]) + " VPLs kept of " + std::to_string(triangles) +
+                        " triangles and " + std::to_string(subdivision.sub_count) + " sub-triangles of " +
+                        std::to_string(count[1]) + " divergent ones");
+    if (count[0] == 0) out.notes.push_back("flc: no triangle was kept: no indirect light");
+}
+
+}  // namespace vplkit

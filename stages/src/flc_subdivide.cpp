@@ -1,0 +1,82 @@
+#include "vplkit/error.hpp"
+#include "vplkit/shaders/flc_subdivide.hpp"
+#include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/flc.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace vplkit::stages {
+
+FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition) {
+    validate(partition);
+    const double target = 0.99 * flc_divergence_area(partition);
+    FlcSubdivision out;
+    uint64_t total = 0;
+    for (size_t t = 0; t < triangle_areas.size(); ++t) {
+        const double area = triangle_areas[t];
+        if (!std::isfinite(area) || !(area > target)) continue;
+        const double root = std::ceil(std::sqrt(area / target));
+        // Beyond the candidate limit the count cannot fit anyway (and side^2 could overflow).
+        auto side = root < double(kFlcMaxCandidates) ? uint64_t(root) : kFlcMaxCandidates;
+        while (side < kFlcMaxCandidates && double(side) * double(side) * target < area) ++side;  // the root's rounding
+        if (side >= kFlcMaxCandidates || total + triangle_areas.size() + side * side > kFlcMaxCandidates) {
+            throw Error("flc: the divergent triangles' subdivision needs more than " +
+                        std::to_string(kFlcMaxCandidates - triangle_areas.size()) + " sub-triangles (triangle " +
+                        std::to_string(t) + ", area " + std::to_string(area) + ", needs " + std::to_string(side) +
+                        "^2): ask for fewer VPLs per point (--flc-navg), more levels or a larger mu");
+        }
+        out.entries.push_back({uint32_t(t), uint32_t(side), uint32_t(total)});
+        total += side * side;
+    }
+    out.sub_count = uint32_t(total);
+    return out;
+}
+
+void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivideBuffers& buffers,
+                            const FlcPartition& partition, const FlcSubdivision& subdivision, uint32_t triangle_count,
+                            uint32_t seed) {
+    validate(partition);
+    if (triangle_count == 0) throw Error("flc subdivide: the scene has no triangle");
+    const uint64_t candidates = uint64_t(triangle_count) + subdivision.sub_count;
+    if (candidates > kFlcMaxCandidates) {
+        throw Error("flc subdivide: " + std::to_string(candidates) + " candidates, at most " +
+                    std::to_string(kFlcMaxCandidates));
+    }
+    const auto need = [](const BufferView& view, uint64_t bytes, const char* what) {
+        if (view.size < bytes) {
+            throw Error("flc subdivide: '" + std::string(what) + "' has " + std::to_string(view.size) + " bytes, " +
+                        std::to_string(bytes) + " needed");
+        }
+    };
+    const uint64_t entry_bytes = sizeof(shaders::FlcSubdivisionEntry);
+    need(buffers.entries, std::max<uint64_t>(subdivision.entries.size(), 1) * entry_bytes, "entries");
+    need(buffers.candidates, candidates * sizeof(shaders::FlcCandidate), "candidates");
+    need(buffers.triangle_albedo, uint64_t(triangle_count) * 4 * sizeof(float), "triangle albedo");
+    need(buffers.candidate_albedo, candidates * 4 * sizeof(float), "candidate albedo");
+    namespace shader = shaders::flc_subdivide;
+    const auto& pipeline = device.pipeline<shader::Pipeline>();
+    shader::Bindings bindings;
+    bindings.scene_vertices = buffers.vertices.descriptor();
+    bindings.scene_indices = buffers.indices.descriptor();
+    bindings.vertex_random = buffers.vertex_random.descriptor();
+    bindings.entries = buffers.entries.descriptor();
+    bindings.candidates = buffers.candidates.descriptor();
+    bindings.triangle_albedo = buffers.triangle_albedo.descriptor();
+    bindings.candidate_albedo = buffers.candidate_albedo.descriptor();
+    shader::Push push{};
+    push.triangle_count = triangle_count;
+    push.entry_count = uint32_t(subdivision.entries.size());
+    push.sub_count = subdivision.sub_count;
+    push.seed = seed;
+    push.level_count = int32_t(partition.level_count);
+    push.s0 = partition.s0;
+    push.mu = partition.mu;
+    const auto threads = uint32_t(candidates);
+    passes.add(
+        "flc subdivide", binding_uses<shader::Module>(bindings),
+        [&pipeline, bindings, push, threads](VkCommandBuffer cmd) { pipeline.dispatch(cmd, bindings, push, threads); });
+}
+
+}  // namespace vplkit::stages
