@@ -193,12 +193,18 @@ VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOpti
                                  "vpl bounces");
     out.count =
         Buffer::create(context, needed.count_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpl count");
+    out.path_vpls = Buffer::create(context, needed.path_vpls_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                   MemoryUse::device, "vpls per path");
+    out.path_counts = Buffer::create(context, needed.path_counts_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryUse::device, "vpl count per path");
+    out.block_vpls = Buffer::create(context, needed.block_vpls_bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                    MemoryUse::device, "vpls per path block");
     return out;
 }
 
 VplCounts download_vpl_counts(const VplTracingOutput& output) {
     const auto c = output.count.download<shaders::VplCountBuffer>(1)[0];
-    // A path appends at most max_bounces VPLs, so the counter never passes the capacity; the clamp
+    // A path has at most max_bounces VPLs, so the count never passes the capacity; the clamp
     // only guards a caller that traced with options other than the buffers were made for.
     return {std::min(c.count, output.capacity), c.cut_short};
 }

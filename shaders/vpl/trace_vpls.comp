@@ -19,8 +19,13 @@
 // Surfaces are diffuse (rho = base colour x (1 - metallic), textures as their means: see
 // upload_vpl_sources) and two-sided for light: a VPL's normal faces the ray that arrived.
 // Direct light is not a VPL: the first VPLs are at the first surface hit. A hit whose rho is zero ends
-// the path without a VPL (it would carry nothing). The VPLs are appended in no fixed order
-// (the set is fixed by the seed; the order depends on the scheduling of atomics).
+// the path without a VPL (it would carry nothing), so a path's VPLs are its bounces 1..n.
+//
+// Order. Path p writes its k-th VPL (bounce k + 1) to the fixed slot p * max_bounces + k of
+// path_vpls and its n to path_vpl_counts[p]; vpl_path_offsets, vpl_block_offsets and
+// compact_vpls then pack them by path, then bounce. No atomic decides where a VPL goes, so the
+// seed fixes the VPLs' order as well as their set (an atomicAdd append gave an order that
+// changed with the scheduling, and the sums and keys after it with it).
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
@@ -52,12 +57,13 @@ layout(std430, set = 0, binding = 3) readonly buffer EmitterTriangleBuffer { Emi
 layout(std430, set = 0, binding = 4) readonly buffer EmitterCdfBuffer { float items[]; } emitter_cdf;
 // Diffuse reflectance per scene triangle (BvhHit.id), rgb; a = unused.
 layout(std430, set = 0, binding = 5) readonly buffer TriangleAlbedoBuffer { vec4 items[]; } albedo;
-layout(std430, set = 0, binding = 6) writeonly buffer VplBuffer { Vpl items[]; } vpls;
-// count: VPLs appended; cut_short: paths whose loops the driver ended early (see main).
+// Path p's VPLs at p * max_bounces + 0 .. n - 1; the other slots are left as they were.
+layout(std430, set = 0, binding = 6) writeonly buffer PathVplBuffer { Vpl items[]; } path_vpls;
+// count: written by vpl_block_offsets, not here; cut_short: paths whose loops the driver ended
+// early (see main).
 layout(std430, set = 0, binding = 7) buffer VplCountBuffer { uint count; uint cut_short; } vpl_count;
-// Beside each VPL: which surface interaction of its path made it (1 = the first surface the light
-// reached). Kept apart from Vpl, whose layout every VPL consumer shares.
-layout(std430, set = 0, binding = 8) writeonly buffer VplBounceBuffer { uint items[]; } vpl_bounces;
+// n per path: its VPLs are its bounces 1..n.
+layout(std430, set = 0, binding = 8) writeonly buffer PathVplCountBuffer { uint items[]; } path_vpl_counts;
 
 layout(push_constant) uniform TraceVplsPush {
     vec3 scene_center;   // of the bounding sphere directional lights cover
@@ -68,7 +74,7 @@ layout(push_constant) uniform TraceVplsPush {
     uint punctual_count;
     uint emitter_count;  // punctual + emissive triangles with positive selection weight
     uint triangle_count; // entries of `albedo`
-    uint capacity;       // entries of `vpls`
+    uint capacity;       // entries of `path_vpls`: path_count x max_bounces
     uint step_limit;     // max_bounces + 1: the bounce loop's bound (see main)
 } push;
 
@@ -159,7 +165,11 @@ Emission emit(inout Rng rng) {
 
 void main() {
     uint path = gl_GlobalInvocationID.x;
-    if (path >= push.path_count || push.emitter_count == 0u) {
+    if (path >= push.path_count) {
+        return;
+    }
+    path_vpl_counts.items[path] = 0u;  // until the path has VPLs
+    if (push.emitter_count == 0u) {
         return;
     }
     Rng rng = rng_create(push.seed, path);
@@ -208,14 +218,15 @@ void main() {
         if (dot(n, direction) > 0.0) {
             n = -n;
         }
-        uint slot = atomicAdd(vpl_count.count, 1u);
+        // bounce <= max_bounces, so the slot stays within the path's own max_bounces slots.
+        uint slot = path * push.max_bounces + step;
         if (slot < push.capacity) {
             Vpl vpl;
             vpl.position = p;
             vpl.normal = n;
             vpl.flux = beta * rho;
-            vpls.items[slot] = vpl;
-            vpl_bounces.items[slot] = bounce;
+            path_vpls.items[slot] = vpl;
+            path_vpl_counts.items[path] = bounce;
         }
         if (bounce == push.max_bounces || rng_next_float(rng) >= q) {
             done = true;

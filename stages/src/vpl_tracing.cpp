@@ -1,7 +1,11 @@
 #include "vplkit/stages/vpl_tracing.hpp"
 
 #include "vplkit/error.hpp"
+#include "vplkit/shaders/compact_vpls.hpp"
 #include "vplkit/shaders/trace_vpls.hpp"
+#include "vplkit/shaders/vpl_block_counts.hpp"
+#include "vplkit/shaders/vpl_block_offsets.hpp"
+#include "vplkit/stages/binding_uses.hpp"
 
 #include <limits>
 #include <string>
@@ -21,12 +25,28 @@ uint32_t vpl_capacity(const VplTracingOptions& options) {
     return uint32_t(capacity);
 }
 
+// A block's VPLs are counted by one workgroup of vpl_block_counts and placed by one of compact_vpls.
+static_assert(shaders::vpl_block_counts::kWorkgroupSize[0] == shaders::compact_vpls::kWorkgroupSize[0]);
+
+uint32_t vpl_tracing_block_size() {
+    return shaders::compact_vpls::kWorkgroupSize[0];
+}
+
+namespace {
+uint32_t block_count(uint32_t paths) {
+    return uint32_t((uint64_t(paths) + vpl_tracing_block_size() - 1) / vpl_tracing_block_size());
+}
+}  // namespace
+
 VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options) {
     VplTracingRequirements r;
     r.capacity = vpl_capacity(options);
     r.vpls_bytes = uint64_t(r.capacity) * sizeof(shaders::Vpl);
     r.bounces_bytes = uint64_t(r.capacity) * sizeof(uint32_t);
     r.count_bytes = sizeof(shaders::VplCountBuffer);
+    r.path_vpls_bytes = r.vpls_bytes;
+    r.path_counts_bytes = uint64_t(options.paths) * sizeof(uint32_t);
+    r.block_vpls_bytes = uint64_t(block_count(options.paths)) * sizeof(uint32_t);
     return r;
 }
 
@@ -35,9 +55,11 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     const VplTracingRequirements needed = vpl_tracing_requirements(options);
     const uint32_t capacity = needed.capacity;
     if (output.vpls.size < needed.vpls_bytes || output.bounces.size < needed.bounces_bytes ||
-        output.count.size < needed.count_bytes) {
+        output.count.size < needed.count_bytes || output.path_vpls.size < needed.path_vpls_bytes ||
+        output.path_counts.size < needed.path_counts_bytes || output.block_vpls.size < needed.block_vpls_bytes) {
         throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
-                    " VPLs (paths x max_bounces)");
+                    " VPLs (paths x max_bounces), or the scratch buffers are smaller than " +
+                    "vpl_tracing_requirements says");
     }
     const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>(bvh_spec<shaders::trace_vpls::Spec>(bvh));
     const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * device.limits().max_workgroup_count[0];
@@ -67,7 +89,7 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     passes.add("trace vpls",
                {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(sources.lights),
                 Use::read(sources.emissive), Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo),
-                Use::write(output.vpls), Use::write(output.bounces), Use::read_write(count)},
+                Use::write(output.path_vpls), Use::write(output.path_counts), Use::read_write(count)},
                [&pipeline, bvh, sources, output, push](VkCommandBuffer cmd) {
                    shaders::trace_vpls::Bindings b;
                    b.bvh_nodes = bvh.nodes.descriptor();
@@ -77,11 +99,46 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
                    b.emissive = sources.emissive.descriptor();
                    b.emitter_cdf = sources.emitter_cdf.descriptor();
                    b.albedo = sources.triangle_albedo.descriptor();
-                   b.vpls = output.vpls.descriptor();
+                   b.path_vpls = output.path_vpls.descriptor();
                    b.vpl_count = output.count.descriptor();
-                   b.vpl_bounces = output.bounces.descriptor();
+                   b.path_vpl_counts = output.path_counts.descriptor();
                    pipeline.dispatch(cmd, b, push, push.path_count);
                });
+
+    // The stable compaction: each path's VPLs to the VPLs of the paths before it.
+    const uint32_t blocks = block_count(options.paths);
+    {
+        shaders::vpl_block_counts::Bindings b;
+        b.path_vpl_counts = output.path_counts.descriptor();
+        b.block_vpls = output.block_vpls.descriptor();
+        shaders::vpl_block_counts::Push p{};
+        p.path_count = options.paths;
+        add_dispatch<shaders::vpl_block_counts::Module>(
+            passes, "vpl block counts", device.pipeline<shaders::vpl_block_counts::Pipeline>(), b, p, options.paths);
+    }
+    {
+        const auto& offsets = device.pipeline<shaders::vpl_block_offsets::Pipeline>();
+        shaders::vpl_block_offsets::Bindings b;
+        b.block_vpls = output.block_vpls.descriptor();
+        b.vpl_count = output.count.descriptor();
+        shaders::vpl_block_offsets::Push p{};
+        p.block_count = blocks;
+        add_dispatch<shaders::vpl_block_offsets::Module>(passes, "vpl block offsets", offsets, b, p,
+                                                         offsets.workgroup_size[0]);  // one workgroup
+    }
+    {
+        shaders::compact_vpls::Bindings b;
+        b.path_vpls = output.path_vpls.descriptor();
+        b.path_vpl_counts = output.path_counts.descriptor();
+        b.block_vpls = output.block_vpls.descriptor();
+        b.vpls = output.vpls.descriptor();
+        b.vpl_bounces = output.bounces.descriptor();
+        shaders::compact_vpls::Push p{};
+        p.path_count = options.paths;
+        p.max_bounces = options.max_bounces;
+        add_dispatch<shaders::compact_vpls::Module>(
+            passes, "compact vpls", device.pipeline<shaders::compact_vpls::Pipeline>(), b, p, options.paths);
+    }
 }
 
 }  // namespace vplkit::stages

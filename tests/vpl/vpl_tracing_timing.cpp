@@ -1,5 +1,6 @@
 // vpl_tracing_timing: GPU time of the "trace vpls" pass on a real scene (not a test: timings are
-// never asserted). Prints the median over runs of the pass's timestamp time, the VPL count and
+// never asserted). Prints the median over runs of the pass's timestamp time (and of the three
+// passes that pack the VPLs by path), the VPL count and
 // the total VPL flux per bounce.
 //
 //   vpl_tracing_timing [SCENE.gltf] [--paths N] [--bounces B] [--runs K] [--point X,Y,Z,R,G,B,I] [--sun ...]
@@ -61,14 +62,17 @@ int main(int argc, char** argv) {
         const auto bvh = vplkit::upload_bvh(*ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
         const auto sources = vplkit::stages::upload_vpl_sources(*ctx, scene);
         auto output = vplkit::stages::VplTracingOutput::create(*ctx, options);
-        std::vector<double> ms;
+        std::vector<double> ms, packing_ms;
         uint32_t count = 0;
         for (uint32_t r = 0; r < runs; ++r) {
             vplkit::PassList passes("vpl tracing timing");
             options.seed = 1 + r;
             vplkit::stages::add_trace_vpls_pass(*ctx, passes, bvh, sources, options, output);
             passes.run(*ctx);
-            ms.push_back(passes.timings()[1].gpu_ms);
+            const auto timings = passes.timings();
+            ms.push_back(timings[1].gpu_ms);
+            // vpl block counts, vpl block offsets, compact vpls: the packing in path order.
+            packing_ms.push_back(timings[2].gpu_ms + timings[3].gpu_ms + timings[4].gpu_ms);
             count = vplkit::stages::download_vpl_count(output);
         }
         std::vector<double> sorted = ms;
@@ -76,6 +80,9 @@ int main(int argc, char** argv) {
         std::printf("trace vpls: %u paths, %u bounces: %.2f ms median of %u (min %.2f, max %.2f), %u VPLs\n",
                     options.paths, options.max_bounces, sorted[sorted.size() / 2], runs, sorted.front(), sorted.back(),
                     count);
+        std::sort(packing_ms.begin(), packing_ms.end());
+        std::printf("packing them by path (3 passes): %.2f ms median (min %.2f, max %.2f)\n",
+                    packing_ms[packing_ms.size() / 2], packing_ms.front(), packing_ms.back());
         const auto vpls = output.vpls.download<vplkit::shaders::Vpl>(count);
         const auto bounces = output.bounces.download<uint32_t>(count);
         std::vector<double> flux(options.max_bounces + 1, 0.0);

@@ -55,20 +55,21 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene);
 
 // The VPL buffers of one tracing: capacity = paths x max_bounces VPLs.
 struct VplTracingOutput {
-    Buffer vpls;     // Vpl[capacity]: the first `count` are valid after the pass
-    Buffer bounces;  // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
-    Buffer count;    // VplCountBuffer: the number of VPLs appended, and of paths cut short
+    Buffer vpls;                                // Vpl[capacity]: the first `count` are valid after the pass
+    Buffer bounces;                             // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
+    Buffer count;                               // VplCountBuffer: the number of VPLs, and of paths cut short
+    Buffer path_vpls, path_counts, block_vpls;  // scratch of the packing (VplTracingBuffers)
     uint32_t capacity = 0;
 
     // Throws Error when the options are invalid or the VPL buffer would exceed the device's
     // maxStorageBufferRange.
     static VplTracingOutput create(Context& context, const VplTracingOptions& options);
 
-    operator VplTracingBuffers() const { return {vpls, bounces, count}; }
+    operator VplTracingBuffers() const { return {vpls, bounces, count, path_vpls, path_counts, block_vpls}; }
 };
 
 struct VplCounts {
-    uint32_t vpls = 0;  // appended (at most the capacity)
+    uint32_t vpls = 0;  // traced (at most the capacity)
     // Paths the driver ended early: lavapipe silently stops an invocation's loops after 65535
     // iterations of all of them together (bounces x BVH traversal steps); such a path's later
     // bounces are missing, so the VPL set underestimates the light. 0 on other drivers.
@@ -76,7 +77,7 @@ struct VplCounts {
 };
 // Blocking read of output.count after a run.
 VplCounts download_vpl_counts(const VplTracingOutput& output);
-// The number of VPLs the last run appended; throws Error when any path was cut short.
+// The number of VPLs the last run traced; throws Error when any path was cut short.
 uint32_t download_vpl_count(const VplTracingOutput& output);
 
 }  // namespace vplkit::stages

@@ -33,7 +33,7 @@ namespace vplkit::stages {
 struct VplTracingOptions {
     uint32_t paths = 0;        // light paths, >= 1
     uint32_t max_bounces = 0;  // surface hits per path (VPLs per path at most), >= 1
-    uint32_t seed = 0;         // the same seed gives the same set of VPLs
+    uint32_t seed = 0;         // the same seed gives the same VPLs in the same order
 };
 
 // Everything the tracer reads about the scene besides the BVH (all read only). The runtime
@@ -52,12 +52,21 @@ struct VplSourceBuffers {
     float scene_radius = 0.0f;
 };
 
-// What one tracing writes.
+// What one tracing writes. The VPLs come out ordered by path, then bounce: the seed fixes the
+// order as well as the set.
 struct VplTracingBuffers {
     BufferView vpls;     // Vpl[capacity]: the first `count` are valid after the pass
     BufferView bounces;  // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
-    BufferView count;    // VplCountBuffer: the number of VPLs appended, and of paths cut short
+    BufferView count;    // VplCountBuffer: the number of VPLs, and of paths cut short
+    // Scratch: each path's VPLs at fixed slots (Vpl[capacity]), its VPL count (uint32_t[paths]),
+    // and per block of vpl_tracing_block_size paths its VPLs, then its first output slot.
+    BufferView path_vpls;
+    BufferView path_counts;
+    BufferView block_vpls;
 };
+
+// Paths per block of the packing (the workgroup size of vpl_block_counts.comp and compact_vpls.comp).
+uint32_t vpl_tracing_block_size();
 
 // Throws Error for paths or max_bounces 0, max_bounces 2^32 - 1, or paths x max_bounces above 2^32 - 1.
 uint32_t vpl_capacity(const VplTracingOptions& options);
@@ -68,12 +77,17 @@ struct VplTracingRequirements {
     uint64_t vpls_bytes = 0;
     uint64_t bounces_bytes = 0;
     uint64_t count_bytes = 0;
+    uint64_t path_vpls_bytes = 0;
+    uint64_t path_counts_bytes = 0;
+    uint64_t block_vpls_bytes = 0;
 };
 VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options);
 
-// Adds the passes "vpl count clear" and "trace vpls": reads the BVH and `sources`, writes
-// `output` (count cleared first). `output` must hold at least vpl_capacity(options) VPLs (Error
-// otherwise); paths must fit one dispatch (Error).
+// Adds the passes "vpl count clear", "trace vpls" (each path's VPLs to its fixed slots), then
+// "vpl block counts", "vpl block offsets" and "compact vpls" (a stable compaction by path): reads
+// the BVH and `sources`, writes `output` (count cleared first). Every buffer of `output` must
+// hold what vpl_tracing_requirements(options) says (Error otherwise); paths must fit one
+// dispatch (Error).
 void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
                          const VplTracingOptions& options, const VplTracingBuffers& output);
 
