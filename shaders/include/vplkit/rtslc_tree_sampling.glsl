@@ -219,6 +219,66 @@ RtslcTraversal rtslc_traverse_lobe_mis(RtslcShading s, uint node, uint leaf_coun
     return t;
 }
 
+// The probability of a power-only step (seed 003's I_j alone, no geometry): the left child's
+// share of the two children's intensities, on u's grid as rtslc_child_probability's; 0 or 1 when
+// one child holds no light, negative when neither does (a dead branch).
+float rtslc_power_left(LightTreeNode left, LightTreeNode right) {
+    float i_left = light_tree_is_bogus(left) ? 0.0 : left.intensity;
+    float i_right = light_tree_is_bogus(right) ? 0.0 : right.intensity;
+    return gi_child_probability(i_left, 1.0, i_right, 1.0);
+}
+
+// The defensive traversal (direct light through the tree, issue 15): with probability
+// `defensive` (a multiple of 2^-24, so that u < defensive picks it exactly) the path descends by
+// intensity alone (rtslc_power_left), otherwise by the eq. 1-2 weights; both paths' probabilities
+// are tracked at every step, and the pmf returned is the mixture's,
+//     (1 - defensive) P_tree(path) + defensive P_power(path),
+// exactly the probability that this traversal reaches the leaf (one-sample MIS, balance
+// heuristic, as rtslc_traverse_lobe_mis does for the lobes). Why: the node holds no orientation
+// (seed 003 sec. 4), so a one-sided lamp 1 cm off a wall or ceiling, facing away from it, gets the
+// largest weight the distance clamp allows at the wall points right behind it (cosine bound 1,
+// d_min 1 cm), where it gives no light at all, and every other light's P_tree there shrinks by
+// that lamp's share; the lights that do shine there are weighed by 1 / that tiny pmf: a heavy
+// tail (tests/lighting's two-lamp case; on issue 15's irregular mesh lights, which hang 1 cm off
+// the ceiling and back wall, the mixture halves the variance, README). The power path's
+// probability telescopes to I_leaf / I_node, so every light's pmf is at least `defensive` times
+// its power share within the cut node, which is what the flat power CDF gives it over the whole
+// scene: each sample's estimate is at most 1 / defensive times the power sampler's. Where the
+// weights are good, the mixture costs at most a factor 1 / (1 - defensive) in variance.
+RtslcTraversal rtslc_traverse_defensive_in(RtslcShading s, uint base, uint node, uint leaf_count,
+                                           float min_distance2, float defensive, inout Rng rng) {
+    RtslcTraversal t = RtslcTraversal(node, 0.0, 0u, kRtslcTraversalShort);
+    bool by_power = rng_next_float(rng) < defensive;
+    float tree_path = 1.0, power_path = 1.0;
+    uint first_leaf = leaf_count - 1u;
+    for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
+        if (t.node >= first_leaf) {
+            t.status = kRtslcReachedLeaf;
+            break;
+        }
+        uint left = light_tree_left_child(t.node);
+        LightTreeNode node_left = light_tree.items[base + left], node_right = light_tree.items[base + left + 1u];
+        RtslcChildProbability weights = rtslc_child_probability(s, node_left, node_right, min_distance2);
+        float power = rtslc_power_left(node_left, node_right);
+        // A dead branch of the strategy steering returns no light (exactly 0: under eq. 1-2 every
+        // light below has zero weight, under power zero intensity); the other strategy's path
+        // probability is then simply not needed.
+        if (by_power ? power < 0.0 : weights.dead) {
+            t.status = kRtslcDeadBranch;
+            break;
+        }
+        bool go_left = rtslc_choose_left(by_power ? power : weights.left, rng_next_float(rng));
+        tree_path *= weights.dead ? 0.0 : rtslc_choice_probability(weights.left, go_left);
+        power_path *= power < 0.0 ? 0.0 : rtslc_choice_probability(power, go_left);
+        t.node = go_left ? left : left + 1u;
+        ++t.levels;
+    }
+    if (t.status == kRtslcReachedLeaf) {
+        t.path_probability = (1.0 - defensive) * tree_path + defensive * power_path;
+    }
+    return t;
+}
+
 // The traversals for the whole BRDF (direct light's, and every sample without the glossy branch).
 RtslcTraversal rtslc_traverse(RtslcShading s, uint node, uint leaf_count, float min_distance2, inout Rng rng) {
     return rtslc_traverse(s, node, leaf_count, min_distance2, gi_lobe_both(), rng);
