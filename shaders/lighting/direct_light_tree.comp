@@ -169,6 +169,8 @@ void main() {
     while (cut_nodes < push.cut_size && cuts.items[base + cut_nodes] != kRtslcNoNode) {
         ++cut_nodes;
     }
+    // Without interleaving the cut pass shares the slots out by bound (rtslc_select_cut_shared_out):
+    // node j may fill n_j slots in a row, each a sample weighted 1 / n_j (counted below).
     // Every pixel takes cut_size samples, also where the cut holds fewer nodes (a tree with fewer
     // lights than cut_size): slot s samples cut node j = s mod c, and node j's n_j = cut_size / c
     // (+1 for j < cut_size mod c) samples are each weighted 1 / n_j, so the sum over the cut's
@@ -202,6 +204,19 @@ void main() {
         uint cut_node = cuts.items[base + j];
         float node_samples =
             interleaved ? 1.0 : float(push.cut_size / cut_nodes + (j < push.cut_size % cut_nodes ? 1u : 0u));
+        if (!interleaved) {
+            // A cut shared out by bound (rtslc_cut.comp's kShareOutSlots) writes a node with n
+            // samples into n slots in a row: each of its samples is weighted 1 / n. At most 64
+            // iterations per slot (cut_size <= 64), 4096 per invocation: far below lavapipe's limit.
+            uint run = 1u;
+            for (uint k = j; k > 0u && cuts.items[base + k - 1u] == cut_node; --k) {
+                ++run;
+            }
+            for (uint k = j + 1u; k < cut_nodes && cuts.items[base + k] == cut_node; ++k) {
+                ++run;
+            }
+            node_samples *= float(run);
+        }
         RtslcTraversal t = rtslc_traverse_defensive_in(s, 0u, cut_node, push.leaf_count, min_distance2,
                                                        kDefensiveProbability, rng);
         levels += t.levels;

@@ -92,6 +92,76 @@ uint rtslc_select_cut(RtslcShading s, uint leaf_count, uint cut_size, float min_
     return cut_nodes;
 }
 
+// The cut of rtslc_select_cut with its samples shared out by bound (direct light through the
+// tree, issue 15): every slot of the cut holds a node, and a node gets as many of the
+// min(cut_size, kRtslcMaxCutSize) slots as its bound earns. Starting from the root with one
+// sample, the entry with the largest bound per sample (bound / samples) is refined: an inner node
+// is split as rtslc_select_cut splits it, a leaf gets one more sample. Why: rtslc_select_cut gives
+// every cut node one sample, so once a large emissive triangle close to the representative pixel
+// is a leaf of the cut it keeps one area sample per pixel however many the pixel takes, while the
+// flat power CDF gives it spp x its power share (issue 15: the tree's error stopped falling as
+// 1 / sqrt(spp) on irregular mesh lights, its variance in the pixels next to big lamps). VPL
+// leaves (rtslc GI) gain nothing from a second sample of a point, so GI keeps rtslc_select_cut.
+//
+// `samples[i]` is entry i's sample count (>= 1, summing to the slots when `selected`); the nodes
+// are distinct and still partition the real leaves. Ties go to the smaller node index, so the cut
+// is a function of the tree and s alone. Returns the number of entries.
+uint rtslc_select_cut_shared_out(RtslcShading s, uint leaf_count, uint cut_size, float min_distance2,
+                                 out uint cut[kRtslcMaxCutSize], out uint samples[kRtslcMaxCutSize],
+                                 out bool selected) {
+    float bound[kRtslcMaxCutSize];
+    uint entries = 1u, total = 1u;
+    cut[0] = 0u;  // the root: real, the tree has a light
+    samples[0] = 1u;
+    bound[0] = rtslc_node_bound(s, light_tree.items[0], min_distance2);
+    uint first_leaf = leaf_count - 1u;
+    uint target = min(cut_size, kRtslcMaxCutSize);
+    // Each pass adds a slot (at most target - 1 times) or replaces a node by its one real child
+    // (at most 31 times, as in rtslc_select_cut): 128 passes cannot run out for target <= 64.
+    selected = false;
+    for (uint pass = 0u; pass < 128u; ++pass) {
+        if (total >= target) {
+            selected = true;
+            break;
+        }
+        uint best = 0u;
+        float best_share = bound[0] / float(samples[0]);
+        for (uint i = 1u; i < entries; ++i) {
+            float share = bound[i] / float(samples[i]);
+            if (share > best_share || (share == best_share && cut[i] < cut[best])) {
+                best = i;
+                best_share = share;
+            }
+        }
+        if (cut[best] >= first_leaf) {
+            ++samples[best];
+            ++total;
+            continue;
+        }
+        uint left = light_tree_left_child(cut[best]);
+        uint right = light_tree_right_child(cut[best]);
+        LightTreeNode left_node = light_tree.items[left];
+        LightTreeNode right_node = light_tree.items[right];
+        bool left_real = !light_tree_is_bogus(left_node);
+        bool right_real = !light_tree_is_bogus(right_node);
+        if (left_real) {
+            cut[best] = left;
+            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
+            if (right_real) {
+                cut[entries] = right;
+                bound[entries] = rtslc_node_bound(s, right_node, min_distance2);
+                samples[entries] = 1u;
+                ++entries;
+                ++total;
+            }
+        } else {
+            cut[best] = right;
+            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
+        }
+    }
+    return entries;
+}
+
 // How a traversal ended.
 const uint kRtslcReachedLeaf = 0u;   // `node` is a leaf, reached with `path_probability`
 const uint kRtslcDeadBranch = 1u;    // both children weigh 0: no light (seed 003 sec. 3.2)
