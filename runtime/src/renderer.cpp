@@ -252,6 +252,11 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     tree_options.frame = settings.frame;
     tree_options.seed = settings.seed;
     tree_options.interleave = settings.direct_interleave;
+    // Without interleaving the cut's slots are shared out by bound (rtslc_cut.comp's kShareOutSlots)
+    // at one representative pixel per block: 4 x 4 blocks, not seed 003's 8 x 8, since on irregular
+    // mesh lights 8 x 8 blocks spanning the ceiling and the wall gave the slots to the wrong lamps
+    // (issue 15, README). Interleaved sampling keeps 8 x 8 (its M divides 8).
+    if (settings.direct_interleave <= 1) tree_options.block_size = 4;
     if (tree_direct) stages::validate_direct_light_tree(tree_options);  // before any work
 
     PassList direct_passes("direct light");

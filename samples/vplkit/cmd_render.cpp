@@ -116,7 +116,7 @@ const char* const kRenderUsage =
     "                   material a pure Lambertian of its base colour (for diffuse-only references)\n"
     "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
     "  --direct D       how direct light from emissive triangles, point and spot lights is sampled:\n"
-    "                   tree: one light tree over them all, a cut per 8 x 8 block and a traversal\n"
+    "                   tree: one light tree over them all, a cut per 4 x 4 block and a traversal\n"
     "                   per cut node to one light (stochastic lightcuts); flat: point and spot lights\n"
     "                   one by one, emitters drawn by power; auto (default): tree when the scene has\n"
     "                   more than 8 such lights (the plan says which and why); tree2: the tree in\n"

@@ -7,7 +7,8 @@
 // always partitions the tree's real leaves. The tree's leaves may be VPLs (rtslc GI) or the
 // scene's lights (direct light through the light tree): this pass is the same for both.
 //
-// cuts[block * cut_size + i]: the cut's nodes first, then kRtslcNoNode; a block without covered
+// cuts[block * cut_size + i]: the cut's nodes first, then kRtslcNoNode (with kShareOutSlots a
+// node may fill several slots in a row, then every slot is filled); a block without covered
 // pixels has an empty cut. representatives[block]: the pixel y * width + x whose bounds chose
 // the cut, kRtslcNoNode for an empty block. Ties between bounds go to the smaller node index, so
 // the cut is a function of the tree and the pixel alone.
@@ -29,6 +30,11 @@
 #include "vplkit/rtslc_tree_sampling.glsl"
 
 layout(local_size_x = 64) in;
+
+// 1: the cut's slots are shared out by bound (rtslc_select_cut_shared_out: a leaf may fill several
+// consecutive slots, each one sample of it), as direct light through the tree uses it; 0 (rtslc
+// GI): one slot per cut node (rtslc_select_cut).
+layout(constant_id = 0) const uint kShareOutSlots = 0u;
 
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
@@ -119,11 +125,27 @@ void main() {
 
     uint cut[kRtslcMaxCutSize];
     bool selected;
-    uint cut_nodes = rtslc_select_cut(s, push.leaf_count, push.cut_size, min_distance2, cut, selected);
-    completed = completed && selected;
-    for (uint i = 0u; i < push.cut_size; ++i) {
-        cuts.items[out_base + i] = i < cut_nodes ? cut[i] : kRtslcNoNode;
+    if (kShareOutSlots != 0u) {
+        // Each entry's node written samples[i] times in a row: a sampler counts the run.
+        uint samples[kRtslcMaxCutSize];
+        uint entries = rtslc_select_cut_shared_out(s, push.leaf_count, push.cut_size, min_distance2, cut, samples, selected);
+        uint slot = 0u;
+        for (uint i = 0u; i < entries; ++i) {
+            for (uint k = 0u; k < samples[i]; ++k) {
+                cuts.items[out_base + slot] = cut[i];
+                ++slot;
+            }
+        }
+        for (; slot < push.cut_size; ++slot) {
+            cuts.items[out_base + slot] = kRtslcNoNode;
+        }
+    } else {
+        uint cut_nodes = rtslc_select_cut(s, push.leaf_count, push.cut_size, min_distance2, cut, selected);
+        for (uint i = 0u; i < push.cut_size; ++i) {
+            cuts.items[out_base + i] = i < cut_nodes ? cut[i] : kRtslcNoNode;
+        }
     }
+    completed = completed && selected;
     representatives.items[block] = uint(representative.y) * uint(size.x) + uint(representative.x);
     gi_counters_add(0u, 0u, 0u, 0u, false, completed);
 }

@@ -3,9 +3,10 @@
 // Direct light through the light tree over the scene's lights (seed 003: real-time stochastic
 // lightcuts for direct light), added to the radiance image: one invocation per pixel. The block's
 // cut (gi/rtslc_cut.comp, the same pass rtslc GI runs) partitions the tree's lights; for every
-// sample slot in [slot_first, slot_end) a traversal from its cut node to a leaf (rtslc_traverse,
-// shared with rtslc GI) picks one light with pmf P(light) = the path's probability, and one
-// sample of it is evaluated with a shadow ray:
+// sample slot in [slot_first, slot_end) a traversal from its cut node to a leaf (the defensive
+// rtslc_traverse_defensive_in, beside rtslc GI's traversal in rtslc_tree_sampling.glsl) picks
+// one light with pmf P(light) = the path's probability, and one sample of it is evaluated with a
+// shadow ray:
 //   emissive triangle: a point y uniform on it (pdf 1 / area on the triangle, so the pdf of y
 //     overall is P(light) / area), estimate f L_e cos_x cos_y / d^2 x area / P(light): the area
 //     form of the direct term (pbrt-v4 sec. 12.2), as direct_emissive.comp;
@@ -131,6 +132,13 @@ LightSample punctual_sample(GbufferSample g, vec3 wo, PunctualLight light, float
     return r;
 }
 
+// The share of traversals that descend by intensity alone (rtslc_traverse_defensive_in, issue 15):
+// every light's pmf is then at least 1/4 of its power share within its cut node, so no sample
+// weighs more than 4x what the flat power CDF would give it (lamps facing away right next to a
+// shading point cannot starve the others), at a variance cost of at most 4/3 where the tree's
+// weights are good. A multiple of 2^-24 (see there).
+const float kDefensiveProbability = 0.25;
+
 // Salted so direct light's streams never replay rtslc GI's for the same seed (the host salts the
 // cut pass's seed alike).
 const uint kDirectTreeSalt = 0x85EBCA6Bu;
@@ -161,6 +169,8 @@ void main() {
     while (cut_nodes < push.cut_size && cuts.items[base + cut_nodes] != kRtslcNoNode) {
         ++cut_nodes;
     }
+    // Without interleaving the cut pass shares the slots out by bound (rtslc_select_cut_shared_out):
+    // node j may fill n_j slots in a row, each a sample weighted 1 / n_j (counted below).
     // Every pixel takes cut_size samples, also where the cut holds fewer nodes (a tree with fewer
     // lights than cut_size): slot s samples cut node j = s mod c, and node j's n_j = cut_size / c
     // (+1 for j < cut_size mod c) samples are each weighted 1 / n_j, so the sum over the cut's
@@ -191,9 +201,24 @@ void main() {
         Rng rng = rng_create(frame_seed ^ pcg_hash(slot), pixel_index);
         ++traversals;
         uint j = interleaved ? slot : slot % cut_nodes;
+        uint cut_node = cuts.items[base + j];
         float node_samples =
             interleaved ? 1.0 : float(push.cut_size / cut_nodes + (j < push.cut_size % cut_nodes ? 1u : 0u));
-        RtslcTraversal t = rtslc_traverse(s, cuts.items[base + j], push.leaf_count, min_distance2, rng);
+        if (!interleaved) {
+            // A cut shared out by bound (rtslc_cut.comp's kShareOutSlots) writes a node with n
+            // samples into n slots in a row: each of its samples is weighted 1 / n. At most 64
+            // iterations per slot (cut_size <= 64), 4096 per invocation: far below lavapipe's limit.
+            uint run = 1u;
+            for (uint k = j; k > 0u && cuts.items[base + k - 1u] == cut_node; --k) {
+                ++run;
+            }
+            for (uint k = j + 1u; k < cut_nodes && cuts.items[base + k] == cut_node; ++k) {
+                ++run;
+            }
+            node_samples *= float(run);
+        }
+        RtslcTraversal t = rtslc_traverse_defensive_in(s, 0u, cut_node, push.leaf_count, min_distance2,
+                                                       kDefensiveProbability, rng);
         levels += t.levels;
         if (t.status == kRtslcDeadBranch) {
             ++dead;
@@ -206,7 +231,8 @@ void main() {
         float light_probability = t.path_probability;
         if (kTwoLevel != 0u) {
             LightTreeBottom bottom = bottoms.items[leaf];
-            RtslcTraversal b = rtslc_traverse_in(s, bottom.node_base, 0u, bottom.leaf_count, min_distance2, rng);
+            RtslcTraversal b = rtslc_traverse_defensive_in(s, bottom.node_base, 0u, bottom.leaf_count, min_distance2,
+                                                           kDefensiveProbability, rng);
             levels += b.levels;
             if (b.status == kRtslcDeadBranch) {
                 ++dead;

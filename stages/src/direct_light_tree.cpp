@@ -81,7 +81,7 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
 
     add_gi_counters_clear(passes, counters, "gi counters clear");
     add_rtslc_cut_pass(device, passes, gbuffer, bvh, tree.nodes, tree.leaf_count, camera_position, counters, options,
-                       options.seed ^ kDirectTreeSalt, scratch);
+                       options.seed ^ kDirectTreeSalt, scratch, options.interleave <= 1);
 
     shaders::direct_light_tree::Spec spec;
     spec.kShadowRays = options.visibility ? 1u : 0u;

@@ -10,9 +10,11 @@ namespace vplkit::stages {
 void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
                         const BufferView& light_tree, uint32_t leaf_count, glm::vec3 camera_position,
                         const BufferView& counters, const RtslcOptions& options, uint32_t seed,
-                        const RtslcScratchBuffers& scratch) {
+                        const RtslcScratchBuffers& scratch, bool share_out_slots) {
     const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
-    const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>();
+    shaders::rtslc_cut::Spec spec;
+    spec.kShareOutSlots = share_out_slots ? 1u : 0u;
+    const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>(spec);
     passes.add("rtslc cuts",
                gbuffer_bvh_uses(gbuffer, bvh,
                                 {Use::read(light_tree), Use::write(scratch.cuts), Use::write(scratch.representatives),

@@ -19,11 +19,13 @@ namespace vplkit::stages {
 
 // Adds the pass: one cut of options.samples_per_pixel nodes of `light_tree` (LightTreeNode[2
 // leaf_count - 1]) per block into scratch.cuts and scratch.representatives, counting into
-// `counters`. `seed` replaces options.seed (direct light salts its own).
+// `counters`. `seed` replaces options.seed (direct light salts its own). share_out_slots: the
+// slots shared out by bound, a leaf possibly in several slots in a row (rtslc_cut.comp's
+// kShareOutSlots; direct light without interleaving), else one slot per cut node (rtslc GI).
 void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
                         const BufferView& light_tree, uint32_t leaf_count, glm::vec3 camera_position,
                         const BufferView& counters, const RtslcOptions& options, uint32_t seed,
-                        const RtslcScratchBuffers& scratch);
+                        const RtslcScratchBuffers& scratch, bool share_out_slots = false);
 
 // Adds the pass: each pixel of `target` gets the rescaled sum of its similar sub-block
 // neighbours' estimates (scratch.estimates, written per pixel over its interleaved share of the

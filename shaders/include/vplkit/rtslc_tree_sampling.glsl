@@ -92,6 +92,76 @@ uint rtslc_select_cut(RtslcShading s, uint leaf_count, uint cut_size, float min_
     return cut_nodes;
 }
 
+// The cut of rtslc_select_cut with its samples shared out by bound (direct light through the
+// tree, issue 15): every slot of the cut holds a node, and a node gets as many of the
+// min(cut_size, kRtslcMaxCutSize) slots as its bound earns. Starting from the root with one
+// sample, the entry with the largest bound per sample (bound / samples) is refined: an inner node
+// is split as rtslc_select_cut splits it, a leaf gets one more sample. Why: rtslc_select_cut gives
+// every cut node one sample, so once a large emissive triangle close to the representative pixel
+// is a leaf of the cut it keeps one area sample per pixel however many the pixel takes, while the
+// flat power CDF gives it spp x its power share (issue 15: the tree's error stopped falling as
+// 1 / sqrt(spp) on irregular mesh lights, its variance in the pixels next to big lamps). VPL
+// leaves (rtslc GI) gain nothing from a second sample of a point, so GI keeps rtslc_select_cut.
+//
+// `samples[i]` is entry i's sample count (>= 1, summing to the slots when `selected`); the nodes
+// are distinct and still partition the real leaves. Ties go to the smaller node index, so the cut
+// is a function of the tree and s alone. Returns the number of entries.
+uint rtslc_select_cut_shared_out(RtslcShading s, uint leaf_count, uint cut_size, float min_distance2,
+                                 out uint cut[kRtslcMaxCutSize], out uint samples[kRtslcMaxCutSize],
+                                 out bool selected) {
+    float bound[kRtslcMaxCutSize];
+    uint entries = 1u, total = 1u;
+    cut[0] = 0u;  // the root: real, the tree has a light
+    samples[0] = 1u;
+    bound[0] = rtslc_node_bound(s, light_tree.items[0], min_distance2);
+    uint first_leaf = leaf_count - 1u;
+    uint target = min(cut_size, kRtslcMaxCutSize);
+    // Each pass adds a slot (at most target - 1 times) or replaces a node by its one real child
+    // (at most 31 times, as in rtslc_select_cut): 128 passes cannot run out for target <= 64.
+    selected = false;
+    for (uint pass = 0u; pass < 128u; ++pass) {
+        if (total >= target) {
+            selected = true;
+            break;
+        }
+        uint best = 0u;
+        float best_share = bound[0] / float(samples[0]);
+        for (uint i = 1u; i < entries; ++i) {
+            float share = bound[i] / float(samples[i]);
+            if (share > best_share || (share == best_share && cut[i] < cut[best])) {
+                best = i;
+                best_share = share;
+            }
+        }
+        if (cut[best] >= first_leaf) {
+            ++samples[best];
+            ++total;
+            continue;
+        }
+        uint left = light_tree_left_child(cut[best]);
+        uint right = light_tree_right_child(cut[best]);
+        LightTreeNode left_node = light_tree.items[left];
+        LightTreeNode right_node = light_tree.items[right];
+        bool left_real = !light_tree_is_bogus(left_node);
+        bool right_real = !light_tree_is_bogus(right_node);
+        if (left_real) {
+            cut[best] = left;
+            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
+            if (right_real) {
+                cut[entries] = right;
+                bound[entries] = rtslc_node_bound(s, right_node, min_distance2);
+                samples[entries] = 1u;
+                ++entries;
+                ++total;
+            }
+        } else {
+            cut[best] = right;
+            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
+        }
+    }
+    return entries;
+}
+
 // How a traversal ended.
 const uint kRtslcReachedLeaf = 0u;   // `node` is a leaf, reached with `path_probability`
 const uint kRtslcDeadBranch = 1u;    // both children weigh 0: no light (seed 003 sec. 3.2)
@@ -215,6 +285,66 @@ RtslcTraversal rtslc_traverse_lobe_mis(RtslcShading s, uint node, uint leaf_coun
     if (t.status == kRtslcReachedLeaf) {
         t.path_probability =
             (1.0 - q_glossy) * diffuse_path + q_glossy * gi_glossy_path_probability(glossy_path);
+    }
+    return t;
+}
+
+// The probability of a power-only step (seed 003's I_j alone, no geometry): the left child's
+// share of the two children's intensities, on u's grid as rtslc_child_probability's; 0 or 1 when
+// one child holds no light, negative when neither does (a dead branch).
+float rtslc_power_left(LightTreeNode left, LightTreeNode right) {
+    float i_left = light_tree_is_bogus(left) ? 0.0 : left.intensity;
+    float i_right = light_tree_is_bogus(right) ? 0.0 : right.intensity;
+    return gi_child_probability(i_left, 1.0, i_right, 1.0);
+}
+
+// The defensive traversal (direct light through the tree, issue 15): with probability
+// `defensive` (a multiple of 2^-24, so that u < defensive picks it exactly) the path descends by
+// intensity alone (rtslc_power_left), otherwise by the eq. 1-2 weights; both paths' probabilities
+// are tracked at every step, and the pmf returned is the mixture's,
+//     (1 - defensive) P_tree(path) + defensive P_power(path),
+// exactly the probability that this traversal reaches the leaf (one-sample MIS, balance
+// heuristic, as rtslc_traverse_lobe_mis does for the lobes). Why: the node holds no orientation
+// (seed 003 sec. 4), so a one-sided lamp 1 cm off a wall or ceiling, facing away from it, gets the
+// largest weight the distance clamp allows at the wall points right behind it (cosine bound 1,
+// d_min 1 cm), where it gives no light at all, and every other light's P_tree there shrinks by
+// that lamp's share; the lights that do shine there are weighed by 1 / that tiny pmf: a heavy
+// tail (tests/lighting's two-lamp case; on issue 15's irregular mesh lights, which hang 1 cm off
+// the ceiling and back wall, the mixture halves the variance, README). The power path's
+// probability telescopes to I_leaf / I_node, so every light's pmf is at least `defensive` times
+// its power share within the cut node, which is what the flat power CDF gives it over the whole
+// scene: each sample's estimate is at most 1 / defensive times the power sampler's. Where the
+// weights are good, the mixture costs at most a factor 1 / (1 - defensive) in variance.
+RtslcTraversal rtslc_traverse_defensive_in(RtslcShading s, uint base, uint node, uint leaf_count,
+                                           float min_distance2, float defensive, inout Rng rng) {
+    RtslcTraversal t = RtslcTraversal(node, 0.0, 0u, kRtslcTraversalShort);
+    bool by_power = rng_next_float(rng) < defensive;
+    float tree_path = 1.0, power_path = 1.0;
+    uint first_leaf = leaf_count - 1u;
+    for (uint level = 0u; level <= kRtslcMaxLevels; ++level) {
+        if (t.node >= first_leaf) {
+            t.status = kRtslcReachedLeaf;
+            break;
+        }
+        uint left = light_tree_left_child(t.node);
+        LightTreeNode node_left = light_tree.items[base + left], node_right = light_tree.items[base + left + 1u];
+        RtslcChildProbability weights = rtslc_child_probability(s, node_left, node_right, min_distance2);
+        float power = rtslc_power_left(node_left, node_right);
+        // A dead branch of the strategy steering returns no light (exactly 0: under eq. 1-2 every
+        // light below has zero weight, under power zero intensity); the other strategy's path
+        // probability is then simply not needed.
+        if (by_power ? power < 0.0 : weights.dead) {
+            t.status = kRtslcDeadBranch;
+            break;
+        }
+        bool go_left = rtslc_choose_left(by_power ? power : weights.left, rng_next_float(rng));
+        tree_path *= weights.dead ? 0.0 : rtslc_choice_probability(weights.left, go_left);
+        power_path *= power < 0.0 ? 0.0 : rtslc_choice_probability(power, go_left);
+        t.node = go_left ? left : left + 1u;
+        ++t.levels;
+    }
+    if (t.status == kRtslcReachedLeaf) {
+        t.path_probability = (1.0 - defensive) * tree_path + defensive * power_path;
     }
     return t;
 }

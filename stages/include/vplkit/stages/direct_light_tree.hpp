@@ -4,10 +4,12 @@
 //
 //   "gi counters clear"   zeroes `counters` (GiCounters, gi_counters.hpp)
 //   "rtslc cuts"          shaders/gi/rtslc_cut.comp, the pass rtslc GI runs, over this tree: a cut
-//                         of samples_per_pixel nodes per block_size x block_size block
+//                         of samples_per_pixel slots per block_size x block_size block, shared out
+//                         by bound without interleaving (a leaf may fill several slots)
 //   "direct light tree"   shaders/lighting/direct_light_tree.comp: per pixel, samples_per_pixel
-//                         samples, slot s from cut node s mod (nodes in the cut): a traversal to a
-//                         light (rtslc_traverse, pmf = the path's probability), one area sample
+//                         samples, slot s from the cut node in it (weighted 1 / its slots): a
+//                         defensive traversal to a light (rtslc_traverse_defensive_in, pmf = the
+//                         probability of the path), one area sample
 //                         of a triangle (pdf 1 / area on it) or the point or spot light itself,
 //                         one shadow ray; one dispatch per slots_per_dispatch slots
 //
