@@ -46,8 +46,11 @@ void main() {
     Rng rng = rng_create(pcg_hash(push.seed ^ pcg_hash(push.iteration * 2u + push.round + 0x5bd1e995u)), j);
     for (uint t = 0u; t < push.tries; ++t) {
         uint i = invalid_list.items[min(uint(rng_next_float(rng) * float(invalid)), invalid - 1u)];
-        if (valid.items[i] == 1u) {
-            continue;  // valid before this round (a claim of this round may still lose to this point)
+        // Valid before this round, or claimed by a point of lower index (claims only grow): no
+        // ray needed. A claim of a higher-index point may still lose to this one.
+        uint state_or_claim = valid.items[i];
+        if (state_or_claim == 1u || state_or_claim > ~j) {
+            continue;
         }
         SmcVpl v = state.items[i];
         vec3 d = v.position - point.anchor;
