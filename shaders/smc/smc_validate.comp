@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // SMC, Alg. 1 line 4 (seed 001 sec. 3.2.2), the mailbox test: a VPL stays valid while the camera
 // still sees the point it was associated with (its anchor: in the view frustum, on the camera's
-// side, and unoccluded from the eye by a BVH ray). The others are appended to the invalid list
-// for smc_revalidate.comp. Geometry is static, so the anchor still sees the VPL.
+// side, and unoccluded from the eye by a BVH ray). smc_invalid_list.comp then lists the others,
+// in index order, for smc_revalidate.comp. Geometry is static, so the anchor still sees the VPL.
 
 #define VPLKIT_BVH_NODES_BINDING 0
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
@@ -15,8 +15,7 @@ layout(local_size_x = 64) in;
 
 layout(std430, set = 0, binding = 3) readonly buffer SmcStateBuffer { SmcVpl items[]; } state;
 layout(std430, set = 0, binding = 4) writeonly buffer SmcValidBuffer { uint items[]; } valid;
-layout(std430, set = 0, binding = 5) writeonly buffer SmcInvalidBuffer { uint items[]; } invalid_list;
-layout(std430, set = 0, binding = 6) buffer SmcCounterBuffer { SmcCounters c; } counters;
+layout(std430, set = 0, binding = 5) readonly buffer SmcCounterBuffer { SmcCounters c; } counters;
 
 layout(push_constant) uniform SmcValidatePush {
     mat4 view_projection;  // world -> Vulkan clip space
@@ -41,10 +40,5 @@ void main() {
         return;
     }
     SmcVpl v = state.items[i];
-    bool seen = anchor_seen(v.anchor, v.anchor_normal);
-    valid.items[i] = seen ? 1u : 0u;
-    if (!seen) {
-        uint slot = atomicAdd(counters.c.invalid_count, 1u);
-        invalid_list.items[slot] = i;
-    }
+    valid.items[i] = anchor_seen(v.anchor, v.anchor_normal) ? 1u : 0u;
 }

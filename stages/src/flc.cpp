@@ -8,6 +8,7 @@
 
 #include "gi_inputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -119,12 +120,18 @@ void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBu
     bindings.counts = counts.descriptor();
     bindings.kept_triangles = buffers.kept_triangles.descriptor();
     bindings.divergent_triangles = buffers.divergent_triangles.descriptor();
-    passes.add("flc compact", binding_uses<shader::Module>(bindings),
-               [&pipeline, bindings, triangle_count](VkCommandBuffer cmd) {
-                   shader::Push push{};
-                   push.triangle_count = triangle_count;
-                   pipeline.dispatch(cmd, bindings, push, triangle_count);
-               });
+    // One workgroup per dispatch, 256 chunks of its size at most (lavapipe's loop limit); each
+    // dispatch continues the lists where the one before left them.
+    const uint32_t span = pipeline.workgroup_size[0] * 256u;
+    for (uint32_t first = 0; first < triangle_count; first += std::min(span, triangle_count - first)) {
+        shader::Push push{};
+        push.first = first;
+        push.end = first + std::min(span, triangle_count - first);
+        passes.add("flc compact", binding_uses<shader::Module>(bindings),
+                   [&pipeline, bindings, push](VkCommandBuffer cmd) {
+                       pipeline.dispatch(cmd, bindings, push, pipeline.workgroup_size[0]);  // one workgroup
+                   });
+    }
 }
 
 void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,

@@ -7,7 +7,9 @@
 #include "vplkit/shaders/smc_gather_candidates.hpp"
 #include "vplkit/shaders/smc_radiosity.hpp"
 #include "vplkit/shaders/smc_replace.hpp"
+#include "vplkit/shaders/smc_invalid_list.hpp"
 #include "vplkit/shaders/smc_revalidate.hpp"
+#include "vplkit/shaders/smc_revalidate_claims.hpp"
 #include "vplkit/shaders/smc_select.hpp"
 #include "vplkit/shaders/smc_selection_keys.hpp"
 #include "vplkit/shaders/smc_validate.hpp"
@@ -206,13 +208,24 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         bind_bvh(b, bvh);
         b.state = buffers.state.descriptor();
         b.valid = buffers.valid.descriptor();
-        b.invalid_list = buffers.invalid_list.descriptor();
         b.counters = counters.descriptor();
         shaders::smc_validate::Push push{};
         std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
         push.camera_position = {view.position.x, view.position.y, view.position.z};
         push.budget = budget;
         add_dispatch<shaders::smc_validate::Module>(passes, "smc validate", pipeline, b, push, push.budget);
+    }
+    {
+        // The invalid VPLs in index order: which ones revalidate draws then depends on the seed alone.
+        const auto& pipeline = device.pipeline<shaders::smc_invalid_list::Pipeline>();
+        shaders::smc_invalid_list::Bindings b;
+        b.valid = buffers.valid.descriptor();
+        b.invalid_list = buffers.invalid_list.descriptor();
+        b.counters = counters.descriptor();
+        shaders::smc_invalid_list::Push push{};
+        push.budget = budget;
+        add_dispatch<shaders::smc_invalid_list::Module>(passes, "smc invalid list", pipeline, b, push,
+                                                        pipeline.workgroup_size[0]);  // one workgroup
     }
     for (uint32_t round = 0; round < options.visibility_rounds && options.visibility_tries > 0; ++round) {
         const auto& pipeline =
@@ -231,6 +244,17 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.iteration = iteration;
         push.round = round;
         add_dispatch<shaders::smc_revalidate::Module>(passes, "smc revalidate", pipeline, b, push, push.point_count);
+        // The round's winning claims become anchors before the next round reads valid[].
+        shaders::smc_revalidate_claims::Bindings cb;
+        cb.hits = buffers.hits.descriptor();
+        cb.state = buffers.state.descriptor();
+        cb.valid = buffers.valid.descriptor();
+        cb.counters = counters.descriptor();
+        shaders::smc_revalidate_claims::Push claims_push{};
+        claims_push.budget = budget;
+        add_dispatch<shaders::smc_revalidate_claims::Module>(
+            passes, "smc revalidate claims", device.pipeline<shaders::smc_revalidate_claims::Pipeline>(), cb,
+            claims_push, budget);
     }
 
     sorter.add_pass(passes, buffers.pool_keys, buffers.pool_values, pool, "smc resample sort");

@@ -57,8 +57,8 @@ struct SmcPoint {
 
 // One round: camera point j draws `tries` entries of `invalid_list` (uniform, from its own
 // stream); a drawn VPL that j sees becomes valid. Returns, per VPL index, the camera points that
-// drew and saw it (empty: it stays as it was). Which of them claims the VPL first is the GPU's
-// race; that one of them does, and only one, is what a round guarantees.
+// drew and saw it (empty: it stays as it was), in pool index order: the first of them is the one
+// whose claim wins (smc_revalidate.comp).
 std::vector<std::vector<uint32_t>> smc_revalidation_seers(std::span<const SmcPoint> points,
                                                           std::span<const SmcPoint> vpls,
                                                           std::span<const uint32_t> invalid_list, uint32_t tries,

@@ -3,13 +3,15 @@
 // - smc_validate.comp: a VPL stays valid while the camera sees its anchor (in the frustum, on the
 //   anchor's front side, no triangle between). On a floor with an occluding plate seen from
 //   above: anchors under the plate, outside the frustum, facing away or behind the camera are
-//   invalid (and one nearer than the near plane), the others valid; valid[] must equal the reference exactly and the
-//   invalid list hold exactly the invalid VPLs (each once). Fails on a wrong frustum, facing or shadow test, a lost or
-//   doubled list entry, or a slot past |Y| touched. Hard cases: every VPL invalid, |Y| = 0.
+//   invalid (and one nearer than the near plane), the others valid; valid[] must equal the reference exactly and
+//   smc_invalid_list.comp's list hold exactly the invalid VPLs in index order. Fails on a wrong frustum, facing or
+//   shadow test, a lost, doubled or misordered list entry, or a slot past |Y| touched. Hard cases: every VPL invalid
+//   (over several chunks of the compaction), |Y| = 0.
 // - smc_revalidate.comp: each camera point draws `tries` entries of the invalid list from its own
 //   stream (replayed here) and claims a drawn VPL it sees, each facing the other. The VPLs it
-//   validates must be exactly those some point drew and saw (the reference's seers), their new
-//   anchor one of those points (which one is the GPU's race), the revalidated count their number,
+//   validates (smc_revalidate_claims.comp after each round) must be exactly those some point drew and saw (the
+//   reference's seers), their new anchor the seer of lowest pool index (whatever the scheduling), the revalidated
+//   count their number,
 //   and nothing else changes. VPLs above a plate that hides them from every camera point stay
 //   invalid. Fails if a hidden VPL is claimed, a seen one missed, a valid one re-anchored, or a
 //   claim counted twice. Both rounds' streams, the two in turn (the second claims only what
@@ -23,7 +25,9 @@
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/shaders/smc_invalid_list.hpp"
 #include "vplkit/shaders/smc_revalidate.hpp"
+#include "vplkit/shaders/smc_revalidate_claims.hpp"
 #include "vplkit/shaders/smc_validate.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/binding_uses.hpp"
@@ -39,7 +43,6 @@
 #include <array>
 #include <cstring>
 #include <random>
-#include <set>
 #include <vector>
 
 namespace {
@@ -123,15 +126,25 @@ Validated run_validate(const ValidateScene& s, const std::vector<SmcVpl>& state,
     b.bvh_alpha = bvh.alpha.descriptor();
     b.state = state_buffer.descriptor();
     b.valid = valid.descriptor();
-    b.invalid_list = invalid_list.descriptor();
     b.counters = counter_buffer.descriptor();
     shader::Push push{};
     std::memcpy(&push.view_projection, &s.view_projection, sizeof(push.view_projection));
     push.camera_position = {s.camera.x, s.camera.y, s.camera.z};
     push.budget = budget;
+    namespace list_shader = vplkit::shaders::smc_invalid_list;
+    const auto& list_pipeline = ctx.pipeline<list_shader::Pipeline>();
+    list_shader::Bindings lb;
+    lb.valid = valid.descriptor();
+    lb.invalid_list = invalid_list.descriptor();
+    lb.counters = counter_buffer.descriptor();
+    list_shader::Push list_push{};
+    list_push.budget = budget;
     vplkit::PassList passes("smc validate test");
     passes.add("smc validate", vplkit::stages::binding_uses<shader::Module>(b, {}),
                [&](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, budget); });
+    passes.add("smc invalid list", vplkit::stages::binding_uses<list_shader::Module>(lb, {}), [&](VkCommandBuffer cmd) {
+        list_pipeline.dispatch(cmd, lb, list_push, list_pipeline.workgroup_size[0]);
+    });
     passes.run(ctx);
     Validated v;
     v.valid = valid.download<uint32_t>(budget);
@@ -154,7 +167,7 @@ uint32_t check_validate(const std::vector<SmcVpl>& state, uint32_t vpl_count) {
     const ValidateScene s;
     const auto triangles = reference_triangles(s.triangles);
     const Validated got = run_validate(s, state, vpl_count);
-    std::set<uint32_t> expected_invalid;
+    std::vector<uint32_t> expected_invalid;  // in index order
     for (uint32_t i = 0; i < state.size(); ++i) {
         CAPTURE(i);
         if (i >= vpl_count) {
@@ -165,12 +178,10 @@ uint32_t check_validate(const std::vector<SmcVpl>& state, uint32_t vpl_count) {
             vplkit::reference::smc_anchor_seen(glm::dmat4(s.view_projection), glm::dvec3(s.camera), d3(state[i].anchor),
                                                d3(state[i].anchor_normal), triangles);
         CHECK(got.valid[i] == (seen ? 1u : 0u));
-        if (!seen) expected_invalid.insert(i);
+        if (!seen) expected_invalid.push_back(i);
     }
     CHECK(got.counters.invalid_count == expected_invalid.size());
-    const std::set<uint32_t> listed(got.invalid_list.begin(), got.invalid_list.end());
-    CHECK(listed.size() == got.invalid_list.size());  // each once
-    CHECK(listed == expected_invalid);
+    CHECK(got.invalid_list == expected_invalid);
     return uint32_t(expected_invalid.size());
 }
 
@@ -265,11 +276,24 @@ Revalidated run_revalidate(const RevalidateScene& s, const std::vector<uint32_t>
     push.tries = tries;
     push.seed = seed;
     push.iteration = iteration;
+    namespace claims_shader = vplkit::shaders::smc_revalidate_claims;
+    const auto& claims_pipeline = ctx.pipeline<claims_shader::Pipeline>();
+    claims_shader::Bindings cb;
+    cb.hits = hit_buffer.descriptor();
+    cb.state = state_buffer.descriptor();
+    cb.valid = valid_buffer.descriptor();
+    cb.counters = counter_buffer.descriptor();
+    claims_shader::Push claims_push{};
+    claims_push.budget = budget;
     vplkit::PassList passes("smc revalidate test");
     for (const uint32_t round : rounds) {
         push.round = round;
         passes.add("smc revalidate", vplkit::stages::binding_uses<shader::Module>(b, {}),
                    [&pipeline, b, push, pool](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, pool); });
+        passes.add("smc revalidate claims", vplkit::stages::binding_uses<claims_shader::Module>(cb, {}),
+                   [&claims_pipeline, cb, claims_push, budget](VkCommandBuffer cmd) {
+                       claims_pipeline.dispatch(cmd, cb, claims_push, budget);
+                   });
     }
     passes.run(ctx);
     return {state_buffer.download<SmcVpl>(budget), valid_buffer.download<uint32_t>(budget),
@@ -278,7 +302,7 @@ Revalidated run_revalidate(const RevalidateScene& s, const std::vector<uint32_t>
 
 // Runs the rounds one after the other and compares with the reference; returns how many VPLs
 // they validated. A VPL is claimed in the first round in which some point draws and sees it
-// (the draws do not depend on what is valid: a later round only skips it), by one of that
+// (the draws do not depend on what is valid: a later round only skips it), by the lowest-index one of that
 // round's seers, and counted once.
 uint32_t check_revalidate(const RevalidateScene& s, const std::vector<uint32_t>& invalid_list, uint32_t tries,
                           uint32_t seed, uint32_t iteration, const std::vector<uint32_t>& rounds) {
@@ -303,11 +327,10 @@ uint32_t check_revalidate(const RevalidateScene& s, const std::vector<uint32_t>&
         }
         ++expected;
         CHECK(got.valid[i] == 1u);
-        // The new mailbox: one of the camera points that drew and saw it.
-        const glm::dvec3 anchor = d3(got.state[i].anchor);
-        const bool from_a_seer = std::any_of(seers[i].begin(), seers[i].end(),
-                                             [&](uint32_t j) { return d3(v3(s.points[j].position)) == anchor; });
-        CHECK(from_a_seer);
+        // The new mailbox: the camera point of lowest pool index that drew and saw it.
+        const uint32_t winner = *std::min_element(seers[i].begin(), seers[i].end());
+        const bool from_winner = d3(got.state[i].anchor) == d3(v3(s.points[winner].position));
+        CHECK(from_winner);
         CHECK(got.state[i].anchor_normal.z == 1.0f);
         CHECK(i % 3 == 1);  // only the VPLs below the plate, facing the floor, can be seen
     }
@@ -346,6 +369,19 @@ TEST_CASE("smc validate: every VPL invalid, and an empty set") {
     }
     CHECK(check_validate(hidden, 70) == 70);
     CHECK(check_validate(hidden, 0) == 0);
+}
+
+TEST_CASE("smc validate: the invalid list stays in index order over several chunks of the compaction") {
+    // 600 VPLs (three 256-wide chunks): every third anchor is seen beside the plate's shadow
+    // (which ends at |x| = 0.83 on the floor), the others hidden under the plate.
+    std::vector<SmcVpl> mixed;
+    for (int i = 0; i < 600; ++i) {
+        const double y = 0.1 * std::sin(double(i));
+        mixed.push_back(i % 3 == 0 ? with_anchor({1.0 + 0.001 * i, y, 0.0}, {0.0, 0.0, 1.0})
+                                   : with_anchor({-0.4 + 0.001 * i, y, 0.0}, {0.0, 0.0, 1.0}));
+    }
+    CHECK(check_validate(mixed, 600) == 400);
+    CHECK(check_validate(mixed, 300) == 200);
 }
 
 TEST_CASE("smc revalidate: exactly the VPLs some camera point draws and sees are claimed, once") {

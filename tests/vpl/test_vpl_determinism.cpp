@@ -7,6 +7,13 @@
 // image through the VPL keys' tie-breaks, the tree's floating-point sums and the exact gather's
 // sum in buffer order. It can only fail when the threads happen to run in another order, so the
 // in-order test in test_vpl_tracing.cpp is the one that fails every time.
+//
+// The same held for SMC's invalid list (smc_validate.comp appended it by atomics, and revalidation
+// draws its entries at random indices, so which VPLs were revalidated followed the scheduling
+// once the invalid VPLs spanned several workgroups) and for flc's kept and divergent lists (the
+// splats' draw order, hence the rounding of their additive blending): both are now stable
+// compactions in index order. The SMC case moves the camera between updates so that hundreds of
+// VPLs fall invalid and revalidation has work; flc renders twice per renderer.
 
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
@@ -14,6 +21,9 @@
 
 #include <doctest/doctest.h>
 
+#include <glm/geometric.hpp>
+
+#include <cmath>
 #include <string>
 #include <utility>
 
@@ -41,12 +51,15 @@ vplkit::RenderSettings small_settings(vplkit::VplSource source, vplkit::GiMethod
     s.smc.resample_ratio = 8;
     s.smc.radiosity_samples = 4;
     s.smc_warmup = 2;
-    // SMC's revalidation draws VPLs from smc_validate.comp's invalid list, which is appended by
-    // atomics (list order = scheduling): an order dependence of its own, outside VPL tracing, so
-    // this case leaves revalidation out rather than pass or fail by chance.
-    s.smc.visibility_rounds = 0;
     s.samples_per_pixel = 4;
     return s;
+}
+
+// The camera turned by `radians` about its up axis (towards its right for a positive angle).
+vplkit::scene::Camera turned(vplkit::scene::Camera camera, float radians) {
+    const glm::vec3 right = glm::normalize(glm::cross(camera.forward, camera.up));
+    camera.forward = glm::normalize(std::cos(radians) * camera.forward + std::sin(radians) * right);
+    return camera;
 }
 
 }  // namespace
@@ -65,6 +78,55 @@ TEST_CASE("vpl determinism: two renderers give bit-identical frames for every VP
             const auto settings = small_settings(source, method);
             const auto a = first.render(scene.camera(), settings);
             const auto b = second.render(scene.camera(), settings);
+            REQUIRE(a.vpl_count > 0);
+            CHECK(a.vpl_count == b.vpl_count);
+            CHECK(a.indirect == b.indirect);
+            CHECK(a.radiance == b.radiance);
+        }
+    }
+}
+
+TEST_CASE("vpl determinism: SMC with revalidation over a camera move, and flc, give bit-identical frames") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    SUBCASE("smc") {
+        vplkit::Renderer first(ctx, scene), second(ctx, scene);
+        auto settings = small_settings(vplkit::VplSource::smc, vplkit::GiMethod::exact);
+        settings.smc.budget = 512;  // eight of smc_validate.comp's workgroups, two compaction chunks
+        uint32_t invalid = 0, revalidated = 0;
+        // Warm-up and a frame at the file's camera, then frames turned away and back: each move
+        // leaves many anchors outside the view, so their VPLs are invalid and revalidation draws.
+        for (const float angle : {0.0f, 0.6f, -0.3f}) {
+            CAPTURE(angle);
+            const auto camera = turned(scene.camera(), angle);
+            const auto a = first.render(camera, settings);
+            const auto b = second.render(camera, settings);
+            REQUIRE(a.smc.has_value());
+            REQUIRE(b.smc.has_value());
+            MESSAGE("smc invalid " << a.smc->invalid << ", revalidated " << a.smc->revalidated << ", vpls "
+                                   << a.smc->vpls);
+            CHECK(a.smc->invalid == b.smc->invalid);
+            CHECK(a.smc->revalidated == b.smc->revalidated);
+            CHECK(a.smc->vpls == b.smc->vpls);
+            CHECK(a.indirect == b.indirect);
+            CHECK(a.radiance == b.radiance);
+            if (angle != 0.0f) {
+                invalid += a.smc->invalid;
+                revalidated += a.smc->revalidated;
+            }
+        }
+        // The moves must have given the list several workgroups' worth of entries and revalidation work.
+        CHECK(invalid > 2 * 256);
+        CHECK(revalidated > 0);
+    }
+    SUBCASE("flc") {
+        vplkit::Renderer first(ctx, scene), second(ctx, scene);
+        const auto settings = small_settings(vplkit::VplSource::ir, vplkit::GiMethod::flc);
+        for (const float angle : {0.0f, 0.6f}) {
+            CAPTURE(angle);
+            const auto camera = turned(scene.camera(), angle);
+            const auto a = first.render(camera, settings);
+            const auto b = second.render(camera, settings);
             REQUIRE(a.vpl_count > 0);
             CHECK(a.vpl_count == b.vpl_count);
             CHECK(a.indirect == b.indirect);

@@ -5,7 +5,9 @@
 //
 //   smc_camera_rays        camera points X from the G-buffer, a cosine ray from each (lines 3, 5)
 //   smc_validate           mailbox: a VPL whose anchor the camera still sees stays valid (line 4)
-//   smc_revalidate x2      rays from X towards V random invalid VPLs (sec. 3.2.2)
+//   smc_invalid_list       the others listed in index order (a stable compaction: no atomic order)
+//   smc_revalidate x2      rays from X towards V random invalid VPLs (sec. 3.2.2), each round
+//   + _claims              followed by its claims: the lowest-index seer becomes the anchor
 //   sort                   the ray hits by weighted-resampling key, first I = candidates (line 6)
 //   smc_gather_candidates
 //   smc_radiosity          path-traced radiosity of each candidate, its own seed (line 7)
