@@ -50,17 +50,66 @@ VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options
     return r;
 }
 
-void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
-                         const VplTracingOptions& options, const VplTracingBuffers& output) {
+namespace {
+
+// Throws Error when a buffer of `output` is smaller than vpl_tracing_requirements(options) says;
+// returns the capacity.
+uint32_t require_buffers(const VplTracingOptions& options, const VplTracingBuffers& output) {
     const VplTracingRequirements needed = vpl_tracing_requirements(options);
-    const uint32_t capacity = needed.capacity;
     if (output.vpls.size < needed.vpls_bytes || output.bounces.size < needed.bounces_bytes ||
         output.count.size < needed.count_bytes || output.path_vpls.size < needed.path_vpls_bytes ||
         output.path_counts.size < needed.path_counts_bytes || output.block_vpls.size < needed.block_vpls_bytes) {
-        throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(capacity) +
+        throw Error("VPL tracing: the output buffers hold fewer than " + std::to_string(needed.capacity) +
                     " VPLs (paths x max_bounces), or the scratch buffers are smaller than " +
                     "vpl_tracing_requirements says");
     }
+    return needed.capacity;
+}
+
+}  // namespace
+
+void add_pack_vpls_passes(Device& device, StepList& passes, const VplTracingOptions& options,
+                          const VplTracingBuffers& output) {
+    // The stable compaction: each path's VPLs to the VPLs of the paths before it.
+    require_buffers(options, output);
+    const uint32_t blocks = block_count(options.paths);
+    {
+        shaders::vpl_block_counts::Bindings b;
+        b.path_vpl_counts = output.path_counts.descriptor();
+        b.block_vpls = output.block_vpls.descriptor();
+        shaders::vpl_block_counts::Push p{};
+        p.path_count = options.paths;
+        add_dispatch<shaders::vpl_block_counts::Module>(
+            passes, "vpl block counts", device.pipeline<shaders::vpl_block_counts::Pipeline>(), b, p, options.paths);
+    }
+    {
+        const auto& offsets = device.pipeline<shaders::vpl_block_offsets::Pipeline>();
+        shaders::vpl_block_offsets::Bindings b;
+        b.block_vpls = output.block_vpls.descriptor();
+        b.vpl_count = output.count.descriptor();
+        shaders::vpl_block_offsets::Push p{};
+        p.block_count = blocks;
+        add_dispatch<shaders::vpl_block_offsets::Module>(passes, "vpl block offsets", offsets, b, p,
+                                                         offsets.workgroup_size[0]);  // one workgroup
+    }
+    {
+        shaders::compact_vpls::Bindings b;
+        b.path_vpls = output.path_vpls.descriptor();
+        b.path_vpl_counts = output.path_counts.descriptor();
+        b.block_vpls = output.block_vpls.descriptor();
+        b.vpls = output.vpls.descriptor();
+        b.vpl_bounces = output.bounces.descriptor();
+        shaders::compact_vpls::Push p{};
+        p.path_count = options.paths;
+        p.max_bounces = options.max_bounces;
+        add_dispatch<shaders::compact_vpls::Module>(
+            passes, "compact vpls", device.pipeline<shaders::compact_vpls::Pipeline>(), b, p, options.paths);
+    }
+}
+
+void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
+                         const VplTracingOptions& options, const VplTracingBuffers& output) {
+    const uint32_t capacity = require_buffers(options, output);
     const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>(bvh_spec<shaders::trace_vpls::Spec>(bvh));
     const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * device.limits().max_workgroup_count[0];
     if (options.paths > max_paths) {
@@ -105,40 +154,7 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
                    pipeline.dispatch(cmd, b, push, push.path_count);
                });
 
-    // The stable compaction: each path's VPLs to the VPLs of the paths before it.
-    const uint32_t blocks = block_count(options.paths);
-    {
-        shaders::vpl_block_counts::Bindings b;
-        b.path_vpl_counts = output.path_counts.descriptor();
-        b.block_vpls = output.block_vpls.descriptor();
-        shaders::vpl_block_counts::Push p{};
-        p.path_count = options.paths;
-        add_dispatch<shaders::vpl_block_counts::Module>(
-            passes, "vpl block counts", device.pipeline<shaders::vpl_block_counts::Pipeline>(), b, p, options.paths);
-    }
-    {
-        const auto& offsets = device.pipeline<shaders::vpl_block_offsets::Pipeline>();
-        shaders::vpl_block_offsets::Bindings b;
-        b.block_vpls = output.block_vpls.descriptor();
-        b.vpl_count = output.count.descriptor();
-        shaders::vpl_block_offsets::Push p{};
-        p.block_count = blocks;
-        add_dispatch<shaders::vpl_block_offsets::Module>(passes, "vpl block offsets", offsets, b, p,
-                                                         offsets.workgroup_size[0]);  // one workgroup
-    }
-    {
-        shaders::compact_vpls::Bindings b;
-        b.path_vpls = output.path_vpls.descriptor();
-        b.path_vpl_counts = output.path_counts.descriptor();
-        b.block_vpls = output.block_vpls.descriptor();
-        b.vpls = output.vpls.descriptor();
-        b.vpl_bounces = output.bounces.descriptor();
-        shaders::compact_vpls::Push p{};
-        p.path_count = options.paths;
-        p.max_bounces = options.max_bounces;
-        add_dispatch<shaders::compact_vpls::Module>(
-            passes, "compact vpls", device.pipeline<shaders::compact_vpls::Pipeline>(), b, p, options.paths);
-    }
+    add_pack_vpls_passes(device, passes, options, output);
 }
 
 }  // namespace vplkit::stages

@@ -91,4 +91,11 @@ VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options
 void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
                          const VplTracingOptions& options, const VplTracingBuffers& output);
 
+// The packing alone (add_trace_vpls_pass records it after "trace vpls"): "vpl block counts",
+// "vpl block offsets", "compact vpls". Reads output.path_vpls (path p's k-th VPL at slot
+// p x max_bounces + k) and output.path_counts, writes output.vpls and output.bounces in path
+// order, then bounce, and output.count's VPL count (its cut_short is left as it is).
+void add_pack_vpls_passes(Device& device, StepList& passes, const VplTracingOptions& options,
+                          const VplTracingBuffers& output);
+
 }  // namespace vplkit::stages
