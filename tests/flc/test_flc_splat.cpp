@@ -14,9 +14,10 @@
 // Supports: a pixel that every VPL's support misses by more than 1e-4 relative must be exactly 0,
 // and background pixels too. Blending: two VPLs drawn together give exactly what each gives alone,
 // summed in float (1e-6 relative for the order of the two float additions).
-// Interleaved sub-tiles (n = 2, and n = 3 on a size that is not a multiple of it): untiled, pixel
-// (x, y) must be n^2 x the reference sum over the VPLs i with i mod n^2 = (x mod n) + n (y mod n)
-// (same tolerance); blurred, the mean of that over the n x n window's covered pixels (the floor is
+// Every run also checks the draw arguments flc_splat_args.comp writes (one rectangle per VPL).
+// Interleaved sub-tiles (n = 2, and n = 3 on a size that is not a multiple of it), flc_untile.comp:
+// untiled, pixel (x, y) must be n^2 x the reference sum over the VPLs i with i mod n^2 = (x mod n)
+// + n (y mod n) (same tolerance); blurred, the mean of that over the n x n window's covered pixels (the floor is
 // one plane: every covered neighbour is on p's surface), within the window's largest tolerance.
 
 #include "synthetic_scene.hpp"
@@ -149,6 +150,9 @@ std::vector<Texel> run_gpu(const Floor& floor, const std::vector<SplatVpl>& vpls
                                          scene.gbuffer, indirect, floor.view, partition(), count, kSceneScale, options,
                                          tiled);
     passes.run(ctx);
+    // flc_splat_args.comp: the indirect draw is one 6-vertex rectangle per kept VPL (the kept
+    // count, at most the VPL buffer's capacity, here both `count`), from vertex and instance 0.
+    CHECK(args.download<uint32_t>(4) == std::vector<uint32_t>{6u, count, 0u, 0u});
     return indirect.download<Texel>();
 }
 
@@ -281,7 +285,7 @@ TEST_CASE("flc splat: blending adds, two VPLs give the sum of each alone") {
     CHECK(overlap > 20);  // the supports overlap (37 pixels): an overwrite would show
 }
 
-TEST_CASE("flc splat: interleaved sub-tiles, untiled and blurred, match the reference's sub-tile sums") {
+TEST_CASE("flc splat: interleaved sub-tiles, untiled and blurred by flc_untile, match the reference's sub-tile sums") {
     const Floor floor = make_floor();
     const auto vpls = scattered_vpls();
     for (uint32_t n : {2u, 3u}) {
