@@ -30,6 +30,38 @@ layout(std430, set = 0, binding = VPLKIT_LIGHT_TREE_BINDING) readonly buffer Lig
 // The tree has at most 2^31 leaves: a traversal descends at most 31 levels.
 const uint kRtslcMaxLevels = 31u;
 
+// A cut node split into its real children, with their bounds at s: `first` takes the node's
+// place in the cut, `second` (when `two`) is added. Bogus children hold no light and are dropped;
+// a real node's left child is real (the real leaves come first), written for either.
+struct RtslcSplit {
+    uint first;
+    float first_bound;
+    bool two;
+    uint second;
+    float second_bound;
+};
+
+RtslcSplit rtslc_split(RtslcShading s, uint node, float min_distance2) {
+    uint left = light_tree_left_child(node);
+    uint right = light_tree_right_child(node);
+    LightTreeNode left_node = light_tree.items[left];
+    LightTreeNode right_node = light_tree.items[right];
+    bool left_real = !light_tree_is_bogus(left_node);
+    bool right_real = !light_tree_is_bogus(right_node);
+    RtslcSplit split = RtslcSplit(right, 0.0, false, right, 0.0);
+    if (left_real) {
+        split.first = left;
+        split.first_bound = rtslc_node_bound(s, left_node, min_distance2);
+        if (right_real) {
+            split.two = true;
+            split.second_bound = rtslc_node_bound(s, right_node, min_distance2);
+        }
+    } else {
+        split.first_bound = rtslc_node_bound(s, right_node, min_distance2);
+    }
+    return split;
+}
+
 // Selects the cut of at most min(cut_size, kRtslcMaxCutSize) nodes at shading point s: starting
 // from the root, the cut node with the largest bound F I / max(d_min^2, eps^2) (rtslc_node_bound)
 // is split into its children until the cut is full or holds only leaves. Every real child enters
@@ -69,24 +101,13 @@ uint rtslc_select_cut(RtslcShading s, uint leaf_count, uint cut_size, float min_
             selected = true;  // only leaves left
             break;
         }
-        uint left = light_tree_left_child(cut[best]);
-        uint right = light_tree_right_child(cut[best]);
-        LightTreeNode left_node = light_tree.items[left];
-        LightTreeNode right_node = light_tree.items[right];
-        // A real node's left child is real (the real leaves come first); written for either.
-        bool left_real = !light_tree_is_bogus(left_node);
-        bool right_real = !light_tree_is_bogus(right_node);
-        if (left_real) {
-            cut[best] = left;
-            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
-            if (right_real) {
-                cut[cut_nodes] = right;
-                bound[cut_nodes] = rtslc_node_bound(s, right_node, min_distance2);
-                ++cut_nodes;
-            }
-        } else {
-            cut[best] = right;
-            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
+        RtslcSplit split = rtslc_split(s, cut[best], min_distance2);
+        cut[best] = split.first;
+        bound[best] = split.first_bound;
+        if (split.two) {
+            cut[cut_nodes] = split.second;
+            bound[cut_nodes] = split.second_bound;
+            ++cut_nodes;
         }
     }
     return cut_nodes;
@@ -138,25 +159,15 @@ uint rtslc_select_cut_shared_out(RtslcShading s, uint leaf_count, uint cut_size,
             ++total;
             continue;
         }
-        uint left = light_tree_left_child(cut[best]);
-        uint right = light_tree_right_child(cut[best]);
-        LightTreeNode left_node = light_tree.items[left];
-        LightTreeNode right_node = light_tree.items[right];
-        bool left_real = !light_tree_is_bogus(left_node);
-        bool right_real = !light_tree_is_bogus(right_node);
-        if (left_real) {
-            cut[best] = left;
-            bound[best] = rtslc_node_bound(s, left_node, min_distance2);
-            if (right_real) {
-                cut[entries] = right;
-                bound[entries] = rtslc_node_bound(s, right_node, min_distance2);
-                samples[entries] = 1u;
-                ++entries;
-                ++total;
-            }
-        } else {
-            cut[best] = right;
-            bound[best] = rtslc_node_bound(s, right_node, min_distance2);
+        RtslcSplit split = rtslc_split(s, cut[best], min_distance2);
+        cut[best] = split.first;
+        bound[best] = split.first_bound;
+        if (split.two) {
+            cut[entries] = split.second;
+            bound[entries] = split.second_bound;
+            samples[entries] = 1u;
+            ++entries;
+            ++total;
         }
     }
     return entries;
