@@ -125,6 +125,29 @@ struct Floor {
 };
 
 // Floor points; every 5th pixel is background.
+// The punctual lights of the unbiasedness tests: a point light, a spot lighting the floor, a spot
+// whose cone misses every pixel (it lights the ceiling only), and a directional light (not the
+// tree's).
+inline std::vector<vplkit::scene::Light> hard_case_punctual_lights() {
+    vplkit::scene::Light point;
+    point.position = {0.6f, 1.3f, -0.4f};
+    point.color = {1.0f, 0.8f, 0.6f};
+    point.intensity = 2.0f;
+    vplkit::scene::Light spot = point;
+    spot.type = vplkit::scene::LightType::spot;
+    spot.position = {-0.8f, 1.6f, 0.7f};
+    spot.direction = {0.0f, -1.0f, 0.0f};
+    spot.inner_cone_angle = 0.3f;
+    spot.outer_cone_angle = 0.6f;
+    spot.intensity = 5.0f;
+    vplkit::scene::Light away = spot;
+    away.direction = {0.0f, 1.0f, 0.0f};
+    vplkit::scene::Light sun;
+    sun.type = vplkit::scene::LightType::directional;
+    sun.direction = {0.0f, -1.0f, 0.0f};
+    return {point, spot, away, sun};
+}
+
 inline Floor make_floor() {
     Floor f;
     for (uint32_t y = 0; y < kSize; ++y) {

@@ -54,23 +54,7 @@ TEST_CASE("direct light tree: mean over seeds equals the exact light of 33 emitt
     const uint32_t under = b.add_emissive({50, 50, 50}, false);
     add_small_emitter(b, {0.2f, -0.3f, 0.1f}, 0.2f, false, under);                      // faces up, under the floor
     b.add_triangle({0.5f, 1.0f, 0.5f}, {0.5f, 1.0f, 0.5f}, {0.7f, 1.0f, 0.5f}, under);  // zero area
-    vplkit::scene::Light point;
-    point.position = {0.6f, 1.3f, -0.4f};
-    point.color = {1.0f, 0.8f, 0.6f};
-    point.intensity = 2.0f;
-    vplkit::scene::Light spot = point;
-    spot.type = vplkit::scene::LightType::spot;
-    spot.position = {-0.8f, 1.6f, 0.7f};
-    spot.direction = {0.0f, -1.0f, 0.0f};
-    spot.inner_cone_angle = 0.3f;
-    spot.outer_cone_angle = 0.6f;
-    spot.intensity = 5.0f;
-    vplkit::scene::Light away = spot;  // lights the ceiling only
-    away.direction = {0.0f, 1.0f, 0.0f};
-    vplkit::scene::Light sun;
-    sun.type = vplkit::scene::LightType::directional;
-    sun.direction = {0.0f, -1.0f, 0.0f};
-    b.s.lights = {point, spot, away, sun};
+    b.s.lights = hard_case_punctual_lights();
     const Floor floor = make_floor();
     Harness harness(b.s, floor);
     // 33 + 1 + 1 emissive triangles, of which 34 emit; 3 point and spot lights.
