@@ -23,13 +23,6 @@ void bind_gbuffer(Bindings& b, const GbufferViews& gbuffer) {
     b.gbuffer_albedo = gbuffer.albedo.descriptor();
 }
 
-template <typename Bindings>
-void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
-    b.bvh_alpha = bvh.alpha.descriptor();
-}
-
 // The G-buffer's images a GI shader binds, followed by `more` (binding_uses matches views to them).
 inline std::vector<ImageView> gbuffer_images(const GbufferViews& gbuffer, std::vector<ImageView> more = {}) {
     std::vector<ImageView> images = {gbuffer.position, gbuffer.normal, gbuffer.geometric_normal, gbuffer.albedo};

@@ -35,6 +35,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/sort.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
@@ -135,13 +136,9 @@ Rays run(uint32_t ray_count, uint32_t seed, uint32_t iteration, bool black = fal
     counters.upload(std::vector<SmcCounters>{SmcCounters{}});
 
     namespace shader = vplkit::shaders::smc_camera_rays;
-    shader::Spec spec{};
-    spec.kBvhAlphaTest = scene.bvh.alpha_tests ? 1u : 0u;
-    const auto& pipeline = ctx.pipeline<shader::Pipeline>(spec);
+    const auto& pipeline = ctx.pipeline<shader::Pipeline>(vplkit::stages::bvh_spec<shader::Spec>(scene.bvh));
     shader::Bindings b;
-    b.bvh_nodes = scene.bvh.nodes.descriptor();
-    b.bvh_triangles = scene.bvh.triangles.descriptor();
-    b.bvh_alpha = scene.bvh.alpha.descriptor();
+    vplkit::stages::bind_bvh(b, scene.bvh);
     const vplkit::stages::GbufferViews gbuffer = scene.gbuffer;
     b.gbuffer_position = gbuffer.position.descriptor();
     b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();

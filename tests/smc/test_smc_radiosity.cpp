@@ -31,6 +31,7 @@
 #include "vplkit/shaders/smc_radiosity.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
@@ -130,13 +131,9 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     counter_buffer.upload(std::vector<SmcCounters>{counters});
 
     namespace shader = vplkit::shaders::smc_radiosity;
-    shader::Spec spec{};
-    spec.kBvhAlphaTest = bvh.alpha_tests ? 1u : 0u;
-    const auto& pipeline = ctx.pipeline<shader::Pipeline>(spec);
+    const auto& pipeline = ctx.pipeline<shader::Pipeline>(vplkit::stages::bvh_spec<shader::Spec>(bvh));
     shader::Bindings b;
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
-    b.bvh_alpha = bvh.alpha.descriptor();
+    vplkit::stages::bind_bvh(b, bvh);
     b.lights = gpu_lights.buffer.descriptor();
     b.emissive = emissive.descriptor();
     b.emitter_cdf = cdf.descriptor();

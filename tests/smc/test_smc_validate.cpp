@@ -32,6 +32,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/gbuffer.hpp"
+#include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
@@ -117,13 +118,9 @@ Validated run_validate(const ValidateScene& s, const std::vector<SmcVpl>& state,
     counter_buffer.upload(std::vector<SmcCounters>{counters});
 
     namespace shader = vplkit::shaders::smc_validate;
-    shader::Spec spec{};
-    spec.kBvhAlphaTest = bvh.alpha_tests ? 1u : 0u;
-    const auto& pipeline = ctx.pipeline<shader::Pipeline>(spec);
+    const auto& pipeline = ctx.pipeline<shader::Pipeline>(vplkit::stages::bvh_spec<shader::Spec>(bvh));
     shader::Bindings b;
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
-    b.bvh_alpha = bvh.alpha.descriptor();
+    vplkit::stages::bind_bvh(b, bvh);
     b.state = state_buffer.descriptor();
     b.valid = valid.descriptor();
     b.counters = counter_buffer.descriptor();
@@ -259,13 +256,9 @@ Revalidated run_revalidate(const RevalidateScene& s, const std::vector<uint32_t>
     counter_buffer.upload(std::vector<SmcCounters>{counters});
 
     namespace shader = vplkit::shaders::smc_revalidate;
-    shader::Spec spec{};
-    spec.kBvhAlphaTest = bvh.alpha_tests ? 1u : 0u;
-    const auto& pipeline = ctx.pipeline<shader::Pipeline>(spec);
+    const auto& pipeline = ctx.pipeline<shader::Pipeline>(vplkit::stages::bvh_spec<shader::Spec>(bvh));
     shader::Bindings b;
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
-    b.bvh_alpha = bvh.alpha.descriptor();
+    vplkit::stages::bind_bvh(b, bvh);
     b.hits = hit_buffer.descriptor();
     b.state = state_buffer.descriptor();
     b.valid = valid_buffer.descriptor();

@@ -30,4 +30,12 @@ Spec bvh_spec(const BvhBuffers& bvh, Spec spec = {}) {
     return spec;
 }
 
+// Binds `bvh` to a shader's bvh.glsl bindings (`bvh_nodes`, `bvh_triangles`, `bvh_alpha`).
+template <typename Bindings>
+void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
+    b.bvh_nodes = bvh.nodes.descriptor();
+    b.bvh_triangles = bvh.triangles.descriptor();
+    b.bvh_alpha = bvh.alpha.descriptor();
+}
+
 }  // namespace vplkit::stages
