@@ -4,11 +4,12 @@
 // Forward light cuts, splatting (seed 002 sec. 5), vertex stage: instance i is kept VPL i, drawn
 // as the screen-space rectangle that bounds its support, so the fragment stage runs only where
 // the VPL can light something. A level-k VPL at y (normal n) lights x only where
-// d(x) = |x - y|^2 / <n, x - y> < D_{k+1} (eq. 14; D_N for the last level): the level set d = R is
-// the sphere through y centred at y + n R / 2, so the support is that ball, of radius R / 2. The
-// rectangle is the projection of the ball's bounding cube (its 8 corners), one pixel wider on each
-// side so that a receiver inside the ball always has its pixel centre inside; the whole screen when
-// a corner is behind the eye. (The paper's far levels are crescents, the ball less the sphere
+// d(x) = |x - y|^2 / <n, x - y> < D_{k+1} (eq. 14): the level set d = R is the sphere through y
+// centred at y + n R / 2, so the support is that ball, of radius R / 2. The rectangle is the
+// projection of the ball's bounding cube (its 8 corners), one pixel wider on each side so that a
+// receiver inside the ball always has its pixel centre inside; the whole screen when a corner is
+// behind the eye, and for the last level, whose support is the whole half-space in front of its
+// triangle (flc_partition.glsl: f~^N stays 1 beyond D_N). (The paper's far levels are crescents, the ball less the sphere
 // d = D_{k-1}; the fragment stage's f~^k is 0 there, so a ball is a bounded, conservative proxy.)
 // A VPL with no light, no normal or a non-finite field draws nothing (a degenerate rectangle).
 //
@@ -66,8 +67,8 @@ void main() {
     float radius = 0.5 * reach;
     vec3 centre = vpl.position + vpl.normal * radius;
     vec2 lo = vec2(0.0), hi = vec2(0.0);
-    bool whole_screen = false;
-    for (int c = 0; c < 8; ++c) {
+    bool whole_screen = level == last;
+    for (int c = 0; c < 8 && !whole_screen; ++c) {
         vec3 corner = centre + radius * vec3((c & 1) != 0 ? 1.0 : -1.0, (c & 2) != 0 ? 1.0 : -1.0,
                                              (c & 4) != 0 ? 1.0 : -1.0);
         vec4 clip = push.view_projection * vec4(corner, 1.0);

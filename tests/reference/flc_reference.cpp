@@ -46,7 +46,8 @@ double flc_support_distance(const std::array<double, 3>& x, const std::array<dou
 
 double flc_partition_weight(const FlcParameters& p, int k, double d) {
     // Hat k peaks at D_k; its neighbours' peaks bound it. Level 0 is flat below D_0, level N
-    // stops at D_N.
+    // stays 1 beyond D_N (every finite distance is covered); behind the plane (d = inf) nothing.
+    if (std::isinf(d)) return 0.0;
     const int last = p.level_count - 1;
     const double peak = flc_influence_distance(p, k);
     if (d <= peak) {
@@ -54,7 +55,7 @@ double flc_partition_weight(const FlcParameters& p, int k, double d) {
         const double start = flc_influence_distance(p, k - 1);
         return d <= start ? 0.0 : (d - start) / (peak - start);
     }
-    if (k == last) return 0.0;
+    if (k == last) return 1.0;
     const double end = flc_influence_distance(p, k + 1);
     return d >= end ? 0.0 : (end - d) / (end - peak);
 }

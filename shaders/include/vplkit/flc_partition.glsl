@@ -18,10 +18,15 @@
 // of the triangle and nothing behind it. f~^k are hat functions on the influence distances
 // D_k = D_0 mu^(k/2) (eq. 18: each level reaches about as many VPLs per point, area D_k^2 / S_k
 // constant): f~^0 is 1 up to D_0 and falls to 0 at D_1; f~^k (0 < k < N) rises on ]D_{k-1}, D_k]
-// and falls on ]D_k, D_{k+1}]; f~^N rises on ]D_{N-1}, D_N] and stops there (D_{N+1} = D_N), so
-// the sum is 1 on [0, D_N] and 0 beyond: D_N bounds every support. (Eq. 16 as printed gives f~^0
-// the value 1 up to D_1, which overlaps f~^1's rise; the hats above are the partition its Fig. 6
-// draws.) With one level (N = 0), f~^0 is 1 up to D_0 and 0 beyond.
+// and falls on ]D_k, D_{k+1}]; f~^N rises on ]D_{N-1}, D_N] and stays 1 beyond, so the sum is 1
+// at every distance in front of the triangle. (Eq. 16 as printed gives f~^0 the value 1 up to
+// D_1, which overlaps f~^1's rise; the hats above are the partition its Fig. 6 draws.) Eq. 18's
+// D_{N+1} = D_N would end f~^N at D_N, and a receiver farther than D_N from every VPL would get
+// no light at all: with mu 1.5 and 8 levels D_N is 0.41 x the scene radius, and a closed sphere
+// (every support distance there is its diameter) went black. So the last level reaches
+// everything in front of its triangle: sum_k f~^k = 1 everywhere, eq. 11 holds at any distance
+// for any mu and level count, and the cost is that the last level's few VPLs (scene area / S_N
+// expected) are splatted over the whole screen. With one level (N = 0), f~^0 is 1 everywhere.
 
 // Level codes beside k = 0..N (stages/include/vplkit/stages/flc.hpp mirrors them, and the flc tests
 // check that they agree).
@@ -31,6 +36,17 @@ const int kFlcDivergent = -2;
 // S_k = S_0 mu^k (eq. 17).
 float flc_level_area(int k, float s0, float mu) {
     return s0 * pow(mu, float(k));
+}
+
+// S_k fitted to the scene (flc_stratify.comp): the scene's area over the whole number of VPLs
+// floor(scene_area / S_k), so that the stratified level keeps exactly that many every frame and
+// its VPLs stand for exactly the scene's area together. Rounding down keeps S_k' >= S_k, so a
+// triangle regular for S~_N stays regular. A level expected to keep less than one VPL, and
+// scene_area 0, keep S_k.
+float flc_fitted_level_area(int k, float s0, float mu, float scene_area) {
+    float nominal = flc_level_area(k, s0, mu);
+    float count = floor(scene_area / nominal);
+    return count >= 1.0 ? scene_area / count : nominal;
 }
 
 // 1 / S~_k = 1/S_0 + ... + 1/S_k (Alg. 1).
@@ -84,8 +100,11 @@ float flc_support_distance(vec3 x, vec3 y, vec3 n) {
     return along > 0.0 ? squared / along : uintBitsToFloat(0x7f800000u);
 }
 
-// f~^k(d) (eq. 16, as the hats above).
+// f~^k(d) (eq. 16, as the hats above; the last level's reaches every finite d).
 float flc_partition_weight(int k, float d, int level_count, float d0, float mu) {
+    if (isinf(d)) {
+        return 0.0;  // behind the triangle's plane: no support
+    }
     int last = level_count - 1;
     float here = flc_influence_distance(k, d0, mu);
     if (k > 0) {
@@ -100,7 +119,7 @@ float flc_partition_weight(int k, float d, int level_count, float d0, float mu) 
         return 1.0;
     }
     if (k == last) {
-        return 0.0;
+        return 1.0;
     }
     float above = flc_influence_distance(k + 1, d0, mu);
     return d < above ? (above - d) / (above - here) : 0.0;
