@@ -1,5 +1,6 @@
-// The renderer's forward light cuts frame (seed 002): VPL candidates with the stochastic
-// decimation, their compaction, the light at the kept VPLs, and the splatting raster pipeline into
+// The renderer's forward light cuts frame (seed 002): VPL candidates, the divergent triangles'
+// subdivision, the stratified decimation (flc_stratify.comp, levels fitted to the scene's area),
+// their compaction, the light at the kept VPLs, and the splatting raster pipeline into
 // the indirect image. flc places its own VPLs (one per kept triangle), reads no VPL source and no
 // tree, and is unshadowed one-bounce light, as in the paper.
 
@@ -52,6 +53,18 @@ stages::FlcPartition flc_partition(const RenderSettings& settings, const scene::
     return stages::flc_partition_for(radius, settings.flc_vpls_per_point, settings.flc_levels, settings.flc_mu);
 }
 
+// The triangles by the Morton code of their centroids (the stratified decimation's order), from
+// the positions the GPU reads: fixed at first use, as the vertices' random integers are (seed 002
+// sec. 6), so a triangle's stratum follows it when the scene moves.
+std::vector<uint32_t> triangle_order(const scene::Scene& scene) {
+    const std::vector<glm::vec3> corners = scene::triangle_positions(scene);
+    std::vector<glm::vec3> centroids(corners.size() / 3);
+    for (size_t t = 0; t < centroids.size(); ++t) {
+        centroids[t] = (corners[3 * t] + corners[3 * t + 1] + corners[3 * t + 2]) / 3.0f;
+    }
+    return stages::flc_morton_order(centroids);
+}
+
 // Each triangle's area in double, from the positions the GPU reads (the subdivision's m).
 std::vector<double> triangle_areas(const scene::Scene& scene) {
     const std::vector<glm::vec3> corners = scene::triangle_positions(scene);
@@ -67,11 +80,17 @@ std::vector<double> triangle_areas(const scene::Scene& scene) {
 
 void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer,
                           const RenderSettings& settings, Image& indirect, RenderedImage& out) {
-    const stages::FlcPartition partition = flc_partition(settings, scene_.bounds());
+    stages::FlcPartition partition = flc_partition(settings, scene_.bounds());
     const uint32_t triangles = scene_.triangle_count();
     if (flc_triangle_areas_.empty()) flc_triangle_areas_ = triangle_areas(scene_source_);
+    if (flc_triangle_order_.empty()) flc_triangle_order_ = triangle_order(scene_source_);
     const stages::FlcSubdivision subdivision = stages::flc_subdivision_for(flc_triangle_areas_, partition);
     const uint32_t candidate_count = triangles + subdivision.sub_count;
+    // The levels are drawn by the stratified decimation, with S_k fitted to the scene's area.
+    double scene_area = 0.0;
+    for (double a : flc_triangle_areas_) scene_area += std::isfinite(a) ? a : 0.0;
+    partition.scene_area = float(scene_area);
+    const std::vector<uint32_t> order = stages::flc_candidate_order(flc_triangle_order_, subdivision, triangles);
     if (!flc_vertex_random_) {
         if (scene_source_.vertex_random.size() != scene_source_.vertices.size()) {
             throw Error(scene_source_.source.string() +
@@ -93,6 +112,9 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
                            "flc subdivision");
     if (!subdivision.entries.empty()) entries.upload(subdivision.entries);
     auto albedo = storage(n * 4 * sizeof(float), "flc candidate albedo");
+    auto order_buffer = storage(n * sizeof(uint32_t), "flc order");
+    order_buffer.upload(order);
+    auto carries = storage(partition.level_count * sizeof(float), "flc stratify carries");
     auto counts = storage(stages::flc_count_bytes(partition.level_count), "flc counts");
     auto kept = storage(n * sizeof(uint32_t), "flc kept triangles");
     auto divergent = storage(n * sizeof(uint32_t), "flc divergent triangles");
@@ -119,6 +141,8 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
                                    {scene_.vertices(), scene_.indices(), *flc_vertex_random_, entries, candidates,
                                     vpl_sources().triangle_albedo, albedo},
                                    partition, subdivision, triangles, settings.seed);
+    stages::add_flc_stratify_passes(context_, passes, {candidates, order_buffer, carries}, partition, candidate_count,
+                                    settings.seed);
     stages::add_flc_compact_passes(context_, passes, {candidates, counts, kept, divergent}, partition.level_count,
                                    candidate_count);
     stages::add_flc_vpl_light_pass(context_, passes, gpu_bvh_, lights_, emitters_,

@@ -6,6 +6,7 @@
 // sum over kept t of S_k f~^k(t, x) B_t G(t, x) is unbiased when the f~^k sum to 1 (eq. 11).
 // This pass writes each kept VPL's receiver-independent part: the flux
 //     flux = E(centroid) x rho x S_k
+// (S_k fitted to the scene's area when the levels come from flc_stratify.comp)
 // with E the direct irradiance on the triangle's front side (punctual lights with a BVH shadow ray
 // each, emissive triangles by `emitter_samples` area samples, as direct_light.comp and
 // direct_emissive.comp compute it: punctual_visibility.glsl, emitter_sampling.glsl) and rho the
@@ -49,6 +50,7 @@ layout(push_constant) uniform FlcVplLightPush {
     uint seed;
     float s0;
     float mu;
+    float scene_area;      // 0: S_k = S_0 mu^k; else flc_fitted_level_area's (flc_stratify.comp)
 } push;
 
 void main() {
@@ -86,6 +88,7 @@ void main() {
     Vpl vpl;
     vpl.position = c.position;
     vpl.normal = n;
-    vpl.flux = irradiance * triangle_albedo.items[t].rgb * flc_level_area(c.level, push.s0, push.mu);
+    vpl.flux = irradiance * triangle_albedo.items[t].rgb *
+               flc_fitted_level_area(c.level, push.s0, push.mu, push.scene_area);
     vpls.items[i] = vpl;
 }

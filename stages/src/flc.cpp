@@ -47,6 +47,9 @@ void validate(const FlcPartition& p) {
     }
     if (!positive(p.s0)) throw Error("flc: S_0 " + std::to_string(p.s0) + " must be finite and positive");
     if (!positive(p.d0)) throw Error("flc: D_0 " + std::to_string(p.d0) + " must be finite and positive");
+    if (!std::isfinite(p.scene_area) || p.scene_area < 0.0f) {
+        throw Error("flc: scene area " + std::to_string(p.scene_area) + " must be finite and not negative");
+    }
     if (!std::isfinite(p.mu) || !(p.mu > 1.0f)) {
         throw Error("flc: mu " + std::to_string(p.mu) + " must be finite and above 1 (S_k = S_0 mu^k must grow)");
     }
@@ -170,6 +173,7 @@ void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& 
     push.seed = params.seed;
     push.s0 = partition.s0;
     push.mu = partition.mu;
+    push.scene_area = partition.scene_area;
     passes.add("flc vpl light", binding_uses<shader::Module>(bindings),
                [&pipeline, bindings, push, triangle_count](VkCommandBuffer cmd) {
                    pipeline.dispatch(cmd, bindings, push, triangle_count);

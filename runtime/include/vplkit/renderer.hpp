@@ -124,6 +124,8 @@ private:
                     Image& indirect, RenderedImage& out);
     std::optional<Buffer> flc_vertex_random_;  // scene::Scene::vertex_random, uploaded on first use
     std::vector<double> flc_triangle_areas_;   // each triangle's area, for the subdivision (first use)
+    // The triangles by centroid Morton code: the stratified decimation's order (first use).
+    std::vector<uint32_t> flc_triangle_order_;
 
     // What a frame leaves for the next: its VPLs and the trees over them, while the plan's keys
     // (VPL settings, view for BRSM, tree settings) stay the same. Scene geometry and lights are

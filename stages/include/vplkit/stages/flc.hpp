@@ -15,6 +15,8 @@
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/steps.hpp"
 
+#include <glm/vec3.hpp>
+
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -34,6 +36,11 @@ struct FlcPartition {
     float s0 = 0.0f;  // S_0, world units squared (flc_partition_for gives eq. 1's)
     float d0 = 0.0f;  // D_0, world units
     float mu = 2.0f;  // > 1 (the paper uses 1.4 to 5)
+    // 0: S_k = s0 mu^k. Else the scene's total area, and S_k is fitted to it (flc_fitted_level_area):
+    // the stratified decimation (add_flc_stratify_passes) and the light pass read it; the
+    // candidates' own independent draws (add_flc_candidates_pass, add_flc_subdivide_pass) use
+    // S_0 mu^k, so set it only when the stratify pass draws the levels.
+    float scene_area = 0.0f;
 };
 
 // Eq. 1: D_near = 0.2 scene_radius, S_0 = 4 pi D_near^2 / n_avg (each point lit by about n_avg
@@ -46,6 +53,11 @@ void validate(const FlcPartition& partition);
 
 // S~_N = 1 / (1/S_0 + ... + 1/S_N): triangles larger than this are divergent.
 double flc_divergence_area(const FlcPartition& partition);
+
+// S_k as flc_partition.glsl's flc_fitted_level_area computes it: with scene_area > 0, the scene's
+// area over the whole number floor(scene_area / (s0 mu^k)) of VPLs, when that is at least 1;
+// else s0 mu^k. Never below s0 mu^k.
+double flc_fitted_level_area(const FlcPartition& partition, uint32_t level);
 
 struct FlcCandidateBuffers {
     BufferView vertices;       // scene::Vertex[] (72 bytes each); read
@@ -134,6 +146,32 @@ struct FlcSubdivideBuffers {
 void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivideBuffers& buffers,
                             const FlcPartition& partition, const FlcSubdivision& subdivision, uint32_t triangle_count,
                             uint32_t seed);
+
+// Stratified decimation (flc_stratify.comp): the levels of the regular candidates drawn again,
+// each level a systematic sample along `order`, so that every level keeps its expected count
+// within about one VPL in every run of the order (and, with partition.scene_area set, exactly its
+// fitted count in the whole scene), while each candidate keeps P(t in L_k) = A / S_k exactly.
+struct FlcStratifyBuffers {
+    BufferView candidates;  // shaders::FlcCandidate[candidate_count] (after the subdivision); levels rewritten
+    BufferView order;       // uint32[candidate_count]: every candidate index once (flc_candidate_order)
+    BufferView carries;     // float[level_count]: scratch, each level's offset between dispatches
+};
+
+// Adds "flc stratify" passes (one workgroup each, 4096 / level_count chunks of 256 at most).
+// `seed` picks the frame's offsets. Throws vplkit::Error on a bad partition, candidate_count 0 or
+// a buffer too small.
+void add_flc_stratify_passes(Device& device, StepList& passes, const FlcStratifyBuffers& buffers,
+                             const FlcPartition& partition, uint32_t candidate_count, uint32_t seed);
+
+// The indices of `points` sorted by the 30-bit Morton code of their position in the points' box
+// (ties by index): a run of the result is a region of space.
+std::vector<uint32_t> flc_morton_order(std::span<const glm::vec3> points);
+
+// The stratification order of the candidates: the scene triangles in `triangle_order`, each
+// followed by its sub-triangles (triangle_count + first .. + side^2 - 1) when it is subdivided.
+// Every candidate index appears once.
+std::vector<uint32_t> flc_candidate_order(std::span<const uint32_t> triangle_order, const FlcSubdivision& subdivision,
+                                          uint32_t triangle_count);
 
 struct FlcSplatBuffers {
     BufferView candidates;      // shaders::FlcCandidate[] (their levels); read
