@@ -8,6 +8,20 @@
 // and the shares of all levels sum to the one-bounce light (eq. 11). The light is the formula
 // every indirect method uses (vpl_eval.glsl), so flc differs from `exact` only in which VPLs it
 // sums, their weights and the missing visibility. Background pixels and non-finite results add 0.
+//
+// The VPL's emission is Lambertian (radiance rho E / pi, vpl_eval.glsl), not eq. 6's lobe
+// rho E 3/(2 pi) <n, w>_+. Eq. 6 is a different reflector, not a different estimator: it emits the
+// same power B = rho E but 1.5 cos(theta) times the Lambertian radiance, so it converges to another
+// image than `exact` (a wall lights a perpendicular floor near their corner, where theta is near
+// 90 degrees, up to 100% less, and what faces it 50% more), and the kit measures every method
+// against `exact`, whose VPLs are Lambertian as a diffuse surface is. The paper takes eq. 6 for its
+// convenience alone ("no important changes appear"): with it, max over receiver normals of H is
+// proportional to 1 / d(t, x)^2 exactly, so eq. 13's balls of significance are the level sets of
+// eq. 14's d. Unbiasedness does not need that: eqs. 8-11 hold for any transfer H once
+// sum_k f~^k(d(x)) = 1 at every x, so the supports keep eq. 14's shape, and a Lambertian VPL's
+// light is partitioned among the levels exactly as well; only the heuristic of where a VPL is
+// "significant" (eq. 12) is looser at grazing exit angles. In the closed sphere both lobes give the
+// same answer (indirect / direct = albedo): the test could not tell them apart.
 // With n x n interleaved sub-tiles (flc_splat_proxy.vert) the fragment's target pixel stands for
 // image pixel (u n + a, v n + b), and each VPL's light is scaled by n^2: its sub-tile sees one VPL
 // in n^2, so the sub-tile's sum stays an unbiased estimate of the whole.
