@@ -21,6 +21,7 @@ layout(location = 3) out vec2 uv0;
 layout(location = 4) flat out vec3 face_normal;
 layout(location = 5) out vec4 vertex_color;
 layout(location = 6) out vec2 uv1;
+layout(location = 7) flat out float coordinate_magnitude;  // largest |coordinate| of the triangle's corners
 
 void main() {
     uint triangle = uint(gl_VertexIndex) / 3u;
@@ -32,5 +33,8 @@ void main() {
     uv1 = v.uv1;
     vertex_color = v.color;
     face_normal = scene_face_normal(triangle);
+    vec3 m = max(abs(scene_triangle_vertex(triangle, 0u).position),
+                 max(abs(scene_triangle_vertex(triangle, 1u).position), abs(scene_triangle_vertex(triangle, 2u).position)));
+    coordinate_magnitude = max(m.x, max(m.y, m.z));
     gl_Position = push.view_projection * vec4(v.position, 1.0);
 }

@@ -460,6 +460,11 @@ vec3 bvh_hit_position(BvhHit hit) {
 // A shadow ray towards a point q on another surface stops short of it the same way: offset q
 // too (along its own normal), and trace origin o' towards q' with direction q' - o', tmax = 1
 // (bvh_segment_occluded does exactly that). n must not be zero.
+// What it cannot do: move p off a second surface it also lies on (a point on the edge where a
+// wall meets the ceiling is on both planes, within rounding; moving along one normal leaves it
+// on the other, and a ray into the room may meet that one at t ~ 0). G-buffer points therefore
+// arrive already moved toward the viewer, in front of both (gbuffer_shade.frag); hit points of
+// light paths lie on an edge only with probability ~0.
 vec3 offset_ray_origin(vec3 p, vec3 n, float scale) {
     vec3 m = abs(p);
     float h = kBvhOriginOffset * max(max(scale, kBvhMinScale), max(max(m.x, m.y), m.z));

@@ -3,7 +3,9 @@
 
 // The G-buffer every screen-space stage reads (written by the G-buffer raster pass; host side:
 // stages/include/vplkit/stages/gbuffer_views.hpp). All images have the output's size.
-//   position          RGBA32F  xyz world position; w = 1 where a surface was drawn, 0 background
+//   position          RGBA32F  xyz world position, moved toward the viewer by about 2^-16 of its
+//                              coordinates (gbuffer_shade.frag: so rays can start there, also at
+//                              concave edges); w = 1 where a surface was drawn, 0 background
 //   normal            RGBA32F  xyz unit shading normal (normal map applied), on the viewer's side
 //                              of the surface; w = perceptual roughness (glTF roughness)
 //   geometric_normal  RGBA32F  xyz unit face normal, on the same side as `normal` (ray origins
