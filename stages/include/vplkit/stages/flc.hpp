@@ -148,9 +148,10 @@ void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivide
                             uint32_t seed);
 
 // Stratified decimation (flc_stratify.comp): the levels of the regular candidates drawn again,
-// each level a systematic sample along `order`, so that every level keeps its expected count
-// within about one VPL in every run of the order (and, with partition.scene_area set, exactly its
-// fitted count in the whole scene), while each candidate keeps P(t in L_k) = A / S_k exactly.
+// each level a systematic sample along `order`, coarsest first, so that the coarse levels keep
+// their expected count within one VPL in every run of the order (the finer ones within about 1%),
+// and with partition.scene_area set each level its fitted count in the whole scene, while each
+// candidate keeps P(t in L_k) = A / S_k exactly.
 struct FlcStratifyBuffers {
     BufferView candidates;  // shaders::FlcCandidate[candidate_count] (after the subdivision); levels rewritten
     BufferView order;       // uint32[candidate_count]: every candidate index once (flc_candidate_order)
