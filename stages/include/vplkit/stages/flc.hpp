@@ -105,7 +105,8 @@ struct FlcVplLightParams {
 
 // Adds the pass "flc vpl light": each kept VPL's flux E x rho x S_k (flc_vpl_light.comp): E the
 // direct irradiance on its triangle's front side at the centroid (punctual lights and emitters,
-// BVH shadow rays), rho its albedo, S_k = S_0 mu^k the area a level-k VPL stands for. The
+// BVH shadow rays), rho its albedo, S_k the area a level-k VPL stands for (S_0 mu^k, or
+// flc_fitted_level_area's with partition.scene_area set). The
 // partition must be the candidates pass's. Throws vplkit::Error on a bad partition, zero
 // emitter samples, triangle_count 0, or a buffer too small for triangle_count.
 void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
