@@ -19,6 +19,8 @@ Denoiser Denoiser::create(Context& context, uint32_t w, uint32_t h) {
     Denoiser d;
     d.irradiance_ = float4(context, w, h, "denoise irradiance");
     d.clamped_ = float4(context, w, h, "denoise clamped");
+    d.excess_ = float4(context, w, h, "denoise firefly excess");
+    d.spread_ = float4(context, w, h, "denoise firefly spread");
     d.accumulated_ = float4(context, w, h, "denoise accumulated");
     d.estimated_ = float4(context, w, h, "denoise variance");
     d.ping_ = float4(context, w, h, "denoise a-trous ping");
@@ -45,15 +47,20 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
     }
     clamped_this_frame_ = options.firefly_k_sigma > 0.0f;
     if (clamped_this_frame_) {
-        stages::add_firefly_clamp_pass(context, passes, input, gbuffer.position, clamped_, options);
-        input = clamped_;
+        stages::add_firefly_clamp_pass(context, passes, input, gbuffer.position, clamped_, excess_, spread_, options);
+        input = spread_;
     }
     // Temporal only: the accumulated colour is the history. SVGF: the first a-trous iteration is.
     const bool spatial = mode == DenoiseMode::svgf && options.atrous_iterations > 0;
+    // SVGF's history is the filtered image, so each frame puts it through the a-trous step once
+    // more: without a cap a static view would be blurred without end. The cap stays there; only
+    // temporal accumulation (history = the running mean itself) drops it on a static view.
+    stages::DenoiseOptions temporal_options = options;
+    if (spatial) temporal_options.static_max_history = options.max_history;
     Image& accumulated = spatial ? accumulated_ : next.color;
     stages::add_temporal_accumulate_pass(context, passes, input, gbuffer.position, gbuffer.normal, previous.views(),
                                          next.views(), accumulated, next.moments, previous_view_projection_,
-                                         has_history_, options);
+                                         has_history_, temporal_options);
     ImageView result = accumulated;
     if (spatial) {
         stages::add_variance_estimate_pass(context, passes, accumulated_, next.moments, gbuffer.position,
@@ -75,14 +82,18 @@ void Denoiser::end_frame(const glm::mat4& view_projection) {
     current_ = 1 - current_;
 }
 
-double Denoiser::firefly_removed_fraction() {
-    if (!clamped_this_frame_) return 0.0;
-    double removed = 0.0, total = 0.0;
+Denoiser::FireflyShares Denoiser::firefly_shares() {
+    if (!clamped_this_frame_) return {};
+    // In: what the clamp was given (the clamped pixel + what it took off); out: after the spread.
+    double taken = 0.0, in = 0.0, out = 0.0;
+    auto luminance = [](const std::array<float, 4>& t) { return 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]; };
     for (const auto& t : clamped_.download<std::array<float, 4>>()) {
-        removed += t[3];
-        total += 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2] + t[3];
+        taken += t[3];
+        in += luminance(t) + t[3];
     }
-    return total > 0.0 ? removed / total : 0.0;
+    for (const auto& t : spread_.download<std::array<float, 4>>()) out += luminance(t);
+    if (!(in > 0.0)) return {};
+    return {taken / in, (in - out) / in};
 }
 
 }  // namespace vplkit

@@ -210,7 +210,9 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
     passes.run(context_);
     append(out.timings, passes.timings());
     denoiser_->end_frame(view.view_projection);
-    out.firefly_removed_fraction = denoiser_->firefly_removed_fraction();
+    const Denoiser::FireflyShares firefly = denoiser_->firefly_shares();
+    out.firefly_moved_fraction = firefly.moved;
+    out.firefly_removed_fraction = firefly.removed;
 }
 
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {

@@ -1,11 +1,20 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Firefly control before accumulation: a pixel whose luminance is above the mean + k sigma of
-// its covered neighbours (5 x 5 without itself) is scaled down to that limit. A firefly is a rare
-// sample of a real (mostly caustic-like) path, so clamping biases the image dark: the luminance
-// removed is written to .a so that the caller can measure that bias (sum of .a over the sum of
-// the input's luminance). The neighbourhood leaves the pixel out, or one bright pixel would raise
-// its own limit above itself. Fewer than 4 covered neighbours: left as it is (nothing to compare).
+// Firefly control before accumulation, energy-conserving (the first of two passes; the second,
+// firefly_spread.comp, gives the light back). A pixel whose luminance is above the mean + k sigma
+// of its covered neighbours (5 x 5 without itself) is scaled down to that limit. A firefly is a
+// rare sample of a real path: dropping its excess biases every frame dark, and an accumulation of
+// such frames converges to a dark image (issue 26: 5% of Sponza's indirect light). So the excess
+// is not dropped but handed, in equal shares, to the same covered neighbours the statistics came
+// from: their set is symmetric (q is p's neighbour iff p is q's), so what p hands out is exactly
+// what its neighbours gather, and the frame's sum is kept (up to float rounding). The excess is
+// blurred over 5 x 5 pixels instead of sitting on one: a local low-pass of the tail only, which
+// the temporal and a-trous filters then average like any other light.
+// The neighbourhood leaves the pixel out, or one bright pixel would raise its own limit above
+// itself. Fewer than 4 covered neighbours: left as it is (nothing to compare, nowhere to spread).
+// Writes: clamped (rgb: the pixel scaled to the limit; a: the luminance taken off it, for the
+// caller's count of the share moved) and excess (rgb: the colour taken off over the neighbour
+// count, what each neighbour gathers; a: 0).
 
 #include "vplkit/denoise.glsl"
 
@@ -14,6 +23,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, rgba32f) uniform readonly image2D irradiance;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D position;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D clamped;
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D excess;
 
 layout(push_constant) uniform FireflyClampPush {
     float k_sigma;  // the limit: neighbours' mean + k_sigma x their standard deviation
@@ -28,6 +38,7 @@ void main() {
     vec3 c = imageLoad(irradiance, pixel).rgb;
     if (imageLoad(position, pixel).w <= 0.5) {
         imageStore(clamped, pixel, vec4(0.0));
+        imageStore(excess, pixel, vec4(0.0));
         return;
     }
     float sum = 0.0;
@@ -48,14 +59,18 @@ void main() {
     }
     float l = denoise_luminance(c);
     float removed = 0.0;
+    vec3 share = vec3(0.0);
     if (count >= 4) {
         float mean = sum / float(count);
         float sigma = sqrt(max(sum2 / float(count) - mean * mean, 0.0));
         float limit = mean + push.k_sigma * sigma;
         if (l > limit) {
+            vec3 kept = c * (limit / l);
+            share = (c - kept) / float(count);
             removed = l - limit;
-            c *= limit / l;
+            c = kept;
         }
     }
     imageStore(clamped, pixel, vec4(c, removed));
+    imageStore(excess, pixel, vec4(share, 0.0));
 }

@@ -6,7 +6,13 @@
 // (covered, within max_plane_distance of the pixel's tangent plane, normals within min_normal_cos:
 // the mesh-id test of SVGF is left to these two, as the G-buffer holds no ids), bilinear weights
 // renormalized over the kept taps. No tap kept: a disocclusion, the history restarts at 1.
-//   n = min(previous n + 1, max_history), alpha = 1 / n
+// A pixel whose point reprojects onto its own centre (within kStaticPixels: a static camera, up
+// to float rounding) reads that one previous pixel, no bilinear blend, and its history length is
+// capped by static_max_history (0: no cap) instead of max_history: unbiased frames on a static
+// view then average with exact 1 / n weights and converge to their mean (SVGF's cap, there to
+// forget what reprojection blurs and lighting changes leave behind, would stop the convergence
+// at an exponential average of the last max_history frames).
+//   n = min(previous n + 1, cap), alpha = 1 / n
 //   colour  = mix(history colour, current, alpha)           (a running mean until the cap)
 //   moments = mix(history (m1, m2), (l, l^2), alpha),  variance = max(m2 - m1^2, 0)
 // Writes: accumulated (rgb, a = variance), moments (m1, m2, n, 0), and this frame's geometry into
@@ -34,7 +40,13 @@ layout(push_constant) uniform TemporalAccumulatePush {
     float min_normal_cos;
     uint max_history;               // the cap on n: alpha never falls below 1 / max_history
     uint has_history;               // 0 on the first frame: the previous images hold nothing
+    uint static_max_history;        // the cap where a pixel reprojects onto itself; 0: none
 } push;
+
+// How far (in pixels, per axis) a reprojected point may sit from the pixel's own centre and still
+// count as static: float rounding of a static camera's round trip is ~1e-4 pixel; a camera that
+// drifts by less than this per frame is treated as still (its history lags by that much).
+const float kStaticPixels = 0.01;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -57,10 +69,15 @@ void main() {
     vec3 history_color = vec3(0.0);
     vec3 history_moments = vec3(0.0);  // m1, m2, n
     float weights = 0.0;
+    bool still = false;
     vec4 clip = push.previous_view_projection * vec4(p.xyz, 1.0);
     if (push.has_history != 0u && clip.w > 0.0) {
         // Pixel centres at integers: pixel i covers NDC [2i / W - 1, 2(i + 1) / W - 1].
         vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5;
+        still = all(lessThanEqual(abs(at - vec2(pixel)), vec2(kStaticPixels)));
+        if (still) {
+            at = vec2(pixel);  // the pixel itself, weight 1
+        }
         ivec2 base = ivec2(floor(at));
         vec2 f = at - vec2(base);
         for (int k = 0; k < 4; ++k) {
@@ -88,7 +105,11 @@ void main() {
     if (weights > 0.01) {
         history_color /= weights;
         history_moments /= weights;
-        count = min(floor(history_moments.z + 0.5) + 1.0, float(push.max_history));
+        count = floor(history_moments.z + 0.5) + 1.0;
+        uint cap = still ? push.static_max_history : push.max_history;
+        if (cap != 0u) {
+            count = min(count, float(cap));
+        }
         float alpha = 1.0 / count;
         out_color = mix(history_color, c, alpha);
         out_moments = mix(history_moments.xy, out_moments, alpha);

@@ -4,6 +4,7 @@
 #include "vplkit/shaders/atrous.hpp"
 #include "vplkit/shaders/demodulate.hpp"
 #include "vplkit/shaders/firefly_clamp.hpp"
+#include "vplkit/shaders/firefly_spread.hpp"
 #include "vplkit/shaders/remodulate.hpp"
 #include "vplkit/shaders/temporal_accumulate.hpp"
 #include "vplkit/shaders/variance_estimate.hpp"
@@ -104,21 +105,34 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
 }
 
 void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& position,
-                            const ImageView& clamped, const DenoiseOptions& options) {
+                            const ImageView& clamped, const ImageView& excess, const ImageView& spread,
+                            const DenoiseOptions& options) {
     validate_denoise_options(options);
-    validate_images("denoise firefly clamp", {{&clamped, kFloat4}, {&irradiance, kFloat4}, {&position, kFloat4}});
-    const auto& pipeline = device.pipeline<shaders::firefly_clamp::Pipeline>();
+    validate_images(
+        "denoise firefly clamp",
+        {{&clamped, kFloat4}, {&irradiance, kFloat4}, {&position, kFloat4}, {&excess, kFloat4}, {&spread, kFloat4}});
+    const auto& clamp = device.pipeline<shaders::firefly_clamp::Pipeline>();
     shaders::firefly_clamp::Bindings b;
     b.irradiance = irradiance.descriptor();
     b.position = position.descriptor();
     b.clamped = clamped.descriptor();
+    b.excess = excess.descriptor();
     shaders::firefly_clamp::Push push{};
     push.k_sigma = options.firefly_k_sigma;
     passes.add("denoise firefly clamp",
-               binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped}),
-               [&pipeline, b, push, clamped](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, b, push, clamped.width, clamped.height);
+               binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess}),
+               [&clamp, b, push, clamped](VkCommandBuffer cmd) {
+                   clamp.dispatch(cmd, b, push, clamped.width, clamped.height);
                });
+    const auto& gather = device.pipeline<shaders::firefly_spread::Pipeline>();
+    shaders::firefly_spread::Bindings g;
+    g.clamped = clamped.descriptor();
+    g.excess = excess.descriptor();
+    g.position = position.descriptor();
+    g.spread = spread.descriptor();
+    passes.add("denoise firefly spread",
+               binding_uses<shaders::firefly_spread::Module>(g, {clamped, excess, position, spread}),
+               [&gather, g, spread](VkCommandBuffer cmd) { gather.dispatch(cmd, g, spread.width, spread.height); });
 }
 
 void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageView& irradiance,
@@ -158,6 +172,7 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
     push.min_normal_cos = options.min_normal_cos;
     push.max_history = options.max_history;
     push.has_history = has_history ? 1u : 0u;
+    push.static_max_history = options.static_max_history;
     passes.add("denoise temporal",
                binding_uses<shaders::temporal_accumulate::Module>(
                    b, {irradiance, position, normal, previous.position, previous.normal, previous.color,

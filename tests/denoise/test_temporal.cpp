@@ -1,7 +1,8 @@
 // temporal_accumulate.comp: reprojection (a static camera maps each pixel to itself, a sideways
 // camera move shifts history by the analytic number of pixels, a depth step is a disocclusion),
-// the running mean's error against the exact mean falling like 1/sqrt(F) until the history cap,
-// and the whole pass against the double reference (tests/reference/denoise_reference.cpp).
+// the running mean's error against the exact mean falling like 1/sqrt(F) until a history cap,
+// a static camera's exact running mean past the moving camera's cap (no cap there), and the
+// whole pass against the double reference (tests/reference/denoise_reference.cpp).
 // Tolerances: positions and the matrix are float, so a reprojected coordinate is off by ~1e-5
 // pixel; colours here are O(1), so history values are off by ~1e-5 (checked at 1e-4).
 
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 using namespace vplkit;
 using namespace vplkit::test;
@@ -49,6 +51,7 @@ reference::TemporalParameters parameters_of(const stages::DenoiseOptions& option
     p.min_normal_cos = options.min_normal_cos;
     p.max_history = options.max_history;
     p.has_history = has_history;
+    p.static_max_history = options.static_max_history;
     return p;
 }
 
@@ -206,7 +209,9 @@ TEST_CASE("denoise temporal: against the double reference on a moving camera ove
 TEST_CASE("denoise temporal: error against the exact mean falls like 1 over sqrt(F) until the cap") {
     // Each frame: the exact value 1 plus uniform noise in [-1, 1] (sigma 1 / sqrt(3)) per channel.
     // A running mean of F frames has RMSE sigma / sqrt(F); past the cap N, alpha stays 1 / N and
-    // the RMSE settles at sigma sqrt(alpha / (2 - alpha)) (an exponential moving average).
+    // the RMSE settles at sigma sqrt(alpha / (2 - alpha)) (an exponential moving average). The
+    // camera is static, so the cap asked for here is static_max_history (by default there is none:
+    // the next case).
     // 12288 values per frame: each measured RMSE is within 0.5% (1 sigma) of its expectation, so
     // the slope's tolerance of 0.03 and the levels' 4% are several sigma wide.
     Context& ctx = context();
@@ -217,6 +222,7 @@ TEST_CASE("denoise temporal: error against the exact mean falls like 1 over sqrt
         CAPTURE(cap);
         stages::DenoiseOptions options = test_options();
         options.max_history = cap;
+        options.static_max_history = cap;
         auto position = upload_image(ctx, geometry.position, "position");
         auto normal = upload_image(ctx, geometry.normal, "normal");
         struct Slot {
@@ -321,4 +327,76 @@ TEST_CASE("denoise temporal: no ghost of the old surface after a disocclusion") 
                                                             << ")");
         CHECK(std::abs(sum / count) < bound);
     }
+}
+
+TEST_CASE("denoise temporal: a static camera's accumulation is the exact running mean past the moving cap") {
+    // 64 frames of noise on a static camera with the default options (max_history 32 for a moving
+    // one): every pixel must hold the plain mean of its 64 inputs, computed here in double, and
+    // n = 64. A cap of 32 would leave the first frames weighted (31/32)^32 ~ 0.36 of 1/32 each:
+    // off by ~0.1 here. Float: 64 rounded mixes of O(1) values, a few 1e-7 each: checked at 2e-5.
+    Context& ctx = context();
+    const glm::mat4 vp = denoise_camera({0, 0, 0}, kSize, kSize);
+    const DenoiseGeometry geometry = plane_geometry(vp, kSize, kSize, stepped_plane());
+    const stages::DenoiseOptions options = test_options();
+    auto position = upload_image(ctx, geometry.position, "position");
+    auto normal = upload_image(ctx, geometry.normal, "normal");
+    struct Slot {
+        Image position, normal, color, moments;
+    };
+    Slot slots[2];
+    for (auto& s : slots)
+        s = {float4_image(ctx, kSize, kSize, "history position"), float4_image(ctx, kSize, kSize, "history normal"),
+             float4_image(ctx, kSize, kSize, "history color"), float4_image(ctx, kSize, kSize, "history moments")};
+    std::mt19937 rng(64);
+    constexpr int kFrames = 64;
+    std::vector<double> mean(std::size_t(kSize) * kSize * 3, 0.0);
+    for (int f = 1; f <= kFrames; ++f) {
+        const DenoiseImage frame = random_image(rng, 0.0, 2.0);
+        for (std::size_t i = 0; i < frame.texels.size(); ++i)
+            for (int c = 0; c < 3; ++c) mean[i * 3 + c] += frame.texels[i][c] / kFrames;
+        auto in = upload_image(ctx, frame, "irradiance");
+        Slot& previous = slots[(f + 1) % 2];
+        Slot& next = slots[f % 2];
+        PassList passes("static accumulation");
+        stages::add_temporal_accumulate_pass(
+            ctx, passes, in, position, normal, {previous.position, previous.normal, previous.color, previous.moments},
+            {next.position, next.normal, next.color, next.moments}, next.color, next.moments, vp, f > 1, options);
+        passes.run(ctx);
+    }
+    const DenoiseImage out = download_image(slots[kFrames % 2].color);
+    const DenoiseImage moments = download_image(slots[kFrames % 2].moments);
+    double worst = 0.0;
+    int wrong_count = 0;
+    for (std::size_t i = 0; i < out.texels.size(); ++i) {
+        wrong_count += moments.texels[i][2] == double(kFrames) ? 0 : 1;
+        for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(out.texels[i][c] - mean[i * 3 + c]));
+    }
+    MESSAGE("largest difference from the 64 frames' mean: " << worst);
+    CHECK(wrong_count == 0);
+    CHECK(worst < 2e-5);
+}
+
+TEST_CASE("denoise temporal: a static pixel against the double reference, and the moving cap still holds") {
+    // One pass with history length 40 everywhere: a static camera gives n = 41 (no cap), a camera
+    // moved by 1.3 pixels gives the moving cap, 32; both against the reference.
+    std::mt19937 rng(65);
+    const DenoiseImage in = random_image(rng, 0.0, 2.0), history = random_image(rng, 0.0, 2.0);
+    const DenoiseImage moments = constant_moments(0.7, 0.9, 40.0);
+    const stages::DenoiseOptions options = test_options();
+    const glm::mat4 vp = denoise_camera({0, 0, 0}, kSize, kSize);
+    const DenoiseGeometry still = plane_geometry(vp, kSize, kSize, flat_plane());
+    const auto out = run_temporal(in, still, still, history, moments, vp, options);
+    const auto expected =
+        reference::temporal_accumulate(in, still, still, history, moments, parameters_of(options, vp, true));
+    CHECK(max_relative_error(out.accumulated, expected.accumulated, 1.0) < 1e-4);
+    CHECK(max_relative_error(out.moments, expected.moments, 1.0) < 1e-4);
+    CHECK(out.moments.at(20, 20)[2] == 41.0);
+    const float t = float(1.3 * 2.0 / kSize * 5.0 * std::tan(glm::radians(22.5)));
+    const glm::mat4 moved_vp = denoise_camera({t, 0, 0}, kSize, kSize);
+    const DenoiseGeometry moved = plane_geometry(moved_vp, kSize, kSize, flat_plane());
+    const auto out_moved = run_temporal(in, moved, still, history, moments, vp, options);
+    const auto expected_moved =
+        reference::temporal_accumulate(in, moved, still, history, moments, parameters_of(options, vp, true));
+    CHECK(max_relative_error(out_moved.accumulated, expected_moved.accumulated, 1.0) < 1e-4);
+    CHECK(out_moved.moments.at(20, 20)[2] == 32.0);
 }

@@ -55,18 +55,17 @@ DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albe
     return out;
 }
 
-DenoiseImage firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma) {
-    DenoiseImage out(irradiance.width, irradiance.height);
-    for (int y = 0; y < int(out.height); ++y) {
-        for (int x = 0; x < int(out.width); ++x) {
-            if (position.at(x, y)[3] <= 0.5) continue;
+FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma) {
+    const uint32_t w = irradiance.width, h = irradiance.height;
+    FireflyResult out{DenoiseImage(w, h), DenoiseImage(w, h), DenoiseImage(w, h)};
+    auto covered = [&](int x, int y) { return position.inside(x, y) && position.at(x, y)[3] > 0.5; };
+    for (int y = 0; y < int(h); ++y) {
+        for (int x = 0; x < int(w); ++x) {
+            if (!covered(x, y)) continue;
             std::vector<double> neighbours;
             for (int dy = -2; dy <= 2; ++dy) {
                 for (int dx = -2; dx <= 2; ++dx) {
-                    if ((dx == 0 && dy == 0) || !position.inside(x + dx, y + dy) ||
-                        position.at(x + dx, y + dy)[3] <= 0.5) {
-                        continue;
-                    }
+                    if ((dx == 0 && dy == 0) || !covered(x + dx, y + dy)) continue;
                     neighbours.push_back(luminance(irradiance.at(x + dx, y + dy)));
                 }
             }
@@ -82,11 +81,28 @@ DenoiseImage firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& p
                 variance /= double(neighbours.size());
                 const double limit = mean + k_sigma * std::sqrt(variance);
                 if (l > limit) {
-                    for (int k = 0; k < 3; ++k) c[k] *= limit / l;
+                    for (int k = 0; k < 3; ++k) {
+                        const double kept = c[k] * limit / l;
+                        out.excess.at(x, y)[k] = (c[k] - kept) / double(neighbours.size());
+                        c[k] = kept;
+                    }
                     c[3] = l - limit;
                 }
             }
-            out.at(x, y) = c;
+            out.clamped.at(x, y) = c;
+        }
+    }
+    // Each covered pixel gathers its covered neighbours' shares (the neighbour relation is
+    // symmetric, so every share lands once).
+    for (int y = 0; y < int(h); ++y) {
+        for (int x = 0; x < int(w); ++x) {
+            if (!covered(x, y)) continue;
+            Texel4 c = out.clamped.at(x, y);
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx)
+                    if ((dx != 0 || dy != 0) && covered(x + dx, y + dy))
+                        for (int k = 0; k < 3; ++k) c[k] += out.excess.at(x + dx, y + dy)[k];
+            out.spread.at(x, y) = c;
         }
     }
     return out;
@@ -118,7 +134,10 @@ TemporalResult temporal_accumulate(const DenoiseImage& irradiance, const Denoise
             double color[3] = {c[0], c[1], c[2]};
             double m1 = l, m2 = l * l, count = 1.0;
             double hx = 0.0, hy = 0.0;
+            bool still = false;
             if (parameters.has_history && reproject(parameters.previous_view_projection, p, w, h, hx, hy)) {
+                still = std::abs(hx - x) <= parameters.static_pixels && std::abs(hy - y) <= parameters.static_pixels;
+                if (still) hx = x, hy = y;
                 const int bx = int(std::floor(hx)), by = int(std::floor(hy));
                 const double fx = hx - bx, fy = hy - by;
                 double hc[3] = {0, 0, 0}, hm[3] = {0, 0, 0}, weights = 0.0;
@@ -140,7 +159,9 @@ TemporalResult temporal_accumulate(const DenoiseImage& irradiance, const Denoise
                     }
                 }
                 if (weights > 0.01) {
-                    count = std::min(std::floor(hm[2] / weights + 0.5) + 1.0, double(parameters.max_history));
+                    count = std::floor(hm[2] / weights + 0.5) + 1.0;
+                    const uint32_t cap = still ? parameters.static_max_history : parameters.max_history;
+                    if (cap != 0) count = std::min(count, double(cap));
                     const double alpha = 1.0 / count;
                     for (int k = 0; k < 3; ++k) color[k] = (1.0 - alpha) * hc[k] / weights + alpha * color[k];
                     m1 = (1.0 - alpha) * hm[0] / weights + alpha * m1;

@@ -37,8 +37,15 @@ DenoiseImage demodulate(const DenoiseImage& radiance, const DenoiseImage& albedo
                         double min_albedo);
 DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albedo, double min_albedo);
 
-// rgb clamped to the 5 x 5 neighbours' mean + k sigma of luminance, a = luminance removed.
-DenoiseImage firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma);
+// The energy-conserving firefly clamp: a covered pixel with at least 4 covered 5 x 5 neighbours
+// (itself left out) whose luminance is above their mean + k sigma is scaled to that limit, and
+// the colour taken off is shared equally among those neighbours.
+struct FireflyResult {
+    DenoiseImage clamped;  // rgb scaled to the limit, a = the luminance taken off
+    DenoiseImage excess;   // rgb = the colour taken off / the neighbour count
+    DenoiseImage spread;   // rgb = clamped + the shares of the neighbours, a = clamped's a
+};
+FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma);
 
 struct TemporalResult {
     DenoiseImage accumulated;  // rgb, a = variance
@@ -51,6 +58,10 @@ struct TemporalParameters {
     double min_normal_cos = 0.9;
     uint32_t max_history = 32;
     bool has_history = false;
+    // A pixel whose point reprojects within static_pixels of its own centre (per axis) reads that
+    // pixel alone and is capped by static_max_history (0: no cap).
+    uint32_t static_max_history = 0;
+    double static_pixels = 0.01;
 };
 
 // The previous frame's continuous pixel coordinates of world point p (pixel centres at

@@ -40,16 +40,21 @@ public:
     // After the passes ran: this frame becomes the history; `view_projection` is its camera's.
     void end_frame(const glm::mat4& view_projection);
 
-    // The firefly clamp's cost of the last frame: luminance removed over the luminance it was
-    // given (downloads the clamped image; 0 when the clamp is off).
-    double firefly_removed_fraction();
+    // The firefly clamp's last frame, as shares of the luminance it was given: moved, taken off
+    // the outliers and spread over their neighbours; removed, what the frame lost in all (the
+    // spread gives it back, so float rounding only). Downloads two images; zeros when off.
+    struct FireflyShares {
+        double moved = 0.0;
+        double removed = 0.0;
+    };
+    FireflyShares firefly_shares();
 
 private:
     struct History {
         Image position, normal, color, moments;
         stages::DenoiseHistory views() { return {position, normal, color, moments}; }
     };
-    Image irradiance_, clamped_, accumulated_, estimated_, ping_, pong_;
+    Image irradiance_, clamped_, excess_, spread_, accumulated_, estimated_, ping_, pong_;
     History history_[2];
     uint32_t current_ = 0;  // the history set this frame writes
     bool has_history_ = false;

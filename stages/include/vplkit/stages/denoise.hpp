@@ -5,7 +5,7 @@
 //
 //   add_demodulate_pass(...)            radiance / albedo -> irradiance (before any upsampling)
 //   ... upsample the irradiance to full size if GI ran at half ...
-//   add_firefly_clamp_pass(...)         luminance above neighbours' mean + k sigma clamped, tracked
+//   add_firefly_clamp_pass(...)         luminance above neighbours' mean + k sigma spread over them
 //   add_temporal_accumulate_pass(...)   reprojected history, running mean, moments -> variance
 //   add_variance_estimate_pass(...)     spatial variance where the history is short
 //   add_atrous_pass(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history
@@ -27,12 +27,16 @@ namespace vplkit::stages {
 struct DenoiseOptions {
     // Albedo channels at or below this are not divided by (demodulate.comp, remodulate.comp).
     float min_albedo = 1e-3f;
-    // Firefly clamp: the limit is the neighbours' mean + firefly_k_sigma standard deviations;
-    // 0 turns the pass off in the runtime. Its cost in bias is measured (README, *Denoising*).
+    // Firefly clamp: the limit is the neighbours' mean + firefly_k_sigma standard deviations; the
+    // light above it is spread over those neighbours, not dropped (the frame's sum is kept). 0
+    // turns the pass off in the runtime.
     float firefly_k_sigma = 4.0f;
     // History length cap: alpha = 1 / min(n, max_history) (a running mean for max_history frames,
     // then an exponential moving average).
     uint32_t max_history = 32;
+    // The cap where a pixel reprojects onto itself (a static camera); 0: no cap, an exact running
+    // mean that converges to the frames' mean.
+    uint32_t static_max_history = 0;
     // The scene's size (GpuBvh::scene_scale): the lengths below are shares of it.
     float scene_scale = 1.0f;
     // Reprojection: a history tap farther than this share of scene_scale from the pixel's tangent
@@ -70,16 +74,22 @@ void add_demodulate_pass(Device& device, StepList& passes, const ImageView& radi
 void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
                          const ImageView& radiance, const DenoiseOptions& options);
 
-// "denoise firefly clamp": clamped.rgb = irradiance scaled down to the 5 x 5 neighbours' (covered,
-// itself left out) mean + k sigma of luminance; clamped.a = the luminance removed.
+// "denoise firefly clamp" + "denoise firefly spread": a pixel's luminance above its 5 x 5
+// neighbours' (covered, itself left out) mean + k sigma is taken off it and handed to those
+// neighbours in equal shares, so the sum over the image is kept. clamped: rgb scaled to the limit,
+// a = the luminance taken off; excess: rgb = the colour taken off over the neighbour count;
+// spread: rgb = clamped + the shares gathered from the neighbours (the pass's result), a = as
+// clamped's a.
 void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& position,
-                            const ImageView& clamped, const DenoiseOptions& options);
+                            const ImageView& clamped, const ImageView& excess, const ImageView& spread,
+                            const DenoiseOptions& options);
 
 // "denoise temporal": accumulated (rgb, a = variance) and moments (m1, m2, n) from `irradiance`
 // and the `previous` history reprojected with previous_view_projection; writes this frame's
 // position and normal into next.position / next.normal (next.color and next.moments are not
 // touched: the caller points `accumulated` / `moments` at them, or at the a-trous input).
-// has_history false: every pixel starts over (n = 1), the previous images are not read.
+// has_history false: every pixel starts over (n = 1), the previous images are not read. A pixel
+// that reprojects onto its own centre reads that one pixel and is capped by static_max_history.
 void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageView& irradiance,
                                   const ImageView& position, const ImageView& normal, const DenoiseHistory& previous,
                                   const DenoiseHistory& next, const ImageView& accumulated, const ImageView& moments,
