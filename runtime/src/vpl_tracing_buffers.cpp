@@ -33,21 +33,36 @@ double srgb_to_linear(double c) {
     return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
 }
 
-// Mean texel of an image: RGB decoded from sRGB (colour data), or the plain channels (A unused).
-glm::dvec3 mean_texel(const scene::Image& image, bool srgb) {
+// Mean texel of an image: RGB decoded from sRGB (colour data), or the plain channels. With
+// `cutoff` > 0, only the texels whose alpha x alpha_factor reaches it: an alpha-tested surface
+// exists only there (bvh.glsl's alpha test), so a light path hits only those texels; a
+// texture no texel of which passes gives its plain mean (no path hits it).
+glm::dvec3 mean_texel(const scene::Image& image, bool srgb, double cutoff = 0.0, double alpha_factor = 1.0) {
     std::array<double, 256> table{};
     for (int i = 0; i < 256; ++i) table[i] = srgb ? srgb_to_linear(i / 255.0) : i / 255.0;
-    glm::dvec3 sum(0.0);
+    glm::dvec3 sum(0.0), kept_sum(0.0);
+    size_t kept = 0;
     const size_t texels = size_t(image.width) * image.height;
-    for (size_t i = 0; i < texels && 4 * i + 2 < image.rgba.size(); ++i) {
-        sum += glm::dvec3(table[image.rgba[4 * i]], table[image.rgba[4 * i + 1]], table[image.rgba[4 * i + 2]]);
+    for (size_t i = 0; i < texels && 4 * i + 3 < image.rgba.size(); ++i) {
+        const glm::dvec3 texel(table[image.rgba[4 * i]], table[image.rgba[4 * i + 1]], table[image.rgba[4 * i + 2]]);
+        sum += texel;
+        if (image.rgba[4 * i + 3] / 255.0 * alpha_factor >= cutoff) {
+            kept_sum += texel;
+            ++kept;
+        }
     }
+    if (cutoff > 0.0 && kept > 0) return kept_sum / double(kept);
     return texels > 0 ? sum / double(texels) : glm::dvec3(1.0);
 }
 
+// As bvh_alpha.cpp: a blended material is drawn, and hit, where it is at least half opaque.
+constexpr double kBlendAsMaskCutoff = 0.5;
+
 // The diffuse reflectance of a material: the diffuse part of the glTF BRDF, base colour x
 // (1 - metallic) (metals have none), with each texture entering as its mean (a VPL stands for
-// a whole patch, and the tracer has no UVs at a hit).
+// a whole patch, and the tracer has no UVs at a hit); an alpha-tested material's base colour as
+// the mean of the texels it keeps (COLOR_0's alpha, which the ray test also multiplies in, left
+// out).
 glm::vec3 diffuse_reflectance(const scene::Scene& scene, const scene::Material& material,
                               std::vector<std::optional<glm::dvec3>>& srgb_means,
                               std::vector<std::optional<glm::dvec3>>& linear_means) {
@@ -61,7 +76,16 @@ glm::vec3 diffuse_reflectance(const scene::Scene& scene, const scene::Material& 
         if (!cache[image]) cache[image] = mean_texel(scene.images[image], srgb);
         return *cache[image];
     };
-    const glm::dvec3 base = glm::dvec3(material.base_color_factor) * mean(material.base_color_texture, true);
+    const double cutoff = material.alpha_mode == scene::AlphaMode::mask    ? double(material.alpha_cutoff)
+                          : material.alpha_mode == scene::AlphaMode::blend ? kBlendAsMaskCutoff
+                                                                           : 0.0;
+    glm::dvec3 base_texture = mean(material.base_color_texture, true);
+    if (cutoff > 0.0 && material.base_color_texture != scene::kNoTexture) {
+        // Not cached: the texels kept depend on the material's cutoff and alpha factor.
+        base_texture = mean_texel(scene.images[scene.textures[material.base_color_texture].image], true, cutoff,
+                                  material.base_color_factor.a);
+    }
+    const glm::dvec3 base = glm::dvec3(material.base_color_factor) * base_texture;
     // glTF: metallic is the B channel of the metallic-roughness texture.
     const double metallic = double(material.metallic_factor) * mean(material.metallic_roughness_texture, false).z;
     return glm::clamp(glm::vec3(base * (1.0 - metallic)), glm::vec3(0.0f), glm::vec3(1.0f));

@@ -596,6 +596,49 @@ TEST_CASE("vpl tracing: textures enter the reflectance as their means") {
     }
 }
 
+TEST_CASE("vpl tracing: an alpha-tested material reflects the mean of the texels it keeps") {
+    // Rays pass where alpha x the factor's alpha < cutoff (bvh.glsl), so a light path only hits
+    // the kept texels: their mean, not the whole texture's, is what a hit reflects. Texels (sRGB
+    // R, G, B, A): white opaque, black transparent, grey half-covered (alpha 128: kept at cutoff
+    // 0.5 with factor alpha 1, dropped with factor alpha 0.9). Expected by hand, to float
+    // rounding of the host's double arithmetic (1e-6).
+    auto linear = [](double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); };
+    struct Case {
+        vplkit::scene::AlphaMode mode;
+        float cutoff;
+        float factor_alpha;
+        double expected;  // every channel
+    };
+    const double grey = linear(100 / 255.0);
+    for (const Case c : {Case{vplkit::scene::AlphaMode::mask, 0.5f, 1.0f, (1.0 + grey) / 2.0},
+                         Case{vplkit::scene::AlphaMode::mask, 0.5f, 0.9f, 1.0},
+                         Case{vplkit::scene::AlphaMode::blend, 0.9f, 1.0f, (1.0 + grey) / 2.0},
+                         Case{vplkit::scene::AlphaMode::opaque, 0.5f, 1.0f, (1.0 + grey) / 3.0}}) {
+        CAPTURE(int(c.mode));
+        CAPTURE(c.factor_alpha);
+        Scene scene;
+        const uint32_t m = add_material(scene, glm::vec3(1.0f));
+        vplkit::scene::Image colour;
+        colour.width = 3;
+        colour.height = 1;
+        colour.rgba = {255, 255, 255, 255, 0, 0, 0, 0, 100, 100, 100, 128};
+        colour.srgb = true;
+        scene.images = {colour};
+        scene.textures.resize(1);
+        scene.materials[m].base_color_texture = 0;
+        scene.materials[m].base_color_factor.a = c.factor_alpha;
+        scene.materials[m].alpha_mode = c.mode;
+        scene.materials[m].alpha_cutoff = c.cutoff;  // blend: 0.5 whatever the file says
+        add_triangle(scene, {0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, m);
+        scene.lights.push_back(point_light({0.2f, 0.2f, 1.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
+        const auto sources = vplkit::stages::upload_vpl_sources(vplkit::test::context(), scene);
+        const auto albedo = sources.triangle_albedo.template download<vplkit::shaders::vec4>(1);
+        CHECK(std::abs(albedo[0].x - c.expected) <= 1e-6);
+        CHECK(std::abs(albedo[0].y - c.expected) <= 1e-6);
+        CHECK(std::abs(albedo[0].z - c.expected) <= 1e-6);
+    }
+}
+
 TEST_CASE("vpl tracing: paths a driver cuts short are counted and refused never silently lost") {
     // Albedo 1: no path ends before max_bounces, and 20000 bounces x several traversal steps pass
     // lavapipe's 65535 loop iterations; a driver without that limit traces them all.
