@@ -96,7 +96,6 @@ TEST_CASE("flc partition: f^k and F^k match the reference and sum to one at ever
                    });
         passes.run(ctx);
         const auto values = value_buffer.download<Value>(count);
-        const double last = vplkit::reference::flc_influence_distance(p, p.level_count - 1);
         for (size_t i = 0; i < distances.size(); ++i) {
             const double d = distances[i];
             CAPTURE(d);

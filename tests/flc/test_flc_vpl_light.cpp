@@ -62,8 +62,9 @@ std::vector<glm::vec3> square(double h) {
     return {{lo, lo, z}, {hi, lo, z}, {hi, hi, z}, {lo, lo, z}, {hi, hi, z}, {lo, hi, z}};
 }
 
+// scene_area: the light pass's partition.scene_area (0: S_k = S_0 mu^k; else the fitted S_k).
 Run run(const Mesh& mesh, bool occluder, const std::vector<vplkit::scene::Light>& lights,
-        const std::optional<Emitter>& emitter, uint32_t emitter_samples) {
+        const std::optional<Emitter>& emitter, uint32_t emitter_samples, float scene_area = 0.0f) {
     vplkit::Context& ctx = vplkit::test::context();
     const uint32_t count = mesh.triangle_count();
     std::vector<vplkit::scene::Vertex> vertices(mesh.positions.size());
@@ -113,9 +114,11 @@ Run run(const Mesh& mesh, bool occluder, const std::vector<vplkit::scene::Light>
     vplkit::stages::add_flc_candidates_pass(ctx, passes, {vertex_buffer, index_buffer, random_buffer, candidates},
                                             partition(), count, 7);
     vplkit::stages::add_flc_compact_passes(ctx, passes, {candidates, counts, kept, divergent}, 3, count);
+    vplkit::stages::FlcPartition light_partition = partition();
+    light_partition.scene_area = scene_area;
     vplkit::stages::add_flc_vpl_light_pass(
         ctx, passes, bvh, gpu_lights, vplkit::stages::EmitterBuffers{emitter_buffer, emitter ? 1u : 0u},
-        {candidates, counts, kept, albedo, vpls}, partition(), count, {emitter_samples, 3});
+        {candidates, counts, kept, albedo, vpls}, light_partition, count, {emitter_samples, 3});
     passes.run(ctx);
     r.candidates = candidates.download<FlcCandidate>(count);
     const uint32_t kept_count = counts.download<uint32_t>(1)[0];
@@ -139,12 +142,17 @@ int occluded(const glm::dvec3& c, const glm::dvec3& to_light) {
     return inside > 0.0 ? 1 : 0;
 }
 
-double level_area(int k) {
-    return 0.25 * std::pow(2.0, double(k));
+// S_k = 0.25 x 2^k, or fitted to scene_area: scene_area / floor(scene_area / S_k) (written here
+// from flc_partition.glsl's description, in double).
+double level_area(int k, double scene_area = 0.0) {
+    const double nominal = 0.25 * std::pow(2.0, double(k));
+    const double count = std::floor(scene_area / nominal);
+    return count >= 1.0 ? scene_area / count : nominal;
 }
 
 // Checks flux / S_k against E x rho for punctual lights; returns {lit, shadowed} counts.
-std::pair<int, int> check_punctual(const Run& r, const std::vector<vplkit::scene::Light>& lights) {
+std::pair<int, int> check_punctual(const Run& r, const std::vector<vplkit::scene::Light>& lights,
+                                   double scene_area = 0.0) {
     int lit = 0, shadowed = 0;
     for (size_t i = 0; i < r.kept.size(); ++i) {
         const uint32_t t = r.kept[i];
@@ -175,7 +183,7 @@ std::pair<int, int> check_punctual(const Run& r, const std::vector<vplkit::scene
         }
         if (skip) continue;
         const glm::dvec3 expected = e * glm::dvec3(r.albedo[t]);
-        const glm::dvec3 got = to_d(r.vpls[i].flux) / level_area(c.level);
+        const glm::dvec3 got = to_d(r.vpls[i].flux) / level_area(c.level, scene_area);
         if (e == glm::dvec3(0.0)) {
             CHECK(to_d(r.vpls[i].flux) == glm::dvec3(0.0));  // shadowed: exactly nothing
             ++shadowed;
@@ -218,6 +226,22 @@ TEST_CASE("flc vpl light: a directional light with an occluder matches E x rho")
     MESSAGE("directional light: " << lit << " lit, " << shadowed << " shadowed");
     CHECK(lit > 40);
     CHECK(shadowed > 5);
+}
+
+TEST_CASE("flc vpl light: with the level areas fitted to a scene area, flux = E x rho x the fitted S_k") {
+    // 17.3 / S_k = 69.2, 34.6, 17.3: S_k becomes 17.3 / 69, / 34, / 17, each 0.3% to 1.8% above
+    // S_0 mu^k (the stratified decimation draws with these; the light must carry the same).
+    const Mesh mesh = grid(8, 0.5f);
+    vplkit::scene::Light sun;
+    sun.type = vplkit::scene::LightType::directional;
+    sun.direction = glm::normalize(glm::vec3(0.3f, 0.2f, -1.0f));
+    sun.color = {1.0f, 0.9f, 0.8f};
+    sun.intensity = 3.0f;
+    const std::vector<vplkit::scene::Light> lights = {sun};
+    const Run r = run(mesh, true, lights, std::nullopt, 1, 17.3f);
+    const int lit = check_punctual(r, lights, 17.3).first;
+    MESSAGE("directional light, fitted level areas: " << lit << " lit");
+    CHECK(lit > 40);
 }
 
 TEST_CASE("flc vpl light: an emissive triangle's irradiance by area samples lies within the integrand's range") {
