@@ -45,11 +45,6 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
         stages::add_demodulate_pass(context, passes, indirect, gbuffer.albedo, gbuffer.position, irradiance_, options);
         input = irradiance_;
     }
-    clamped_this_frame_ = options.firefly_k_sigma > 0.0f;
-    if (clamped_this_frame_) {
-        stages::add_firefly_clamp_pass(context, passes, input, gbuffer.position, clamped_, excess_, spread_, options);
-        input = spread_;
-    }
     // Temporal only: the accumulated colour is the history. SVGF: the first a-trous iteration is.
     const bool spatial = mode == DenoiseMode::svgf && options.atrous_iterations > 0;
     // SVGF's history is the filtered image, so each frame puts it through the a-trous step once
@@ -62,9 +57,18 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
                                          next.views(), accumulated, next.moments, previous_view_projection_,
                                          has_history_, temporal_options);
     ImageView result = accumulated;
+    // The firefly clamp acts on the accumulated image, not on the frame: the history keeps the
+    // unclamped mean (unbiased, so a static view converges), and the clamp, which keeps the
+    // light anyway, shapes only what is shown and filtered.
+    clamped_this_frame_ = options.firefly_k_sigma > 0.0f;
+    if (clamped_this_frame_) {
+        stages::add_firefly_clamp_pass(context, passes, accumulated, gbuffer.albedo, gbuffer.position, clamped_,
+                                       excess_, spread_, options);
+        result = spread_;
+    }
     if (spatial) {
-        stages::add_variance_estimate_pass(context, passes, accumulated_, next.moments, gbuffer.position,
-                                           gbuffer.normal, estimated_, options);
+        stages::add_variance_estimate_pass(context, passes, result, next.moments, gbuffer.position, gbuffer.normal,
+                                           estimated_, options);
         ImageView source = estimated_;
         for (uint32_t i = 0; i < options.atrous_iterations; ++i) {
             ImageView target = i == 0 ? ImageView(next.color) : (i % 2 == 1 ? ImageView(ping_) : ImageView(pong_));
@@ -82,18 +86,15 @@ void Denoiser::end_frame(const glm::mat4& view_projection) {
     current_ = 1 - current_;
 }
 
-Denoiser::FireflyShares Denoiser::firefly_shares() {
-    if (!clamped_this_frame_) return {};
-    // In: what the clamp was given (the clamped pixel + what it took off); out: after the spread.
-    double taken = 0.0, in = 0.0, out = 0.0;
-    auto luminance = [](const std::array<float, 4>& t) { return 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2]; };
-    for (const auto& t : clamped_.download<std::array<float, 4>>()) {
-        taken += t[3];
-        in += luminance(t) + t[3];
-    }
-    for (const auto& t : spread_.download<std::array<float, 4>>()) out += luminance(t);
-    if (!(in > 0.0)) return {};
-    return {taken / in, (in - out) / in};
+double Denoiser::firefly_moved_fraction() {
+    if (!clamped_this_frame_) return 0.0;
+    // Irradiance luminance taken off (excess.a) over what the clamp was given (kept + taken off).
+    double taken = 0.0, given = 0.0;
+    for (const auto& t : excess_.download<std::array<float, 4>>()) taken += t[3];
+    for (const auto& t : clamped_.download<std::array<float, 4>>())
+        given += 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
+    given += taken;
+    return given > 0.0 ? taken / given : 0.0;
 }
 
 }  // namespace vplkit

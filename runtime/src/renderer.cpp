@@ -210,9 +210,7 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
     passes.run(context_);
     append(out.timings, passes.timings());
     denoiser_->end_frame(view.view_projection);
-    const Denoiser::FireflyShares firefly = denoiser_->firefly_shares();
-    out.firefly_moved_fraction = firefly.moved;
-    out.firefly_removed_fraction = firefly.removed;
+    out.firefly_moved_fraction = denoiser_->firefly_moved_fraction();
 }
 
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {

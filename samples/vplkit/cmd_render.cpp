@@ -132,8 +132,8 @@ const char* const kRenderUsage =
     "  --no-reuse       place the VPLs and build the trees every frame, even when nothing changed\n"
     "  --denoise D      off (default), temporal (reprojected accumulation) or svgf (accumulation +\n"
     "                   the variance-guided a-trous filter) on the indirect light; left out for exact\n"
-    "  --firefly-sigma K  with --denoise: move indirect luminance above the neighbours' mean + K sigma\n"
-    "                   onto those neighbours (default 4; 0: off); the share moved is printed\n"
+    "  --firefly-sigma K  with --denoise: move accumulated indirect luminance above the neighbours'\n"
+    "                   mean + K sigma onto those neighbours (default 4; 0: off); the share is printed\n"
     "  --frames F       render the frame F times and print each stage's median time over frames\n"
     "                   (with --denoise: F frames accumulated on the static camera)\n"
     "                   2..F (the first pays for shader compiles); the image is the same each time\n"
@@ -632,10 +632,10 @@ int render_or_plan(Args& args, bool plan_only) {
     }
     if (settings.denoise != DenoiseMode::off && !settings.vpls_only && settings.method != GiMethod::exact) {
         std::printf(
-            "denoise %s over %u frame(s); firefly clamp (mean + %.1f sigma) moved %.4f%% of the indirect "
-            "irradiance's luminance to neighbours and removed %.4f%% in the last\n",
+            "denoise %s over %u frame(s); firefly clamp (mean + %.1f sigma) moved %.4f%% of the accumulated "
+            "indirect irradiance's luminance onto the outliers' neighbours in the last (none removed)\n",
             denoise_mode_name(settings.denoise), frames, settings.denoise_options.firefly_k_sigma,
-            100.0 * image.firefly_moved_fraction, 100.0 * image.firefly_removed_fraction);
+            100.0 * image.firefly_moved_fraction);
     }
     if (image.non_finite_pixels > 0) {
         throw Error("render: " + std::to_string(image.non_finite_pixels) +

@@ -1,20 +1,25 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Firefly control before accumulation, energy-conserving (the first of two passes; the second,
-// firefly_spread.comp, gives the light back). A pixel whose luminance is above the mean + k sigma
-// of its covered neighbours (5 x 5 without itself) is scaled down to that limit. A firefly is a
-// rare sample of a real path: dropping its excess biases every frame dark, and an accumulation of
-// such frames converges to a dark image (issue 26: 5% of Sponza's indirect light). So the excess
-// is not dropped but handed, in equal shares, to the same covered neighbours the statistics came
-// from: their set is symmetric (q is p's neighbour iff p is q's), so what p hands out is exactly
-// what its neighbours gather, and the frame's sum is kept (up to float rounding). The excess is
-// blurred over 5 x 5 pixels instead of sitting on one: a local low-pass of the tail only, which
-// the temporal and a-trous filters then average like any other light.
+// Firefly control, energy-conserving (the first of two passes; the second, firefly_spread.comp,
+// gives the light back). A pixel whose luminance is above the mean + k sigma of its covered
+// neighbours (5 x 5 without itself) is scaled down to that limit. A firefly is a rare sample of a
+// real path: dropping its excess biases every frame dark, and an accumulation of such frames
+// converges to a dark image (issue 26: 5% of Sponza's indirect light). So the excess is not
+// dropped but handed, in equal shares, to the same covered neighbours the statistics came from:
+// their set is symmetric (q is p's neighbour iff p is q's), so what p hands out is exactly what
+// its neighbours gather. The shares travel as radiance (the excess irradiance times p's albedo
+// divisor, vplkit/denoise.glsl), and each neighbour divides by its own divisor: after
+// remodulation the image's radiance is the input's (up to float rounding), whatever the albedos.
+// The runtime runs it on the accumulated image, after temporal accumulation, not on each frame:
+// the history stays the unclamped running mean (on a static view it converges to the unbiased
+// answer), and the clamp only shapes what is shown and filtered, less and less as the
+// accumulated noise falls; a highlight that is there in every frame is clamped only as far as the
+// converged image still calls it an outlier.
 // The neighbourhood leaves the pixel out, or one bright pixel would raise its own limit above
 // itself. Fewer than 4 covered neighbours: left as it is (nothing to compare, nowhere to spread).
-// Writes: clamped (rgb: the pixel scaled to the limit; a: the luminance taken off it, for the
-// caller's count of the share moved) and excess (rgb: the colour taken off over the neighbour
-// count, what each neighbour gathers; a: 0).
+// Writes: clamped (rgb: the irradiance scaled to the limit; a: the input's a, e.g. the variance)
+// and excess (rgb: the radiance taken off over the neighbour count, what each neighbour gathers;
+// a: the luminance of irradiance taken off, for the caller's count of the share moved).
 
 #include "vplkit/denoise.glsl"
 
@@ -24,9 +29,11 @@ layout(set = 0, binding = 0, rgba32f) uniform readonly image2D irradiance;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D position;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D clamped;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D excess;
+layout(set = 0, binding = 4, rgba16f) uniform readonly image2D albedo;
 
 layout(push_constant) uniform FireflyClampPush {
-    float k_sigma;  // the limit: neighbours' mean + k_sigma x their standard deviation
+    float k_sigma;       // the limit: neighbours' mean + k_sigma x their standard deviation
+    float albedo_floor;  // demodulation's (denoise_albedo_divisor)
 } push;
 
 void main() {
@@ -35,7 +42,8 @@ void main() {
     if (any(greaterThanEqual(pixel, size))) {
         return;
     }
-    vec3 c = imageLoad(irradiance, pixel).rgb;
+    vec4 input_texel = imageLoad(irradiance, pixel);
+    vec3 c = input_texel.rgb;
     if (imageLoad(position, pixel).w <= 0.5) {
         imageStore(clamped, pixel, vec4(0.0));
         imageStore(excess, pixel, vec4(0.0));
@@ -58,6 +66,7 @@ void main() {
         }
     }
     float l = denoise_luminance(c);
+    vec3 divisor = denoise_albedo_divisor(imageLoad(albedo, pixel).rgb, push.albedo_floor);
     float removed = 0.0;
     vec3 share = vec3(0.0);
     if (count >= 4) {
@@ -66,11 +75,11 @@ void main() {
         float limit = mean + push.k_sigma * sigma;
         if (l > limit) {
             vec3 kept = c * (limit / l);
-            share = (c - kept) / float(count);
+            share = (c - kept) * divisor / float(count);
             removed = l - limit;
             c = kept;
         }
     }
-    imageStore(clamped, pixel, vec4(c, removed));
-    imageStore(excess, pixel, vec4(share, 0.0));
+    imageStore(clamped, pixel, vec4(c, input_texel.a));
+    imageStore(excess, pixel, vec4(share, removed));
 }

@@ -1,11 +1,14 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The firefly clamp's second pass: each covered pixel gathers the shares of light its covered
-// 5 x 5 neighbours (itself left out) took off in firefly_clamp.comp. The neighbour sets are the
-// clamp's, and symmetric, so every share lands exactly once: the frame keeps its light (the sum
-// over pixels of the output equals the input's up to float rounding), and accumulating frames
-// converges to the unclamped mean.
-// Output: rgb = clamped + the shares gathered; a = the luminance the clamp took off this pixel.
+// The firefly clamp's second pass: each covered pixel gathers the shares of radiance its covered
+// 5 x 5 neighbours (itself left out) took off in firefly_clamp.comp, divided by its own albedo
+// divisor (vplkit/denoise.glsl), so that remodulation gives back exactly the radiance shared. The
+// neighbour sets are the clamp's, and symmetric, so every share lands exactly once: the frame
+// keeps its light (the remodulated sum equals the input's up to float rounding), and accumulating
+// frames converges to the unclamped mean.
+// Output: rgb = clamped + the shares gathered (irradiance); a = clamped's a (the input's).
+
+#include "vplkit/denoise.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -13,6 +16,11 @@ layout(set = 0, binding = 0, rgba32f) uniform readonly image2D clamped;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D excess;
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D position;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D spread;
+layout(set = 0, binding = 4, rgba16f) uniform readonly image2D albedo;
+
+layout(push_constant) uniform FireflySpreadPush {
+    float albedo_floor;  // demodulation's (denoise_albedo_divisor)
+} push;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -36,5 +44,6 @@ void main() {
             gathered += imageLoad(excess, q).rgb;
         }
     }
-    imageStore(spread, pixel, vec4(c.rgb + gathered, c.a));
+    vec3 divisor = denoise_albedo_divisor(imageLoad(albedo, pixel).rgb, push.albedo_floor);
+    imageStore(spread, pixel, vec4(c.rgb + gathered / divisor, c.a));
 }

@@ -104,23 +104,28 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
                });
 }
 
-void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& position,
-                            const ImageView& clamped, const ImageView& excess, const ImageView& spread,
-                            const DenoiseOptions& options) {
+void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
+                            const ImageView& position, const ImageView& clamped, const ImageView& excess,
+                            const ImageView& spread, const DenoiseOptions& options) {
     validate_denoise_options(options);
-    validate_images(
-        "denoise firefly clamp",
-        {{&clamped, kFloat4}, {&irradiance, kFloat4}, {&position, kFloat4}, {&excess, kFloat4}, {&spread, kFloat4}});
+    validate_images("denoise firefly clamp", {{&clamped, kFloat4},
+                                              {&irradiance, kFloat4},
+                                              {&position, kFloat4},
+                                              {&albedo, kGbufferAlbedoFormat},
+                                              {&excess, kFloat4},
+                                              {&spread, kFloat4}});
     const auto& clamp = device.pipeline<shaders::firefly_clamp::Pipeline>();
     shaders::firefly_clamp::Bindings b;
     b.irradiance = irradiance.descriptor();
     b.position = position.descriptor();
     b.clamped = clamped.descriptor();
     b.excess = excess.descriptor();
+    b.albedo = albedo.descriptor();
     shaders::firefly_clamp::Push push{};
     push.k_sigma = options.firefly_k_sigma;
+    push.albedo_floor = options.min_albedo;
     passes.add("denoise firefly clamp",
-               binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess}),
+               binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess, albedo}),
                [&clamp, b, push, clamped](VkCommandBuffer cmd) {
                    clamp.dispatch(cmd, b, push, clamped.width, clamped.height);
                });
@@ -130,9 +135,14 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
     g.excess = excess.descriptor();
     g.position = position.descriptor();
     g.spread = spread.descriptor();
+    g.albedo = albedo.descriptor();
+    shaders::firefly_spread::Push spread_push{};
+    spread_push.albedo_floor = options.min_albedo;
     passes.add("denoise firefly spread",
-               binding_uses<shaders::firefly_spread::Module>(g, {clamped, excess, position, spread}),
-               [&gather, g, spread](VkCommandBuffer cmd) { gather.dispatch(cmd, g, spread.width, spread.height); });
+               binding_uses<shaders::firefly_spread::Module>(g, {clamped, excess, position, spread, albedo}),
+               [&gather, g, spread_push, spread](VkCommandBuffer cmd) {
+                   gather.dispatch(cmd, g, spread_push, spread.width, spread.height);
+               });
 }
 
 void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageView& irradiance,

@@ -55,10 +55,16 @@ DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albe
     return out;
 }
 
-FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma) {
+FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& albedo, const DenoiseImage& position,
+                            double k_sigma, double albedo_floor) {
     const uint32_t w = irradiance.width, h = irradiance.height;
     FireflyResult out{DenoiseImage(w, h), DenoiseImage(w, h), DenoiseImage(w, h)};
     auto covered = [&](int x, int y) { return position.inside(x, y) && position.at(x, y)[3] > 0.5; };
+    auto divisors = [&](int x, int y) {
+        std::array<double, 3> d;
+        for (int k = 0; k < 3; ++k) d[k] = divisor(albedo.at(x, y)[k], albedo_floor);
+        return d;
+    };
     for (int y = 0; y < int(h); ++y) {
         for (int x = 0; x < int(w); ++x) {
             if (!covered(x, y)) continue;
@@ -69,8 +75,8 @@ FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& 
                     neighbours.push_back(luminance(irradiance.at(x + dx, y + dy)));
                 }
             }
+            const auto d = divisors(x, y);
             Texel4 c = irradiance.at(x, y);
-            c[3] = 0.0;
             const double l = luminance(c);
             if (neighbours.size() >= 4) {
                 double mean = 0.0;
@@ -83,25 +89,26 @@ FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& 
                 if (l > limit) {
                     for (int k = 0; k < 3; ++k) {
                         const double kept = c[k] * limit / l;
-                        out.excess.at(x, y)[k] = (c[k] - kept) / double(neighbours.size());
+                        out.excess.at(x, y)[k] = (c[k] - kept) * d[k] / double(neighbours.size());
                         c[k] = kept;
                     }
-                    c[3] = l - limit;
+                    out.excess.at(x, y)[3] = l - limit;
                 }
             }
             out.clamped.at(x, y) = c;
         }
     }
-    // Each covered pixel gathers its covered neighbours' shares (the neighbour relation is
-    // symmetric, so every share lands once).
+    // Each covered pixel gathers its covered neighbours' shares of radiance (the neighbour
+    // relation is symmetric, so every share lands once) and turns them into its own irradiance.
     for (int y = 0; y < int(h); ++y) {
         for (int x = 0; x < int(w); ++x) {
             if (!covered(x, y)) continue;
+            const auto d = divisors(x, y);
             Texel4 c = out.clamped.at(x, y);
             for (int dy = -2; dy <= 2; ++dy)
                 for (int dx = -2; dx <= 2; ++dx)
                     if ((dx != 0 || dy != 0) && covered(x + dx, y + dy))
-                        for (int k = 0; k < 3; ++k) c[k] += out.excess.at(x + dx, y + dy)[k];
+                        for (int k = 0; k < 3; ++k) c[k] += out.excess.at(x + dx, y + dy)[k] / d[k];
             out.spread.at(x, y) = c;
         }
     }

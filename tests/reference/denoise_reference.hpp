@@ -39,13 +39,15 @@ DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albe
 
 // The energy-conserving firefly clamp: a covered pixel with at least 4 covered 5 x 5 neighbours
 // (itself left out) whose luminance is above their mean + k sigma is scaled to that limit, and
-// the colour taken off is shared equally among those neighbours.
+// the radiance taken off (irradiance x the albedo divisor) is shared equally among those
+// neighbours, each dividing its share by its own divisor.
 struct FireflyResult {
-    DenoiseImage clamped;  // rgb scaled to the limit, a = the luminance taken off
-    DenoiseImage excess;   // rgb = the colour taken off / the neighbour count
-    DenoiseImage spread;   // rgb = clamped + the shares of the neighbours, a = clamped's a
+    DenoiseImage clamped;  // rgb scaled to the limit, a = the input's a
+    DenoiseImage excess;   // rgb = the radiance taken off / the neighbour count, a = the luminance taken off
+    DenoiseImage spread;   // rgb = clamped + the neighbours' shares / divisor, a = the input's a
 };
-FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& position, double k_sigma);
+FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& albedo, const DenoiseImage& position,
+                            double k_sigma, double albedo_floor);
 
 struct TemporalResult {
     DenoiseImage accumulated;  // rgb, a = variance

@@ -1,6 +1,7 @@
 #pragma once
 // The runtime's denoiser: the history images of stages/denoise.hpp kept from frame to frame (two
-// sets, swapped each frame), and one frame's passes in SVGF's order. The Renderer owns one.
+// sets, swapped each frame), and one frame's passes in SVGF's order, except that the firefly
+// clamp runs on the accumulated image (the history keeps the unclamped mean). The Renderer owns one.
 //
 //   Denoiser d = Denoiser::create(ctx, w, h);
 //   d.add_passes(ctx, passes, mode, gbuffer, indirect, view_projection, options, demodulated);
@@ -40,14 +41,10 @@ public:
     // After the passes ran: this frame becomes the history; `view_projection` is its camera's.
     void end_frame(const glm::mat4& view_projection);
 
-    // The firefly clamp's last frame, as shares of the luminance it was given: moved, taken off
-    // the outliers and spread over their neighbours; removed, what the frame lost in all (the
-    // spread gives it back, so float rounding only). Downloads two images; zeros when off.
-    struct FireflyShares {
-        double moved = 0.0;
-        double removed = 0.0;
-    };
-    FireflyShares firefly_shares();
+    // The firefly clamp's last frame: the share of the accumulated irradiance's luminance it took
+    // off outliers and spread over their neighbours (none of it is lost: the spread keeps the
+    // remodulated sum, tests/denoise). Downloads two images; 0 when the clamp is off.
+    double firefly_moved_fraction();
 
 private:
     struct History {

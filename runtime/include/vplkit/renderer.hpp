@@ -73,10 +73,9 @@ struct RenderedImage {
     bool reused_trees = false;
     std::optional<stages::SmcCounts> smc;  // --vpl-source smc: what this frame's update counted
     uint32_t non_finite_pixels = 0;        // shown magenta in rgba8; a correct frame has none
-    // --denoise: the firefly clamp's luminance moved (taken off outliers, spread over their
-    // neighbours) and removed (lost in all: float rounding only), over the luminance it was given.
+    // --denoise: the firefly clamp's luminance moved (taken off outliers of the accumulated image,
+    // spread over their neighbours: none is lost) over the luminance it was given.
     double firefly_moved_fraction = 0.0;
-    double firefly_removed_fraction = 0.0;
 };
 
 class Renderer {

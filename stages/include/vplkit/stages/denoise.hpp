@@ -5,8 +5,10 @@
 //
 //   add_demodulate_pass(...)            radiance / albedo -> irradiance (before any upsampling)
 //   ... upsample the irradiance to full size if GI ran at half ...
-//   add_firefly_clamp_pass(...)         luminance above neighbours' mean + k sigma spread over them
 //   add_temporal_accumulate_pass(...)   reprojected history, running mean, moments -> variance
+//   add_firefly_clamp_pass(...)         on the accumulated image (the history keeps the unclamped
+//                                       mean): luminance above the neighbours' mean + k sigma
+//                                       spread over them
 //   add_variance_estimate_pass(...)     spatial variance where the history is short
 //   add_atrous_pass(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history
 //   add_remodulate_pass(...)            irradiance x albedo -> radiance, then compose as before
@@ -76,13 +78,14 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
 
 // "denoise firefly clamp" + "denoise firefly spread": a pixel's luminance above its 5 x 5
 // neighbours' (covered, itself left out) mean + k sigma is taken off it and handed to those
-// neighbours in equal shares, so the sum over the image is kept. clamped: rgb scaled to the limit,
-// a = the luminance taken off; excess: rgb = the colour taken off over the neighbour count;
-// spread: rgb = clamped + the shares gathered from the neighbours (the pass's result), a = as
-// clamped's a.
-void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& position,
-                            const ImageView& clamped, const ImageView& excess, const ImageView& spread,
-                            const DenoiseOptions& options);
+// neighbours in equal shares of radiance (irradiance x the albedo divisor of vplkit/denoise.glsl),
+// so the remodulated frame keeps its light. clamped: rgb scaled to the limit, a = the luminance
+// taken off; excess: rgb = the radiance taken off over the neighbour count, a = the luminance of
+// the pixel's input radiance; spread: rgb = clamped + the shares gathered over the pixel's own
+// divisor (the pass's result), a = the luminance of its radiance.
+void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
+                            const ImageView& position, const ImageView& clamped, const ImageView& excess,
+                            const ImageView& spread, const DenoiseOptions& options);
 
 // "denoise temporal": accumulated (rgb, a = variance) and moments (m1, m2, n) from `irradiance`
 // and the `previous` history reprojected with previous_view_projection; writes this frame's
