@@ -43,7 +43,8 @@ ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const Gp
     for (uint32_t first = 0; first < vpl_count;) {
         const uint32_t count = std::min(chunk, vpl_count - first);
         PassList passes("exact gi");
-        add_exact_gi_chunk(context, passes, gbuffer, bvh, vpls, first, count, camera_position, indirect, counters);
+        add_exact_gi_chunk(context, passes, gbuffer, bvh, vpls, first, count, camera_position, indirect, counters,
+                           options.min_distance_fraction);
         passes.run(context);
         result.gpu_ms += passes.total_gpu_ms();
         ++result.dispatches;

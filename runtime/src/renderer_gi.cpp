@@ -153,6 +153,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     if (settings.method == GiMethod::exact) {
         stages::ExactGiOptions options;
         options.progress = settings.progress;
+        options.min_distance_fraction = settings.exact_min_distance_fraction;
         const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh_, vpls.vpls, vpls.count,
                                                     view.position, gi_target, options);
         out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms,

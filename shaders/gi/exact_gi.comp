@@ -19,6 +19,11 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+// d_min of the 1/d^2 clamp over the scene scale: vpl_eval.glsl's kVplMinDistanceFraction, which
+// every sampling method shares, unless specialized (stages::ExactGiOptions::min_distance_fraction);
+// 0 evaluates each VPL unclamped, as a path tracer would (for comparisons with one).
+layout(constant_id = 0) const float kExactMinDistanceFraction = 1e-2;
+
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D gbuffer_position;
 layout(set = 0, binding = 3, rgba32f) uniform readonly image2D gbuffer_normal;
 layout(set = 0, binding = 4, rgba32f) uniform readonly image2D gbuffer_geometric_normal;
@@ -54,7 +59,7 @@ void main() {
                                      vec4(0.0));
     vec3 wo = normalize(push.camera_position - g.position);
     float scale = bvh_scene_scale();
-    float min_distance = vpl_min_distance(scale);
+    float min_distance = kExactMinDistanceFraction * scale;
     vec4 previous = imageLoad(indirect, pixel);
     // Added in VPL order onto the running total, so any chunking sums in the same order.
     vec3 total = previous.rgb;

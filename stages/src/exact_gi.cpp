@@ -5,6 +5,7 @@
 #include "vplkit/shaders/types.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace vplkit::stages {
@@ -35,8 +36,13 @@ void validate(const GbufferViews& gbuffer, const BufferView& vpls, uint64_t vpl_
 
 void add_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
                const BufferView& vpls, uint32_t first, uint32_t count, glm::vec3 camera_position,
-               const ImageView& indirect, const BufferView& counters) {
-    const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>(bvh_spec<shaders::exact_gi::Spec>(bvh));
+               const ImageView& indirect, const BufferView& counters, float min_distance_fraction) {
+    if (!(min_distance_fraction >= 0.0f) || !std::isfinite(min_distance_fraction)) {
+        throw Error("exact gi: min_distance_fraction must be finite and >= 0");
+    }
+    auto spec = bvh_spec<shaders::exact_gi::Spec>(bvh);
+    spec.kExactMinDistanceFraction = min_distance_fraction;
+    const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>(spec);
     passes.add("exact gi",
                {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
                 Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
@@ -89,9 +95,10 @@ void add_exact_gi_clear(StepList& passes, const ImageView& indirect, const Buffe
 
 void add_exact_gi_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
                         const BufferView& vpls, uint32_t first, uint32_t count, glm::vec3 camera_position,
-                        const ImageView& indirect, const BufferView& counters) {
+                        const ImageView& indirect, const BufferView& counters, float min_distance_fraction) {
     validate(gbuffer, vpls, uint64_t(first) + count, indirect, counters);
-    add_chunk(device, passes, gbuffer, bvh, vpls, first, count, camera_position, indirect, counters);
+    add_chunk(device, passes, gbuffer, bvh, vpls, first, count, camera_position, indirect, counters,
+              min_distance_fraction);
 }
 
 void add_exact_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
@@ -102,7 +109,7 @@ void add_exact_gi_passes(Device& device, StepList& passes, const GbufferViews& g
     const uint32_t chunk = exact_gi_chunk_size(gbuffer.width(), gbuffer.height(), options);
     for (uint32_t first = 0; first < vpl_count; first += std::min(chunk, vpl_count - first)) {
         add_chunk(device, passes, gbuffer, bvh, vpls, first, std::min(chunk, vpl_count - first), camera_position,
-                  indirect, counters);
+                  indirect, counters, options.min_distance_fraction);
     }
 }
 

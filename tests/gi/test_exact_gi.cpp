@@ -321,6 +321,36 @@ TEST_CASE("exact gi: a VPL on the shading point and one nearer than the clamp di
     CHECK(gpu.image[3][0] > 0.0f);
 }
 
+TEST_CASE("exact gi: min_distance_fraction sets the clamp; 0 leaves a near VPL unclamped") {
+    // Scene scale 3: a VPL 0.03 (the default d_min) x 0.3 above pixel 0, facing it. Closed form:
+    // f flux / (pi max(d, d_min)^2) with the reference's BRDF at wi = n; both entry points
+    // (add_exact_gi_passes and the runtime's chunked render_exact_gi) take the option.
+    Setup setup = floor_setup(1.0f, 1, 1);
+    const glm::vec3 b{1.0f, 0.0f, -1.0f};
+    setup.pixels[0].covered = true;
+    setup.pixels[0].position = b;
+    setup.pixels[0].normal = {0.0f, 1.0f, 0.0f};
+    setup.pixels[0].roughness = 1.0f;
+    setup.pixels[0].metallic = 0.0f;
+    setup.pixels[0].albedo = {0.5f, 0.25f, 1.0f};
+    const double d = 0.3 * ref::kVplMinDistanceFraction * 3.0;
+    setup.vpls = {{b + glm::vec3(0, float(d), 0), {0.0f, -1.0f, 0.0f}, {1.0f, 1.0f, 1.0f}}};
+    const glm::vec3 w = glm::normalize(setup.camera - b);
+    const ref::Vec3 f = ref::gltf_brdf({0, 1, 0}, {w.x, w.y, w.z}, {0, 1, 0}, {0.5, 0.25, 1.0}, 1.0, 0.0);
+    for (const float fraction : {0.0f, 0.002f, 0.01f, 0.05f}) {
+        const double d_min = double(fraction) * 3.0;
+        const double expected = f[0] / (M_PI * std::max(d * d, d_min * d_min));
+        for (const bool chunked : {false, true}) {
+            CAPTURE(fraction);
+            CAPTURE(chunked);
+            vplkit::stages::ExactGiOptions options;
+            options.min_distance_fraction = fraction;
+            const auto gpu = run_gpu(setup, options, chunked);
+            CHECK(double(gpu.image[0][0]) == doctest::Approx(expected).epsilon(3e-4));
+        }
+    }
+}
+
 TEST_CASE("exact gi: VPLs behind the surface or facing away give no light") {
     Setup setup = floor_setup(1.0f, 8, 4);
     std::mt19937 rng(5);

@@ -95,6 +95,9 @@ struct RenderSettings {
     VplSource vpl_source = VplSource::automatic;
     uint32_t vpl_paths = 4096;  // ir: light paths traced for VPLs
     uint32_t vpl_bounces = 2;   // ir: surface hits per path at most
+    // exact: the 1/d^2 clamp's d_min over the scene scale (stages::ExactGiOptions::
+    // min_distance_fraction): 0.01, the sampling methods' own; 0: unclamped, as a path tracer.
+    float exact_min_distance_fraction = 0.01f;
     // brsm: its options (vpl_count is the VPL budget over all punctual lights; the seed is
     // replaced by `seed`), and the side of each light's RSM face.
     stages::BrsmOptions brsm;

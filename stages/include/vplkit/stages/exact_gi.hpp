@@ -35,6 +35,10 @@ struct ExactGiOptions {
     uint32_t max_vpls_per_dispatch = 32;
     // VPLs per dispatch; 0 = the most both limits above allow (at least 1).
     uint32_t chunk_size = 0;
+    // The 1/d^2 clamp's d_min over the scene scale (vpl_eval.glsl): 0.01, the one every sampling
+    // method uses, so `exact` is their reference; 0 = no clamp, the unbiased sum a path tracer
+    // converges to (scripts/compare_cycles.sh), at the price of the spikes of VPLs next to a pixel.
+    float min_distance_fraction = 0.01f;
     // render_exact_gi only (runtime: vplkit/exact_gi_render.hpp): called after each submission
     // with the VPLs done so far and the total.
     std::function<void(uint32_t done, uint32_t total)> progress;
@@ -70,12 +74,13 @@ void add_exact_gi_passes(Device& device, StepList& passes, const GbufferViews& g
 // (render_exact_gi): check_exact_gi_inputs throws what add_exact_gi_passes would;
 // add_exact_gi_clear adds "exact gi clear"; add_exact_gi_chunk adds one "exact gi" dispatch over
 // VPLs [first, first + count), accumulating into `indirect` and `counters` (checked as for
-// first + count VPLs).
+// first + count VPLs), with ExactGiOptions::min_distance_fraction's clamp.
 void check_exact_gi_inputs(const GbufferViews& gbuffer, const BufferView& vpls, uint32_t vpl_count,
                            const ImageView& indirect, const BufferView& counters);
 void add_exact_gi_clear(StepList& passes, const ImageView& indirect, const BufferView& counters);
 void add_exact_gi_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
                         const BufferView& vpls, uint32_t first, uint32_t count, glm::vec3 camera_position,
-                        const ImageView& indirect, const BufferView& counters);
+                        const ImageView& indirect, const BufferView& counters,
+                        float min_distance_fraction = ExactGiOptions{}.min_distance_fraction);
 
 }  // namespace vplkit::stages
