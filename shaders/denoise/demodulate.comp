@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Demodulation: indirect irradiance = indirect radiance / albedo (per channel, where the albedo
-// is above min_albedo; vplkit/denoise.glsl). Every filter after it (upsampling, temporal
+// Demodulation: indirect irradiance = indirect radiance / max(albedo, albedo_floor), per channel
+// (vplkit/denoise.glsl says why a floor). Every filter after it (upsampling, temporal
 // accumulation, a-trous) blurs light, not texture; remodulate.comp multiplies the albedo back.
 // Background pixels (position.w = 0) get 0.
 
@@ -15,7 +15,7 @@ layout(set = 0, binding = 2, rgba32f) uniform readonly image2D position;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D irradiance;
 
 layout(push_constant) uniform DemodulatePush {
-    float min_albedo;
+    float albedo_floor;
 } push;
 
 void main() {
@@ -27,6 +27,6 @@ void main() {
         imageStore(irradiance, pixel, vec4(0.0));
         return;
     }
-    vec3 divisor = denoise_albedo_divisor(imageLoad(albedo, pixel).rgb, push.min_albedo);
+    vec3 divisor = denoise_albedo_divisor(imageLoad(albedo, pixel).rgb, push.albedo_floor);
     imageStore(irradiance, pixel, vec4(imageLoad(radiance, pixel).rgb / divisor, 0.0));
 }

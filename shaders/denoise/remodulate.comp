@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Remodulation: indirect radiance = (filtered) indirect irradiance x albedo, per channel where the
-// albedo is above min_albedo (the rule demodulate.comp divided by; vplkit/denoise.glsl), at full
+// Remodulation: indirect radiance = (filtered) indirect irradiance x max(albedo, albedo_floor), per
+// channel (the divisor demodulate.comp divided by; vplkit/denoise.glsl), at full
 // resolution, so texture detail comes from the G-buffer and not from the filtered light.
 
 #include "vplkit/denoise.glsl"
@@ -13,7 +13,7 @@ layout(set = 0, binding = 1, rgba16f) uniform readonly image2D albedo;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D radiance;
 
 layout(push_constant) uniform RemodulatePush {
-    float min_albedo;
+    float albedo_floor;
 } push;
 
 void main() {
@@ -21,6 +21,6 @@ void main() {
     if (any(greaterThanEqual(pixel, imageSize(radiance)))) {
         return;
     }
-    vec3 factor = denoise_albedo_divisor(imageLoad(albedo, pixel).rgb, push.min_albedo);
+    vec3 factor = denoise_albedo_divisor(imageLoad(albedo, pixel).rgb, push.albedo_floor);
     imageStore(radiance, pixel, vec4(imageLoad(irradiance, pixel).rgb * factor, 0.0));
 }

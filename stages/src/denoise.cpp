@@ -48,7 +48,8 @@ void check(bool ok, const std::string& what) {
 
 void validate_denoise_options(const DenoiseOptions& o) {
     auto finite_non_negative = [](float v) { return std::isfinite(v) && v >= 0.0f; };
-    check(finite_non_negative(o.min_albedo), "min_albedo " + std::to_string(o.min_albedo) + " must be >= 0");
+    check(std::isfinite(o.albedo_floor) && o.albedo_floor > 0.0f,
+          "albedo_floor " + std::to_string(o.albedo_floor) + " must be > 0 (demodulation divides by it)");
     check(finite_non_negative(o.firefly_k_sigma),
           "firefly_k_sigma " + std::to_string(o.firefly_k_sigma) + " must be >= 0 (0: no clamp)");
     check(o.max_history >= 1, "max_history must be at least 1");
@@ -78,7 +79,7 @@ void add_demodulate_pass(Device& device, StepList& passes, const ImageView& radi
     b.position = position.descriptor();
     b.irradiance = irradiance.descriptor();
     shaders::demodulate::Push push{};
-    push.min_albedo = options.min_albedo;
+    push.albedo_floor = options.albedo_floor;
     passes.add("denoise demodulate",
                binding_uses<shaders::demodulate::Module>(b, {radiance, albedo, position, irradiance}),
                [&pipeline, b, push, irradiance](VkCommandBuffer cmd) {
@@ -97,7 +98,7 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
     b.albedo = albedo.descriptor();
     b.radiance = radiance.descriptor();
     shaders::remodulate::Push push{};
-    push.min_albedo = options.min_albedo;
+    push.albedo_floor = options.albedo_floor;
     passes.add("denoise remodulate", binding_uses<shaders::remodulate::Module>(b, {irradiance, albedo, radiance}),
                [&pipeline, b, push, radiance](VkCommandBuffer cmd) {
                    pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
@@ -123,7 +124,7 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
     b.albedo = albedo.descriptor();
     shaders::firefly_clamp::Push push{};
     push.k_sigma = options.firefly_k_sigma;
-    push.albedo_floor = options.min_albedo;
+    push.albedo_floor = options.albedo_floor;
     passes.add("denoise firefly clamp",
                binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess, albedo}),
                [&clamp, b, push, clamped](VkCommandBuffer cmd) {
@@ -137,7 +138,7 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
     g.spread = spread.descriptor();
     g.albedo = albedo.descriptor();
     shaders::firefly_spread::Push spread_push{};
-    spread_push.albedo_floor = options.min_albedo;
+    spread_push.albedo_floor = options.albedo_floor;
     passes.add("denoise firefly spread",
                binding_uses<shaders::firefly_spread::Module>(g, {clamped, excess, position, spread, albedo}),
                [&gather, g, spread_push, spread](VkCommandBuffer cmd) {

@@ -41,7 +41,7 @@ DenoiseImage random_image(uint32_t seed, double scale) {
 TEST_CASE("denoise demodulate: radiance over albedo, and remodulate gives it back") {
     Context& ctx = context();
     stages::DenoiseOptions options;
-    // Albedos on the half-float grid (k / 64), some channels 0 or below min_albedo (left alone).
+    // Albedos on the half-float grid (k / 64), some channels 0 or below albedo_floor (divided by the floor).
     std::mt19937 rng(3);
     std::uniform_int_distribution<int> k(0, 64);
     DenoiseImage albedo(kSize, kSize);
@@ -57,11 +57,11 @@ TEST_CASE("denoise demodulate: radiance over albedo, and remodulate gives it bac
     stages::add_remodulate_pass(ctx, passes, irradiance_image, albedo_image, back_image, options);
     passes.run(ctx);
     const DenoiseImage irradiance = download_image(irradiance_image);
-    const DenoiseImage expected = reference::demodulate(radiance, albedo, position, options.min_albedo);
+    const DenoiseImage expected = reference::demodulate(radiance, albedo, position, options.albedo_floor);
     CHECK(max_relative_error(irradiance, expected, 1e-12) < 1e-6);
     // The round trip is the identity on covered pixels (background: 0).
     const DenoiseImage back = download_image(back_image);
-    const DenoiseImage expected_back = reference::remodulate(expected, albedo, options.min_albedo);
+    const DenoiseImage expected_back = reference::remodulate(expected, albedo, options.albedo_floor);
     CHECK(max_relative_error(back, expected_back, 1e-12) < 1e-6);
     for (int y = 10; y < int(kSize); ++y)
         for (int c = 0; c < 3; ++c) CHECK(back.at(20, y)[c] == doctest::Approx(radiance.at(20, y)[c]).epsilon(1e-6));
@@ -109,7 +109,7 @@ TEST_CASE("denoise firefly clamp: against the reference, and a lone firefly is c
     const DenoiseImage position = coverage(), albedo = random_albedo(8, 0);  // some channels 0: the floor
     const FireflyImages out = run_firefly_clamp(irradiance, albedo, position, options);
     const auto expected =
-        reference::firefly_clamp(irradiance, albedo, position, options.firefly_k_sigma, options.min_albedo);
+        reference::firefly_clamp(irradiance, albedo, position, options.firefly_k_sigma, options.albedo_floor);
     CHECK(max_relative_error(out.clamped, expected.clamped, 1e-6) < 1e-5);
     // The shares are differences of the input and the clamped value: absolute error ~1e-6 x 80;
     // a neighbour divides them by its divisor (down to the albedo floor): ~1e-6 x 80 / floor.
@@ -143,8 +143,8 @@ TEST_CASE("denoise firefly clamp: keeps the frame's light and still limits an is
     irradiance.at(10, 10) = {40.0, 40.0, 40.0, 0.0};  // beside the 10 x 10 background corner
     const DenoiseImage position = coverage(), albedo = random_albedo(22, 16);
     const FireflyImages out = run_firefly_clamp(irradiance, albedo, position, options);
-    const DenoiseImage radiance_in = reference::remodulate(irradiance, albedo, options.min_albedo);
-    const DenoiseImage radiance_out = reference::remodulate(out.spread, albedo, options.min_albedo);
+    const DenoiseImage radiance_in = reference::remodulate(irradiance, albedo, options.albedo_floor);
+    const DenoiseImage radiance_out = reference::remodulate(out.spread, albedo, options.albedo_floor);
     double sum_in[3] = {0, 0, 0}, sum_out[3] = {0, 0, 0}, taken = 0.0, total = 0.0;
     for (int y = 0; y < int(kSize); ++y) {
         for (int x = 0; x < int(kSize); ++x) {

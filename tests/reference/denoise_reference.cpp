@@ -19,8 +19,8 @@ Vec3d sub(const Vec3d& a, const Vec3d& b) {
     return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
 }
 
-double divisor(double albedo, double min_albedo) {
-    return albedo > min_albedo ? albedo : 1.0;
+double divisor(double albedo, double albedo_floor) {
+    return std::max(albedo, albedo_floor);
 }
 
 double plane_weight(const Vec3d& p, const Vec3d& n, const Vec3d& q, double sigma) {
@@ -37,20 +37,21 @@ double luminance(const Texel4& c) {
 }
 
 DenoiseImage demodulate(const DenoiseImage& radiance, const DenoiseImage& albedo, const DenoiseImage& position,
-                        double min_albedo) {
+                        double albedo_floor) {
     DenoiseImage out(radiance.width, radiance.height);
     for (size_t i = 0; i < out.texels.size(); ++i) {
         if (position.texels[i][3] <= 0.5) continue;
-        for (int c = 0; c < 3; ++c) out.texels[i][c] = radiance.texels[i][c] / divisor(albedo.texels[i][c], min_albedo);
+        for (int c = 0; c < 3; ++c)
+            out.texels[i][c] = radiance.texels[i][c] / divisor(albedo.texels[i][c], albedo_floor);
     }
     return out;
 }
 
-DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albedo, double min_albedo) {
+DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albedo, double albedo_floor) {
     DenoiseImage out(irradiance.width, irradiance.height);
     for (size_t i = 0; i < out.texels.size(); ++i) {
         for (int c = 0; c < 3; ++c)
-            out.texels[i][c] = irradiance.texels[i][c] * divisor(albedo.texels[i][c], min_albedo);
+            out.texels[i][c] = irradiance.texels[i][c] * divisor(albedo.texels[i][c], albedo_floor);
     }
     return out;
 }

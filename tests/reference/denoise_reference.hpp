@@ -34,8 +34,8 @@ struct DenoiseGeometry {
 };
 
 DenoiseImage demodulate(const DenoiseImage& radiance, const DenoiseImage& albedo, const DenoiseImage& position,
-                        double min_albedo);
-DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albedo, double min_albedo);
+                        double albedo_floor);
+DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albedo, double albedo_floor);
 
 // The energy-conserving firefly clamp: a covered pixel with at least 4 covered 5 x 5 neighbours
 // (itself left out) whose luminance is above their mean + k sigma is scaled to that limit, and

@@ -10,11 +10,21 @@ float denoise_luminance(vec3 c) {
     return dot(c, vec3(0.2126, 0.7152, 0.0722));
 }
 
-// Demodulation divides a channel by the albedo only where the albedo is above min_albedo: a
-// black channel carries no texture to keep apart, and dividing by ~0 would make a firefly.
-// Remodulation applies the same rule, so the pair is the identity (up to rounding).
-vec3 denoise_albedo_divisor(vec3 albedo, float min_albedo) {
-    return mix(vec3(1.0), albedo, greaterThan(albedo, vec3(min_albedo)));
+// Demodulation divides each channel by max(albedo, albedo_floor); remodulation multiplies by the
+// same, so the pair is the identity (up to rounding) for any albedo, black channels included.
+// Why a floor and not "divide only where the albedo is above a threshold": every filter between
+// the two (upsampling, accumulation, a-trous) mixes a pixel's irradiance with its neighbours' and
+// the pixel multiplies the mix by ITS divisor. With a threshold, a channel just above it was divided
+// (irradiance E) while one below was not (its radiance, ~0), so a pixel below the threshold took its
+// neighbours' E times 1: full irradiance in a channel whose albedo is ~0 (green and cyan specks on
+// dark-red textures). With a floor, the divisor is continuous in the albedo and never below the
+// floor, so (a) what any pixel gets back in a channel is at most max(albedo, floor) times the
+// neighbours' irradiance: a channel darker than the floor is off by at most floor x E; (b) light that
+// is not proportional to the albedo (a specular lobe, a mismatch between the albedo the GI used and
+// the G-buffer's) is amplified by at most 1 / floor before the filter and rescaled by the
+// neighbour's divisor after, not by 1 / ~0.
+vec3 denoise_albedo_divisor(vec3 albedo, float albedo_floor) {
+    return max(albedo, vec3(albedo_floor));
 }
 
 // The edge-stopping weights of SVGF (Schied et al. 2017, eqs. 3-5), with one difference: the

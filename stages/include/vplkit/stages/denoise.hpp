@@ -27,8 +27,14 @@
 namespace vplkit::stages {
 
 struct DenoiseOptions {
-    // Albedo channels at or below this are not divided by (demodulate.comp, remodulate.comp).
-    float min_albedo = 1e-3f;
+    // Demodulation divides each channel by max(albedo, albedo_floor) and remodulation multiplies
+    // by the same (vplkit/denoise.glsl): a channel darker than the floor gets back at most
+    // albedo_floor x its neighbours' irradiance, and light not proportional to the albedo is
+    // amplified by at most 1 / albedo_floor. 0.04 is the glTF BRDF's specular reflectance at
+    // normal incidence for dielectrics (F0): no channel of such a surface reflects less than
+    // that, so its specular light is never divided by less than the reflectance it came from.
+    // Must be > 0.
+    float albedo_floor = 0.04f;
     // Firefly clamp: the limit is the neighbours' mean + firefly_k_sigma standard deviations; the
     // light above it is spread over those neighbours, not dropped (the frame's sum is kept). 0
     // turns the pass off in the runtime.
