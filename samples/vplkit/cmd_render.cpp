@@ -38,7 +38,7 @@ const char* const kRenderUsage =
     "                     [--flc-levels N] [--flc-mu MU] [--flc-navg A] [--flc-subtiles N]\n"
     "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
-    "                     [--vpl-source auto|ir|brsm|smc] [--vpls N] [--bounces B]\n"
+    "                     [--vpl-source auto|ir|brsm|smc] [--vpls N] [--bounces B] [--exact-clamp F]\n"
     "                     [--smc-max-moves M] [--smc-resample R] [--smc-radiosity-samples S] [--smc-warmup W]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
     "                     [--seed S] [--direct auto|tree|tree2|flat] [--direct-spp N] [--direct-interleave M]\n"
@@ -114,6 +114,8 @@ const char* const kRenderUsage =
     "  --exposure E     linear exposure before the tone curve (default 1)\n"
     "  --brdf B         gltf (default): the file's metallic-roughness materials; lambert: every\n"
     "                   material a pure Lambertian of its base colour (for diffuse-only references)\n"
+    "  --exact-clamp F  exact: the 1/d^2 clamp's d_min as a fraction of the scene scale (default\n"
+    "                   0.01, every method's); 0: unclamped, as a path tracer sums the light\n"
     "  --seed S         seed of the stochastic stages: the same seed gives the same image (default 0)\n"
     "  --direct D       how direct light from emissive triangles, point and spot lights is sampled:\n"
     "                   tree: one light tree over them all, a cut per 4 x 4 block and a traversal\n"
@@ -437,6 +439,10 @@ RenderRequest parse_render_request(Args& args) {
         if (*text != "gltf" && *text != "lambert")
             throw UsageError("--brdf expects gltf or lambert, got '" + *text + "'");
         lambertian = *text == "lambert";
+    }
+    if (auto text = args.value("--exact-clamp")) {
+        if (settings.method != GiMethod::exact) throw UsageError("--exact-clamp needs --method exact");
+        settings.exact_min_distance_fraction = parse_fraction("--exact-clamp", *text);
     }
     settings.force_all_stages = args.flag("--all-stages");
     settings.reuse_static_work = !args.flag("--no-reuse");
