@@ -1,10 +1,12 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Indirect light by the `hybrid` method (seed 000 ch. 5): each pixel blends the shallow cuts of
-// the four blocks around it (Alg. 1: bilinear x geometric-similarity weights, one cut chosen at
-// random per slot), or takes the mock cut when none of the four is similar; from every node of
-// its cut it traverses the SST with the expected-contribution weights (eqs. 5.2, 5.4), stopping
-// early at suitable nodes (eq. 5.6), and evaluates the node reached as a point light (sec. 5.3)
+// the four blocks around it (Alg. 1: bilinear x geometric-similarity weights; one cut drawn per
+// pixel, where Alg. 1 draws one per slot: see main), or takes the mock cut when none of the four
+// is similar; from every node of its cut it traverses the SST with the expected-contribution
+// weights (eqs. 5.2, 5.4; mixed with box-distance weights: sst_defensive_probability), stopping
+// early at suitable nodes (eq. 5.6) far enough from the pixel (sst_substitute_far_enough), and
+// evaluates the node reached as a point light (sec. 5.3)
 // with one shadow ray (to a real VPL of the node for a substitute: sst_shadow_target). The
 // pixel's estimate is the sum over its cut's nodes. The specialization constant kTraversal swaps
 // the traversal for rtslc's to a leaf (sec. 7.1's comparison protocol). With kGlossyLobe
@@ -106,6 +108,30 @@ void main() {
     uint mock_level = mock_cut_level(push.cut_size, push.leaf_count);
     bool mock = !blended && push.mock_cuts != 0u;
     uint slots = mock ? (1u << mock_level) : push.cut_size;
+    // Alg. 1 line 8 draws one of the four cuts for every slot i by the blending weights. Here one
+    // cut is drawn for the whole pixel, by the same weights, and all its slots are traversed: each
+    // cut covers every VPL with light once, so the estimate's mean is the same (sum_k weight[k] x
+    // cut k's light = the tree's light) and the blocks still blend, pixel by pixel, in the mean;
+    // but the slots of one cut never overlap nor leave gaps, where slot i of one cut and slot j
+    // of another cover the same VPLs or none of some (the cuts differ in depth and length), a
+    // variance per-slot choices add (tests/gi/test_hybrid_residue.cpp: 64 frames' 4 x 4-block
+    // error of hybrid-lightcuts 1.9x rtslc's per slot, 1.4x per pixel). The per-slot draw also
+    // had to say what a cut shorter than slot i gives: it renormalized over the cuts that have a
+    // slot i, which counted a longer cut's extra slots in full on top of a shorter cut's light.
+    int chosen = -1;
+    if (blended) {
+        float u = rng_next_float(rng);
+        for (int k = 0; k < 4; ++k) {
+            if (weight[k] > 0.0) {
+                chosen = k;  // the last weighted one also takes u's rounding at the top
+                if (u < weight[k]) {
+                    break;
+                }
+                u -= weight[k];
+            }
+        }
+        slots = neighbour[chosen].cut_size;
+    }
 
     vec3 total = vec3(0.0);
     uint dropped = 0u, traversals = 0u, levels = 0u, dead = 0u;
@@ -117,26 +143,6 @@ void main() {
         }
         uint start;
         if (blended) {
-            // Alg. 1 line 8: slot i from one of the four cuts, chosen by weight among those whose
-            // cut has a node in slot i (a cut can be shorter than cut_size: its left-out children).
-            float filled = 0.0;
-            for (int k = 0; k < 4; ++k) {
-                filled += i < neighbour[k].cut_size ? weight[k] : 0.0;
-            }
-            if (!(filled > 0.0)) {
-                continue;
-            }
-            float u = rng_next_float(rng) * filled;
-            int chosen = -1;
-            for (int k = 0; k < 4; ++k) {
-                if (i < neighbour[k].cut_size && weight[k] > 0.0) {
-                    chosen = k;  // the last filled one also takes u's rounding at the top
-                    if (u < weight[k]) {
-                        break;
-                    }
-                    u -= weight[k];
-                }
-            }
             start = cuts.items[neighbour_index[chosen] * push.cut_size + i];
         } else if (mock) {
             // Alg. 1 lines 11-14: the mock cut.

@@ -86,6 +86,30 @@ float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_
     return sst_weight_numerator(p, node, weight_kind, kBrdfLobeBoth, min_distance, d2);
 }
 
+// The left child's probability from the weights a / d2 (gi_child_probability). For hybrid's
+// expected-contribution weights (kSstWeightExpected: distance to the node's mean, eq. 5.2's
+// average corner cosine; neither bounds the light) it is the mean of that probability and the
+// one with the distance to the node's box instead, as rtslc averages its min- and max-distance
+// probabilities (seed 003 sec. 3.1): a child whose mean lies far but whose box reaches close to
+// x (a wall's cluster seen from the floor beside it) is no longer drawn with a probability far
+// below its share of the light, so it is never weighed hugely (issue 26: in the Cornell box one
+// such sample lifted a pixel's mean over 256 frames to 2.2x exact's brightest pixel; Sponza
+// read 2052x in another measurement). Alone, the box distance is far worse (see
+// sst_weight_numerator); mixed half and half, each probability is at least half of either
+// strategy's. Unbiased either way: the sample is divided by the probability it was drawn with.
+float sst_defensive_probability(GiPoint p, SstNode l, SstNode r, uint weight_kind, float a_left, float d2_left,
+                                float a_right, float d2_right, float min_distance) {
+    float p_mean = gi_child_probability(a_left, d2_left, a_right, d2_right);
+    if (weight_kind != kSstWeightExpected || !(a_left > 0.0 && a_right > 0.0)) {
+        return p_mean;  // dead, or one child without light: 0, 1 or < 0 exactly
+    }
+    float floor2 = min_distance * min_distance;
+    float box_left = max(gi_box_distance2_min(p.position, l.box_lo, l.box_hi), floor2);
+    float box_right = max(gi_box_distance2_min(p.position, r.box_lo, r.box_hi), floor2);
+    float p_box = gi_left_probability(a_left, box_left, a_right, box_right);
+    return gi_grid_probability(0.5 * (p_mean + p_box));
+}
+
 // The end of one traversal: the node reached and the probability of the path to it.
 struct SstSample {
     uint node;
@@ -114,9 +138,28 @@ SstSample sst_sample_at(uint start, uint leaf_count, uint count) {
     return sst_sample_at(start, leaf_count, count, 1.0);
 }
 
-// Descends from `start` until a leaf or a suitable node (eq. 5.6), picking a child with
-// probability w / (w_left + w_right) (seed 000 eq. 5.4) and a fresh random number per level,
-// with the weights of the sample's lobe. The glossy lobe ignores the substitutes and descends to
+// A suitable node's substitute stands for its VPLs only where the receiver is far from the
+// cluster compared with its extent: the substitute matches the VPLs' mean and per-axis variances,
+// so the light at x (1/d^2 and the cosines, smooth in the VPL's position far away) differs from
+// their mean light by terms of order (extent / distance)^2. Near the cluster (a receiver on the
+// wall beside a floor cluster, inside a cluster's box) those terms are not small: the
+// substitute's drawn positions, clamped to the box, can land nearer x than any of its VPLs or
+// behind x's surface, and its merged normal can hide VPLs that face x. There the
+// traversal descends further, to a node that is far compared with its own extent, or a leaf: the
+// papers' blur at the depth where it is a blur (seed 004 eq. 3 / seed 000 eq. 5.6 judge a
+// cluster's shape alone, not where it is seen from). The distance is to the node's box, 0 inside
+// it; the extent is the box's diagonal.
+const float kSstSubstituteFarRatio = 1.0;
+bool sst_substitute_far_enough(vec3 x, SstNode node) {
+    vec3 extent = node.box_hi - node.box_lo;
+    return gi_box_distance2_min(x, node.box_lo, node.box_hi) >=
+           kSstSubstituteFarRatio * kSstSubstituteFarRatio * dot(extent, extent);
+}
+
+// Descends from `start` until a leaf or a suitable node (eq. 5.6) far enough from x, picking a
+// child with probability w / (w_left + w_right) (seed 000 eq. 5.4; for hybrid's weights
+// sst_defensive_probability's mixture) and a fresh random number per level, with the weights of
+// the sample's lobe. The glossy lobe ignores the substitutes and descends to
 // a leaf VPL (seed 004 sec. 4.2: a substitute would blur a sharp reflection).
 // The glossy lobe steers by the mixture of gi_lobe.glsl (GiGlossyPath), and its probability is
 // the mixture's.
@@ -129,7 +172,8 @@ SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint 
         path = gi_glossy_path_start(rng);
     }
     for (uint level = 0u; level < kSstMaxLevels; ++level) {
-        if (sst_is_leaf(s.node, leaf_count) || (!glossy && (s.data.flags & kSstFlagSuitable) != 0u)) {
+        if (sst_is_leaf(s.node, leaf_count) || (!glossy && (s.data.flags & kSstFlagSuitable) != 0u &&
+                                                  sst_substitute_far_enough(p.position, s.data))) {
             break;
         }
         uint left = sst_left_child(s.node), right = sst_right_child(s.node);
@@ -139,7 +183,8 @@ SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint 
         float a_right = sst_weight_numerator(p, r, weight_kind, lobe.kind, min_distance, d2_right);
         // Cross-multiplied (gi_left_probability): no 1/d2, no inf/inf; < 0 marks a dead branch,
         // where the sample ends with no light (backtracking would cost a shader loop per level).
-        float p_left = gi_child_probability(a_left, d2_left, a_right, d2_right);
+        float p_left = sst_defensive_probability(p, l, r, weight_kind, a_left, d2_left, a_right, d2_right,
+                                                 min_distance);
         float p_left_reflection = p_left, p_left_at_mean = p_left;
         if (glossy) {
             float a_left_at_mean = sst_weight_numerator(p, l, weight_kind, kGiWeightGlossyAtMean, min_distance, d2_left);
