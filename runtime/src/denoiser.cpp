@@ -62,8 +62,8 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
     // light anyway, shapes only what is shown and filtered.
     clamped_this_frame_ = options.firefly_k_sigma > 0.0f;
     if (clamped_this_frame_) {
-        stages::add_firefly_clamp_pass(context, passes, accumulated, gbuffer.albedo, gbuffer.position, clamped_,
-                                       excess_, spread_, options);
+        stages::add_firefly_clamp_pass(context, passes, accumulated, next.moments, gbuffer.albedo, gbuffer.position,
+                                       clamped_, excess_, spread_, options);
         result = spread_;
     }
     if (spatial) {

@@ -12,11 +12,16 @@
 // remodulation the image's radiance is the input's (up to float rounding), whatever the albedos.
 // The runtime runs it on the accumulated image, after temporal accumulation, not on each frame:
 // the history stays the unclamped running mean (on a static view it converges to the unbiased
-// answer), and the clamp only shapes what is shown and filtered, less and less as the
-// accumulated noise falls; a highlight that is there in every frame is clamped only as far as the
-// converged image still calls it an outlier.
+// answer), and the clamp only shapes what is shown and filtered. Where the pixel's history holds
+// at least min_history frames, its own statistics bound the clamp too: the pixel is pulled down
+// by at most k standard errors of its mean (sqrt(variance / n), the moments' variance of one
+// frame over the history length), so a highlight that is there in every frame, which the spatial
+// test calls an outlier for ever, is moved less and less as its mean converges (the shown image
+// converges to the unclamped mean like 1/sqrt(n)), while a firefly, whose frame inflates the
+// pixel's variance, is still cut to the spatial limit.
 // The neighbourhood leaves the pixel out, or one bright pixel would raise its own limit above
 // itself. Fewer than 4 covered neighbours: left as it is (nothing to compare, nowhere to spread).
+// Reads the input's history moments (m1, m2, n of luminance, temporal_accumulate.comp).
 // Writes: clamped (rgb: the irradiance scaled to the limit; a: the input's a, e.g. the variance)
 // and excess (rgb: the radiance taken off over the neighbour count, what each neighbour gathers;
 // a: the luminance of irradiance taken off, for the caller's count of the share moved).
@@ -30,10 +35,12 @@ layout(set = 0, binding = 1, rgba32f) uniform readonly image2D position;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D clamped;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D excess;
 layout(set = 0, binding = 4, rgba16f) uniform readonly image2D albedo;
+layout(set = 0, binding = 5, rgba32f) uniform readonly image2D moments;  // m1, m2, n (temporal pass)
 
 layout(push_constant) uniform FireflyClampPush {
     float k_sigma;       // the limit: neighbours' mean + k_sigma x their standard deviation
     float albedo_floor;  // demodulation's (denoise_albedo_divisor)
+    uint min_history;    // from this history length on, the pixel's own standard error bounds the clamp
 } push;
 
 void main() {
@@ -73,6 +80,11 @@ void main() {
         float mean = sum / float(count);
         float sigma = sqrt(max(sum2 / float(count) - mean * mean, 0.0));
         float limit = mean + push.k_sigma * sigma;
+        vec4 m = imageLoad(moments, pixel);
+        if (m.z >= float(push.min_history)) {
+            float standard_error = sqrt(max(m.y - m.x * m.x, 0.0) / m.z);
+            limit = max(limit, l - push.k_sigma * standard_error);
+        }
         if (l > limit) {
             vec3 kept = c * (limit / l);
             share = (c - kept) * divisor / float(count);

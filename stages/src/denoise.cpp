@@ -105,13 +105,14 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
                });
 }
 
-void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
-                            const ImageView& position, const ImageView& clamped, const ImageView& excess,
-                            const ImageView& spread, const DenoiseOptions& options) {
+void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
+                            const ImageView& albedo, const ImageView& position, const ImageView& clamped,
+                            const ImageView& excess, const ImageView& spread, const DenoiseOptions& options) {
     validate_denoise_options(options);
     validate_images("denoise firefly clamp", {{&clamped, kFloat4},
                                               {&irradiance, kFloat4},
                                               {&position, kFloat4},
+                                              {&moments, kFloat4},
                                               {&albedo, kGbufferAlbedoFormat},
                                               {&excess, kFloat4},
                                               {&spread, kFloat4}});
@@ -122,14 +123,17 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
     b.clamped = clamped.descriptor();
     b.excess = excess.descriptor();
     b.albedo = albedo.descriptor();
+    b.moments = moments.descriptor();
     shaders::firefly_clamp::Push push{};
     push.k_sigma = options.firefly_k_sigma;
     push.albedo_floor = options.albedo_floor;
-    passes.add("denoise firefly clamp",
-               binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess, albedo}),
-               [&clamp, b, push, clamped](VkCommandBuffer cmd) {
-                   clamp.dispatch(cmd, b, push, clamped.width, clamped.height);
-               });
+    push.min_history = options.min_temporal_history;
+    passes.add(
+        "denoise firefly clamp",
+        binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess, albedo, moments}),
+        [&clamp, b, push, clamped](VkCommandBuffer cmd) {
+            clamp.dispatch(cmd, b, push, clamped.width, clamped.height);
+        });
     const auto& gather = device.pipeline<shaders::firefly_spread::Pipeline>();
     shaders::firefly_spread::Bindings g;
     g.clamped = clamped.descriptor();

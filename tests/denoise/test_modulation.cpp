@@ -74,17 +74,18 @@ struct FireflyImages {
     DenoiseImage clamped, excess, spread;
 };
 
-FireflyImages run_firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& albedo,
+FireflyImages run_firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& moments, const DenoiseImage& albedo,
                                 const DenoiseImage& position, const stages::DenoiseOptions& options) {
     Context& ctx = context();
     auto in = upload_image(ctx, irradiance, "irradiance");
+    auto moments_image = upload_image(ctx, moments, "moments");
     auto albedo_image = upload_albedo(ctx, albedo, "albedo");
     auto pos = upload_image(ctx, position, "position");
     auto clamped = float4_image(ctx, kSize, kSize, "clamped");
     auto excess = float4_image(ctx, kSize, kSize, "excess");
     auto spread = float4_image(ctx, kSize, kSize, "spread");
     PassList passes("firefly test");
-    stages::add_firefly_clamp_pass(ctx, passes, in, albedo_image, pos, clamped, excess, spread, options);
+    stages::add_firefly_clamp_pass(ctx, passes, in, moments_image, albedo_image, pos, clamped, excess, spread, options);
     passes.run(ctx);
     return {download_image(clamped), download_image(excess), download_image(spread)};
 }
@@ -98,6 +99,13 @@ DenoiseImage random_albedo(uint32_t seed, int lowest) {
     return albedo;
 }
 
+// Moments of a first frame (n = 1: no history to bound the clamp).
+DenoiseImage first_frame_moments() {
+    DenoiseImage m(kSize, kSize);
+    for (auto& t : m.texels) t = {0.0, 0.0, 1.0, 0.0};
+    return m;
+}
+
 }  // namespace
 
 TEST_CASE("denoise firefly clamp: against the reference, and a lone firefly is cut to the limit") {
@@ -107,9 +115,9 @@ TEST_CASE("denoise firefly clamp: against the reference, and a lone firefly is c
     irradiance.at(30, 30) = {50.0, 50.0, 50.0, 0.0};
     irradiance.at(12, 40) = {0.0, 80.0, 0.0, 0.0};
     const DenoiseImage position = coverage(), albedo = random_albedo(8, 0);  // some channels 0: the floor
-    const FireflyImages out = run_firefly_clamp(irradiance, albedo, position, options);
-    const auto expected =
-        reference::firefly_clamp(irradiance, albedo, position, options.firefly_k_sigma, options.albedo_floor);
+    const FireflyImages out = run_firefly_clamp(irradiance, first_frame_moments(), albedo, position, options);
+    const auto expected = reference::firefly_clamp(irradiance, first_frame_moments(), albedo, position,
+                                                   options.firefly_k_sigma, options.albedo_floor, 4);
     CHECK(max_relative_error(out.clamped, expected.clamped, 1e-6) < 1e-5);
     // The shares are differences of the input and the clamped value: absolute error ~1e-6 x 80;
     // a neighbour divides them by its divisor (down to the albedo floor): ~1e-6 x 80 / floor.
@@ -142,7 +150,7 @@ TEST_CASE("denoise firefly clamp: keeps the frame's light and still limits an is
     irradiance.at(63, 63) = {40.0, 40.0, 40.0, 0.0};
     irradiance.at(10, 10) = {40.0, 40.0, 40.0, 0.0};  // beside the 10 x 10 background corner
     const DenoiseImage position = coverage(), albedo = random_albedo(22, 16);
-    const FireflyImages out = run_firefly_clamp(irradiance, albedo, position, options);
+    const FireflyImages out = run_firefly_clamp(irradiance, first_frame_moments(), albedo, position, options);
     const DenoiseImage radiance_in = reference::remodulate(irradiance, albedo, options.albedo_floor);
     const DenoiseImage radiance_out = reference::remodulate(out.spread, albedo, options.albedo_floor);
     double sum_in[3] = {0, 0, 0}, sum_out[3] = {0, 0, 0}, taken = 0.0, total = 0.0;
@@ -174,6 +182,33 @@ TEST_CASE("denoise firefly clamp: keeps the frame's light and still limits an is
     CHECK(out.spread.at(9, 9)[0] == 0.0);
 }
 
+TEST_CASE("denoise firefly clamp: a converged pixel's own statistics bound the clamp") {
+    // A highlight the spatial test calls an outlier (luminance 50 in noise [0, 1]), with a history
+    // of n = 256 frames of variance 4 (standard error 2 / 16 = 0.125): pulled down by at most 4 x
+    // 0.125 = 0.5, not to the spatial limit; the same pixel with n = 3 (below min_history 4) is cut
+    // to the spatial limit. Against the reference as well.
+    stages::DenoiseOptions options;
+    DenoiseImage irradiance = random_image(31, 1.0);
+    irradiance.at(30, 30) = {50.0, 50.0, 50.0, 0.0};
+    const DenoiseImage position = coverage(), albedo = random_albedo(32, 16);
+    for (double n : {256.0, 3.0}) {
+        CAPTURE(n);
+        DenoiseImage moments(kSize, kSize);
+        for (auto& t : moments.texels) t = {0.5, 0.25 + 4.0, n, 0.0};  // variance 4 everywhere
+        const FireflyImages out = run_firefly_clamp(irradiance, moments, albedo, position, options);
+        const auto expected = reference::firefly_clamp(irradiance, moments, albedo, position, options.firefly_k_sigma,
+                                                       options.albedo_floor, options.min_temporal_history);
+        CHECK(max_relative_error(out.clamped, expected.clamped, 1e-6) < 1e-5);
+        CHECK(max_relative_error(out.spread, expected.spread, 1e-2) < 1e-4);
+        const double kept = reference::luminance(out.clamped.at(30, 30));
+        if (n == 256.0) {
+            CHECK(kept == doctest::Approx(50.0 - 4.0 * 0.125).epsilon(1e-5));
+        } else {
+            CHECK(kept < 2.0);
+        }
+    }
+}
+
 TEST_CASE("denoise options: bad values are refused by name") {
     Context& ctx = context();
     auto a = float4_image(ctx, 4, 4, "a");
@@ -182,9 +217,9 @@ TEST_CASE("denoise options: bad values are refused by name") {
     PassList passes;
     stages::DenoiseOptions options;
     options.max_history = 0;
-    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, a, b, a, b, a, options),
+    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, a, a, b, a, b, a, options),
                          doctest::Contains("max_history"), Error);
-    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, a, small, b, a, b, {}),
+    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, a, a, small, b, a, b, {}),
                          doctest::Contains("'small'"), Error);
     CHECK_THROWS_WITH_AS(stages::add_atrous_pass(ctx, passes, a, a, a, b, 0, {}), doctest::Contains("step"), Error);
 }

@@ -56,8 +56,8 @@ DenoiseImage remodulate(const DenoiseImage& irradiance, const DenoiseImage& albe
     return out;
 }
 
-FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& albedo, const DenoiseImage& position,
-                            double k_sigma, double albedo_floor) {
+FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& moments, const DenoiseImage& albedo,
+                            const DenoiseImage& position, double k_sigma, double albedo_floor, uint32_t min_history) {
     const uint32_t w = irradiance.width, h = irradiance.height;
     FireflyResult out{DenoiseImage(w, h), DenoiseImage(w, h), DenoiseImage(w, h)};
     auto covered = [&](int x, int y) { return position.inside(x, y) && position.at(x, y)[3] > 0.5; };
@@ -86,7 +86,10 @@ FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& 
                 double variance = 0.0;  // two-pass: the plain definition
                 for (double v : neighbours) variance += (v - mean) * (v - mean);
                 variance /= double(neighbours.size());
-                const double limit = mean + k_sigma * std::sqrt(variance);
+                double limit = mean + k_sigma * std::sqrt(variance);
+                const Texel4& m = moments.at(x, y);
+                if (m[2] >= min_history)
+                    limit = std::max(limit, l - k_sigma * std::sqrt(std::max(m[1] - m[0] * m[0], 0.0) / m[2]));
                 if (l > limit) {
                     for (int k = 0; k < 3; ++k) {
                         const double kept = c[k] * limit / l;

@@ -46,8 +46,10 @@ struct FireflyResult {
     DenoiseImage excess;   // rgb = the radiance taken off / the neighbour count, a = the luminance taken off
     DenoiseImage spread;   // rgb = clamped + the neighbours' shares / divisor, a = the input's a
 };
-FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& albedo, const DenoiseImage& position,
-                            double k_sigma, double albedo_floor);
+// moments: m1, m2, n per pixel; where n >= min_history the limit is at least the pixel's
+// luminance less k_sigma x sqrt((m2 - m1^2) / n) (its mean's standard error).
+FireflyResult firefly_clamp(const DenoiseImage& irradiance, const DenoiseImage& moments, const DenoiseImage& albedo,
+                            const DenoiseImage& position, double k_sigma, double albedo_floor, uint32_t min_history);
 
 struct TemporalResult {
     DenoiseImage accumulated;  // rgb, a = variance

@@ -85,13 +85,15 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
 // "denoise firefly clamp" + "denoise firefly spread": a pixel's luminance above its 5 x 5
 // neighbours' (covered, itself left out) mean + k sigma is taken off it and handed to those
 // neighbours in equal shares of radiance (irradiance x the albedo divisor of vplkit/denoise.glsl),
-// so the remodulated frame keeps its light. clamped: rgb scaled to the limit, a = the luminance
-// taken off; excess: rgb = the radiance taken off over the neighbour count, a = the luminance of
-// the pixel's input radiance; spread: rgb = clamped + the shares gathered over the pixel's own
-// divisor (the pass's result), a = the luminance of its radiance.
-void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
-                            const ImageView& position, const ImageView& clamped, const ImageView& excess,
-                            const ImageView& spread, const DenoiseOptions& options);
+// so the remodulated image keeps its light. clamped: rgb scaled to the limit, a = the input's a;
+// excess: rgb = the radiance taken off over the neighbour count, a = the luminance taken off;
+// spread: rgb = clamped + the shares gathered over the pixel's own divisor (the pass's result),
+// a = the input's a. `moments` (m1, m2, n: the temporal pass's): where n >= min_temporal_history
+// the pixel is pulled down by at most k_sigma standard errors of its own mean,
+// sqrt((m2 - m1^2) / n), so the clamp fades as the mean converges.
+void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
+                            const ImageView& albedo, const ImageView& position, const ImageView& clamped,
+                            const ImageView& excess, const ImageView& spread, const DenoiseOptions& options);
 
 // "denoise temporal": accumulated (rgb, a = variance) and moments (m1, m2, n) from `irradiance`
 // and the `previous` history reprojected with previous_view_projection; writes this frame's
