@@ -321,7 +321,7 @@ TEST_CASE("exact gi: a VPL on the shading point and one nearer than the clamp di
     CHECK(gpu.image[3][0] > 0.0f);
 }
 
-TEST_CASE("exact gi: min_distance_fraction sets the clamp; 0 leaves a near VPL unclamped") {
+TEST_CASE("exact gi: min_distance_fraction sets the clamp, 0 leaves a near VPL unclamped") {
     // Scene scale 3: a VPL 0.03 (the default d_min) x 0.3 above pixel 0, facing it. Closed form:
     // f flux / (pi max(d, d_min)^2) with the reference's BRDF at wi = n; both entry points
     // (add_exact_gi_passes and the runtime's chunked render_exact_gi) take the option.
