@@ -7,6 +7,10 @@
 // sees x = 0.5 + ((i + 0.5) / 16 - 1) 0.625, y = 0.5 - ((j + 0.5) / 16 - 1) 0.625 on the quad z = 0
 // when (x, y) is in [0, 1]^2. Tolerance 1e-5: rasterization interpolates the position at the
 // pixel centre in float (positions of order 1). Pixels within 0.05 of the quad's edge are skipped.
+// Along the view (z) the G-buffer holds the point moved toward the viewer by the larger of 2^-16
+// of its coordinates' magnitude (here 2^-16 at most: corners of order 1) and 2 depth ulps
+// (gbuffer_shade.frag, so that shadow rays start in front of every surface): z in [-1e-5,
+// 1e-5 + 2^-15].
 
 #include "feature_files.hpp"
 #include "gbuffer_readback.hpp"
@@ -49,7 +53,7 @@ TEST_CASE("gltf: an orthographic camera's G-buffer holds the point under each pi
     constexpr uint32_t kSize = 32;
     const auto g = gltf_features::read_gbuffer(scene, kSize, kSize);
     uint32_t inside = 0, outside = 0;
-    double worst = 0.0;
+    double worst = 0.0, worst_z_low = 0.0, worst_z_high = 0.0;
     for (uint32_t j = 0; j < kSize; ++j) {
         for (uint32_t i = 0; i < kSize; ++i) {
             const double x = 0.5 + ((i + 0.5) / (kSize / 2.0) - 1.0) * 0.625;
@@ -59,7 +63,9 @@ TEST_CASE("gltf: an orthographic camera's G-buffer holds the point under each pi
             if (edge > 0.05) {
                 ++inside;
                 CHECK(p.w == 1.0f);
-                worst = std::max({worst, std::abs(p.x - x), std::abs(p.y - y), double(std::abs(p.z))});
+                worst = std::max({worst, std::abs(p.x - x), std::abs(p.y - y)});
+                worst_z_low = std::max(worst_z_low, -double(p.z));
+                worst_z_high = std::max(worst_z_high, double(p.z));
             } else if (edge < -0.05) {
                 ++outside;
                 CHECK(p.w == 0.0f);
@@ -69,6 +75,8 @@ TEST_CASE("gltf: an orthographic camera's G-buffer holds the point under each pi
     CHECK(inside > 400);
     CHECK(outside > 100);
     CHECK(worst <= 1e-5);
+    CHECK(worst_z_low <= 1e-5);
+    CHECK(worst_z_high <= 1e-5 + std::ldexp(1.0, -15));
 }
 
 TEST_CASE("gltf: an orthographic camera's eye lies far back along the view, so the view direction is parallel") {

@@ -50,9 +50,9 @@ struct SmcOptions {
     // bounces in all its results (sec. 5); 2 here, as instant radiosity's default (--bounces 3
     // for the paper's set-up).
     uint32_t bounces = 2;
-    uint32_t visibility_tries = 16;   // V: invalid VPLs each camera point tries per round (the paper's 16)
-    uint32_t visibility_rounds = 2;   // rounds of those tries per update (the paper's 2)
-    float strong_quantile = 0.95f;    // eq. 9: candidates stronger than this share of Y are "strong"
+    uint32_t visibility_tries = 16;  // V: invalid VPLs each camera point tries per round (the paper's 16)
+    uint32_t visibility_rounds = 2;  // rounds of those tries per update (the paper's 2)
+    float strong_quantile = 0.95f;   // eq. 9: candidates stronger than this share of Y are "strong"
     uint32_t seed = 0;
 };
 
