@@ -1,4 +1,5 @@
-// demodulate.comp, remodulate.comp and firefly_clamp.comp against the double reference
+// demodulate.comp, remodulate.comp, firefly_clamp.comp and firefly_spread.comp (the clamp's second
+// pass, whose output is `spread`) against the double reference
 // (tests/reference/denoise_reference.cpp) on 64 x 64 images, and the clamp's conservation of light.
 // Tolerances: demodulation is one float division per channel (relative 1e-6: two roundings);
 // the firefly limit sums 24 float luminances (relative 1e-5 of the limit, absolute 1e-6).
@@ -108,7 +109,9 @@ DenoiseImage first_frame_moments() {
 
 }  // namespace
 
-TEST_CASE("denoise firefly clamp: against the reference, and a lone firefly is cut to the limit") {
+TEST_CASE(
+    "denoise firefly clamp: firefly_clamp and firefly_spread against the reference, and a lone firefly is cut to the "
+    "limit") {
     stages::DenoiseOptions options;
     DenoiseImage irradiance = random_image(7, 1.0);
     // Two planted fireflies in uniform noise (luminance at most its mean + 2.3 sigma).

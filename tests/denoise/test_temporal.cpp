@@ -15,6 +15,7 @@
 
 #include <glm/trigonometric.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -92,6 +93,20 @@ DenoiseImage constant_moments(double m1, double m2, double n) {
     DenoiseImage image(kSize, kSize);
     for (auto& t : image.texels) t = {m1, m2, n, 0.0};
     return image;
+}
+
+// The two history sets a renderer swaps between frames (the runtime's Denoiser keeps the same).
+struct HistorySlot {
+    Image position, normal, color, moments;
+};
+using HistorySlots = std::array<HistorySlot, 2>;
+
+HistorySlots history_slots(Context& ctx) {
+    HistorySlots slots;
+    for (auto& s : slots)
+        s = {float4_image(ctx, kSize, kSize, "history position"), float4_image(ctx, kSize, kSize, "history normal"),
+             float4_image(ctx, kSize, kSize, "history color"), float4_image(ctx, kSize, kSize, "history moments")};
+    return slots;
 }
 
 }  // namespace
@@ -225,20 +240,14 @@ TEST_CASE("denoise temporal: error against the exact mean falls like 1 over sqrt
         options.static_max_history = cap;
         auto position = upload_image(ctx, geometry.position, "position");
         auto normal = upload_image(ctx, geometry.normal, "normal");
-        struct Slot {
-            Image position, normal, color, moments;
-        };
-        Slot slots[2];
-        for (auto& s : slots)
-            s = {float4_image(ctx, kSize, kSize, "history position"), float4_image(ctx, kSize, kSize, "history normal"),
-                 float4_image(ctx, kSize, kSize, "history color"), float4_image(ctx, kSize, kSize, "history moments")};
+        HistorySlots slots = history_slots(ctx);
         std::mt19937 rng(100 + cap);
         const int frames = cap == 32 ? 16 : 40;
         std::vector<double> log_f, log_rmse;
         double last_rmse = 0.0;
         for (int f = 1; f <= frames; ++f) {
-            Slot& previous = slots[(f + 1) % 2];
-            Slot& next = slots[f % 2];
+            HistorySlot& previous = slots[(f + 1) % 2];
+            HistorySlot& next = slots[f % 2];
             auto in = upload_image(ctx, random_image(rng, 0.0, 2.0), "irradiance");
             PassList passes("accumulate");
             stages::add_temporal_accumulate_pass(ctx, passes, in, position, normal,
@@ -287,13 +296,7 @@ TEST_CASE("denoise temporal: no ghost of the old surface after a disocclusion") 
     const DenoiseGeometry flat = plane_geometry(vp, kSize, kSize, flat_plane());
     const DenoiseGeometry stepped = plane_geometry(vp, kSize, kSize, stepped_plane());
     const stages::DenoiseOptions options = test_options();
-    struct Slot {
-        Image position, normal, color, moments;
-    };
-    Slot slots[2];
-    for (auto& s : slots)
-        s = {float4_image(ctx, kSize, kSize, "history position"), float4_image(ctx, kSize, kSize, "history normal"),
-             float4_image(ctx, kSize, kSize, "history color"), float4_image(ctx, kSize, kSize, "history moments")};
+    HistorySlots slots = history_slots(ctx);
     std::mt19937 rng(31);
     const double sigma = 1.0 / std::sqrt(3.0);
     for (int f = 1; f <= 10; ++f) {
@@ -306,8 +309,8 @@ TEST_CASE("denoise temporal: no ghost of the old surface after a disocclusion") 
         auto in = upload_image(ctx, frame, "irradiance");
         auto position = upload_image(ctx, g.position, "position");
         auto normal = upload_image(ctx, g.normal, "normal");
-        Slot& previous = slots[(f + 1) % 2];
-        Slot& next = slots[f % 2];
+        HistorySlot& previous = slots[(f + 1) % 2];
+        HistorySlot& next = slots[f % 2];
         PassList passes("ghosting");
         stages::add_temporal_accumulate_pass(
             ctx, passes, in, position, normal, {previous.position, previous.normal, previous.color, previous.moments},
@@ -340,13 +343,7 @@ TEST_CASE("denoise temporal: a static camera's accumulation is the exact running
     const stages::DenoiseOptions options = test_options();
     auto position = upload_image(ctx, geometry.position, "position");
     auto normal = upload_image(ctx, geometry.normal, "normal");
-    struct Slot {
-        Image position, normal, color, moments;
-    };
-    Slot slots[2];
-    for (auto& s : slots)
-        s = {float4_image(ctx, kSize, kSize, "history position"), float4_image(ctx, kSize, kSize, "history normal"),
-             float4_image(ctx, kSize, kSize, "history color"), float4_image(ctx, kSize, kSize, "history moments")};
+    HistorySlots slots = history_slots(ctx);
     std::mt19937 rng(64);
     constexpr int kFrames = 64;
     std::vector<double> mean(std::size_t(kSize) * kSize * 3, 0.0);
@@ -355,8 +352,8 @@ TEST_CASE("denoise temporal: a static camera's accumulation is the exact running
         for (std::size_t i = 0; i < frame.texels.size(); ++i)
             for (int c = 0; c < 3; ++c) mean[i * 3 + c] += frame.texels[i][c] / kFrames;
         auto in = upload_image(ctx, frame, "irradiance");
-        Slot& previous = slots[(f + 1) % 2];
-        Slot& next = slots[f % 2];
+        HistorySlot& previous = slots[(f + 1) % 2];
+        HistorySlot& next = slots[f % 2];
         PassList passes("static accumulation");
         stages::add_temporal_accumulate_pass(
             ctx, passes, in, position, normal, {previous.position, previous.normal, previous.color, previous.moments},
