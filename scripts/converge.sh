@@ -6,7 +6,7 @@
 # An unbiased method's block error falls like 1/sqrt(F) (halves from 64 to 256 frames) and its
 # mean tends to 1; a bias shows as a floor.
 #   scripts/converge.sh [OUT] [FRAMES...]
-# Environment: VPLKIT (binary; default build/release/samples/vplkit/vplkit), SCENE (sponza-lite-sun),
+# Environment: VPLKIT (binary; default build/release/samples/vplkit), SCENE (sponza-lite-sun),
 # SIZE (96x54), SPP (8), VPLS (4096), BLOCK (6), METHODS ("rtslc hybrid hybrid-lightcuts"),
 # EXTRA (more render options for every method, e.g. "--firefly-sigma 0").
 # Issue 26's set-up: scripts/converge.sh out/converge 64 256
@@ -15,7 +15,7 @@ out=${1:-out/converge}
 shift $(( $# < 1 ? $# : 1 ))
 frames=("$@")
 [ ${#frames[@]} -gt 0 ] || frames=(64 256)
-vplkit=${VPLKIT:-build/release/samples/vplkit/vplkit}
+vplkit=${VPLKIT:-build/release/samples/vplkit}
 scene=${SCENE:-sponza-lite-sun}
 size=${SIZE:-96x54}
 methods=${METHODS:-rtslc hybrid hybrid-lightcuts}

@@ -6,7 +6,7 @@
 # the yardstick for the others.
 #
 # usage: scripts/hybrid_residue.sh [OUT_DIR]      (default out/hybrid_residue)
-# environment: VPLKIT (binary, default build/release/samples/vplkit/vplkit), SCENE (sponza-lite-sun),
+# environment: VPLKIT (binary, default build/release/samples/vplkit), SCENE (sponza-lite-sun),
 #   SIZE (96x54), SPP (8), VPLS (4096), SOURCE (the --vpl-source, brsm), FRAMES (largest count rendered, 256), COUNTS (64,256),
 #   BLOCK (6), METHODS ("hybrid hybrid-lightcuts rtslc"), EXTRA (more render options for the sampled
 #   methods, e.g. "--nu-min 2": no substitutes); a folder already holding its frames is not rendered again
@@ -16,7 +16,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=${1:-out/hybrid_residue}
-vplkit=${VPLKIT:-build/release/samples/vplkit/vplkit}
+vplkit=${VPLKIT:-build/release/samples/vplkit}
 scene=${SCENE:-sponza-lite-sun}
 size=${SIZE:-96x54}
 spp=${SPP:-8}
