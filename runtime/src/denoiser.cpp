@@ -34,7 +34,7 @@ Denoiser Denoiser::create(Context& context, uint32_t w, uint32_t h) {
 
 void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, const stages::GbufferViews& gbuffer,
                           Image& indirect, const stages::DenoiseOptions& options, bool demodulated) {
-    if (mode == DenoiseMode::off) throw Error("denoiser: no filter asked for (--denoise off)");
+    if (mode == DenoiseMode::off) throw Error("denoiser: no filter asked for (`denoise` off)");
     if (gbuffer.width() != width() || gbuffer.height() != height()) {
         throw Error("denoiser: the G-buffer's size differs from the denoiser's");
     }

@@ -126,10 +126,11 @@ std::string glossy_branch_reason(const scene::Scene& scene, const RenderSettings
         return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree traversal to steer"
                                                   : "no tree sampling method";
     }
-    if (settings.glossy_branch == GlossyBranch::off) return "forced off (--glossy-lobe off)";
+    if (settings.glossy_branch == GlossyBranch::off) return "forced off (`glossy_branch` off)";
     if (settings.glossy_branch == GlossyBranch::on || settings.force_all_stages) {
         on = true;
-        return settings.glossy_branch == GlossyBranch::on ? "forced on (--glossy-lobe on)" : "forced on (--all-stages)";
+        return settings.glossy_branch == GlossyBranch::on ? "forced on (`glossy_branch` on)"
+                                                          : "forced on (`force_all_stages`)";
     }
     const auto glossy = glossy_materials(scene, stages::kGlossyMaxRoughness);
     if (glossy.empty()) return std::string("no material smoother than roughness ") + limit + ": compiled out";
@@ -252,22 +253,23 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                settings.direct_samples > stages::kRtslcMaxSamplesPerPixel) {
         // The tree's cut holds at most 64 nodes, one sample each: more samples go to the flat sampler.
         plan.direct_sampler = DirectSampler::flat;
-        sampler_reason = counted + ", but --direct-spp " + std::to_string(settings.direct_samples) +
+        sampler_reason = counted + ", but `direct_samples` " + std::to_string(settings.direct_samples) +
                          " is above the tree's " + std::to_string(stages::kRtslcMaxSamplesPerPixel) +
                          " samples per pixel, so emitters are drawn by power";
     } else if (settings.direct_sampler == DirectSampler::automatic) {
         plan.direct_sampler = tree_lights > kDirectTreeMinLights ? DirectSampler::tree : DirectSampler::flat;
-        sampler_reason = counted + (plan.direct_sampler == DirectSampler::tree
-                                        ? ": more than " + std::to_string(kDirectTreeMinLights) +
-                                              ", so one light tree samples them (cost per sample grows with log n, "
-                                              "not n; near lights get the samples)"
-                                        : ": " + std::to_string(kDirectTreeMinLights) +
-                                              " or fewer, so each point light is evaluated exactly and emitters "
-                                              "are drawn by power (--direct tree to sample them through the tree)");
+        sampler_reason =
+            counted + (plan.direct_sampler == DirectSampler::tree
+                           ? ": more than " + std::to_string(kDirectTreeMinLights) +
+                                 ", so one light tree samples them (cost per sample grows with log n, "
+                                 "not n; near lights get the samples)"
+                           : ": " + std::to_string(kDirectTreeMinLights) +
+                                 " or fewer, so each point light is evaluated exactly and emitters "
+                                 "are drawn by power (`direct_sampler` tree to sample them through the tree)");
     } else {
         plan.direct_sampler = settings.direct_sampler;
-        sampler_reason =
-            std::string("--direct ") + direct_sampler_name(settings.direct_sampler) + " asked for (" + counted + ")";
+        sampler_reason = std::string("`direct_sampler` ") + direct_sampler_name(settings.direct_sampler) +
+                         " asked for (" + counted + ")";
         if (plan.direct_sampler == DirectSampler::tree2) {
             sampler_reason +=
                 ": two-level, a bottom tree per emitting primitive instance under a top tree over them "
@@ -283,14 +285,14 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::direct_emissive, !tree && (emissive || force),
         tree       ? "the light tree samples the emissive triangles: " + sampler_reason
         : emissive ? std::to_string(scene.emissive_triangles.size()) + " emissive triangles, flat: " + sampler_reason
-        : force    ? "forced on (--all-stages); no emissive triangle"
+        : force    ? "forced on (`force_all_stages`); no emissive triangle"
                    : "no emissive triangle");
     add(FrameStage::direct_tree, tree, tree ? sampler_reason : "flat sampler: " + sampler_reason);
 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
     const bool make_vpls = indirect && lit && !plan.reuse_vpls && !flc;
     auto vpl_reason = [&](VplSource source) -> std::string {
-        if (!indirect) return "direct light only (--method direct): no VPLs";
+        if (!indirect) return "direct light only (`method` direct): no VPLs";
         if (flc) return "flc places its own VPLs, one per kept triangle";
         if (!lit) return "no light to place VPLs from";
         if (plan.vpl_source != source) {
@@ -307,8 +309,8 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::flc_vpls, flc && lit,
         flc ? (lit ? "read by flc: a VPL per kept triangle, lit by the direct light (seed 002 sec. 4)"
                    : "no light to light VPLs with")
-        : settings.method == GiMethod::none ? "direct light only (--method direct): no VPLs"
-                                            : std::string("--method ") + gi_method_name(settings.method));
+        : settings.method == GiMethod::none ? "direct light only (`method` direct): no VPLs"
+                                            : std::string("`method` ") + gi_method_name(settings.method));
 
     const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
     // `reads`: the method reads this tree; `built`: the frame builds it (read, or forced on).
@@ -322,7 +324,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         }
         if (!built) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + what;
         if (plan.reuse_trees) return "reused: built over the same VPLs with the same settings last frame";
-        if (!reads) return "forced on (--all-stages); the method does not read it";
+        if (!reads) return "forced on (`force_all_stages`); the method does not read it";
         if (plan.vpl_source == VplSource::smc) {
             return std::string("read by ") + gi_method_name(settings.method) +
                    "; rebuilt every frame: the SMC set moves";
@@ -347,7 +349,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
           std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid},
           std::pair{FrameStage::gi_flc, GiMethod::flc}}) {
         const bool chosen = settings.method == method;
-        std::string reason = std::string("--method ") + gi_method_name(settings.method);
+        std::string reason = std::string("`method` ") + gi_method_name(settings.method);
         if (chosen) {
             reason = settings.vpls_only ? "VPLs only: no indirect light"
                      : !lit             ? "no light: no indirect light"
@@ -364,7 +366,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool denoise = gi && settings.denoise != DenoiseMode::off && settings.method != GiMethod::exact;
     add(FrameStage::denoise, denoise,
         !gi                                    ? no_gi + ": nothing to filter"
-        : settings.denoise == DenoiseMode::off ? "--denoise off"
+        : settings.denoise == DenoiseMode::off ? "`denoise` off"
         : settings.method == GiMethod::exact   ? "exact is the ground truth: nothing to filter"
         : settings.denoise == DenoiseMode::svgf
             ? std::string("svgf: temporal accumulation and the a-trous filter") +

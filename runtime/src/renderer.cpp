@@ -29,7 +29,7 @@ Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(conte
     if (scene.lights.empty() && scene.emissive_triangles.empty()) {
         throw Error(scene.source.string() +
                     ": the scene has no light (no punctual light, no emissive triangle): its image would be black; "
-                    "add one with --sun or --point");
+                    "add a light (`scene.lights`)");
     }
     scene_ = GpuScene::create(context, scene);
     const auto start = std::chrono::steady_clock::now();
@@ -123,7 +123,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     if (scene_source_.lights.empty()) {
         throw Error(scene_source_.source.string() +
                     ": BRSM places VPLs from punctual lights' shadow maps, and the scene has none (its light "
-                    "is emissive triangles): use --vpl-source ir");
+                    "is emissive triangles): use `vpl_source` ir");
     }
     if (!scene_source_.emissive_triangles.empty()) {
         out.notes.push_back("BRSM VPLs come from punctual lights only: the emissive triangles' light has no VPLs");

@@ -26,22 +26,23 @@ namespace vplkit {
 
 void validate_flc_settings(const RenderSettings& settings) {
     if (settings.flc_levels < 1 || settings.flc_levels > stages::kFlcMaxLevels) {
-        throw Error("flc: --flc-levels " + std::to_string(settings.flc_levels) + " is outside 1.." +
+        throw Error("flc: `flc_levels` " + std::to_string(settings.flc_levels) + " is outside 1.." +
                     std::to_string(stages::kFlcMaxLevels));
     }
     if (!std::isfinite(settings.flc_mu) || !(settings.flc_mu > 1.0f)) {
-        throw Error("flc: --flc-mu " + std::to_string(settings.flc_mu) + " must be finite and above 1");
+        throw Error("flc: `flc_mu` " + std::to_string(settings.flc_mu) + " must be finite and above 1");
     }
     if (!std::isfinite(settings.flc_vpls_per_point) || !(settings.flc_vpls_per_point > 0.0f)) {
-        throw Error("flc: --flc-navg " + std::to_string(settings.flc_vpls_per_point) + " must be finite and positive");
+        throw Error("flc: `flc_vpls_per_point` " + std::to_string(settings.flc_vpls_per_point) +
+                    " must be finite and positive");
     }
-    if (settings.flc_emitter_samples < 1) throw Error("flc: emitter samples per VPL must be at least 1");
+    if (settings.flc_emitter_samples < 1) throw Error("flc: `flc_emitter_samples` must be at least 1");
     if (settings.flc_subtiles < 1 || settings.flc_subtiles > stages::kFlcMaxSubtiles) {
-        throw Error("flc: --flc-subtiles " + std::to_string(settings.flc_subtiles) + " is outside 1.." +
+        throw Error("flc: `flc_subtiles` " + std::to_string(settings.flc_subtiles) + " is outside 1.." +
                     std::to_string(stages::kFlcMaxSubtiles));
     }
     if (settings.half_resolution_gi) {
-        throw Error("flc: --gi-resolution half is not available: flc splats at the G-buffer's resolution");
+        throw Error("flc: `half_resolution_gi` is not available: flc splats at the G-buffer's resolution");
     }
 }
 

@@ -103,11 +103,11 @@ void validate_gi_settings(const RenderSettings& settings) {
     if (settings.method == GiMethod::flc) validate_flc_settings(settings);
     if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) ||
         settings.sst.sigma_max < 0.0f) {
-        throw Error("render: nu_min must be finite and sigma_max finite and >= 0");
+        throw Error("render: `sst.nu_min` must be finite and `sst.sigma_max` finite and >= 0");
     }
     if (settings.sigma_max_scene_fraction &&
         !(std::isfinite(*settings.sigma_max_scene_fraction) && *settings.sigma_max_scene_fraction >= 0.0f)) {
-        throw Error("render: sigma_max_scene_fraction must be finite and >= 0");
+        throw Error("render: `sigma_max_scene_fraction` must be finite and >= 0");
     }
 }
 

@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "render_request.hpp"
 #include "scene_warnings.hpp"
+#include "setting_flags.hpp"
 #include "vpl_view.hpp"
 
 #include "vplkit/context.hpp"
@@ -551,7 +552,7 @@ int render_or_plan(Args& args, bool plan_only) {
                     scene.emissive_triangles.size());
         std::printf("method: %s, %ux%u\n", gi_method_name(settings.method), settings.width, settings.height);
         const FramePlan plan = plan_frame(scene, settings, "");
-        std::printf("%s\n%s", plan.summary().c_str(), plan.describe().c_str());
+        std::printf("%s\n%s", plan.summary().c_str(), with_flags(plan.describe()).c_str());
         return 0;
     }
     auto context = Context::create(context_options);
@@ -595,7 +596,7 @@ int render_or_plan(Args& args, bool plan_only) {
         if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
     }
     std::printf("%s\n", image.plan_summary.c_str());
-    for (const std::string& note : image.notes) std::printf("note: %s\n", note.c_str());
+    for (const std::string& note : image.notes) std::printf("note: %s\n", with_flags(note).c_str());
     const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
     if (settings.method == GiMethod::flc && !settings.vpls_only) {
         std::printf("indirect: %u flc VPLs (%u levels, mu %g, N_avg %g), splatted unshadowed\n", image.vpl_count,

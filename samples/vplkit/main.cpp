@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "setting_flags.hpp"
 
 #include "vplkit/error.hpp"
 
@@ -76,12 +77,12 @@ int main(int argc, char** argv) {
         }
         return command->run(command_args);
     } catch (const UsageError& e) {
-        std::fprintf(stderr, "vplkit: %s\n", e.what());
+        std::fprintf(stderr, "vplkit: %s\n", vplkit::cli::with_flags(e.what()).c_str());
         std::fputs(command->usage, stderr);
         return 2;
     } catch (const std::exception& e) {
-        // Runtime errors already start with "vplkit: ".
-        const std::string text = e.what();
+        // Runtime errors already start with "vplkit: "; the settings they name become flags.
+        const std::string text = vplkit::cli::with_flags(e.what());
         std::fprintf(stderr, "%s%s\n", text.rfind("vplkit: ", 0) == 0 ? "" : "vplkit: ", text.c_str());
         return 1;
     }

@@ -181,12 +181,12 @@ TEST_CASE("planner: direct light through the light tree above 8 lights, flat bel
     many_samples.direct_samples = 65;
     const auto auto_many_samples = vplkit::plan_frame(many, many_samples, "v");
     CHECK(auto_many_samples.direct_sampler == vplkit::DirectSampler::flat);
-    CHECK(reason(auto_many_samples, FrameStage::direct_tree).find("--direct-spp 65 is above") != std::string::npos);
+    CHECK(reason(auto_many_samples, FrameStage::direct_tree).find("`direct_samples` 65 is above") != std::string::npos);
     auto asked = small(GiMethod::none);
     asked.direct_sampler = vplkit::DirectSampler::tree;
     const auto tree_point = vplkit::plan_frame(point, asked, "v");
     CHECK(tree_point.runs(FrameStage::direct_tree));
-    CHECK(reason(tree_point, FrameStage::direct_tree).find("--direct tree") != std::string::npos);
+    CHECK(reason(tree_point, FrameStage::direct_tree).find("`direct_sampler` tree") != std::string::npos);
     asked.direct_sampler = vplkit::DirectSampler::flat;
     const auto flat_many = vplkit::plan_frame(many, asked, "v");
     CHECK(flat_many.runs(FrameStage::direct_emissive));
@@ -400,7 +400,7 @@ TEST_CASE("planner: the denoiser is left out where it cannot help, and says why"
     exact.denoise = vplkit::DenoiseMode::svgf;
     CHECK(reason_of(exact, true) == std::pair{false, std::string("exact is the ground truth: nothing to filter")});
     auto off = small(GiMethod::hybrid);
-    CHECK(reason_of(off, true) == std::pair{false, std::string("--denoise off")});
+    CHECK(reason_of(off, true) == std::pair{false, std::string("`denoise` off")});
     auto temporal = small(GiMethod::hybrid);
     temporal.denoise = vplkit::DenoiseMode::temporal;
     CHECK(reason_of(temporal, false).second.find("no history yet") != std::string::npos);

@@ -317,7 +317,7 @@ TEST_CASE("render with BRSM: a scene lit only by emissive triangles is refused b
     vplkit::Renderer renderer(ctx, scene);
     auto settings = small_exact_settings(16, 16);
     settings.vpl_source = vplkit::VplSource::brsm;
-    CHECK_THROWS_WITH_AS(renderer.render(scene.camera(), settings), doctest::Contains("use --vpl-source ir"),
+    CHECK_THROWS_WITH_AS(renderer.render(scene.camera(), settings), doctest::Contains("use `vpl_source` ir"),
                          vplkit::Error);
 }
 

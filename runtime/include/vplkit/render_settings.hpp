@@ -2,6 +2,11 @@
 // What a frame is asked to do (RenderSettings: size, the indirect-light method and its options,
 // the VPL source): read by the planner (planner.hpp) and the renderer (renderer.hpp), which
 // includes this header, so neither needs the other.
+//
+// The runtime's messages (errors, the planner's reasons) name a setting by its member path in
+// backquotes with its value after it, "`vpl_source` ir", "`sst.nu_min`", and the scene's lights as
+// "`scene.lights`": the library speaks its own terms, and a front end rewrites these names to its
+// own (the CLI to its flags: samples/vplkit/setting_flags.cpp).
 
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/denoise.hpp"
