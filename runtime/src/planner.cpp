@@ -1,5 +1,6 @@
 #include "vplkit/planner.hpp"
 
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/rtslc.hpp"
@@ -123,8 +124,9 @@ std::string glossy_branch_reason(const scene::Scene& scene, const RenderSettings
     std::snprintf(limit, sizeof limit, "%.2g", stages::kGlossyMaxRoughness);
     on = false;
     if (!sampled) {
-        return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree traversal to steer"
-                                                  : "no tree sampling method";
+        const GiMethodInfo& method = gi_method(settings.method);
+        return method.ground_truth ? std::string(method.no_tree) + ": no tree traversal to steer"
+                                   : "no tree sampling method";
     }
     if (settings.glossy_branch == GlossyBranch::off) return "forced off (`glossy_branch` off)";
     if (settings.glossy_branch == GlossyBranch::on || settings.force_all_stages) {
@@ -184,12 +186,12 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool punctual = !scene.lights.empty();
     const bool emissive = !scene.emissive_triangles.empty();
     const bool lit = punctual || emissive;
-    const bool indirect = settings.method != GiMethod::none || settings.vpls_only;
-    const bool sampled =
-        settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
-    const bool half = settings.half_resolution_gi && settings.method != GiMethod::none && !settings.vpls_only;
-    // flc places its own VPLs (one per kept triangle) and splats them: no VPL source, no tree.
-    const bool flc = settings.method == GiMethod::flc && !settings.vpls_only;
+    const GiMethodInfo& method = gi_method(settings.method);
+    const bool indirect = method.vpls != GiVpls::none || settings.vpls_only;
+    const bool sampled = method.samples;
+    const bool half = settings.half_resolution_gi && method.vpls != GiVpls::none && !settings.vpls_only;
+    // A method that places its own VPLs (flc: one per kept triangle) uses no VPL source.
+    const bool own_vpls = method.vpls == GiVpls::own && !settings.vpls_only;
     auto add = [&plan](FrameStage stage, bool runs, std::string reason) {
         plan.stages.push_back({stage, runs, std::move(reason)});
     };
@@ -227,11 +229,12 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool force = settings.force_all_stages;
     // An SMC set changes every frame by design (its update is the frame's VPL stage), so neither
     // it nor the trees over it are ever reused.
-    plan.reuse_vpls = !force && settings.reuse_static_work && indirect && !flc && lit && !previous.vpl_key.empty() &&
-                      previous.vpl_key == plan.vpl_key && plan.vpl_source != VplSource::smc;
+    plan.reuse_vpls = !force && settings.reuse_static_work && indirect && !own_vpls && lit &&
+                      !previous.vpl_key.empty() && previous.vpl_key == plan.vpl_key &&
+                      plan.vpl_source != VplSource::smc;
     // Which tree the method reads, and which ones this frame builds (all of them when forced).
-    const bool reads_light_tree = settings.method == GiMethod::rtslc;
-    const bool reads_sst = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
+    const bool reads_light_tree = method.reads_light_tree;
+    const bool reads_sst = method.reads_sst;
     const bool needs_light_tree = (reads_light_tree || (force && sampled)) && !settings.vpls_only;
     const bool needs_sst = (reads_sst || (force && sampled)) && !settings.vpls_only;
     plan.reuse_trees = plan.reuse_vpls && previous.tree_key == plan.tree_key &&
@@ -290,10 +293,10 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::direct_tree, tree, tree ? sampler_reason : "flat sampler: " + sampler_reason);
 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
-    const bool make_vpls = indirect && lit && !plan.reuse_vpls && !flc;
+    const bool make_vpls = indirect && lit && !plan.reuse_vpls && !own_vpls;
     auto vpl_reason = [&](VplSource source) -> std::string {
         if (!indirect) return "direct light only (`method` direct): no VPLs";
-        if (flc) return "flc places its own VPLs, one per kept triangle";
+        if (own_vpls) return std::string(method.name) + " places its own VPLs";
         if (!lit) return "no light to place VPLs from";
         if (plan.vpl_source != source) {
             return plan.vpl_source == VplSource::brsm  ? "BRSM places this frame's VPLs"
@@ -306,56 +309,48 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::vpl_paths, make_vpls && plan.vpl_source == VplSource::ir, vpl_reason(VplSource::ir));
     add(FrameStage::brsm_vpls, make_vpls && plan.vpl_source == VplSource::brsm, vpl_reason(VplSource::brsm));
     add(FrameStage::smc_vpls, make_vpls && plan.vpl_source == VplSource::smc, vpl_reason(VplSource::smc));
+    const bool flc = own_vpls && settings.method == GiMethod::flc;  // flc's own VPL stage
     add(FrameStage::flc_vpls, flc && lit,
         flc ? (lit ? "read by flc: a VPL per kept triangle, lit by the direct light (seed 002 sec. 4)"
                    : "no light to light VPLs with")
-        : settings.method == GiMethod::none ? "direct light only (`method` direct): no VPLs"
-                                            : std::string("`method` ") + gi_method_name(settings.method));
+        : method.vpls == GiVpls::none ? "direct light only (`method` direct): no VPLs"
+                                      : "`method` " + std::string(method.name));
 
     const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
     // `reads`: the method reads this tree; `built`: the frame builds it (read, or forced on).
     auto tree_reason = [&](bool reads, bool built, const char* what) -> std::string {
         if (!lit) return "no light: no VPLs to build a tree over";
         if (settings.vpls_only) return "VPLs only: no indirect light";
-        if (!sampled) {
-            return settings.method == GiMethod::exact ? "exact evaluates every VPL: no tree"
-                   : settings.method == GiMethod::flc ? "flc splats every kept VPL over its bounded support: no tree"
-                                                      : "direct light only: no tree";
-        }
-        if (!built) return std::string("the ") + gi_method_name(settings.method) + " method does not read " + what;
+        if (!sampled) return std::string(method.no_tree) + ": no tree";
+        if (!built) return "the " + std::string(method.name) + " method does not read " + what;
         if (plan.reuse_trees) return "reused: built over the same VPLs with the same settings last frame";
         if (!reads) return "forced on (`force_all_stages`); the method does not read it";
         if (plan.vpl_source == VplSource::smc) {
-            return std::string("read by ") + gi_method_name(settings.method) +
-                   "; rebuilt every frame: the SMC set moves";
+            return "read by " + std::string(method.name) + "; rebuilt every frame: the SMC set moves";
         }
-        return std::string("read by ") + gi_method_name(settings.method);
+        return "read by " + std::string(method.name);
     };
     add(FrameStage::vpl_sort, build_trees, tree_reason(true, true, "sorted leaves"));
     add(FrameStage::light_tree, build_trees && needs_light_tree,
         tree_reason(reads_light_tree, needs_light_tree, "the light tree"));
     add(FrameStage::sst, build_trees && needs_sst, tree_reason(reads_sst, needs_sst, "the SST"));
 
-    const bool gi = settings.method != GiMethod::none && !settings.vpls_only && lit;
-    const std::string no_gi = settings.method == GiMethod::none ? "direct light only"
-                              : settings.vpls_only              ? "VPLs only"
-                                                                : "no light";
+    const bool gi = method.stage && !settings.vpls_only && lit;
+    const std::string no_gi = !method.stage ? "direct light only" : settings.vpls_only ? "VPLs only" : "no light";
     add(FrameStage::gi_downsample, gi && half,
         !gi    ? no_gi + ": no indirect light"
         : half ? "GI at half resolution"
                : "GI resolution equals the output: no half G-buffer");
-    for (auto [stage, method] :
-         {std::pair{FrameStage::gi_exact, GiMethod::exact}, std::pair{FrameStage::gi_sst, GiMethod::sst},
-          std::pair{FrameStage::gi_rtslc, GiMethod::rtslc}, std::pair{FrameStage::gi_hybrid, GiMethod::hybrid},
-          std::pair{FrameStage::gi_flc, GiMethod::flc}}) {
-        const bool chosen = settings.method == method;
-        std::string reason = std::string("`method` ") + gi_method_name(settings.method);
+    for (const GiMethodInfo& each : gi_methods()) {
+        if (!each.stage) continue;
+        const bool chosen = settings.method == each.method;
+        std::string reason = "`method` " + std::string(method.name);
         if (chosen) {
             reason = settings.vpls_only ? "VPLs only: no indirect light"
                      : !lit             ? "no light: no indirect light"
                                         : "the method asked for";
         }
-        add(stage, gi && chosen, reason);
+        add(*each.stage, gi && chosen, reason);
     }
     add(FrameStage::gi_upsample, gi && half,
         !gi    ? no_gi + ": no indirect light"
@@ -363,11 +358,11 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                : "GI resolution equals the output: no upsampling");
     // The filter only where it can help: exact is the ground truth, and a temporal-only filter
     // without history has nothing to average (it still runs then, to start the history).
-    const bool denoise = gi && settings.denoise != DenoiseMode::off && settings.method != GiMethod::exact;
+    const bool denoise = gi && settings.denoise != DenoiseMode::off && !method.ground_truth;
     add(FrameStage::denoise, denoise,
         !gi                                    ? no_gi + ": nothing to filter"
         : settings.denoise == DenoiseMode::off ? "`denoise` off"
-        : settings.method == GiMethod::exact   ? "exact is the ground truth: nothing to filter"
+        : method.ground_truth                  ? std::string(method.name) + " is the ground truth: nothing to filter"
         : settings.denoise == DenoiseMode::svgf
             ? std::string("svgf: temporal accumulation and the a-trous filter") +
                   (previous.denoise_history ? "" : " (no history yet: spatial only)")

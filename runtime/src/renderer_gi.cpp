@@ -3,6 +3,7 @@
 
 #include "vplkit/renderer.hpp"
 
+#include "gi_stage_options.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/exact_gi_render.hpp"
@@ -16,6 +17,7 @@
 #include "vplkit/stages/exact_gi.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/gbuffer_images.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/sst_gi.hpp"
@@ -26,24 +28,6 @@
 #include <string>
 
 namespace vplkit {
-
-const char* gi_method_name(GiMethod method) {
-    switch (method) {
-        case GiMethod::none:
-            return "direct";
-        case GiMethod::exact:
-            return "exact";
-        case GiMethod::sst:
-            return "sst";
-        case GiMethod::rtslc:
-            return "rtslc";
-        case GiMethod::hybrid:
-            return "hybrid";
-        case GiMethod::flc:
-            return "flc";
-    }
-    return "?";
-}
 
 const char* denoise_mode_name(DenoiseMode mode) {
     switch (mode) {
@@ -59,34 +43,6 @@ const char* denoise_mode_name(DenoiseMode mode) {
 
 namespace {
 
-struct GiStageOptions {
-    stages::SstGiOptions sst;
-    stages::RtslcOptions rtslc;
-    stages::HybridOptions hybrid;
-};
-
-// The sampling stages' options from the frame's settings; similarity_distance in world units.
-GiStageOptions gi_stage_options(const RenderSettings& settings, float similarity_distance) {
-    GiStageOptions o;
-    o.sst.samples_per_pixel = settings.samples_per_pixel;
-    o.sst.seed = settings.seed;
-    o.sst.frame = settings.frame;
-    o.rtslc.samples_per_pixel = settings.samples_per_pixel;
-    o.rtslc.block_size = settings.block_size;
-    o.rtslc.interleave = settings.interleave;
-    o.rtslc.frame = settings.frame;
-    o.rtslc.seed = settings.seed;
-    o.rtslc.similarity_max_distance = similarity_distance;
-    o.hybrid.samples_per_pixel = settings.samples_per_pixel;
-    o.hybrid.block_size = settings.block_size;
-    o.hybrid.seed = settings.seed;
-    o.hybrid.frame = settings.frame;
-    o.hybrid.similarity_max_distance = similarity_distance;
-    o.hybrid.mock_cuts = settings.mock_cuts;
-    o.hybrid.traversal = settings.hybrid_traversal;
-    return o;
-}
-
 void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
     all.insert(all.end(), more.begin(), more.end());
 }
@@ -94,13 +50,8 @@ void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
 }  // namespace
 
 void validate_gi_settings(const RenderSettings& settings) {
-    // Any positive distance: the real one depends on the scene, and every positive one is valid.
-    const GiStageOptions o = gi_stage_options(settings, 1.0f);
-    if (settings.method == GiMethod::sst) stages::validate(o.sst);
-    if (settings.method == GiMethod::rtslc) stages::validate(o.rtslc);
-    if (settings.method == GiMethod::hybrid) stages::validate(o.hybrid);
+    if (const auto check = gi_method(settings.method).validate) check(settings);
     if (settings.vpl_source == VplSource::smc) stages::validate(settings.smc);
-    if (settings.method == GiMethod::flc) validate_flc_settings(settings);
     if (!std::isfinite(settings.sst.nu_min) || !std::isfinite(settings.sst.sigma_max) ||
         settings.sst.sigma_max < 0.0f) {
         throw Error("render: `sst.nu_min` must be finite and `sst.sigma_max` finite and >= 0");
@@ -180,9 +131,9 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         auto counters = stages::create_gi_counters(context_);
         std::optional<stages::RtslcScratch> rtslc_scratch;
         std::optional<stages::HybridCuts> hybrid_cuts;
-        passes.set_tag(stage_tag(settings.method == GiMethod::sst     ? FrameStage::gi_sst
-                                 : settings.method == GiMethod::rtslc ? FrameStage::gi_rtslc
-                                                                      : FrameStage::gi_hybrid));
+        if (const std::optional<FrameStage> stage = gi_method(settings.method).stage) {
+            passes.set_tag(stage_tag(*stage));
+        }
         switch (settings.method) {
             case GiMethod::sst:
                 stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
