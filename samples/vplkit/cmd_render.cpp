@@ -10,6 +10,7 @@
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/image_io.hpp"
 #include "vplkit/planner.hpp"
 #include "vplkit/renderer.hpp"
@@ -194,6 +195,13 @@ float parse_fraction(const std::string& option, const std::string& text) {
     return *value;
 }
 
+// Throws "OPTION is for --method <the methods with trait>" unless the chosen method has it.
+void require_method_with(const RenderSettings& settings, bool GiMethodInfo::*trait, const std::string& option) {
+    if (!(gi_method(settings.method).*trait)) {
+        throw UsageError(option + " is for --method " + gi_method_names(trait));
+    }
+}
+
 // --flc-levels, --flc-mu, --flc-navg: only with --method flc.
 void parse_flc_options(Args& args, RenderSettings& settings) {
     const auto levels = args.value("--flc-levels");
@@ -312,35 +320,25 @@ RenderRequest parse_render_request(Args& args) {
                          ": the tree samples at most 64 cut nodes per pixel");
     }
     if (auto text = args.value("--method")) {
-        bool known = false;
-        for (GiMethod m :
-             {GiMethod::none, GiMethod::exact, GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid, GiMethod::flc}) {
-            if (*text == gi_method_name(m)) {
-                settings.method = m;
-                known = true;
-            }
-        }
-        if (!known) throw UsageError("--method expects direct, exact, sst, rtslc, hybrid or flc, got '" + *text + "'");
+        const GiMethodInfo* method = find_gi_method(*text);
+        if (!method) throw UsageError("--method expects " + gi_method_names() + ", got '" + *text + "'");
+        settings.method = method->method;
     }
     parse_flc_options(args, settings);
-    const bool sampled =
-        settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
-    const bool blocked = settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
-    const bool substitutes = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
     if (auto text = args.value("--spp")) {
-        if (!sampled) throw UsageError("--spp is for --method sst, rtslc or hybrid");
+        require_method_with(settings, &GiMethodInfo::samples, "--spp");
         settings.samples_per_pixel = parse_whole_number("--spp", *text, 64);
     }
     if (auto text = args.value("--block")) {
-        if (!blocked) throw UsageError("--block is for --method rtslc or hybrid");
+        require_method_with(settings, &GiMethodInfo::blocks, "--block");
         settings.block_size = parse_whole_number("--block", *text, 32);
     }
     if (auto text = args.value("--interleave")) {
-        if (settings.method != GiMethod::rtslc) throw UsageError("--interleave is for --method rtslc");
+        require_method_with(settings, &GiMethodInfo::interleaves, "--interleave");
         settings.interleave = parse_whole_number("--interleave", *text, 32);
     }
     if (auto text = args.value("--traversal")) {
-        if (settings.method != GiMethod::hybrid) throw UsageError("--traversal is for --method hybrid");
+        require_method_with(settings, &GiMethodInfo::chooses_traversal, "--traversal");
         if (*text == "lightcuts") {
             settings.hybrid_traversal = stages::HybridTraversal::lightcuts;
         } else if (*text != "substitute") {
@@ -348,7 +346,7 @@ RenderRequest parse_render_request(Args& args) {
         }
     }
     if (auto text = args.value("--glossy-lobe")) {
-        if (!sampled) throw UsageError("--glossy-lobe is for --method sst, rtslc or hybrid");
+        require_method_with(settings, &GiMethodInfo::samples, "--glossy-lobe");
         if (*text == "on")
             settings.glossy_branch = GlossyBranch::on;
         else if (*text == "off")
@@ -357,13 +355,13 @@ RenderRequest parse_render_request(Args& args) {
             throw UsageError("--glossy-lobe expects auto, on or off, got '" + *text + "'");
     }
     if (auto text = args.value("--nu-min")) {
-        if (!substitutes) throw UsageError("--nu-min is for --method sst or hybrid");
+        require_method_with(settings, &GiMethodInfo::reads_sst, "--nu-min");
         const auto value = finite_number(*text);
         if (!value) throw UsageError("--nu-min expects a number, got '" + *text + "'");
         settings.sst.nu_min = *value;
     }
     if (auto text = args.value("--sigma-max")) {
-        if (!substitutes) throw UsageError("--sigma-max is for --method sst or hybrid");
+        require_method_with(settings, &GiMethodInfo::reads_sst, "--sigma-max");
         const auto value = finite_number(*text);
         if (!value || *value < 0.0f) throw UsageError("--sigma-max expects a number >= 0, got '" + *text + "'");
         settings.sst.sigma_max = *value;
@@ -442,7 +440,9 @@ RenderRequest parse_render_request(Args& args) {
         lambertian = *text == "lambert";
     }
     if (auto text = args.value("--exact-clamp")) {
-        if (settings.method != GiMethod::exact) throw UsageError("--exact-clamp needs --method exact");
+        if (!gi_method(settings.method).ground_truth) {
+            throw UsageError("--exact-clamp needs --method " + gi_method_names(&GiMethodInfo::ground_truth));
+        }
         settings.exact_min_distance_fraction = parse_fraction("--exact-clamp", *text);
     }
     settings.force_all_stages = args.flag("--all-stages");
@@ -519,10 +519,7 @@ int render_or_plan(Args& args, bool plan_only) {
     RenderRequest request = parse_render_request(args);
     RenderSettings& settings = request.settings;
     const ContextOptions& context_options = request.context;
-    const bool sampled =
-        settings.method == GiMethod::sst || settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
-    const bool blocked = settings.method == GiMethod::rtslc || settings.method == GiMethod::hybrid;
-    const bool substitutes = settings.method == GiMethod::sst || settings.method == GiMethod::hybrid;
+    const GiMethodInfo& method = gi_method(settings.method);
     const std::filesystem::path out = args.value("--out").value_or("vplkit.png");
     const auto out_hdr = args.value("--out-hdr");
     const auto out_direct = args.value("--out-direct");
@@ -617,19 +614,19 @@ int render_or_plan(Args& args, bool plan_only) {
         std::printf("%s: %u VPLs from %u light paths x %u bounces\n", settings.vpls_only ? "vpls" : "indirect",
                     image.vpl_count, settings.vpl_paths, settings.vpl_bounces);
     }
-    if (settings.method == GiMethod::exact && image.dropped_pixels > 0) {
+    if (method.ground_truth && image.dropped_pixels > 0) {
         std::printf("warning: %u pixels had a non-finite VPL contribution left out\n", image.dropped_pixels);
     }
-    if (sampled && !settings.vpls_only && image.vpl_count > 0) {
+    if (method.samples && !settings.vpls_only && image.vpl_count > 0) {
         const stages::GiCounts& c = image.gi_counts;
         std::printf("%s: %u spp", gi_method_name(settings.method), settings.samples_per_pixel);
-        if (blocked) std::printf(", %ux%u blocks", settings.block_size, settings.block_size);
+        if (method.blocks) std::printf(", %ux%u blocks", settings.block_size, settings.block_size);
         if (settings.interleave > 1) std::printf(", %ux%u interleaved", settings.interleave, settings.interleave);
         if (settings.hybrid_traversal == stages::HybridTraversal::lightcuts) std::printf(", rtslc's traversal");
-        if (substitutes) std::printf(", nu_min %.2f, sigma_max %.3g", settings.sst.nu_min, image.sst_sigma_max);
+        if (method.reads_sst) std::printf(", nu_min %.2f, sigma_max %.3g", settings.sst.nu_min, image.sst_sigma_max);
         std::printf("; %.2f tree levels per traversal (%u traversals), %u dead branches", c.levels_per_traversal(),
                     c.traversals, c.dead_branches);
-        if (settings.method == GiMethod::hybrid) std::printf(", %u mock-cut pixels", c.mock_cut_pixels);
+        if (method.mock_cuts) std::printf(", %u mock-cut pixels", c.mock_cut_pixels);
         std::printf("\n");
     }
     if (settings.half_resolution_gi && !settings.vpls_only) {
@@ -637,7 +634,7 @@ int render_or_plan(Args& args, bool plan_only) {
                     image.gi_width, image.gi_height, image.upsample_counts.fallback_pixels,
                     image.upsample_counts.empty_pixels);
     }
-    if (settings.denoise != DenoiseMode::off && !settings.vpls_only && settings.method != GiMethod::exact) {
+    if (settings.denoise != DenoiseMode::off && !settings.vpls_only && !method.ground_truth) {
         std::printf(
             "denoise %s over %u frame(s); firefly clamp (mean + %.1f sigma) moved %.4f%% of the accumulated "
             "indirect irradiance's luminance onto the outliers' neighbours in the last (none removed)\n",
@@ -660,7 +657,7 @@ int render_or_plan(Args& args, bool plan_only) {
         total += ms;
     }
     std::printf("  %-30s %9.3f ms\n", "total", total);
-    if (settings.method == GiMethod::exact && !settings.vpls_only) {
+    if (method.ground_truth && !settings.vpls_only) {
         std::printf("exact gi by the host's wall clock: %.3f ms\n", image.exact_gi_wall_ms);
     }
 

@@ -10,6 +10,7 @@
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/image_io.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/sequence_metrics.hpp"
@@ -135,7 +136,8 @@ int run_sequence(Args& args) {
     validate_render_request(request);
     RenderSettings& settings = request.settings;
     // Sequences are what the filter is for: svgf unless asked otherwise (never for exact).
-    if (!request.denoise_given && settings.method != GiMethod::none && settings.method != GiMethod::exact) {
+    const GiMethodInfo& method = gi_method(settings.method);
+    if (!request.denoise_given && method.vpls != GiVpls::none && !method.ground_truth) {
         settings.denoise = DenoiseMode::svgf;
     }
     if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
