@@ -8,6 +8,7 @@
 #include "plot.hpp"
 
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/image_io.hpp"
 #include "vplkit/image_metrics.hpp"
 
@@ -23,11 +24,24 @@ namespace vplkit::cli {
 
 namespace {
 
-const char* const kMethods[] = {"sst", "rtslc", "hybrid", "hybrid-lightcuts", "flc"};
+// The bench's curves (the method table's, gi_methods.hpp) that take `sweep`; every curve without one.
+std::vector<std::string> curves(std::string_view sweep = {}) {
+    std::vector<std::string> out;
+    for (const GiBenchCurveOf& c : gi_bench_curves()) {
+        if (sweep.empty() || c.sweeps(sweep)) out.emplace_back(c.curve->name);
+    }
+    return out;
+}
 
-// The sweep of a method's quality knob: samples per pixel, or flc's N_avg.
-const char* quality_sweep(const std::string& method) {
-    return method == "flc" ? "navg" : "spp";
+// The curve that sweeps the VPL count (the trees' build time), or "".
+std::string vpl_count_curve() {
+    const std::vector<std::string> with = curves("vpls");
+    return with.empty() ? "" : with.front();
+}
+
+// The sweep of a curve's quality knob: samples per pixel, or flc's N_avg.
+std::string quality_sweep(const std::string& curve) {
+    return std::string(find_gi_bench_curve(curve)->quality_sweep());
 }
 
 std::string fixed(double v, int digits) {
@@ -144,7 +158,7 @@ std::string json(const BenchRun& run) {
 // block and interleave variants: every comparable point of that method).
 std::vector<const BenchPoint*> equal_time(const BenchRun& run) {
     std::vector<const BenchPoint*> out;
-    for (const char* m : kMethods) {
+    for (const std::string& m : curves()) {
         const BenchPoint* best = nullptr;
         for (const BenchPoint& p : run.points) {
             if (p.method != m || !comparable(p)) continue;
@@ -169,12 +183,10 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         plot.log_y = true;
         if (!gi_only) plot.highlight_label = "Pareto front";
         const auto front = pareto_front(run);
-        for (const char* m : kMethods) {
+        for (const std::string& m : curves()) {
             for (const std::string sweep : {"quality", "resolution", "denoise"}) {
                 Series series;
-                series.name = std::string(m) + (sweep == "resolution" ? " (half res)"
-                                                : sweep == "denoise"  ? " (svgf)"
-                                                                      : "");
+                series.name = m + (sweep == "resolution" ? " (half res)" : sweep == "denoise" ? " (svgf)" : "");
                 for (const BenchPoint* p : select(run, m, sweep == "quality" ? quality_sweep(m) : sweep)) {
                     series.x.push_back(gi_only ? p->gi_ms + p->trees_ms : p->frame_ms);
                     series.y.push_back(p->rmse);
@@ -194,8 +206,8 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         plot.x_label = "samples per pixel";
         plot.y_label = "levels per traversal";
         plot.log_x = true;
-        for (const char* m : kMethods) {
-            if (std::string(m) == "flc") continue;  // no tree
+        for (const std::string& m : curves()) {
+            if (!find_gi_bench_curve(m)->method->samples) continue;  // no tree traversals
             Series series;
             series.name = m;
             for (const BenchPoint* p : select(run, m, "spp")) {
@@ -213,7 +225,7 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         plot.x_label = "block size k (pixels)";
         plot.y_label = time ? "GI time (ms, GPU)" : "RMSE (tonemapped)";
         plot.log_x = true;
-        for (const char* m : {"rtslc", "hybrid"}) {
+        for (const std::string& m : curves("block")) {
             std::vector<const BenchPoint*> points = select(run, m, "block");
             if (const BenchPoint* p = base_point(run, m, 8)) points.push_back(p);
             std::sort(points.begin(), points.end(),
@@ -236,11 +248,12 @@ void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
         plot.y_label = "GPU time (ms)";
         plot.log_x = true;
         plot.log_y = true;
-        std::vector<const BenchPoint*> points = select(run, "hybrid", "vpls");
-        if (const BenchPoint* p = base_point(run, "hybrid", 8)) points.push_back(p);
+        const std::string m = vpl_count_curve();
+        std::vector<const BenchPoint*> points = select(run, m, "vpls");
+        if (const BenchPoint* p = base_point(run, m, 8)) points.push_back(p);
         std::sort(points.begin(), points.end(),
                   [](const BenchPoint* a, const BenchPoint* b) { return a->vpls < b->vpls; });
-        Series trees{"trees (keys, sort, leaves, light tree, SST)"}, vpls{"VPL generation"}, gi{"hybrid GI, 8 spp"};
+        Series trees{"trees (keys, sort, leaves, light tree, SST)"}, vpls{"VPL generation"}, gi{m + " GI, 8 spp"};
         for (const BenchPoint* p : points) {
             for (Series* s : {&trees, &vpls, &gi}) s->x.push_back(p->vpls);
             trees.y.push_back(p->trees_ms);
@@ -344,30 +357,32 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     for (const BenchPoint* p : pareto_front(run))
         md << p->label() << " (" << fixed(p->frame_ms, 1) << " ms, " << fixed(p->rmse, 4) << "); ";
     md << "\n\n" << kTableHead;
-    for (const char* m : kMethods) {
+    for (const std::string& m : curves()) {
         for (const BenchPoint* p : select(run, m, quality_sweep(m))) md << row(*p);
     }
     md << "\n## Tree levels per traversal (Fig. 7.2)\n\n![levels](levels.png)\n\n"
        << "## Cut block size (Fig. 7.5)\n\n![block size vs RMSE](block_size_rmse.png) ![block size vs "
           "time](block_size_time.png)\n\n"
        << kTableHead;
-    for (const char* m : {"rtslc", "hybrid"}) {
+    for (const std::string& m : curves("block")) {
         for (const BenchPoint* p : select(run, m, "block")) md << row(*p);
     }
     md << "\n## Mock cuts (ch. 7.3)\n\nHybrid with the mock cut where no neighbouring block is alike, against root "
        << "traversals there instead (mock-cut pixels: where no block was alike).\n\n"
        << "| spp | mock cuts: RMSE | frame ms | root traversals: RMSE | frame ms | pixels |\n| --- | --- | --- | --- | "
           "--- | --- |\n";
-    for (const BenchPoint* p : select(run, "hybrid", "mock")) {
-        if (const BenchPoint* with = base_point(run, "hybrid", p->spp)) {
-            md << "| " << p->spp << " | " << fixed(with->rmse, 4) << " | " << fixed(with->frame_ms, 1) << " | "
-               << fixed(p->rmse, 4) << " | " << fixed(p->frame_ms, 1) << " | " << with->mock_cut_pixels << " |\n";
+    for (const std::string& m : curves("mock")) {
+        for (const BenchPoint* p : select(run, m, "mock")) {
+            if (const BenchPoint* with = base_point(run, m, p->spp)) {
+                md << "| " << p->spp << " | " << fixed(with->rmse, 4) << " | " << fixed(with->frame_ms, 1) << " | "
+                   << fixed(p->rmse, 4) << " | " << fixed(p->frame_ms, 1) << " | " << with->mock_cut_pixels << " |\n";
+            }
         }
     }
     md << "\n## Upsampling (table 7.2)\n\nGI at full resolution against half resolution with joint bilateral "
           "upsampling.\n\n"
        << "| method | spp | full: RMSE | GI ms | half: RMSE | GI ms |\n| --- | --- | --- | --- | --- | --- |\n";
-    for (const char* m : {"rtslc", "hybrid"}) {
+    for (const std::string& m : curves("resolution")) {
         for (const BenchPoint* p : select(run, m, "resolution")) {
             if (const BenchPoint* full = base_point(run, m, p->spp)) {
                 md << "| " << m << " | " << p->spp << " | " << fixed(full->rmse, 4) << " | " << fixed(full->gi_ms, 1)
@@ -378,15 +393,18 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     md << "\n## Denoised (svgf)\n\nEach point's frames accumulated on the static camera and filtered "
           "(`--denoise svgf`); the RMSE is the last frame's, the frame time includes the filter's passes.\n\n"
        << kTableHead;
-    for (const char* m : kMethods) {
+    for (const std::string& m : curves()) {
         for (const BenchPoint* p : select(run, m, "denoise")) md << row(*p);
     }
     md << "\n## Interleaved sampling (rtslc, 2 x 2)\n\n" << kTableHead;
-    for (const BenchPoint* p : select(run, "rtslc", "interleave")) md << row(*p);
+    for (const std::string& m : curves("interleave")) {
+        for (const BenchPoint* p : select(run, m, "interleave")) md << row(*p);
+    }
     md << "\n## VPL count vs build time\n\n![VPL count vs build time](vpl_count_build_time.png)\n\n"
-       << "| VPLs | VPL generation ms | trees ms | hybrid GI ms (8 spp) |\n| --- | --- | --- | --- |\n";
-    std::vector<const BenchPoint*> counts = select(run, "hybrid", "vpls");
-    if (const BenchPoint* p = base_point(run, "hybrid", 8)) counts.push_back(p);
+       << "| VPLs | VPL generation ms | trees ms | " << vpl_count_curve()
+       << " GI ms (8 spp) |\n| --- | --- | --- | --- |\n";
+    std::vector<const BenchPoint*> counts = select(run, vpl_count_curve(), "vpls");
+    if (const BenchPoint* p = base_point(run, vpl_count_curve(), 8)) counts.push_back(p);
     std::sort(counts.begin(), counts.end(), [](const BenchPoint* a, const BenchPoint* b) { return a->vpls < b->vpls; });
     for (const BenchPoint* p : counts) {
         md << "| " << p->vpls << " | " << fixed(p->vpls_ms, 1) << " | " << fixed(p->trees_ms, 1) << " | "

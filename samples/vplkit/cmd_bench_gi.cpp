@@ -9,6 +9,7 @@
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/image_io.hpp"
 #include "vplkit/image_metrics.hpp"
 #include "vplkit/planner.hpp"
@@ -88,8 +89,9 @@ struct GroundTruth {
     std::filesystem::path png;
 };
 
-// The points of a sweep, in the order they run.
-std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
+// The points of the curves' sweeps (gi_methods.hpp says which curve takes which), sweep by sweep,
+// in the order they run.
+std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget, const std::vector<GiBenchCurveOf>& curves) {
     std::vector<BenchPoint> points;
     auto add = [&](std::string method, std::string sweep, unsigned spp, unsigned block, unsigned interleave, bool half,
                    bool mock, unsigned vpls) {
@@ -109,22 +111,33 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
     const std::vector<unsigned> blocks =
         quick ? std::vector<unsigned>{4, 8} : std::vector<unsigned>{1, 2, 4, 8, 16, 32};
     const std::vector<unsigned> some = quick ? std::vector<unsigned>{4} : std::vector<unsigned>{4, 8, 16, 32};
-    // hybrid-lightcuts: hybrid's cuts and blending with rtslc's traversal (seed 000 sec. 7.1).
-    for (const char* m : {"sst", "rtslc", "hybrid", "hybrid-lightcuts"}) {
+    // Every curve that takes `sweep`, by name.
+    auto taking = [&](const char* sweep) {
+        std::vector<std::string> names;
+        for (const GiBenchCurveOf& c : curves) {
+            if (c.sweeps(sweep)) names.emplace_back(c.curve->name);
+        }
+        return names;
+    };
+    for (const std::string& m : taking("spp")) {
         for (unsigned spp : spps) add(m, "spp", spp, 8, 1, false, true, vpl_budget);
     }
-    for (const char* m : {"rtslc", "hybrid"}) {
+    for (const std::string& m : taking("block")) {
         for (unsigned k : blocks) {
             if (k != 8) add(m, "block", 8, k, 1, false, true, vpl_budget);
         }
     }
-    for (const char* m : {"rtslc", "hybrid"}) {
+    for (const std::string& m : taking("resolution")) {
         for (unsigned spp : some) add(m, "resolution", spp, 8, 1, true, true, vpl_budget);
     }
-    for (unsigned spp : some) add("rtslc", "interleave", spp, 8, 2, false, true, vpl_budget);
-    for (unsigned spp : some) add("hybrid", "mock", spp, 8, 1, false, false, vpl_budget);
+    for (const std::string& m : taking("interleave")) {
+        for (unsigned spp : some) add(m, "interleave", spp, 8, 2, false, true, vpl_budget);
+    }
+    for (const std::string& m : taking("mock")) {
+        for (unsigned spp : some) add(m, "mock", spp, 8, 1, false, false, vpl_budget);
+    }
     // The denoised curves: svgf over the point's frames, its passes in the frame time.
-    for (const char* m : {"sst", "rtslc", "hybrid"}) {
+    for (const std::string& m : taking("denoise")) {
         for (unsigned spp : some) {
             add(m, "denoise", spp, 8, 1, false, true, vpl_budget);
             points.back().denoised = true;
@@ -132,15 +145,19 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget) {
     }
     const std::vector<unsigned> counts =
         quick ? std::vector<unsigned>{vpl_budget * 4} : std::vector<unsigned>{1024, 16384, 65536, 262144, 1048576};
-    for (unsigned n : counts) {
-        if (n != vpl_budget) add("hybrid", "vpls", 8, 8, 1, false, true, n);
+    for (const std::string& m : taking("vpls")) {
+        for (unsigned n : counts) {
+            if (n != vpl_budget) add(m, "vpls", 8, 8, 1, false, true, n);
+        }
     }
     // flc (seed 002) places its own VPLs: its curve sweeps N_avg (eq. 1), the paper's 64..1024.
     const std::vector<float> navgs =
         quick ? std::vector<float>{32, 128} : std::vector<float>{32, 64, 128, 256, 512, 1024};
-    for (float navg : navgs) {
-        add("flc", "navg", 0, 0, 1, false, true, 0);
-        points.back().flc_navg = navg;
+    for (const std::string& m : taking("navg")) {
+        for (float navg : navgs) {
+            add(m, "navg", 0, 0, 1, false, true, 0);
+            points.back().flc_navg = navg;
+        }
     }
     return points;
 }
@@ -191,11 +208,33 @@ private:
     bool terminal_;
 };
 
-GiMethod method_of(const std::string& name) {
-    if (name == "sst") return GiMethod::sst;
-    if (name == "rtslc") return GiMethod::rtslc;
-    if (name == "flc") return GiMethod::flc;
-    return GiMethod::hybrid;
+// The curve of a name the bench gave its point (every point's name is a curve's).
+GiBenchCurveOf curve_of(const std::string& name) {
+    const std::optional<GiBenchCurveOf> curve = find_gi_bench_curve(name);
+    if (!curve) throw Error("bench: no method or bench curve is named '" + name + "'");
+    return *curve;
+}
+
+// --methods LIST: those curves, in the table's order; every curve when not given. An unknown
+// name is a command-line mistake.
+std::vector<GiBenchCurveOf> parse_curves(const std::optional<std::string>& text) {
+    if (!text) return gi_bench_curves();
+    std::vector<std::string> names;
+    size_t start = 0;
+    while (start <= text->size()) {
+        const size_t comma = std::min(text->find(',', start), text->size());
+        names.push_back(text->substr(start, comma - start));
+        if (!find_gi_bench_curve(names.back())) {
+            throw UsageError("--methods expects a comma-separated list of " + gi_bench_curve_names() + ", got '" +
+                             names.back() + "' in '" + *text + "'");
+        }
+        start = comma + 1;
+    }
+    std::vector<GiBenchCurveOf> out;
+    for (const GiBenchCurveOf& c : gi_bench_curves()) {
+        if (std::find(names.begin(), names.end(), c.curve->name) != names.end()) out.push_back(c);
+    }
+    return out;
 }
 
 }  // namespace
@@ -210,13 +249,13 @@ std::vector<float> unit_rgb(const std::vector<uint8_t>& rgba) {
 }
 
 std::string BenchPoint::label() const {
-    if (method == "flc") {
+    if (sweep == "navg") {
         char text[32];
-        std::snprintf(text, sizeof text, "flc navg %g", flc_navg);
-        return text;
+        std::snprintf(text, sizeof text, " navg %g", flc_navg);
+        return method + text;
     }
     std::string s = method + " " + std::to_string(spp) + " spp";
-    if (method != "sst") s += " k" + std::to_string(block);
+    if (curve_of(method).method->blocks) s += " k" + std::to_string(block);
     if (interleave > 1) s += " m" + std::to_string(interleave);
     if (half) s += " half";
     if (!mock_cuts) s += " no-mock";
@@ -275,6 +314,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
             start = comma + 1;
         }
     }
+    const std::vector<GiBenchCurveOf> curves = parse_curves(args.value("--methods"));
     args.finish();
 
     scene::Setup setup;
@@ -365,7 +405,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         run.exact_image = "images/exact.png";
     }
 
-    std::vector<BenchPoint> points = plan_points(quick, vpl_budget);
+    std::vector<BenchPoint> points = plan_points(quick, vpl_budget, curves);
     if (!sweeps.empty()) {
         std::erase_if(points, [&](const BenchPoint& p) {
             return std::find(sweeps.begin(), sweeps.end(), p.sweep) == sweeps.end();
@@ -376,15 +416,16 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         BenchPoint& p = points[i];
         progress.show(i, p.label());
         RenderSettings s = base;
-        s.method = method_of(p.method);
+        const GiBenchCurveOf curve = curve_of(p.method);
+        s.method = curve.method->method;
         s.samples_per_pixel = p.spp;
         s.block_size = p.block;
         s.interleave = p.interleave;
         s.half_resolution_gi = p.half;
         s.mock_cuts = p.mock_cuts;
         s.denoise = p.denoised ? DenoiseMode::svgf : DenoiseMode::off;
-        if (p.method == "hybrid-lightcuts") s.hybrid_traversal = vplkit::stages::HybridTraversal::lightcuts;
-        if (p.method == "flc") s.flc_vpls_per_point = p.flc_navg;
+        if (curve.curve->variant) curve.curve->variant(s);
+        if (p.sweep == "navg") s.flc_vpls_per_point = p.flc_navg;
         // Light paths leave up to one VPL per bounce: aim the path count at the VPL count.
         s.vpl_paths =
             base.vpl_source == VplSource::ir && p.sweep == "vpls" ? std::max(1u, p.vpls / base.vpl_bounces) : p.vpls;
@@ -470,16 +511,17 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     write_bench_report(out, run);
     // The headline on the terminal: each method's best error within the target frame time.
     std::printf("best RMSE within %.0f ms (the equal-time target):\n", run.target_ms);
-    for (const char* m : {"sst", "rtslc", "hybrid", "hybrid-lightcuts", "flc"}) {
+    for (const GiBenchCurveOf& curve : curves) {
+        const std::string m(curve.curve->name);
         const BenchPoint* best = nullptr;
         for (const BenchPoint& p : run.points) {
             if (p.method == m && p.sweep != "vpls" && p.frame_ms <= run.target_ms && (!best || p.rmse < best->rmse))
                 best = &p;
         }
         if (best) {
-            std::printf("  %-16s %.4f  (%s, %.1f ms)\n", m, best->rmse, best->label().c_str(), best->frame_ms);
+            std::printf("  %-16s %.4f  (%s, %.1f ms)\n", m.c_str(), best->rmse, best->label().c_str(), best->frame_ms);
         } else {
-            std::printf("  %-16s no point within the target\n", m);
+            std::printf("  %-16s no point within the target\n", m.c_str());
         }
     }
     std::printf("wrote %s (points.csv, points.json, plots, images)\n", (out / "report.md").string().c_str());
