@@ -85,7 +85,14 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
     const uint32_t triangles = scene_.triangle_count();
     if (flc_triangle_areas_.empty()) flc_triangle_areas_ = triangle_areas(scene_source_);
     if (flc_triangle_order_.empty()) flc_triangle_order_ = triangle_order(scene_source_);
-    const stages::FlcSubdivision subdivision = stages::flc_subdivision_for(flc_triangle_areas_, partition);
+    const stages::FlcSubdivision subdivision = [&] {
+        try {
+            return stages::flc_subdivision_for(flc_triangle_areas_, partition);
+        } catch (const Error& e) {
+            // The stage speaks of its partition; name the settings that make it.
+            throw Error(std::string(e.what()) + " (`flc_vpls_per_point`, `flc_levels`, `flc_mu`)");
+        }
+    }();
     const uint32_t candidate_count = triangles + subdivision.sub_count;
     // The levels are drawn by the stratified decimation, with S_k fitted to the scene's area.
     double scene_area = 0.0;

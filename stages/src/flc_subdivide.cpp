@@ -22,10 +22,11 @@ FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const
         auto side = root < double(kFlcMaxCandidates) ? uint64_t(root) : kFlcMaxCandidates;
         while (side < kFlcMaxCandidates && double(side) * double(side) * target < area) ++side;  // the root's rounding
         if (side >= kFlcMaxCandidates || total + triangle_areas.size() + side * side > kFlcMaxCandidates) {
-            throw Error("flc: the divergent triangles' subdivision needs more than " +
-                        std::to_string(kFlcMaxCandidates - triangle_areas.size()) + " sub-triangles (triangle " +
-                        std::to_string(t) + ", area " + std::to_string(area) + ", needs " + std::to_string(side) +
-                        "^2): ask for fewer VPLs per point (--flc-navg), more levels or a larger mu");
+            throw Error(
+                "flc: the divergent triangles' subdivision needs more than " +
+                std::to_string(kFlcMaxCandidates - triangle_areas.size()) + " sub-triangles (triangle " +
+                std::to_string(t) + ", area " + std::to_string(area) + ", needs " + std::to_string(side) +
+                "^2): the partition needs a larger s0 (fewer VPLs per point), a larger level_count or a larger mu");
         }
         out.entries.push_back({uint32_t(t), uint32_t(side), uint32_t(total)});
         total += side * side;

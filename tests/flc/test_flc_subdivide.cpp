@@ -29,6 +29,7 @@
 
 #include <cmath>
 #include <set>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -232,6 +233,12 @@ TEST_CASE("flc subdivide: a rigid transform of the mesh keeps every sub-triangle
 
 TEST_CASE("flc subdivide: a subdivision beyond the candidate limit is refused") {
     const std::vector<double> areas = {1.0, 1e12};
+    // In the stage's own terms (its partition's fields), never a command-line flag.
     CHECK_THROWS_WITH_AS(vplkit::stages::flc_subdivision_for(areas, test_partition()),
-                         doctest::Contains("ask for fewer VPLs per point"), vplkit::Error);
+                         doctest::Contains("the partition needs a larger s0 (fewer VPLs per point)"), vplkit::Error);
+    try {
+        vplkit::stages::flc_subdivision_for(areas, test_partition());
+    } catch (const vplkit::Error& e) {
+        CHECK(std::string(e.what()).find("--") == std::string::npos);
+    }
 }
