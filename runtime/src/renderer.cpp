@@ -33,8 +33,9 @@ Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(conte
     }
     scene_ = GpuScene::create(context, scene);
     const auto start = std::chrono::steady_clock::now();
-    bvh_ = build_bvh(scene::triangle_positions(scene));
-    add_alpha_tests(bvh_, scene);  // MASK and BLEND cut-outs let rays through, as the G-buffer shows them
+    // MASK and BLEND cut-outs let rays through, as the G-buffer shows them; their triangles in a
+    // subtree of their own, so only rays that enter it pay for the alpha test (vplkit/bvh.hpp).
+    bvh_ = build_scene_bvh(scene);
     bvh_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu_bvh_ = upload_bvh(context, bvh_);
     lights_ = stages::upload_lights(context, scene.lights);

@@ -46,6 +46,7 @@ struct Primitive {
     Box box;
     glm::vec3 centroid{};
     uint32_t triangle = 0;  // input triangle index
+    bool masked = false;    // build_bvh_split: goes to the masked subtree
 };
 
 std::string format_vertex(const glm::vec3& v) {
@@ -140,6 +141,25 @@ public:
         node.index = second;
         node.meta = axis;
         return index;
+    }
+
+    // The split layout (vplkit/bvh.hpp): node 0 over the opaque primitives [0, opaque_end) as
+    // node 1 and the masked ones [opaque_end, end) as its second child, each built one level down.
+    void build_split(uint32_t opaque_end, uint32_t end) {
+        bvh_.nodes.emplace_back();
+        build(0, opaque_end, 1);  // lands at node 1
+        const uint32_t masked = build(opaque_end, end, 1);
+        Box box;
+        for (uint32_t i = 0; i < end; ++i) {
+            box.grow(primitives_[i].box);
+        }
+        sah_sum_ += box.area() * options_.traversal_cost;
+        shaders::BvhNode& root = bvh_.nodes[0];
+        store_box(root, box);
+        root.index = masked;
+        root.meta = 0;  // any axis: the split traversal visits both subtrees in a fixed order
+        bvh_.masked_root = masked;
+        bvh_.opaque_triangles = opaque_end;
     }
 
     void finish(const Box& root) {
@@ -248,10 +268,9 @@ private:
     double sah_sum_ = 0.0;
 };
 
-}  // namespace
-
-Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids,
-              const BvhBuildOptions& options) {
+// build_bvh, and build_bvh_split when `masked` is not empty.
+Bvh build(std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids, std::span<const uint8_t> masked,
+          const BvhBuildOptions& options) {
     validate_options(options);
     if (vertices.size() % 3 != 0) {
         throw Error("BVH build: " + std::to_string(vertices.size()) +
@@ -303,6 +322,7 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> tri
         p.box.grow(c);
         p.centroid = 0.5f * (p.box.lo + p.box.hi);
         p.triangle = uint32_t(t);
+        p.masked = !masked.empty() && masked[t] != 0;
         primitives.push_back(p);
         for (int axis = 0; axis < 3; ++axis) {
             scale = std::max({scale, std::fabs(p.box.lo[axis]), std::fabs(p.box.hi[axis])});
@@ -319,15 +339,31 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> tri
         return bvh;
     }
 
+    const uint32_t masked_count =
+        uint32_t(std::count_if(primitives.begin(), primitives.end(), [](const Primitive& p) { return p.masked; }));
+    const uint32_t opaque_count = uint32_t(primitives.size()) - masked_count;
     Builder builder(options, primitives, bvh);
+    // No split unless both kinds exist. The split costs the common root's level: where the deeper
+    // subtree would not fit below it, one tree (correct: the masked triangles are then tested in
+    // the one loop).
+    const bool split = opaque_count > 0 && masked_count > 0 &&
+                       builder.levels_needed(std::max(opaque_count, masked_count)) + 1 <= options.max_depth;
+    if (split) {
+        // Opaque primitives first, masked ones after (the split layout).
+        std::stable_partition(primitives.begin(), primitives.end(), [](const Primitive& p) { return !p.masked; });
+    }
     if (builder.levels_needed(primitives.size()) > options.max_depth) {
         throw Error("BVH build: " + std::to_string(primitives.size()) + " triangles do not fit in leaves of " +
                     std::to_string(options.max_leaf_triangles) + " within max_depth " +
                     std::to_string(options.max_depth));
     }
     builder.padding = scale * kBvhBoxPadding;
-    bvh.nodes.reserve(2 * primitives.size());
-    builder.build(0, uint32_t(primitives.size()), 0);
+    bvh.nodes.reserve(2 * primitives.size() + 1);
+    if (split) {
+        builder.build_split(opaque_count, uint32_t(primitives.size()));
+    } else {
+        builder.build(0, uint32_t(primitives.size()), 0);
+    }
     Box root;
     for (const Primitive& p : primitives) {
         root.grow(p.box);
@@ -355,6 +391,22 @@ Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> tri
     }
     bvh.scene_scale = stored;
     return bvh;
+}
+
+}  // namespace
+
+Bvh build_bvh(std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids,
+              const BvhBuildOptions& options) {
+    return build(vertices, triangle_ids, {}, options);
+}
+
+Bvh build_bvh_split(std::span<const glm::vec3> vertices, std::span<const uint8_t> masked,
+                    std::span<const uint32_t> triangle_ids, const BvhBuildOptions& options) {
+    if (masked.size() != vertices.size() / 3 || vertices.size() % 3 != 0) {
+        throw Error("BVH build: " + std::to_string(masked.size()) + " masked flags for " +
+                    std::to_string(vertices.size()) + " vertices (one flag per triangle of 3 vertices)");
+    }
+    return build(vertices, triangle_ids, masked, options);
 }
 
 }  // namespace vplkit

@@ -9,6 +9,7 @@
 #include <glm/vec3.hpp>
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -223,6 +224,67 @@ TEST_CASE("bvh build: the depth cap holds for a scene SAH would chain deeply") {
 
     const Triangles too_many(shells.begin(), shells.begin() + 3 * 2049);
     CHECK(build_error(too_many, {}, capped).find("do not fit") != std::string::npos);
+}
+
+TEST_CASE("bvh build: split - masked triangles in a subtree of their own under node 0") {
+    const Triangles soup = vplkit::bvh_test::random_soup(3000, 5);
+    std::vector<uint8_t> masked(3000, 0);
+    for (uint32_t t = 0; t < 3000; t += 3) masked[t] = 1;
+    const Bvh bvh = vplkit::build_bvh_split(soup, masked);
+    check_structure(bvh, soup);
+    REQUIRE(bvh.masked_root > 1);
+    CHECK(!bvh_is_leaf(bvh.nodes[0]));
+    CHECK(bvh.nodes[0].index == bvh.masked_root);
+    CHECK(bvh.opaque_triangles == 2000);
+    for (uint32_t i = 0; i < bvh.triangles.size(); ++i) {
+        CHECK((i >= bvh.opaque_triangles) == (masked[bvh.triangles[i].id] != 0));
+    }
+    // Every triangle of each subtree's leaves is on its side of opaque_triangles.
+    std::vector<uint32_t> stack = {1u, bvh.masked_root};
+    std::vector<bool> masked_side = {false, true};
+    while (!stack.empty()) {
+        const BvhNode& node = bvh.nodes[stack.back()];
+        const bool side = masked_side.back();
+        const uint32_t index = stack.back();
+        stack.pop_back();
+        masked_side.pop_back();
+        if (bvh_is_leaf(node)) {
+            for (uint32_t i = node.index; i < node.index + bvh_leaf_triangles(node); ++i) {
+                CHECK((i >= bvh.opaque_triangles) == side);
+            }
+        } else {
+            stack.insert(stack.end(), {index + 1, node.index});
+            masked_side.insert(masked_side.end(), {side, side});
+        }
+    }
+
+    // No split without both kinds: exactly build_bvh's tree.
+    const Bvh plain = build_bvh(soup);
+    for (uint8_t flag : {0, 1}) {
+        const Bvh one = vplkit::build_bvh_split(soup, std::vector<uint8_t>(3000, flag));
+        CHECK(one.masked_root == 0);
+        REQUIRE(one.nodes.size() == plain.nodes.size());
+        CHECK(std::memcmp(one.nodes.data(), plain.nodes.data(), plain.nodes.size() * sizeof(BvhNode)) == 0);
+        CHECK(std::memcmp(one.triangles.data(), plain.triangles.data(),
+                          plain.triangles.size() * sizeof(plain.triangles[0])) == 0);
+    }
+    // The depth cap holds below the common root; where the split would break it, one tree.
+    const Triangles shells = shrinking_shells(3000);
+    BvhBuildOptions capped;
+    capped.max_depth = 10;  // each subtree 9 levels: 4 * 2^9 >= 1500
+    std::vector<uint8_t> alternate(3000, 0);
+    for (uint32_t t = 0; t < 3000; t += 2) alternate[t] = 1;
+    const Bvh deep = vplkit::build_bvh_split(shells, alternate, {}, capped);
+    check_structure(deep, shells, 10);
+    CHECK(deep.masked_root != 0);
+    capped.max_depth = 9;  // 2048 triangles fit only as one tree: 1984 opaque ones need 9 levels
+    const Triangles full(shells.begin(), shells.begin() + 3 * 2048);
+    std::vector<uint8_t> few(2048, 0);
+    for (uint32_t t = 0; t < 64; ++t) few[t] = 1;
+    const Bvh one = vplkit::build_bvh_split(full, few, {}, capped);
+    check_structure(one, full, 9);
+    CHECK(one.masked_root == 0);
+    CHECK_THROWS_AS(vplkit::build_bvh_split(soup, std::vector<uint8_t>(2999, 0)), vplkit::Error);
 }
 
 TEST_CASE("bvh build: SAH separates distant clusters at the root and beats median splits") {

@@ -30,7 +30,52 @@ uint32_t wrap_code(scene::Wrap wrap) {
     return 0;
 }
 
+// The cutoff a material's alpha is tested against; negative for an OPAQUE material.
+float cutoff_of(const scene::Material& material) {
+    switch (material.alpha_mode) {
+        case scene::AlphaMode::opaque:
+            return -1.0f;
+        case scene::AlphaMode::blend:
+            return kBlendAsMaskCutoff;
+        case scene::AlphaMode::mask:
+            return material.alpha_cutoff;
+    }
+    return -1.0f;
+}
+
+// The corners' alpha (base colour factor x COLOR_0 alpha) of scene triangle t, and whether it can
+// fall below `cutoff` somewhere: with a texture the texels decide; without, alpha is linear over
+// the triangle, so it passes everywhere when it passes at the corners.
+bool may_cut_out(const scene::Scene& scene, uint32_t t, float cutoff, float alpha[3]) {
+    const scene::Material& material = scene.materials[scene.triangle_materials[t]];
+    bool all_pass = material.base_color_texture == scene::kNoTexture;
+    for (int k = 0; k < 3; ++k) {
+        alpha[k] = material.base_color_factor.a * scene.vertices[scene.indices[3 * t + k]].color.a;
+        all_pass = all_pass && alpha[k] >= cutoff;
+    }
+    return !all_pass;
+}
+
 }  // namespace
+
+std::vector<uint8_t> alpha_tested_triangles(const scene::Scene& scene) {
+    const size_t triangle_count = scene.indices.size() / 3;
+    std::vector<uint8_t> tested(triangle_count, 0);
+    for (size_t t = 0; t < triangle_count; ++t) {
+        const float cutoff = cutoff_of(scene.materials[scene.triangle_materials[t]]);
+        float alpha[3];
+        tested[t] = cutoff >= 0.0f && may_cut_out(scene, uint32_t(t), cutoff, alpha) ? 1 : 0;
+    }
+    return tested;
+}
+
+Bvh build_scene_bvh(const scene::Scene& scene, AlphaTestStats* stats) {
+    const std::vector<uint8_t> tested = alpha_tested_triangles(scene);
+    Bvh bvh = build_bvh_split(scene::triangle_positions(scene), tested);
+    const AlphaTestStats s = add_alpha_tests(bvh, scene);
+    if (stats) *stats = s;
+    return bvh;
+}
 
 AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
     AlphaTestStats stats;
@@ -46,7 +91,7 @@ AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const scene::Material& material = scene.materials[m];
         if (material.alpha_mode == scene::AlphaMode::opaque) continue;
-        cutoffs[m] = material.alpha_mode == scene::AlphaMode::blend ? kBlendAsMaskCutoff : material.alpha_cutoff;
+        cutoffs[m] = cutoff_of(material);
         const uint32_t record = uint32_t(words.size());
         words.insert(words.end(), {std::bit_cast<uint32_t>(cutoffs[m]), 0u, 0u, 0u, 0u});
         if (material.base_color_texture != scene::kNoTexture) {
@@ -94,12 +139,7 @@ AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
                                           &scene.vertices[scene.indices[3 * t + 1]],
                                           &scene.vertices[scene.indices[3 * t + 2]]};
         float alpha[3];
-        bool all_pass = words[record + 1] == 0;  // with a texture, the texels decide
-        for (int k = 0; k < 3; ++k) {
-            alpha[k] = material.base_color_factor.a * corner[k]->color.a;
-            all_pass = all_pass && alpha[k] >= cutoffs[m];
-        }
-        if (all_pass) continue;  // alpha is linear over the triangle: it passes everywhere
+        if (!may_cut_out(scene, t, cutoffs[m], alpha)) continue;  // no cost where nothing is cut out
         tri.alpha = uint32_t(words.size());
         for (int k = 0; k < 3; ++k) {
             // The texture's own coordinates (set and KHR_texture_transform): the transform is
@@ -114,7 +154,16 @@ AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
         ++stats.tested_triangles;
     }
     static_assert(kTriangleRecordWords == 10 && kMaterialRecordWords == 5, "the layout bvh.glsl reads");
-    if (stats.tested_triangles > 0) bvh.alpha = std::move(words);
+    if (stats.tested_triangles == 0) return stats;
+    // A split BVH (build_bvh_split) is traversed as two subtrees only when its opaque subtree holds
+    // no triangle with a record (built with alpha_tested_triangles' flags); otherwise word 0 stays
+    // 0 and the traversal tests the whole tree from node 0, which is right for any tree.
+    bool split = bvh.masked_root != 0;
+    for (uint32_t i = 0; split && i < bvh.opaque_triangles && i < bvh.triangles.size(); ++i) {
+        split = bvh.triangles[i].alpha == 0;
+    }
+    words[0] = split ? bvh.masked_root : 0u;
+    bvh.alpha = std::move(words);
     return stats;
 }
 

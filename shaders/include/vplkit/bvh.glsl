@@ -23,7 +23,7 @@
 // 0 when it is opaque (the test is skipped: a triangle hit in an opaque scene costs one compare
 // of a word already loaded); else the offset of its record in `bvh_alpha` (a plain uint array,
 // written by vplkit::add_alpha_tests, runtime/include/vplkit/bvh_alpha.hpp; word 0 holds no
-// record):
+// record but the masked subtree's root of a split BVH, 0 for one tree: bvh_masked_root):
 //   triangle record (10 words): the base colour texture's UVs at v0, v1, v2 (texture transform
 //     and texCoord set applied; 6 floats), alpha factor x COLOR_0 alpha at v0, v1, v2 (3 floats),
 //     the offset of its material record;
@@ -43,7 +43,9 @@
 // holds kBvhLeafFlag | count (count <= 4, 0 only in the empty scene's single leaf). An
 // interior node's `meta` is the axis it was split along: the child on the side the ray comes
 // from is visited first. Triangles are stored in leaf order, three vertices each (48 bytes,
-// 16-byte aligned rows), with the caller's id.
+// 16-byte aligned rows), with the caller's id. With alpha tests the tree may be split
+// (vplkit/bvh.hpp, build_bvh_split): node 0 over an opaque subtree at node 1 and a masked subtree
+// at bvh_masked_root(), traversed one after the other (bvh_closest_hit).
 //
 // Rays. Hits count in the open interval tmin < t < tmax; the direction need not be unit length
 // (t is in units of it). tmax = +infinity means unbounded (it becomes kBvhMaxT, the largest
@@ -244,24 +246,29 @@ bool bvh_intersect_triangle(BvhRayState ray, BvhTriangle tri, float tmin, float 
 
 const uint kBvhAlphaNearest = 16u;  // material record word 3: the texture's magFilter is NEAREST
 
-// One texel of an alpha record's texture (bytes 4 to a word), with glTF's wrap modes.
-float bvh_alpha_texel(uint data, uvec2 size, uint wrap, ivec2 texel) {
-    ivec2 n = ivec2(size);
-    for (int axis = 0; axis < 2; ++axis) {
-        uint mode = (wrap >> (2 * axis)) & 3u;
-        int i = texel[axis];
-        if (mode == 1u) {
-            i = clamp(i, 0, n[axis] - 1);
-        } else if (mode == 2u) {
-            int period = 2 * n[axis];
-            i = ((i % period) + period) % period;
-            i = i < n[axis] ? i : period - 1 - i;
-        } else {
-            i = ((i % n[axis]) + n[axis]) % n[axis];
-        }
-        texel[axis] = i;
-    }
-    uint index = uint(texel.y) * size.x + uint(texel.x);
+// Texel coordinates beyond this many texels from the origin are clamped to it before wrapping
+// (2^21: a float UV that far out resolves no better than about a texel anyway).
+const int kBvhAlphaMaxTexel = 2097152;
+
+// Texel coordinate i wrapped into [0, n) by glTF's wrap mode (0 repeat, 1 clamp to edge, 2
+// mirrored repeat). Branch-free and without integer division, which lavapipe runs lane by lane
+// (a scalar divide per lane, where everything else here is one SIMD instruction): the quotient
+// floor(i / period) is taken in float. Float division is accurate to 2.5 ulp (Vulkan), so for
+// |i| <= 2^21 the quotient is off by at most 1 and one correction either way makes r exact.
+int bvh_alpha_wrap(int i, int n, uint mode) {
+    i = clamp(i, -kBvhAlphaMaxTexel, kBvhAlphaMaxTexel);
+    int period = mode == 2u ? 2 * n : n;
+    int r = i - period * int(floor(float(i) / float(period)));
+    r += r < 0 ? period : 0;
+    r -= r >= period ? period : 0;
+    int mirrored = r < n ? r : period - 1 - r;
+    return mode == 1u ? clamp(i, 0, n - 1) : (mode == 2u ? mirrored : r);
+}
+
+// One texel of an alpha record's texture (bytes 4 to a word, rows of `width`), at wrapped
+// coordinates.
+float bvh_alpha_texel(uint data, uint width, int x, int y) {
+    uint index = uint(y) * width + uint(x);
     return float((bvh_alpha.words[data + index / 4u] >> (8u * (index % 4u))) & 0xffu) / 255.0;
 }
 
@@ -295,19 +302,24 @@ bool bvh_alpha_passes(BvhTriangle tri, vec2 barycentrics) {
                   w.z * vec2(uintBitsToFloat(bvh_alpha.words[r + 4u]), uintBitsToFloat(bvh_alpha.words[r + 5u]));
         uint wrap = bvh_alpha.words[m + 3u];
         uint data = bvh_alpha.words[m + 4u];
-        if ((wrap & kBvhAlphaNearest) != 0u) {
-            alpha *= bvh_alpha_texel(data, size, wrap, ivec2(floor(uv * vec2(size))));
-        } else {
-            // Bilinear between texel centres at (i + 0.5) / size (Vulkan's convention).
-            vec2 x = uv * vec2(size) - 0.5;
-            vec2 f = fract(x);
-            ivec2 i0 = ivec2(floor(x));
-            float a00 = bvh_alpha_texel(data, size, wrap, i0);
-            float a10 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 0));
-            float a01 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(0, 1));
-            float a11 = bvh_alpha_texel(data, size, wrap, i0 + ivec2(1, 1));
-            alpha *= mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
-        }
+        // Bilinear between texel centres at (i + 0.5) / size (Vulkan's convention); nearest is the
+        // same code with the texel under uv at weight 1 (mix(a, b, 0.0) is a exactly), so that
+        // the two filters are not two branches that lavapipe would both run.
+        bool nearest = (wrap & kBvhAlphaNearest) != 0u;
+        vec2 x = uv * vec2(size) - (nearest ? vec2(0.0) : vec2(0.5));
+        vec2 base = clamp(floor(x), vec2(-float(kBvhAlphaMaxTexel)), vec2(float(kBvhAlphaMaxTexel)));
+        vec2 f = nearest ? vec2(0.0) : fract(x);
+        ivec2 i0 = ivec2(base);
+        ivec2 n = ivec2(size);
+        int x0 = bvh_alpha_wrap(i0.x, n.x, wrap & 3u);
+        int x1 = bvh_alpha_wrap(i0.x + 1, n.x, wrap & 3u);
+        int y0 = bvh_alpha_wrap(i0.y, n.y, (wrap >> 2) & 3u);
+        int y1 = bvh_alpha_wrap(i0.y + 1, n.y, (wrap >> 2) & 3u);
+        float a00 = bvh_alpha_texel(data, size.x, x0, y0);
+        float a10 = bvh_alpha_texel(data, size.x, x1, y0);
+        float a01 = bvh_alpha_texel(data, size.x, x0, y1);
+        float a11 = bvh_alpha_texel(data, size.x, x1, y1);
+        alpha *= mix(mix(a00, a10, f.x), mix(a01, a11, f.x), f.y);
     }
     return alpha >= cutoff;
 }
@@ -321,18 +333,13 @@ BvhHit bvh_no_hit(float tmax) {
     return hit;
 }
 
-// The nearest hit with tmin < t < tmax (see BvhHit for a miss).
-BvhHit bvh_closest_hit(vec3 origin, vec3 direction, float tmin, float tmax) {
-    tmax = bvh_bounded_tmax(tmax);
-    BvhHit hit = bvh_no_hit(tmax);
-    if (!bvh_ray_valid(origin, direction, tmin, tmax)) {
-        return hit;
-    }
-    BvhRayState ray = bvh_make_ray(origin, direction);
-    bool alpha_tests = bvh_has_alpha_tests();
+// The nearest hit in the subtree at `root` with tmin < t < hit.t, into `hit`. `alpha_tests` is
+// a constant at every call: after inlining, the alpha test is compiled out of the loops that do
+// not need it (see bvh_closest_hit).
+void bvh_closest_hit_in(BvhRayState ray, uint root, float tmin, bool alpha_tests, inout BvhHit hit) {
     uint stack[kBvhStackSize];
     uint depth = 0u;
-    uint node_index = 0u;
+    uint node_index = root;
     while (true) {
         BvhNode node = bvh_nodes.items[node_index];
         // hit.t shrinks as hits are found: boxes behind the nearest hit so far are skipped.
@@ -368,6 +375,38 @@ BvhHit bvh_closest_hit(vec3 origin, vec3 direction, float tmin, float tmax) {
         }
         node_index = stack[--depth];
     }
+}
+
+// The root of the masked subtree of a split BVH (vplkit/bvh.hpp: node 1 is then the root of the
+// opaque subtree, whose triangles have no alpha record), or 0 when the tree is not split. Word 0
+// of bvh_alpha holds no record (see above), so it carries this; read only with kBvhAlphaTest.
+uint bvh_masked_root() {
+    return bvh_alpha.words[0];
+}
+
+// The nearest hit with tmin < t < tmax (see BvhHit for a miss).
+// With alpha tests, a split BVH is traversed twice: the opaque subtree with the alpha test
+// compiled out of its loop, then the masked subtree, with it, up to the opaque hit. Why two
+// loops: lavapipe runs a branch in a loop under a lane mask whether or not a lane takes it, and
+// a loop ends when every lane is done, so the alpha code is paid only in the iterations spent in
+// the (small) masked subtree instead of in every iteration (Sponza: vplkit/bvh.hpp).
+BvhHit bvh_closest_hit(vec3 origin, vec3 direction, float tmin, float tmax) {
+    tmax = bvh_bounded_tmax(tmax);
+    BvhHit hit = bvh_no_hit(tmax);
+    if (!bvh_ray_valid(origin, direction, tmin, tmax)) {
+        return hit;
+    }
+    BvhRayState ray = bvh_make_ray(origin, direction);
+    if (bvh_has_alpha_tests()) {
+        uint masked_root = bvh_masked_root();
+        if (masked_root != 0u) {
+            bvh_closest_hit_in(ray, 1u, tmin, false, hit);
+        }
+        // Not split: the whole tree from node 0, every triangle with a record tested.
+        bvh_closest_hit_in(ray, masked_root, tmin, true, hit);
+    } else {
+        bvh_closest_hit_in(ray, 0u, tmin, false, hit);
+    }
     return hit;
 }
 
@@ -375,18 +414,12 @@ BvhHit bvh_closest_hit(BvhRay ray) {
     return bvh_closest_hit(ray.origin, ray.direction, ray.tmin, ray.tmax);
 }
 
-// Whether anything lies between tmin and tmax (exclusive) on the ray: a shadow ray. Stops at
-// the first hit found, in no particular order.
-bool bvh_occluded(vec3 origin, vec3 direction, float tmin, float tmax) {
-    tmax = bvh_bounded_tmax(tmax);
-    if (!bvh_ray_valid(origin, direction, tmin, tmax)) {
-        return false;
-    }
-    BvhRayState ray = bvh_make_ray(origin, direction);
-    bool alpha_tests = bvh_has_alpha_tests();
+// Whether the subtree at `root` has a hit with tmin < t < tmax. `alpha_tests`: as in
+// bvh_closest_hit_in.
+bool bvh_occluded_in(BvhRayState ray, uint root, float tmin, float tmax, bool alpha_tests) {
     uint stack[kBvhStackSize];
     uint depth = 0u;
-    uint node_index = 0u;
+    uint node_index = root;
     while (true) {
         BvhNode node = bvh_nodes.items[node_index];
         if (bvh_box_hit(ray, node.lo, node.hi, tmin, tmax)) {
@@ -418,6 +451,25 @@ bool bvh_occluded(vec3 origin, vec3 direction, float tmin, float tmax) {
         node_index = stack[--depth];
     }
     return false;
+}
+
+// Whether anything lies between tmin and tmax (exclusive) on the ray: a shadow ray. Stops at
+// the first hit found, in no particular order. A split BVH (see bvh_closest_hit): the opaque
+// subtree first, the masked one only for rays it did not stop.
+bool bvh_occluded(vec3 origin, vec3 direction, float tmin, float tmax) {
+    tmax = bvh_bounded_tmax(tmax);
+    if (!bvh_ray_valid(origin, direction, tmin, tmax)) {
+        return false;
+    }
+    BvhRayState ray = bvh_make_ray(origin, direction);
+    if (bvh_has_alpha_tests()) {
+        uint masked_root = bvh_masked_root();
+        if (masked_root != 0u && bvh_occluded_in(ray, 1u, tmin, tmax, false)) {
+            return true;
+        }
+        return bvh_occluded_in(ray, masked_root, tmin, tmax, true);
+    }
+    return bvh_occluded_in(ray, 0u, tmin, tmax, false);
 }
 
 bool bvh_occluded(BvhRay ray) {
