@@ -8,7 +8,8 @@
 #   scripts/converge.sh [OUT] [FRAMES...]
 # Environment: VPLKIT (binary; default build/release/samples/vplkit), SCENE (sponza-lite-sun),
 # SIZE (96x54), SPP (8), VPLS (4096), BLOCK (6), METHODS ("rtslc hybrid hybrid-lightcuts"),
-# EXTRA (more render options for every method, e.g. "--firefly-sigma 0").
+# EXTRA (more render options for every method, e.g. "--firefly-sigma 0"), COMMON (options for
+# every render, exact included, e.g. "--brdf lambert").
 # Issue 26's set-up: scripts/converge.sh out/converge 64 256
 set -euo pipefail
 out=${1:-out/converge}
@@ -21,6 +22,8 @@ size=${SIZE:-96x54}
 methods=${METHODS:-rtslc hybrid hybrid-lightcuts}
 read -r -a extra <<< "${EXTRA:-}"
 common=(--scene "$scene" --width "${size%x*}" --height "${size#*x}" --vpl-source brsm --vpls "${VPLS:-4096}")
+read -r -a more_common <<< "${COMMON:-}"
+common+=("${more_common[@]}")
 mkdir -p "$out"
 here=$(cd "$(dirname "$0")" && pwd)
 if [ ! -f "$out/exact.pfm" ]; then
