@@ -32,8 +32,9 @@ void lightcuts_traversal(RenderSettings& settings) {
 constexpr GiBenchCurve kSstCurves[] = {{"sst", "spp,denoise"}};
 constexpr GiBenchCurve kRtslcCurves[] = {{"rtslc", "spp,block,resolution,interleave,denoise"}};
 // The VPL-count sweep times the trees' build; hybrid's curve carries it for every method.
-constexpr GiBenchCurve kHybridCurves[] = {{"hybrid", "spp,block,resolution,mock,denoise,vpls"},
-                                          {"hybrid-lightcuts", "spp", lightcuts_traversal}};
+constexpr GiBenchCurve kHybridCurves[] = {
+    {.name = "hybrid", .sweeps = "spp,block,resolution,mock,denoise,vpls", .equal_time_target = true},
+    {.name = "hybrid-lightcuts", .sweeps = "spp", .variant = lightcuts_traversal}};
 constexpr GiBenchCurve kFlcCurves[] = {{"flc", "navg"}};
 
 // In GiMethod's order (gi_method indexes it).

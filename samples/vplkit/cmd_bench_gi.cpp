@@ -505,7 +505,9 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     run.target_ms = target_ms;
     if (run.target_ms <= 0) {
         for (const BenchPoint& p : run.points) {
-            if (p.method == "hybrid" && p.sweep == "spp" && p.spp == (quick ? 4u : 8u)) run.target_ms = p.frame_ms;
+            if (curve_of(p.method).curve->equal_time_target && p.sweep == "spp" && p.spp == (quick ? 4u : 8u)) {
+                run.target_ms = p.frame_ms;
+            }
         }
     }
     write_bench_report(out, run);

@@ -30,6 +30,9 @@ struct GiBenchCurve {
     // each sweep's points (samples_points in cmd_bench_gi.cpp).
     std::string_view sweeps;
     void (*variant)(RenderSettings&) = nullptr;  // the variant's settings over the method's, or none
+    // Its quality sweep's 8 spp point (4 with --quick) is the bench's equal-time target frame
+    // time, unless --target-ms is given: one curve's (the thesis method's).
+    bool equal_time_target = false;
 };
 
 struct GiMethodInfo {

@@ -22,7 +22,8 @@
 
 namespace vplkit {
 
-// How indirect light is computed.
+// How indirect light is computed. What each method reads and takes: its row in the method table
+// (gi_methods.hpp), in this order.
 enum class GiMethod {
     none,    // direct light only
     exact,   // every VPL at every pixel with a shadow ray each: the ground truth
@@ -32,7 +33,7 @@ enum class GiMethod {
     flc,     // forward light cuts (seed 002): a VPL per kept triangle, splatted unshadowed, one bounce
 };
 
-// "direct", "exact", "sst", "rtslc", "hybrid", "flc".
+// The method's name in the method table (gi_methods.hpp): "direct" for none.
 const char* gi_method_name(GiMethod method);
 
 // How direct light from emissive triangles, point and spot lights is sampled (directional lights
