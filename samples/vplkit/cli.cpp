@@ -91,4 +91,27 @@ std::vector<uint32_t> parse_whole_number_list(const std::string& option, const s
     return values;
 }
 
+std::string wrapped(const std::string& text, size_t first_column, size_t indent, size_t width) {
+    std::string out;
+    size_t column = first_column;
+    bool line_empty = true;
+    size_t start = 0;
+    while (start < text.size()) {
+        const size_t space = std::min(text.find(' ', start), text.size());
+        const std::string word = text.substr(start, space - start);
+        if (!line_empty && column + 1 + word.size() > width) {
+            out += "\n" + std::string(indent, ' ');
+            column = indent;
+        } else if (!line_empty) {
+            out += ' ';
+            ++column;
+        }
+        line_empty = false;
+        out += word;
+        column += word.size();
+        start = space + 1;
+    }
+    return out;
+}
+
 }  // namespace vplkit::cli

@@ -46,11 +46,15 @@ uint32_t parse_index(const std::string& option, const std::string& text, uint64_
 // Comma-separated whole numbers, each from 1 to max (at least one).
 std::vector<uint32_t> parse_whole_number_list(const std::string& option, const std::string& text, uint64_t max);
 
+// `text` (words and single spaces) in lines of at most `width` characters, the first starting at
+// `first_column`, the others indented by `indent` (usage texts).
+std::string wrapped(const std::string& text, size_t first_column, size_t indent, size_t width = 100);
+
 // One subcommand: `run` returns the exit code (0 ok, 1 failure); a UsageError means exit 2.
 struct Command {
     const char* name;
-    const char* summary;  // one line for `vplkit --help`
-    const char* usage;    // `vplkit <name> --help`
+    const char* summary;     // one line for `vplkit --help`
+    std::string (*usage)();  // `vplkit <name> --help` (render's and bench's list the method table's names)
     int (*run)(Args& args);
 };
 

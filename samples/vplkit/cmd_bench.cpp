@@ -10,6 +10,7 @@
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/stages/sort.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
@@ -29,7 +30,10 @@
 
 namespace vplkit::cli {
 
-const char* const kBenchUsage =
+namespace {
+
+// {bench curves} is replaced by the method table's curves (gi_methods.hpp).
+const char* const kBenchUsageText =
     "usage: vplkit bench sort [--counts N,N,...] [--runs R] [--algorithm A] [--workgroup-size W] [--csv FILE]\n"
     "                         [--device SEL]\n"
     "\n"
@@ -84,8 +88,7 @@ const char* const kBenchUsage =
     "  --target-ms T    the equal-time target frame time (default: hybrid's at 8 spp)\n"
     "  --cache DIR      where ground truths are kept (default out/bench-cache)\n"
     "  --sweeps LIST    only these sweeps, comma-separated: spp, block, resolution, interleave, mock, vpls\n"
-    "  --methods LIST   only these methods' curves, comma-separated: sst, rtslc, hybrid, hybrid-lightcuts\n"
-    "                   (hybrid's cuts, rtslc's traversal), flc (default: all)\n"
+    "  --methods LIST   only these methods' curves, comma-separated (default: all): {bench curves}\n"
     "  --strict         fail when the scene has a warning (a feature of the file vplkit skips or approximates)\n"
     "\n"
     "usage: vplkit bench direct --scene NAME|FILE [--out DIR] [--width W --height H] [--frames F]\n"
@@ -102,6 +105,17 @@ const char* const kBenchUsage =
     "  --frames F       frames per point (default 3, at least 2)\n"
     "  --reference-frames R   frames averaged for the reference (default 16)\n"
     "  --quick          a smoke test: 32x32, 1 and 4 spp, 2 frames, a 2-frame reference of 16 spp\n";
+
+}  // namespace
+
+std::string bench_usage() {
+    std::string text = kBenchUsageText;
+    const std::string_view slot = "{bench curves}";
+    const size_t at = text.find(slot);
+    const size_t line = text.rfind('\n', at) + 1;
+    text.replace(at, slot.size(), wrapped(gi_bench_curve_names(), at - line, 19));
+    return text;
+}
 
 namespace {
 

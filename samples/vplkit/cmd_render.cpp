@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -33,10 +34,13 @@
 
 namespace vplkit::cli {
 
-const char* const kRenderUsage =
+namespace {
+
+// {method names} and {method help} are replaced from the method table (gi_methods.hpp).
+const char* const kRenderUsageText =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png] [--width W] [--height H] [--camera N]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
-    "                     [--method direct|exact|sst|rtslc|hybrid|flc] [--spp N] [--block K] [--interleave M]\n"
+    "                     [--method {method names}] [--spp N] [--block K] [--interleave M]\n"
     "                     [--flc-levels N] [--flc-mu MU] [--flc-navg A] [--flc-subtiles N]\n"
     "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
     "                     [--gi-resolution full|half] [--nu-min V] [--sigma-max S]\n"
@@ -57,14 +61,7 @@ const char* const kRenderUsage =
     "  --out FILE       the tonemapped image, PNG (default vplkit.png)\n"
     "  --out-hdr FILE   also the linear radiance, PFM\n"
     "  --out-direct FILE, --out-indirect FILE   the linear direct / indirect parts, PFM\n"
-    "  --method M       direct (default): direct light only; or indirect light from VPLs by\n"
-    "                   exact: every VPL at every pixel with a shadow ray (the ground truth);\n"
-    "                   sst: stochastic substitute tree traversals from the root;\n"
-    "                   rtslc: real-time stochastic lightcuts (a cut per block, traversals to leaves);\n"
-    "                   hybrid: the thesis method (shallow SST cuts per block, blended between\n"
-    "                   blocks, traversals that stop at flat clusters);\n"
-    "                   flc: forward light cuts (seed 002): a VPL per kept triangle (stochastic\n"
-    "                   decimation, stratified), splatted over its support; unshadowed, one bounce\n"
+    "  --method M       {method help}\n"
     "  --flc-levels N   flc: partition levels (default 8, at most 32; the last level's VPLs light\n"
     "                   everything in front of them, so no light is dropped beyond D_N)\n"
     "  --flc-mu MU      flc: ratio of consecutive levels' areas, S_k = S_0 MU^k (default 2, above 1)\n"
@@ -145,6 +142,40 @@ const char* const kRenderUsage =
     "  --validation     run with the Vulkan validation layer on\n"
     "  --strict         fail (exit 1, nothing written) when the scene has a warning: a feature of\n"
     "                   the file that vplkit skips or approximates (printed as 'warning: ...')\n";
+
+// "direct (default): direct light only; or indirect light from VPLs by", then a method a line
+// (wrapped at `column`): "exact: every VPL at every pixel with a shadow ray (the ground truth);".
+std::string method_help(size_t column) {
+    std::string text;
+    const std::span<const GiMethodInfo> methods = gi_methods();
+    for (size_t i = 0; i < methods.size(); ++i) {
+        const GiMethodInfo& m = methods[i];
+        if (m.vpls == GiVpls::none) {
+            text += wrapped(
+                std::string(m.name) + " (default): " + std::string(m.summary) + "; or indirect light from VPLs by",
+                column, column);
+        } else {
+            text += (text.empty() ? "" : "\n" + std::string(column, ' ')) +
+                    wrapped(std::string(m.name) + ": " + std::string(m.summary) + (i + 1 < methods.size() ? ";" : ""),
+                            column, column);
+        }
+    }
+    return text;
+}
+
+}  // namespace
+
+std::string render_usage() {
+    std::string names;
+    for (const GiMethodInfo& m : gi_methods()) names += (names.empty() ? "" : "|") + std::string(m.name);
+    std::string text = kRenderUsageText;
+    const std::string_view names_slot = "{method names}", help_slot = "{method help}";
+    text.replace(text.find(names_slot), names_slot.size(), names);
+    const size_t help = text.find(help_slot);
+    const size_t column = help - (text.rfind('\n', help) + 1);
+    text.replace(help, help_slot.size(), method_help(column));
+    return text;
+}
 
 const char* const kPlanUsage =
     "usage: vplkit plan [render's options: --scene NAME|FILE --method M --vpl-source S --bounces B\n"

@@ -11,14 +11,14 @@ int run_info(Args& args);
 extern const char* const kInfoUsage;
 
 int run_render(Args& args);
-extern const char* const kRenderUsage;
+std::string render_usage();
 
 // `vplkit plan`: render's options, the frame's plan printed instead of rendered.
 int run_plan(Args& args);
 extern const char* const kPlanUsage;
 
 int run_bench(Args& args);
-extern const char* const kBenchUsage;
+std::string bench_usage();
 
 int run_compare(Args& args);
 extern const char* const kCompareUsage;
@@ -28,7 +28,7 @@ int run_sequence(Args& args);
 extern const char* const kSequenceUsage;
 
 // `vplkit bench tree` and `vplkit bench gi --scene NAME` (reached through run_bench; their
-// usage is part of kBenchUsage).
+// usage is part of bench_usage()).
 int run_bench_tree(Args& args);
 int run_bench_gi(Args& args, const std::string& scene);
 // `vplkit bench direct --scene NAME`: the flat and the tree direct-light samplers, RMSE vs time.

@@ -18,19 +18,25 @@ using vplkit::cli::Args;
 using vplkit::cli::Command;
 using vplkit::cli::UsageError;
 
+// A command's usage that is a fixed text.
+template <const char* const* text>
+std::string fixed_usage() {
+    return *text;
+}
+
 const Command kCommands[] = {
-    {"info", "list the Vulkan devices, the one vplkit picks and why, and its features", vplkit::cli::kInfoUsage,
-     vplkit::cli::run_info},
+    {"info", "list the Vulkan devices, the one vplkit picks and why, and its features",
+     fixed_usage<&vplkit::cli::kInfoUsage>, vplkit::cli::run_info},
     {"render", "render a scene (set-up name or glTF file) to a PNG, with per-stage GPU times",
-     vplkit::cli::kRenderUsage, vplkit::cli::run_render},
+     vplkit::cli::render_usage, vplkit::cli::run_render},
     {"plan", "the stages a frame of a scene would run and why (render's options; no device work)",
-     vplkit::cli::kPlanUsage, vplkit::cli::run_plan},
+     fixed_usage<&vplkit::cli::kPlanUsage>, vplkit::cli::run_plan},
     {"bench", "GPU timings of the kit's stages (sort, tree; gi --scene NAME: accuracy vs time of every method)",
-     vplkit::cli::kBenchUsage, vplkit::cli::run_bench},
+     vplkit::cli::bench_usage, vplkit::cli::run_bench},
     {"compare", "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
-     vplkit::cli::kCompareUsage, vplkit::cli::run_compare},
+     fixed_usage<&vplkit::cli::kCompareUsage>, vplkit::cli::run_compare},
     {"sequence", "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
-     vplkit::cli::kSequenceUsage, vplkit::cli::run_sequence},
+     fixed_usage<&vplkit::cli::kSequenceUsage>, vplkit::cli::run_sequence},
 };
 
 void print_usage(std::FILE* out) {
@@ -72,13 +78,13 @@ int main(int argc, char** argv) {
     Args command_args(name, std::vector<std::string>(args.begin() + 1, args.end()));
     try {
         if (command_args.flag("--help", "-h")) {
-            std::fputs(command->usage, stdout);
+            std::fputs(command->usage().c_str(), stdout);
             return 0;
         }
         return command->run(command_args);
     } catch (const UsageError& e) {
         std::fprintf(stderr, "vplkit: %s\n", vplkit::cli::with_flags(e.what()).c_str());
-        std::fputs(command->usage, stderr);
+        std::fputs(command->usage().c_str(), stderr);
         return 2;
     } catch (const std::exception& e) {
         // Runtime errors already start with "vplkit: "; the settings they name become flags.
