@@ -26,8 +26,8 @@ enum class GiVpls {
 // One curve of `vplkit bench gi`: a method as it is, or a variant of it (hybrid-lightcuts).
 struct GiBenchCurve {
     std::string_view name;  // the curve's name in the bench's points and report
-    // The knobs swept, comma-separated, the quality knob first (spp or navg); the bench defines
-    // each sweep's points (samples_points in cmd_bench_gi.cpp).
+    // The knobs swept, comma-separated, the quality knob first (spp or navg); `vplkit bench gi`
+    // defines each sweep's points.
     std::string_view sweeps;
     void (*variant)(RenderSettings&) = nullptr;  // the variant's settings over the method's, or none
     // Its quality sweep's 8 spp point (4 with --quick) is the bench's equal-time target frame
