@@ -295,7 +295,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
     const bool make_vpls = indirect && lit && !plan.reuse_vpls && !own_vpls;
     auto vpl_reason = [&](VplSource source) -> std::string {
-        if (!indirect) return "direct light only (`method` direct): no VPLs";
+        if (!indirect) return "direct light only (`method` " + std::string(method.name) + "): no VPLs";
         if (own_vpls) return std::string(method.name) + " places its own VPLs";
         if (!lit) return "no light to place VPLs from";
         if (plan.vpl_source != source) {
@@ -313,7 +313,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::flc_vpls, flc && lit,
         flc ? (lit ? "read by flc: a VPL per kept triangle, lit by the direct light (seed 002 sec. 4)"
                    : "no light to light VPLs with")
-        : method.vpls == GiVpls::none ? "direct light only (`method` direct): no VPLs"
+        : method.vpls == GiVpls::none ? "direct light only (`method` " + std::string(method.name) + "): no VPLs"
                                       : "`method` " + std::string(method.name));
 
     const bool build_trees = sampled && lit && !settings.vpls_only && !plan.reuse_trees;
