@@ -16,7 +16,10 @@ struct BvhBuffers {
     uint32_t node_count = 0;
     uint32_t triangle_count = 0;  // 0 for an empty scene (triangles then holds one unused record)
     float scene_scale = 1e-30f;   // Bvh::scene_scale: the largest coordinate magnitude, for ray-origin offsets
-    BufferView alpha;             // Bvh::alpha (at least one word: a zero when every triangle is opaque)
+    // Bvh::alpha (at least one word: a zero when every triangle is opaque). Its word 0 is the
+    // masked subtree's root of a split tree (vplkit/bvh.hpp), else 0: a foreign renderer's own
+    // records keep word 0 at 0 unless it builds that layout.
+    BufferView alpha;
     // Whether some triangle has an alpha-test record: false compiles the test out of the
     // traversal (bvh_spec), so opaque scenes trace as fast as without alpha tests.
     bool alpha_tests = true;
