@@ -13,7 +13,7 @@ namespace vplkit::cli {
 
 // One measured configuration.
 struct BenchPoint {
-    std::string method;  // sst, rtslc, hybrid, hybrid-lightcuts, flc
+    std::string method;  // the bench curve's name (the method table's, gi_methods.hpp): "hybrid-lightcuts"
     std::string sweep;   // which knob this point varies: spp, block, resolution, interleave, mock, vpls, navg (flc)
     unsigned spp = 0;
     unsigned block = 0;       // rtslc, hybrid
