@@ -117,12 +117,6 @@ BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps,
     return out;
 }
 
-BrsmOutput::operator BrsmOutputViews() const {
-    BrsmOutputViews views{vpls, count, capacity, {}};
-    for (const BrsmLightBuffers& light : lights) views.lights.push_back(light);
-    return views;
-}
-
 void add_brsm_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
                      std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options,
                      const BrsmOutputViews& output) {

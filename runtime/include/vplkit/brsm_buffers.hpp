@@ -28,28 +28,12 @@ namespace vplkit::stages {
 std::vector<uint32_t> brsm_vpl_shares(std::span<const scene::Light> lights, const scene::Bounds& bounds,
                                       uint32_t vpl_count);
 
-// One light's working buffers (BrsmLightViews' meaning).
-struct BrsmLightBuffers {
-    uint32_t map_size = 0;     // side of the square importance map: the RSM's larger side, rounded up to 2^k
-    uint32_t vpl_share = 0;    // N, the VPLs this light places (0: no pass is recorded for it)
-    Buffer contribution;       // float[map_size^2]: the raw estimates
-    Buffer contribution_mips;  // the filtered estimates' mip chain (importance_warp.hpp layout)
-    Buffer flux_mips;          // flux luminance per texel, mip chain
-    Buffer importance_mips;    // the mixture (sums to 1), mip chain
-    Buffer samples;            // WarpedSample[vpl_share]
-    Buffer warp_count;         // WarpCountBuffer: vpl_share, or 0 when the importance is all zero
+// One light's working buffers, owned (stages/brsm.hpp's BrsmLightSet; converts to BrsmLightViews).
+using BrsmLightBuffers = BrsmLightSet<Buffer>;
 
-    operator BrsmLightViews() const {
-        return {map_size, vpl_share, contribution, contribution_mips, flux_mips, importance_mips, samples, warp_count};
-    }
-};
-
-struct BrsmOutput {
-    Buffer vpls;   // Vpl[capacity]: the first `count` are valid after the passes
-    Buffer count;  // VplCountBuffer (count; cut_short stays 0)
-    uint32_t capacity = 0;
-    std::vector<BrsmLightBuffers> lights;  // one per map
-
+// The VPLs, their count and each light's buffers, owned (stages/brsm.hpp's BrsmOutputSet;
+// converts to BrsmOutputViews).
+struct BrsmOutput : BrsmOutputSet<Buffer> {
     // Buffers for these maps (each map's light gives its share). Throws Error for bad options
     // (validate), no maps, a map too large for an importance map (4096^2), or buffers beyond the
     // device's maxStorageBufferRange.
@@ -59,9 +43,6 @@ struct BrsmOutput {
     // (allocate_brsm_light_buffers). Errors as create, and no lights.
     static BrsmOutput create_for_lights(Context& context, std::span<const scene::Light> lights,
                                         const scene::Bounds& bounds, const BrsmOptions& options);
-
-    // As the stages take it.
-    operator BrsmOutputViews() const;
 };
 
 // A light's working buffers for its map (nothing when its share is 0). Throws Error for a map

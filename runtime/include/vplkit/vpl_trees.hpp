@@ -33,16 +33,8 @@ struct VplTreeBuildTags {
     uint32_t sst = 0;
 };
 
-struct VplTrees {
-    uint32_t count = 0;       // real VPLs
-    uint32_t leaf_count = 0;  // leaf_count(count): a power of two
-    Buffer leaves;            // Vpl[leaf_count], sorted; index >= count is bogus padding
-    Buffer light_tree;        // LightTreeNode[2 leaf_count - 1] (light_tree.hpp)
-    Buffer sst;               // SstNode[sst_node_count(count)] (sst.hpp)
-
-    // As the GI stages take them.
-    operator VplTreeBuffers() const { return {count, leaf_count, leaves, light_tree, sst}; }
-
+// The trees' buffers, owned (stages/vpl_tree_buffers.hpp's VplTreeSet; converts to VplTreeBuffers).
+struct VplTrees : VplTreeSet<Buffer> {
     // The buffers for `count` VPLs (1..kMaxKeyedVpls); throws vplkit::Error otherwise.
     static VplTrees create(Context& context, uint32_t count, const VplTreeOptions& options = {});
 

@@ -46,6 +46,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 namespace vplkit::stages {
@@ -85,17 +86,25 @@ struct BrsmOptions {
 // Throws vplkit::Error naming the first option out of range.
 void validate(const BrsmOptions& options);
 
-// One light's working buffers (all written and read by its passes only).
-struct BrsmLightViews {
-    uint32_t map_size = 0;         // side of the square importance map: the RSM's larger side, rounded up to 2^k
-    uint32_t vpl_share = 0;        // N, the VPLs this light places (0: no pass is recorded for it)
-    BufferView contribution;       // float[map_size^2]: the raw estimates
-    BufferView contribution_mips;  // the filtered estimates' mip chain (importance_warp.hpp layout)
-    BufferView flux_mips;          // flux luminance per texel, mip chain
-    BufferView importance_mips;    // the mixture (sums to 1), mip chain
-    BufferView samples;            // WarpedSample[vpl_share]
-    BufferView warp_count;         // WarpCountBuffer: vpl_share, or 0 when the importance is all zero
+// One light's working buffers (all written and read by its passes only). One definition for views
+// (BrsmLightViews, what the stages take) and owned buffers (the runtime's BrsmLightBuffers,
+// vplkit/brsm_buffers.hpp): a set of buffers that convert to BufferView converts to the views.
+template <class BufferT>
+struct BrsmLightSet {
+    uint32_t map_size = 0;      // side of the square importance map: the RSM's larger side, rounded up to 2^k
+    uint32_t vpl_share = 0;     // N, the VPLs this light places (0: no pass is recorded for it)
+    BufferT contribution;       // float[map_size^2]: the raw estimates
+    BufferT contribution_mips;  // the filtered estimates' mip chain (importance_warp.hpp layout)
+    BufferT flux_mips;          // flux luminance per texel, mip chain
+    BufferT importance_mips;    // the mixture (sums to 1), mip chain
+    BufferT samples;            // WarpedSample[vpl_share]
+    BufferT warp_count;         // WarpCountBuffer: vpl_share, or 0 when the importance is all zero
+
+    operator BrsmLightSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {map_size, vpl_share, contribution, contribution_mips, flux_mips, importance_mips, samples, warp_count};
+    }
 };
+using BrsmLightViews = BrsmLightSet<BufferView>;
 
 // Bytes of each of a light's buffers for a map of map_width x map_height texels and a share of
 // vpl_share VPLs (all 0 but map_size when the share is 0). Throws Error for a zero map size; a
@@ -110,12 +119,19 @@ struct BrsmLightRequirements {
 BrsmLightRequirements brsm_light_requirements(uint32_t map_width, uint32_t map_height, uint32_t vpl_share);
 
 // What the passes write: the VPLs of every light, one after the other, and their running count.
-struct BrsmOutputViews {
-    BufferView vpls;   // Vpl[capacity]: the first `count` are valid after the passes
-    BufferView count;  // VplCountBuffer (count; cut_short stays 0): cleared, then read and written
+// One definition for views (BrsmOutputViews) and owned buffers (the runtime's BrsmOutput).
+template <class BufferT>
+struct BrsmOutputSet {
+    BufferT vpls;   // Vpl[capacity]: the first `count` are valid after the passes
+    BufferT count;  // VplCountBuffer (count; cut_short stays 0): cleared, then read and written
     uint32_t capacity = 0;
-    std::vector<BrsmLightViews> lights;  // one per map
+    std::vector<BrsmLightSet<BufferT>> lights;  // one per map
+
+    operator BrsmOutputSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {vpls, count, capacity, std::vector<BrsmLightSet<BufferView>>(lights.begin(), lights.end())};
+    }
 };
+using BrsmOutputViews = BrsmOutputSet<BufferView>;
 
 // "brsm count clear": the running VPL count to 0, before the first light's passes.
 void add_brsm_count_clear_pass(StepList& passes, const BrsmOutputViews& output);

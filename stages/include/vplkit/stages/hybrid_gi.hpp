@@ -23,6 +23,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <type_traits>
 
 namespace vplkit::stages {
 
@@ -59,15 +60,22 @@ void validate(const HybridOptions& options);
 
 // The per-block cut records: HybridBlock[blocks_x * blocks_y] and uint[blocks_x * blocks_y *
 // cut_size] (shaders/include/vplkit/cut_blending.glsl), written by "hybrid cuts" and read by
-// "hybrid gi"; sized by hybrid_cut_requirements. The runtime's HybridCuts
-// (vplkit/hybrid_cuts.hpp) allocates them.
-struct HybridCutBuffers {
+// "hybrid gi"; sized by hybrid_cut_requirements. One definition for views (HybridCutBuffers, what
+// the stage takes) and owned buffers (the runtime's HybridCuts, vplkit/hybrid_cuts.hpp): a set
+// of buffers that convert to BufferView converts to the views.
+template <class BufferT>
+struct HybridCutSet {
     uint32_t blocks_x = 0;
     uint32_t blocks_y = 0;
     uint32_t cut_size = 0;
-    BufferView blocks;
-    BufferView cuts;
+    BufferT blocks;  // HybridBlock[blocks_x * blocks_y]
+    BufferT cuts;    // uint32[blocks_x * blocks_y * cut_size]
+
+    operator HybridCutSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {blocks_x, blocks_y, cut_size, blocks, cuts};
+    }
 };
+using HybridCutBuffers = HybridCutSet<BufferView>;
 
 // What the cut buffers for an image of width x height and these options must hold.
 struct HybridCutRequirements {

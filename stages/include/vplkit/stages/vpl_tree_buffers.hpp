@@ -8,15 +8,25 @@
 #include "vplkit/stages/views.hpp"
 
 #include <cstdint>
+#include <type_traits>
 
 namespace vplkit::stages {
 
-struct VplTreeBuffers {
+// One definition for views (VplTreeBuffers, what the samplers take) and owned buffers (the
+// runtime's VplTrees, vplkit/vpl_trees.hpp): a set of buffers that convert to BufferView converts
+// to the views.
+template <class BufferT>
+struct VplTreeSet {
     uint32_t count = 0;       // real VPLs
     uint32_t leaf_count = 0;  // leaf_count(count): a power of two
-    BufferView leaves;
-    BufferView light_tree;
-    BufferView sst;
+    BufferT leaves;           // Vpl[leaf_count], sorted; index >= count is bogus padding
+    BufferT light_tree;       // LightTreeNode[2 leaf_count - 1] (light_tree.hpp)
+    BufferT sst;              // SstNode[sst_node_count(count)] (sst.hpp)
+
+    operator VplTreeSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {count, leaf_count, leaves, light_tree, sst};
+    }
 };
+using VplTreeBuffers = VplTreeSet<BufferView>;
 
 }  // namespace vplkit::stages
