@@ -222,9 +222,10 @@ private:
             "// specialization constants";
         out += s_.stage == Stage::Compute ? ", workgroup size and a pipeline wrapper.\n" : ".\n";
         out += "// Structs shared with the host are in types.hpp.\n";
-        out +=
-            "#pragma once\n\n#include <array>\n#include <cstddef>\n#include <cstdint>\n\n#include "
-            "<vulkan/vulkan.h>\n\n";
+        out += "#pragma once\n\n#include <array>\n#include <cstddef>\n#include <cstdint>\n";
+        // Compute: Pipeline::groups() throws std::length_error for a grid no device must take.
+        if (s_.stage == Stage::Compute) out += "#include <stdexcept>\n#include <string>\n";
+        out += "\n#include <vulkan/vulkan.h>\n\n";
         out += "#include \"types.hpp\"\n\n";
         return out;
     }
@@ -289,6 +290,15 @@ private:
             "// Spec::workgroup_size() gives it for other values.\n";
         out += "inline constexpr uint32_t kWorkgroupSize[3] = {" + std::to_string(s_.workgroup_size[0]) + ", " +
                std::to_string(s_.workgroup_size[1]) + ", " + std::to_string(s_.workgroup_size[2]) + "};\n";
+        out +=
+            "\n// Workgroups per dimension that every device takes (maxComputeWorkGroupCount's minimum).\n"
+            "inline constexpr uint32_t kMaxGroupsPerDimension = 65535;\n";
+        out += s_.folds_grid
+                   ? "// The shader takes its index from vplkit/dispatch.glsl (linear_thread_index): dispatch()\n"
+                     "// folds a 1D grid of more than kMaxGroupsPerDimension workgroups into rows.\n"
+                   : "// The shader does not take its index from vplkit/dispatch.glsl: dispatch() cannot fold a\n"
+                     "// grid of more than kMaxGroupsPerDimension workgroups in a dimension (it throws).\n";
+        out += std::string("inline constexpr bool kFoldsGrid = ") + (s_.folds_grid ? "true" : "false") + ";\n";
         return out;
     }
 
@@ -489,9 +499,16 @@ private:
         out += s_.push ? " and the push constants" : "";
         out +=
             ", and dispatches\n"
-            "  // ceil(threads / workgroup size) groups in each dimension.\n";
+            "  // groups(threads_x, threads_y, threads_z).\n";
         out += "  void dispatch(VkCommandBuffer cmd, const Bindings& bindings, " + push_parameter() +
-               "uint32_t threads_x,\n                uint32_t threads_y = 1, uint32_t threads_z = 1) const;\n};\n";
+               "uint32_t threads_x,\n                uint32_t threads_y = 1, uint32_t threads_z = 1) const;\n";
+        out +=
+            "  // The workgroup counts dispatch() records: ceil(threads / workgroup size) in each\n"
+            "  // dimension; when kFoldsGrid, a 1D grid of more than kMaxGroupsPerDimension groups as\n"
+            "  // rows (x) of at most that many, y rows, with fewer than y groups past the count.\n"
+            "  // Throws std::length_error for a grid it cannot record (naming the shader and counts).\n"
+            "  std::array<uint32_t, 3> groups(uint32_t threads_x, uint32_t threads_y = 1, uint32_t threads_z = 1) "
+            "const;\n};\n";
         return out;
     }
 
@@ -590,11 +607,52 @@ private:
                 "                     reinterpret_cast<const uint8_t*>(&push) + kPushConstantRange.offset);\n";
         }
         out +=
+            "  const std::array<uint32_t, 3> grid = groups(threads_x, threads_y, threads_z);\n"
+            "  vkCmdDispatch(cmd, grid[0], grid[1], grid[2]);\n"
+            "}\n\n";
+        out += groups_definition();
+        return out;
+    }
+
+    // Pipeline::groups(): the folded grid for kFoldsGrid shaders (docs/codegen.md, "Dispatches past
+    // 65,535 workgroups"), else the plain one, and a std::length_error naming the shader when the
+    // grid exceeds 65,535 groups in a dimension that cannot be folded.
+    std::string groups_definition() const {
+        std::string out =
+            "inline std::array<uint32_t, 3> Pipeline::groups(uint32_t threads_x, uint32_t threads_y,\n"
+            "                                                uint32_t threads_z) const {\n"
             "  // Rounded up without overflow, so threads_x = UINT32_MAX works.\n"
-            "  auto groups = [](uint32_t threads, uint32_t size) { return threads / size + (threads % size != 0); };\n"
-            "  vkCmdDispatch(cmd, groups(threads_x, workgroup_size[0]), groups(threads_y, workgroup_size[1]),\n"
-            "                groups(threads_z, workgroup_size[2]));\n"
-            "}\n";
+            "  auto round_up = [](uint32_t n, uint32_t size) { return n / size + (n % size != 0); };\n"
+            "  const std::array<uint32_t, 3> grid = {round_up(threads_x, workgroup_size[0]),\n"
+            "                                        round_up(threads_y, workgroup_size[1]),\n"
+            "                                        round_up(threads_z, workgroup_size[2])};\n"
+            "  if (grid[0] <= kMaxGroupsPerDimension && grid[1] <= kMaxGroupsPerDimension &&\n"
+            "      grid[2] <= kMaxGroupsPerDimension) {\n"
+            "    return grid;\n"
+            "  }\n";
+        if (s_.folds_grid) {
+            out +=
+                "  if (grid[1] == 1 && grid[2] == 1) {\n"
+                "    // As few rows as fit, then as short rows as hold every group: fewer than `rows` extra.\n"
+                "    const uint32_t rows = round_up(grid[0], kMaxGroupsPerDimension);\n"
+                "    const uint32_t columns = round_up(grid[0], rows);\n"
+                "    // The shader's uint index must not wrap: every thread of the grid below 2^32.\n"
+                "    if (rows <= kMaxGroupsPerDimension &&\n"
+                "        uint64_t(rows) * columns * workgroup_size[0] <= (uint64_t(1) << 32)) {\n"
+                "      return {columns, rows, 1};\n"
+                "    }\n"
+                "  }\n";
+        }
+        out += "  throw std::length_error(\n      \"shader '" + s_.name +
+               "': \" + std::to_string(threads_x) + \" x \" + std::to_string(threads_y) + \" x \" +\n"
+               "      std::to_string(threads_z) + \" threads need \" + std::to_string(grid[0]) + \" x \" +\n"
+               "      std::to_string(grid[1]) + \" x \" + std::to_string(grid[2]) +\n"
+               "      \" workgroups, more than 65535 in a dimension";
+        out += s_.folds_grid ? ", and only a 1D grid of at most 65535 x 65535 groups (below 2^32 threads) is "
+                               "folded into rows\");\n"
+                             : ", and the shader does not take its index from vplkit/dispatch.glsl "
+                               "(linear_thread_index) to have its grid folded into rows\");\n";
+        out += "}\n";
         return out;
     }
 

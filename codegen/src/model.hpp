@@ -145,6 +145,10 @@ struct ShaderModel {
     // constant_id that specializes it (local_size_*_id), if any.
     std::array<uint32_t, 3> workgroup_size = {1, 1, 1};
     std::array<std::optional<uint32_t>, 3> workgroup_size_ids;
+    // Compute only: the shader takes its index from vplkit/dispatch.glsl (it calls
+    // linear_workgroup_index()), so dispatch() may fold a 1D grid of more than 65,535 workgroups
+    // into rows.
+    bool folds_grid = false;
     std::vector<StructLayout> structs;  // every struct reached from a block, maybe repeated
     std::vector<ArrayUse> array_uses;
 };

@@ -53,6 +53,7 @@ public:
         if (res.push_constant_buffers.size() > 1) fail("more than one push-constant block");
         if (!res.push_constant_buffers.empty()) add_push(res.push_constant_buffers.front());
         reflect_spec_constants();
+        if (model_.stage == Stage::Compute) reflect_grid_folding();
         return std::move(model_);
     }
 
@@ -371,6 +372,45 @@ private:
                 model_.workgroup_size[d] = uint32_t(resolved.at(wg[d].constant_id).default_bits);
             }
         }
+    }
+
+    // A shader folds its grid when it calls dispatch.glsl's linear_workgroup_index() (glslang
+    // emits only the functions a shader calls, with their debug names). Such a shader must not
+    // also read gl_GlobalInvocationID (row 1 of a folded grid would repeat row 0's ids) and its
+    // workgroup must be 1D (the index counts gl_LocalInvocationID.x only).
+    void reflect_grid_folding() {
+        bool calls_linear_index = false;
+        bool reads_global_id = false;
+        const std::vector<uint32_t>& w = model_.words;
+        for (size_t i = 5; i < w.size();) {
+            const uint32_t count = w[i] >> 16;
+            const uint32_t opcode = w[i] & 0xffffu;
+            if (count == 0 || i + count > w.size()) break;
+            if (opcode == spv::OpName && count >= 3) {
+                const char* name = reinterpret_cast<const char*>(&w[i + 2]);
+                const size_t max_length = (count - 2) * sizeof(uint32_t);
+                const std::string text(name, strnlen(name, max_length));
+                if (text == "linear_workgroup_index(") calls_linear_index = true;
+            } else if (opcode == spv::OpDecorate && count >= 4 && w[i + 2] == spv::DecorationBuiltIn &&
+                       w[i + 3] == spv::BuiltInGlobalInvocationId) {
+                reads_global_id = true;
+            }
+            i += count;
+        }
+        if (!calls_linear_index) return;
+        if (reads_global_id) {
+            fail(
+                "takes its index from vplkit/dispatch.glsl (linear_workgroup_index) but also reads "
+                "gl_GlobalInvocationID, which a grid folded into rows does not number linearly; use "
+                "linear_thread_index()");
+        }
+        if (model_.workgroup_size[1] != 1 || model_.workgroup_size[2] != 1 || model_.workgroup_size_ids[1] ||
+            model_.workgroup_size_ids[2]) {
+            fail(
+                "takes its index from vplkit/dispatch.glsl (linear_workgroup_index), which needs a 1D "
+                "workgroup (local_size_y and local_size_z 1, not specialized)");
+        }
+        model_.folds_grid = true;
     }
 
     spirv_cross::Compiler compiler_;

@@ -7,6 +7,7 @@
 #define VPLKIT_BVH_TRIANGLES_BINDING 1
 #define VPLKIT_BVH_ALPHA_BINDING 4
 #include "vplkit/bvh.glsl"
+#include "vplkit/dispatch.glsl"
 
 // Small groups: rays diverge, and a group waits for its slowest ray.
 layout(local_size_x = 64, local_size_x_id = 0) in;  // 64 unless specialized
@@ -19,7 +20,7 @@ layout(push_constant) uniform TraceOcclusionPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.ray_count) {
         return;
     }

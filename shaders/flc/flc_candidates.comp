@@ -13,6 +13,7 @@
 #include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
 #include "vplkit/rng.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -30,7 +31,7 @@ layout(push_constant) uniform FlcCandidatesPush {
 } push;
 
 void main() {
-    uint t = gl_GlobalInvocationID.x;
+    uint t = linear_thread_index();
     if (t >= push.triangle_count) {
         return;
     }

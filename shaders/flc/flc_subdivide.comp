@@ -21,6 +21,7 @@
 #include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
 #include "vplkit/rng.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -55,7 +56,7 @@ uint grid_random(uint i, uint j, uint m) {
 }
 
 void main() {
-    uint j = gl_GlobalInvocationID.x;
+    uint j = linear_thread_index();
     if (j < push.triangle_count) {
         candidate_albedo.items[j] = triangle_albedo.items[j];
         return;

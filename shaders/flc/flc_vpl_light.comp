@@ -27,6 +27,7 @@
 #include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
 #include "vplkit/vpl.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -54,7 +55,7 @@ layout(push_constant) uniform FlcVplLightPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.triangle_count || i >= counts.kept) {
         return;
     }

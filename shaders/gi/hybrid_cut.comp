@@ -26,6 +26,7 @@
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
 #include "vplkit/cut_blending.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -54,7 +55,7 @@ uint first_leaf(uint node, uint depth) {
 }
 
 void main() {
-    uint block = gl_GlobalInvocationID.x;
+    uint block = linear_thread_index();
     if (block >= push.blocks_x * push.blocks_y) {
         return;
     }

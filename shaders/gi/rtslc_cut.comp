@@ -28,6 +28,7 @@
 #include "vplkit/vpl_eval.glsl"
 #define VPLKIT_LIGHT_TREE_BINDING 6
 #include "vplkit/rtslc_tree_sampling.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -59,7 +60,7 @@ layout(push_constant) uniform RtslcCutPush {
 const uint kRtslcCutSalt = 0x9E3779B9u;
 
 void main() {
-    uint block = gl_GlobalInvocationID.x;
+    uint block = linear_thread_index();
     if (block >= push.blocks_x * push.blocks_y) {
         return;
     }

@@ -6,6 +6,7 @@
 #include "vplkit/vpl.glsl"
 #include "vplkit/morton.glsl"
 #include "vplkit/ordered_float.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -19,7 +20,7 @@ layout(push_constant) uniform MortonKeysPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.vpl_count) {
         return;
     }

@@ -6,6 +6,7 @@
 
 #include "vplkit/vpl.glsl"
 #include "vplkit/ordered_float.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -27,7 +28,7 @@ void main() {
     }
     barrier();
 
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i < push.vpl_count) {
         vec3 p = vpls.items[i].position;
         // Non-finite positions would make the whole box meaningless; they are left out here

@@ -22,6 +22,7 @@
 #include "vplkit/rng.glsl"
 #include "../vpl/vpl_sampling.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -45,7 +46,7 @@ const float kSmcMinCosine = 0.05;
 const float kSmcMinDistanceFraction = 1e-2;
 
 void main() {
-    uint r = gl_GlobalInvocationID.x;
+    uint r = linear_thread_index();
     if (r >= push.ray_count) {
         return;
     }

@@ -15,6 +15,7 @@
 // VPL's flux is B / (I p) (smc_vpls.comp). For the VPLs, k + 1/2 points share the disc (see main).
 
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -34,7 +35,7 @@ layout(push_constant) uniform SmcDensityPush {
 const uint kSmcMaxNeighbours = 32u;
 
 void main() {
-    uint q = gl_GlobalInvocationID.x;
+    uint q = linear_thread_index();
     uint n = counters.c.vpl_count;
     uint query_count = push.queries_are_vpls != 0u ? n : counters.c.candidate_count;
     if (q >= push.budget || q >= query_count) {

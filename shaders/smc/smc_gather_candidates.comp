@@ -7,6 +7,7 @@
 
 #include "vplkit/rng.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -24,7 +25,7 @@ layout(push_constant) uniform SmcGatherPush {
 } push;
 
 void main() {
-    uint c = gl_GlobalInvocationID.x;
+    uint c = linear_thread_index();
     if (c >= push.budget || c >= push.pool_count) {
         return;
     }

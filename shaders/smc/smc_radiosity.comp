@@ -29,6 +29,7 @@
 #include "vplkit/rng.glsl"
 #include "../vpl/vpl_sampling.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -128,7 +129,7 @@ vec3 direct_irradiance(vec3 p, vec3 n, float scale, inout Rng rng) {
 }
 
 void main() {
-    uint m = gl_GlobalInvocationID.x;
+    uint m = linear_thread_index();
     uint count = push.moved_only != 0u ? counters.c.move_count : counters.c.candidate_count;
     if (m >= push.budget || m >= count) {
         return;

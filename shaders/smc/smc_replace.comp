@@ -6,6 +6,7 @@
 
 #include "vplkit/rng.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -20,7 +21,7 @@ layout(push_constant) uniform SmcReplacePush {
 } push;
 
 void main() {
-    uint m = gl_GlobalInvocationID.x;
+    uint m = linear_thread_index();
     if (m >= push.budget || m >= counters.c.move_count) {
         return;
     }

@@ -15,6 +15,7 @@
 #include "vplkit/bvh.glsl"
 #include "vplkit/rng.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -33,7 +34,7 @@ layout(push_constant) uniform SmcRevalidatePush {
 } push;
 
 void main() {
-    uint j = gl_GlobalInvocationID.x;
+    uint j = linear_thread_index();
     uint invalid = counters.c.invalid_count;
     if (j >= push.point_count || invalid == 0u) {
         return;

@@ -5,6 +5,7 @@
 // point as its new anchor, and is counted as revalidated.
 
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -18,7 +19,7 @@ layout(push_constant) uniform SmcRevalidateClaimsPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.budget || i >= counters.c.vpl_count) {
         return;
     }

@@ -8,6 +8,7 @@
 // A candidate of zero intensity gets kSmcNoKey too: it would bring no light.
 
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -28,7 +29,7 @@ uint intensity_bits(float intensity) {
 }
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.budget) {
         return;
     }

@@ -10,6 +10,7 @@
 #define VPLKIT_BVH_ALPHA_BINDING 2
 #include "vplkit/bvh.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -35,7 +36,7 @@ bool anchor_seen(vec3 a, vec3 na) {
 }
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.budget || i >= counters.c.vpl_count) {
         return;
     }

@@ -8,6 +8,7 @@
 
 #include "vplkit/vpl.glsl"
 #include "smc.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 64) in;
 
@@ -21,7 +22,7 @@ layout(push_constant) uniform SmcVplsPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.budget || i >= counters.c.vpl_count) {
         return;
     }

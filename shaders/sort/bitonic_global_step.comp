@@ -5,6 +5,7 @@
 // memory: one thread per compare-exchange, straight on the key/value buffers.
 
 #include "vplkit/bitonic.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -19,7 +20,7 @@ layout(push_constant) uniform BitonicGlobalStepPush {
 } push;
 
 void main() {
-    uint pair = gl_GlobalInvocationID.x;
+    uint pair = linear_thread_index();
     uvec2 ij = push.flip != 0u ? bitonic_flip_pair(pair, push.block) : bitonic_half_cleaner_pair(pair, push.distance);
     if (ij.y >= push.count) {
         return;  // the upper element is +infinity padding (or both are): never a swap

@@ -9,6 +9,7 @@
 // Elements past `count` are loaded as +infinity and never written back.
 
 #include "vplkit/bitonic.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 const uint kTile = 2u * gl_WorkGroupSize.x;
@@ -36,7 +37,11 @@ void compare_exchange(uvec2 ij) {
 }
 
 void main() {
-    uint tile_start = gl_WorkGroupID.x * kTile;
+    uint tile = linear_workgroup_index();
+    if (tile * kTile >= push.count) {
+        return;  // a tile of padding only (or a folded grid's extra): the whole workgroup, no barrier yet
+    }
+    uint tile_start = tile * kTile;
     uint t = gl_LocalInvocationID.x;
     for (uint k = 0u; k < 2u; ++k) {
         uint local_index = t + k * gl_WorkGroupSize.x;

@@ -5,6 +5,8 @@
 // moves them back into the caller's, in a compute shader so that every write of the sort is a
 // compute-shader write and a caller synchronizes with it like with any other compute pass.
 
+#include "vplkit/dispatch.glsl"
+
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 // [0]: the scratch buffers holding the sorted pairs, [1]: the caller's.
@@ -17,8 +19,8 @@ layout(push_constant) uniform RadixCopyPush {
 
 void main() {
     // A grid-stride loop: the host may dispatch fewer threads than pairs (the dispatch-size limit).
-    uint stride = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-    for (uint i = gl_GlobalInvocationID.x; i < push.count; i += stride) {
+    uint stride = linear_thread_count();
+    for (uint i = linear_thread_index(); i < push.count; i += stride) {
         keys[1].items[i] = keys[0].items[i];
         values[1].items[i] = values[0].items[i];
     }

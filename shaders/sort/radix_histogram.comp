@@ -10,6 +10,7 @@ layout(constant_id = 1) const uint items_per_thread = 128u;
 layout(constant_id = 2) const uint digit_bits = 8u;  // 4 or 8: the widest digit a pass may use
 
 #include "vplkit/radix.glsl"
+#include "vplkit/dispatch.glsl"
 
 const uint kTile = gl_WorkGroupSize.x * items_per_thread;
 const uint kRadix = 1u << digit_bits;
@@ -27,18 +28,22 @@ layout(push_constant) uniform RadixHistogramPush {
 shared uint tile_counts[kRadix];
 
 void main() {
+    uint tile = linear_workgroup_index();
+    if (tile >= push.tile_count) {
+        return;  // past the last tile (a folded grid's last row): the whole workgroup, no barrier yet
+    }
     uint t = gl_LocalInvocationID.x;
     for (uint d = t; d < kRadix; d += gl_WorkGroupSize.x) {
         tile_counts[d] = 0u;
     }
     barrier();
-    uint tile_start = gl_WorkGroupID.x * kTile;
+    uint tile_start = tile * kTile;
     uint tile_end = min(tile_start + kTile, push.count);
     for (uint i = tile_start + t; i < tile_end; i += gl_WorkGroupSize.x) {
         atomicAdd(tile_counts[radix_digit(keys.items[i], push.shift, push.bits)], 1u);
     }
     barrier();
     for (uint d = t; d < kRadix; d += gl_WorkGroupSize.x) {
-        counts.items[d * push.tile_count + gl_WorkGroupID.x] = tile_counts[d];
+        counts.items[d * push.tile_count + tile] = tile_counts[d];
     }
 }

@@ -9,6 +9,7 @@
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 #include "vplkit/radix.glsl"
+#include "vplkit/dispatch.glsl"
 
 const uint kItemsPerThread = 4u;
 const uint kChunk = gl_WorkGroupSize.x * kItemsPerThread;
@@ -24,7 +25,11 @@ layout(push_constant) uniform RadixScanChunksPush {
 void main() {
     // Each invocation takes a run of consecutive counts, so that the runs in invocation order are
     // the chunk in order and one workgroup scan of the run sums orders everything.
-    uint run_start = gl_WorkGroupID.x * kChunk + gl_LocalInvocationID.x * kItemsPerThread;
+    uint chunk = linear_workgroup_index();
+    if (chunk * kChunk >= push.count) {
+        return;  // past the last chunk (a folded grid's last row): the whole workgroup, no barrier yet
+    }
+    uint run_start = chunk * kChunk + gl_LocalInvocationID.x * kItemsPerThread;
     uint run[kItemsPerThread];
     uint run_sum = 0u;
     for (uint k = 0u; k < kItemsPerThread; ++k) {
@@ -35,7 +40,7 @@ void main() {
     uint total;
     uint prefix = radix_workgroup_exclusive_scan(run_sum, total);
     if (push.add_chunk_offsets != 0u) {
-        prefix += chunk_offsets.items[gl_WorkGroupID.x];
+        prefix += chunk_offsets.items[chunk];
     }
     for (uint k = 0u; k < kItemsPerThread; ++k) {
         uint i = run_start + k;

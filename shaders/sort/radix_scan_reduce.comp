@@ -8,6 +8,7 @@
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 #include "vplkit/radix.glsl"
+#include "vplkit/dispatch.glsl"
 
 const uint kItemsPerThread = 4u;
 const uint kChunk = gl_WorkGroupSize.x * kItemsPerThread;
@@ -20,7 +21,11 @@ layout(push_constant) uniform RadixScanReducePush {
 } push;
 
 void main() {
-    uint chunk_start = gl_WorkGroupID.x * kChunk;
+    uint chunk = linear_workgroup_index();
+    if (chunk * kChunk >= push.count) {
+        return;  // past the last chunk (a folded grid's last row): the whole workgroup, no barrier yet
+    }
+    uint chunk_start = chunk * kChunk;
     uint sum = 0u;
     for (uint k = 0u; k < kItemsPerThread; ++k) {
         uint i = chunk_start + k * gl_WorkGroupSize.x + gl_LocalInvocationID.x;
@@ -31,6 +36,6 @@ void main() {
     uint total;
     radix_workgroup_exclusive_scan(sum, total);
     if (gl_LocalInvocationID.x == 0u) {
-        chunk_sums.items[gl_WorkGroupID.x] = total;
+        chunk_sums.items[chunk] = total;
     }
 }

@@ -24,6 +24,7 @@ layout(constant_id = 1) const uint items_per_thread = 128u;
 layout(constant_id = 2) const uint digit_bits = 8u;  // 4 or 8: the widest digit a pass may use
 
 #include "vplkit/radix.glsl"
+#include "vplkit/dispatch.glsl"
 
 const uint kTile = gl_WorkGroupSize.x * items_per_thread;
 const uint kRadix = 1u << digit_bits;
@@ -58,8 +59,11 @@ uint counter_slot(uint i) {
 }
 
 void main() {
+    uint tile = linear_workgroup_index();
+    if (tile >= push.tile_count) {
+        return;  // past the last tile (a folded grid's last row): the whole workgroup, no barrier yet
+    }
     uint t = gl_LocalInvocationID.x;
-    uint tile = gl_WorkGroupID.x;
     uint tile_start = tile * kTile;
 
     // The tile's count of a digit is the difference of consecutive scanned counts: digit-major,

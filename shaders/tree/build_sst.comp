@@ -13,6 +13,7 @@
 // dispatch (one per inner node above the lowest inner level).
 
 #include "vplkit/sst.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -38,7 +39,7 @@ SstNode leaf_node(uint leaf) {
 }
 
 void main() {
-    uint pair = gl_GlobalInvocationID.x;
+    uint pair = linear_thread_index();
     uint half_leaves = push.leaf_count >> 1;
     if (push.leaf_count == 1u) {  // uniform across the dispatch
         if (pair == 0u) {

@@ -6,6 +6,7 @@
 // their index (>= count), never by their data, so they never take part in bounds.
 
 #include "vplkit/vpl.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -19,7 +20,7 @@ layout(push_constant) uniform GatherLeavesPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.leaf_count) {
         return;
     }

@@ -6,6 +6,7 @@
 
 #include "vplkit/vpl.glsl"
 #include "vplkit/light_tree.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -18,7 +19,7 @@ layout(push_constant) uniform LightTreeLeavesPush {
 } push;
 
 void main() {
-    uint leaf = gl_GlobalInvocationID.x;
+    uint leaf = linear_thread_index();
     if (leaf >= push.leaf_count) {
         return;
     }

@@ -6,6 +6,7 @@
 // host puts a barrier between groups only.
 
 #include "vplkit/light_tree.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -22,7 +23,7 @@ layout(push_constant) uniform LightTreeLevelsPush {
 void main() {
     // The destination levels are consecutive in heap order: nodes [2^top - 1, 2^source - 1).
     uint top_level = push.source_level - push.levels;
-    uint node = light_tree_level_start(top_level) + gl_GlobalInvocationID.x;
+    uint node = light_tree_level_start(top_level) + linear_thread_index();
     if (node >= light_tree_level_start(push.source_level)) {
         return;
     }

@@ -19,6 +19,7 @@
 #include "vplkit/emitters.glsl"
 #include "vplkit/lights.glsl"
 #include "vplkit/light_tree.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -37,7 +38,7 @@ layout(push_constant) uniform LightTreeSceneLeavesPush {
 } push;
 
 void main() {
-    uint leaf = gl_GlobalInvocationID.x;
+    uint leaf = linear_thread_index();
     if (leaf >= push.leaf_count) {
         return;
     }

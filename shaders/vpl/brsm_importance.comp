@@ -13,6 +13,8 @@
 // everywhere and the warp yields no VPL. The sums are the 1x1 tops of the two mip chains.
 // Writes level 0 of the importance mip chain.
 
+#include "vplkit/dispatch.glsl"
+
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) readonly buffer ContributionMipBuffer { float values[]; } contribution;
@@ -30,7 +32,7 @@ bool usable_total(float total) {
 }
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.texel_count) {
         return;
     }

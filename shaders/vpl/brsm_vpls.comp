@@ -9,6 +9,7 @@
 
 #include "vplkit/sampling.glsl"
 #include "vplkit/vpl.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -27,7 +28,7 @@ layout(push_constant) uniform BrsmVplsPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= warp.count || i >= push.sample_count) {
         return;
     }

@@ -10,6 +10,7 @@ layout(local_size_x = 256, local_size_x_id = 0) in;  // the block size: vpl_bloc
 
 #include "vplkit/radix.glsl"
 #include "vplkit/vpl.glsl"
+#include "vplkit/dispatch.glsl"
 
 // Path p's VPLs at p * max_bounces + 0 .. n - 1 (trace_vpls.comp).
 layout(std430, set = 0, binding = 0) readonly buffer PathVplBuffer { Vpl items[]; } path_vpls;
@@ -27,14 +28,14 @@ layout(push_constant) uniform CompactVplsPush {
 } push;
 
 void main() {
-    uint path = gl_GlobalInvocationID.x;
+    uint path = linear_thread_index();  // past the count: no VPLs, returns below
     uint count = path < push.path_count ? path_vpl_counts.items[path] : 0u;
     uint total;
     uint in_block = radix_workgroup_exclusive_scan(count, total);  // uniform control flow: barriers
     if (count == 0u) {
         return;
     }
-    uint first = block_vpls.items[gl_WorkGroupID.x] + in_block;
+    uint first = block_vpls.items[linear_workgroup_index()] + in_block;
     for (uint k = 0u; k < count; ++k) {
         vpls.items[first + k] = path_vpls.items[path * push.max_bounces + k];
         vpl_bounces.items[first + k] = k + 1u;

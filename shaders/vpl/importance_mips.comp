@@ -6,6 +6,8 @@
 // runtime/include/vplkit/stages/importance_warp.hpp); one dispatch per level, so a level is
 // complete before the next one reads it.
 
+#include "vplkit/dispatch.glsl"
+
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) buffer ImportanceMipBuffer { float values[]; } mips;
@@ -17,7 +19,7 @@ layout(push_constant) uniform ImportanceMipsPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     if (i >= push.dst_size * push.dst_size) {
         return;
     }

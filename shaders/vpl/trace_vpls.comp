@@ -35,6 +35,7 @@
 #include "vplkit/rng.glsl"
 #include "vplkit/vpl.glsl"
 #include "vpl_sampling.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -164,7 +165,7 @@ Emission emit(inout Rng rng) {
 }
 
 void main() {
-    uint path = gl_GlobalInvocationID.x;
+    uint path = linear_thread_index();
     if (path >= push.path_count) {
         return;
     }

@@ -8,6 +8,7 @@
 layout(local_size_x = 256, local_size_x_id = 0) in;  // the block size: compact_vpls.comp's
 
 #include "vplkit/radix.glsl"
+#include "vplkit/dispatch.glsl"
 
 // n per path (trace_vpls.comp).
 layout(std430, set = 0, binding = 0) readonly buffer PathVplCountBuffer { uint items[]; } path_vpl_counts;
@@ -19,11 +20,15 @@ layout(push_constant) uniform VplBlockCountsPush {
 } push;
 
 void main() {
-    uint path = gl_GlobalInvocationID.x;
+    uint block = linear_workgroup_index();
+    if (block * gl_WorkGroupSize.x >= push.path_count) {
+        return;  // past the last block (a folded grid's last row): the whole workgroup, no barrier yet
+    }
+    uint path = linear_thread_index();
     uint count = path < push.path_count ? path_vpl_counts.items[path] : 0u;
     uint total;
     radix_workgroup_exclusive_scan(count, total);  // in uniform control flow: it holds barriers
     if (gl_LocalInvocationID.x == 0u) {
-        block_vpls.items[gl_WorkGroupID.x] = total;
+        block_vpls.items[block] = total;
     }
 }

@@ -8,6 +8,7 @@
 // An all-zero map gives no samples: `result.count` is 0 and no sample is written.
 
 #include "vplkit/sampling.glsl"
+#include "vplkit/dispatch.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -23,7 +24,7 @@ layout(push_constant) uniform WarpSamplesPush {
 } push;
 
 void main() {
-    uint i = gl_GlobalInvocationID.x;
+    uint i = linear_thread_index();
     float total = mips.values[push.top_offset];
     // "!(total > 0)" also turns away a NaN total.
     bool empty = !(total > 0.0) || isinf(total);
