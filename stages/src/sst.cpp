@@ -1,4 +1,5 @@
 #include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 #include "vplkit/stages/sst.hpp"
 
 #include "vplkit/error.hpp"
@@ -45,11 +46,6 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     }
     const uint32_t leaves_in_tree = leaf_count(count);
     const uint32_t threads = leaves_in_tree == 1 ? 1u : leaves_in_tree / 2u;
-    if ((threads + size - 1) / size > device.limits().max_workgroup_count[0]) {
-        throw Error("sst: " + std::to_string(count) +
-                    " VPLs need more workgroups than the device allows in one dispatch (" +
-                    std::to_string(device.limits().max_workgroup_count[0]) + "); raise the workgroup size");
-    }
     const uint32_t node_count = sst_node_count(count);
     const uint32_t counter_count = sst_counter_count(count);
     check_range(device, leaves, uint64_t(leaves_in_tree) * sizeof(shaders::Vpl),
@@ -59,13 +55,15 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     check_range(device, counters, uint64_t(counter_count) * sizeof(uint32_t),
                 "the " + std::to_string(counter_count) + " counters of " + std::to_string(count) + " VPLs");
 
+    shaders::build_sst::Spec spec;
+    spec.local_size_x = size;
+    const auto& pipeline = device.pipeline<shaders::build_sst::Pipeline>(spec);
+    check_dispatch_groups(pipeline, "sst", threads);  // past 65,535 workgroups the grid is folded
+
     passes.add("sst clear counters", {Use::transfer_dst(counters)}, [counters, counter_count](VkCommandBuffer cmd) {
         vkCmdFillBuffer(cmd, counters.buffer, counters.offset, uint64_t(counter_count) * sizeof(uint32_t), 0u);
     });
 
-    shaders::build_sst::Spec spec;
-    spec.local_size_x = size;
-    const auto& pipeline = device.pipeline<shaders::build_sst::Pipeline>(spec);
     shaders::build_sst::Push push{};
     push.count = count;
     push.leaf_count = leaves_in_tree;

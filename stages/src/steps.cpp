@@ -7,6 +7,7 @@
 #include "vplkit/error.hpp"
 
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -342,7 +343,12 @@ std::vector<BarrierRecord> StepList::record(VkCommandBuffer cmd, const Hooks& ho
                 dependency.pImageMemoryBarriers = image_barriers.data();
                 vkCmdPipelineBarrier2(cmd, &dependency);
             }
-            step.record(cmd);
+            try {
+                step.record(cmd);
+            } catch (const std::length_error& e) {
+                // A generated Pipeline::groups() refusing a grid no device must take: name the step.
+                throw Error("step '" + step.name + "': " + e.what());
+            }
             if (hooks.after) hooks.after(cmd, i);
         }
     } catch (...) {

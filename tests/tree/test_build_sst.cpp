@@ -651,6 +651,22 @@ TEST_CASE("sst: many small workgroups merge across workgroups") {
     }
 }
 
+TEST_CASE("sst: more than 65,535 workgroups (a grid folded into rows) match the reference") {
+    // Workgroups of 1 thread and 150,000 VPLs: 2^17 threads (one per node of the lowest inner level
+    // of the 2^18-leaf tree), so 131,072 workgroups, past 65,535 (maxComputeWorkGroupCount's
+    // minimum, lavapipe's limit): the generated dispatch folds them into 3 rows of 43,691, one
+    // workgroup past the count. Before the fold, add_sst_passes refused this (or the dispatch
+    // failed validation).
+    // A curved patch (its merged normals stay clear of the reference's decision borders, which
+    // uniformly random normals over 150,000 VPLs are not), cut to 150,000 so the tree has padding.
+    std::vector<Vpl> vpls = patch(9, 0.01, 2.0, 0.002, 27, {0.3, -0.2, 0.1});
+    vpls.resize(150000);
+    const Scene scene = padded(std::move(vpls));
+    const Comparison c = build_and_compare(scene, {.workgroup_size = 1});
+    CHECK(c.nodes == (1u << 18) - 1u);
+    CHECK(c.ambiguous_flags <= c.nodes / 50);
+}
+
 TEST_CASE("sst: bad arguments are refused with a message") {
     vplkit::Context& ctx = vplkit::test::context();
     auto leaves = vplkit::Buffer::create(ctx, 8 * sizeof(Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
