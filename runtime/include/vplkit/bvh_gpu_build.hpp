@@ -1,0 +1,79 @@
+#pragma once
+// The scene's BVH built on the GPU (stages/bvh_gpu_build.hpp: Morton codes, the kit's radix
+// sort, a Karras 2012 LBVH), and refitted when only its vertices move. Not the renderer's BVH:
+// the host's binned SAH build (vplkit/bvh.hpp) stays that, and the tests' reference.
+//
+//   vplkit::GpuBvhBuild build(context, vertices);   // 3 vertices a triangle, as build_bvh takes them
+//   trace through build.bvh() as through upload_bvh's GpuBvh
+//   build.refit(moved_vertices);                    // same triangles, new positions
+
+#include "vplkit/bvh.hpp"
+#include "vplkit/bvh_gpu.hpp"
+#include "vplkit/buffer.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/bvh_gpu_build.hpp"
+#include "vplkit/stages/radix_sort.hpp"
+
+#include <glm/vec3.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace vplkit {
+
+class Context;
+
+// What a build reports (read back from the GPU once it has run).
+struct GpuBvhBuildStats {
+    uint32_t input_triangles = 0;       // given
+    uint32_t degenerate_triangles = 0;  // of those, left out for zero area (as build_bvh does)
+    uint32_t node_count = 0;
+    uint32_t leaf_count = 0;
+    uint32_t depth = 0;          // of the deepest leaf, at most the options' max_depth
+    uint32_t lbvh_depth = 0;     // of the deepest leaf of the LBVH before collapsing and capping
+    uint32_t largest_leaf = 0;   // triangles in the largest leaf
+    uint32_t capped_leaves = 0;  // leaves at max_depth with more than max_leaf_triangles triangles
+    double gpu_ms = 0.0;         // GPU time of the last build or refit (every pass)
+};
+
+class GpuBvhBuild {
+public:
+    // Builds the BVH of `vertices.size() / 3` triangles with `triangle_ids` (empty: a triangle's
+    // id is its index). Throws vplkit::Error for what build_bvh refuses (naming the triangle),
+    // and when a buffer would exceed the device's maxStorageBufferRange. Triangles of zero area
+    // are left out, as build_bvh leaves them out; a scene of none gives the empty leaf.
+    GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids = {},
+                const stages::BvhGpuBuildOptions& options = {});
+
+    GpuBvhBuild(GpuBvhBuild&&) noexcept = default;
+    GpuBvhBuild& operator=(GpuBvhBuild&&) noexcept = default;
+
+    // For every stage that traces (alpha records: none; word 0 is 0, one tree).
+    const GpuBvh& bvh() const { return bvh_; }
+    const GpuBvhBuildStats& stats() const { return stats_; }
+    // Per-pass GPU times of the last build or refit.
+    const std::vector<PassTiming>& timings() const { return timings_; }
+
+    // New positions of the same triangles (as many vertices as at the build, the same order):
+    // refits every box on the GPU, keeping the tree's topology. Throws vplkit::Error for a
+    // different count or a vertex build_bvh would refuse. A triangle left out at the build stays out.
+    void refit(std::span<const glm::vec3> vertices);
+
+private:
+    void upload_input(std::span<const glm::vec3> vertices);
+    void run(bool build);
+
+    Context* context_ = nullptr;
+    stages::BvhGpuBuildOptions options_;
+    GpuBvh bvh_;
+    GpuBvhBuildStats stats_;
+    std::vector<PassTiming> timings_;
+    std::vector<uint32_t> kept_;                 // input triangle of each built one
+    std::vector<shaders::BvhTriangle> records_;  // the input records (ids kept across refits)
+    Buffer input_, info_, build_nodes_, build_links_, keys_, order_;
+    std::unique_ptr<stages::RadixSorter> sorter_;  // at a fixed address while recording
+};
+
+}  // namespace vplkit

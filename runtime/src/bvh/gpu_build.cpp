@@ -1,0 +1,189 @@
+// GpuBvhBuild: the checks build_bvh makes on the host, then the GPU build or refit.
+
+#include "vplkit/bvh_gpu_build.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/error.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace vplkit {
+
+namespace {
+
+// The most triangles the GPU build puts in one (capped) leaf.
+constexpr uint32_t kLargestLeaf = 65535;
+
+std::string format_vertex(const glm::vec3& v) {
+    char text[96];
+    std::snprintf(text, sizeof text, "(%g, %g, %g)", double(v.x), double(v.y), double(v.z));
+    return text;
+}
+
+// As build_bvh: finite coordinates below kBvhMaxCoordinate.
+void check_vertex(const glm::vec3& v, size_t triangle, int k) {
+    for (int axis = 0; axis < 3; ++axis) {
+        if (!std::isfinite(v[axis])) {
+            throw Error("GPU BVH build: triangle " + std::to_string(triangle) + " has a non-finite vertex " +
+                        std::to_string(k) + " " + format_vertex(v));
+        }
+        if (!(std::fabs(v[axis]) < kBvhMaxCoordinate)) {
+            throw Error("GPU BVH build: triangle " + std::to_string(triangle) + " vertex " + std::to_string(k) + " " +
+                        format_vertex(v) + " lies beyond +-2^32, where the float intersection test could overflow");
+        }
+    }
+}
+
+// As build_bvh: zero area when the double cross product of two edges is exactly zero.
+bool degenerate(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+    const double e1x = double(b.x) - a.x, e1y = double(b.y) - a.y, e1z = double(b.z) - a.z;
+    const double e2x = double(c.x) - a.x, e2y = double(c.y) - a.y, e2z = double(c.z) - a.z;
+    return e1y * e2z - e1z * e2y == 0.0 && e1z * e2x - e1x * e2z == 0.0 && e1x * e2y - e1y * e2x == 0.0;
+}
+
+void check_range(const Context& context, VkDeviceSize bytes, const char* what) {
+    const uint64_t limit = context.info().max_storage_buffer_range;
+    if (bytes > limit) {
+        throw Error(std::string("GPU BVH build: the ") + what + " need " + std::to_string(bytes) +
+                    " bytes, more than this device's maxStorageBufferRange of " + std::to_string(limit));
+    }
+}
+
+Buffer storage(Context& context, VkDeviceSize bytes, const char* name) {
+    check_range(context, bytes, name);
+    return Buffer::create(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, name);
+}
+
+void set(shaders::vec3& out, const glm::vec3& v) {
+    out = {v.x, v.y, v.z};
+}
+
+}  // namespace
+
+GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids,
+                         const stages::BvhGpuBuildOptions& options)
+    : context_(&context), options_(options) {
+    if (vertices.size() % 3 != 0) {
+        throw Error("GPU BVH build: " + std::to_string(vertices.size()) +
+                    " vertices is not a whole number of triangles (3 vertices each)");
+    }
+    const size_t triangle_count = vertices.size() / 3;
+    if (triangle_count >= size_t(kBvhCountMask)) {
+        throw Error("GPU BVH build: " + std::to_string(triangle_count) + " triangles, at most " +
+                    std::to_string(kBvhCountMask - 1) + " are supported");
+    }
+    if (!triangle_ids.empty() && triangle_ids.size() != triangle_count) {
+        throw Error("GPU BVH build: " + std::to_string(triangle_ids.size()) + " triangle ids for " +
+                    std::to_string(triangle_count) + " triangles");
+    }
+    stats_.input_triangles = uint32_t(triangle_count);
+    for (size_t t = 0; t < triangle_count; ++t) {
+        for (int k = 0; k < 3; ++k) {
+            check_vertex(vertices[3 * t + k], t, k);
+        }
+        const uint32_t id = triangle_ids.empty() ? uint32_t(t) : triangle_ids[t];
+        if (id == kBvhNoHit) {
+            throw Error("GPU BVH build: triangle " + std::to_string(t) + " has id 0xffffffff, reserved for 'no hit'");
+        }
+        if (degenerate(vertices[3 * t], vertices[3 * t + 1], vertices[3 * t + 2])) {
+            ++stats_.degenerate_triangles;
+            continue;
+        }
+        kept_.push_back(uint32_t(t));
+        shaders::BvhTriangle record{};
+        record.id = id;
+        records_.push_back(record);
+    }
+
+    if (kept_.empty()) {
+        // The empty leaf, exactly what build_bvh and upload_bvh give.
+        bvh_ = upload_bvh(context, build_bvh({}));
+        stats_.node_count = 1;
+        stats_.leaf_count = 1;
+        return;
+    }
+    const uint32_t count = uint32_t(kept_.size());
+    const stages::BvhGpuBuildSizes sizes = stages::bvh_gpu_build_sizes(count);
+    bvh_.nodes = storage(context, sizes.nodes, "bvh nodes");
+    bvh_.triangles = storage(context, sizes.triangles, "bvh triangles");
+    bvh_.alpha = storage(context, sizeof(uint32_t), "bvh alpha");
+    bvh_.alpha.upload(std::vector<uint32_t>{0u});
+    bvh_.alpha_tests = false;
+    bvh_.triangle_count = count;
+    input_ = storage(context, sizes.input, "bvh build input");
+    info_ = storage(context, sizes.info, "bvh build info");
+    build_nodes_ = storage(context, sizes.build_nodes, "bvh build nodes");
+    build_links_ = storage(context, sizes.build_links, "bvh build links");
+    keys_ = storage(context, sizes.keys, "bvh build keys");
+    order_ = storage(context, sizes.order, "bvh build order");
+    stages::RadixSortOptions sort;
+    sort.key_bits = stages::kBvhBuildKeyBits;
+    sorter_ = std::make_unique<stages::RadixSorter>(context, count, sort);
+    upload_input(vertices);
+    run(true);
+}
+
+void GpuBvhBuild::upload_input(std::span<const glm::vec3> vertices) {
+    for (size_t i = 0; i < kept_.size(); ++i) {
+        const size_t t = kept_[i];
+        set(records_[i].v0, vertices[3 * t]);
+        set(records_[i].v1, vertices[3 * t + 1]);
+        set(records_[i].v2, vertices[3 * t + 2]);
+    }
+    input_.upload(records_);
+}
+
+void GpuBvhBuild::run(bool build) {
+    const uint32_t count = uint32_t(kept_.size());
+    const stages::BvhGpuBuildBuffers buffers{input_,       bvh_.nodes,   bvh_.triangles, info_,
+                                             build_nodes_, build_links_, keys_,          order_};
+    PassList passes(build ? "gpu bvh build" : "gpu bvh refit");
+    if (build) {
+        stages::add_bvh_gpu_build_passes(*context_, passes, *sorter_, buffers, count, options_);
+    } else {
+        stages::add_bvh_gpu_refit_passes(*context_, passes, buffers, count, options_);
+    }
+    passes.run(*context_);
+    timings_ = passes.timings();
+    stats_.gpu_ms = passes.total_gpu_ms();
+    const shaders::BvhBuildInfo info = info_.download<shaders::BvhBuildInfo>(1).at(0);
+    bvh_.node_count = info.node_count;
+    bvh_.scene_scale = info.scene_scale;
+    if (build) {
+        stats_.node_count = info.node_count;
+        stats_.leaf_count = info.leaf_count;
+        stats_.depth = info.depth;
+        stats_.lbvh_depth = info.lbvh_depth;
+        stats_.largest_leaf = info.largest_leaf;
+        stats_.capped_leaves = info.capped_leaves;
+        // The leaf pass loops over a leaf's triangles, and lavapipe ends a loop after 65,535
+        // iterations: a larger (capped) leaf may have lost triangles.
+        if (info.largest_leaf > kLargestLeaf) {
+            throw Error("GPU BVH build: a leaf at depth " + std::to_string(options_.max_depth) + " holds " +
+                        std::to_string(info.largest_leaf) + " triangles (the LBVH is " +
+                        std::to_string(info.lbvh_depth) + " deep), more than " + std::to_string(kLargestLeaf) +
+                        "; build this scene on the host (build_bvh)");
+        }
+    }
+}
+
+void GpuBvhBuild::refit(std::span<const glm::vec3> vertices) {
+    if (vertices.size() != size_t(stats_.input_triangles) * 3) {
+        throw Error("GPU BVH refit: " + std::to_string(vertices.size()) + " vertices, the build had " +
+                    std::to_string(size_t(stats_.input_triangles) * 3));
+    }
+    for (size_t t = 0; t < stats_.input_triangles; ++t) {
+        for (int k = 0; k < 3; ++k) {
+            check_vertex(vertices[3 * t + k], t, k);
+        }
+    }
+    if (kept_.empty()) {
+        return;
+    }
+    upload_input(vertices);
+    run(false);
+}
+
+}  // namespace vplkit

@@ -1,0 +1,41 @@
+#version 460
+#extension GL_GOOGLE_include_directive : require
+// GPU BVH build, step 6, and the first step of a refit (see vplkit/bvh_build.glsl): each output
+// leaf copies its triangles into leaf order and takes the box of their vertices.
+
+#include "vplkit/bvh_build.glsl"
+#include "vplkit/dispatch.glsl"
+
+layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
+
+layout(std430, set = 0, binding = 0) readonly buffer BvhBuildInputBuffer { BvhTriangle items[]; } input_triangles;
+layout(std430, set = 0, binding = 1) readonly buffer BvhBuildOrderBuffer { uint items[]; } order;
+layout(std430, set = 0, binding = 2) buffer BvhBuildNodeBuffer { BvhBuildNode items[]; } nodes;
+layout(std430, set = 0, binding = 3) buffer BvhBuildLinkBuffer { BvhBuildLink items[]; } links;
+layout(std430, set = 0, binding = 4) writeonly buffer BvhBuildTriangleBuffer { BvhTriangle items[]; } triangles;
+
+layout(push_constant) uniform BvhBuildLeavesPush {
+    uint triangle_count;
+} push;
+
+void main() {
+    uint slot = linear_thread_index();
+    if (slot >= 2u * push.triangle_count - 1u || links.items[slot].kind != kBvhBuildLeaf) {
+        return;
+    }
+    uint first = links.items[slot].first;
+    uint end = first + links.items[slot].count;
+    vec3 lo = vec3(3.4028234663852886e38);
+    vec3 hi = vec3(-3.4028234663852886e38);
+    for (uint k = first; k < end; ++k) {
+        BvhTriangle tri = input_triangles.items[order.items[k]];
+        triangles.items[k] = tri;
+        vec3 tri_lo, tri_hi;
+        bvh_build_triangle_box(tri, tri_lo, tri_hi);
+        lo = min(lo, tri_lo);
+        hi = max(hi, tri_hi);
+    }
+    nodes.items[slot].lo = lo;
+    nodes.items[slot].hi = hi;
+    links.items[slot].size = 1u;
+}

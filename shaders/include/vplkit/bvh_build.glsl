@@ -1,0 +1,81 @@
+#ifndef VPLKIT_BVH_BUILD_GLSL
+#define VPLKIT_BVH_BUILD_GLSL
+
+// The GPU BVH build (stages/bvh_gpu_build.hpp; shaders/bvh/bvh_build_*.comp): a linear BVH
+// after Karras 2012, "Maximizing Parallelism in the Construction of BVHs, Octrees, and k-d
+// Trees", written out in the layout bvh.glsl traverses (depth-first, first child next).
+//
+// Working tree ("slots"): internal node i of the Karras tree is slot i (0 <= i < n - 1, the
+// root is slot 0), the leaf of sorted triangle k is slot n - 1 + k (for n = 1 the single leaf
+// is slot 0, the root as well). A slot covers the sorted triangles [first, first + count).
+// Output: a slot is either hidden (inside a subtree collapsed into one leaf), an interior node
+// or a leaf of the output tree (kind). A slot is kept when it is the root or its parent covers
+// more than max_leaf_triangles and lies above max_depth; a kept slot is a leaf when it covers
+// at most max_leaf_triangles, or lies at max_depth (a capped leaf: it then takes every
+// triangle of its subtree, so the tree never outgrows the traversal's stack).
+
+// The caller's triangles (bvh.glsl's BvhTriangle, the same struct: the generated types.hpp
+// holds one of each name, and the two must agree).
+struct BvhTriangle {
+    vec3 v0;
+    uint id;
+    vec3 v1;
+    uint alpha;
+    vec3 v2;
+};
+
+// One slot's box (unpadded) and children (slots; kBvhBuildNone for a Karras leaf).
+struct BvhBuildNode {
+    vec3 lo;
+    uint left;
+    vec3 hi;
+    uint right;
+};
+
+// One slot's place in the Karras tree and the output tree.
+struct BvhBuildLink {
+    uint parent;  // slot, kBvhBuildNone for the root
+    uint first;   // first sorted triangle
+    uint count;   // sorted triangles covered
+    uint depth;   // in the Karras tree (root 0): also its depth in the output tree when kept
+    uint size;    // output nodes in its output subtree (kept slots only)
+    uint axis;    // interior: the axis of the Morton bit that splits it (left child below)
+    uint kind;    // kBvhBuildHidden, kBvhBuildInterior or kBvhBuildLeaf
+    uint unused;
+};
+
+// What the build reports (read back by the caller), and the bounds its passes share.
+struct BvhBuildInfo {
+    uint centroid_lo[3];  // box of the triangle centroids, ordered floats (ordered_float.glsl)
+    uint centroid_hi[3];
+    uint scale;           // the largest vertex coordinate magnitude, float bits (non-negative
+                          // floats order as their bits)
+    uint lbvh_depth;      // the deepest leaf of the Karras tree, before collapsing and capping
+    uint depth;           // the deepest leaf of the output tree (<= max_depth)
+    uint node_count;      // output nodes
+    uint leaf_count;      // output leaves
+    uint largest_leaf;    // triangles in the largest output leaf
+    uint capped_leaves;   // leaves at max_depth with more than max_leaf_triangles triangles
+    float scene_scale;    // bvh_scene_scale() of the output tree (its padded root box)
+    uint unused[2];
+};
+
+const uint kBvhBuildNone = 0xffffffffu;
+const uint kBvhBuildHidden = 0u;
+const uint kBvhBuildInterior = 1u;
+const uint kBvhBuildLeaf = 2u;
+// Equal to vplkit::kBvhLeafFlag and kBvhBoxPadding (vplkit/bvh.hpp).
+const uint kBvhBuildLeafFlag = 0x80000000u;
+const float kBvhBuildBoxPadding = 9.5367431640625e-7;  // 2^-20
+const float kBvhBuildMinScale = 1e-30;
+// No walk up parent pointers is longer than the Karras tree is deep: its node prefixes grow by
+// at least a bit a level, out of 30 Morton bits and 32 index bits.
+const uint kBvhBuildMaxWalk = 64u;
+
+// Box of one triangle.
+void bvh_build_triangle_box(BvhTriangle tri, out vec3 lo, out vec3 hi) {
+    lo = min(min(tri.v0, tri.v1), tri.v2);
+    hi = max(max(tri.v0, tri.v1), tri.v2);
+}
+
+#endif
