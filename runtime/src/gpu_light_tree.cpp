@@ -102,14 +102,14 @@ GpuLightTree GpuLightTree::create(Context& context, const scene::Scene& scene, c
 
 void GpuLightTree::add_build_passes(Context& context, PassList& passes) {
     State& s = *state_;
-    const SceneLightTreeSources sources{count_, triangle_count_, s.proxies, s.emitters, s.punctual.buffer};
+    const SceneLightTreeSources sources{count_, triangle_count_, s.proxies, s.emitters, s.punctual.lights};
     add_scene_light_tree_passes(context, passes, sources, {s.bounds, s.keys}, s.sorter, buffers());
 }
 
 SceneLightTreeBuffers GpuLightTree::buffers() const {
     const State& s = *state_;
     return {count_,           light_tree_leaf_count(count_), triangle_count_, s.nodes, s.leaf_lights, s.emitters,
-            s.punctual.buffer};
+            s.punctual.lights};
 }
 
 const Buffer& GpuLightTree::nodes() const {

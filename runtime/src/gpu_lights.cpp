@@ -114,9 +114,9 @@ GpuLights upload_lights(Context& context, std::span<const scene::Light> lights) 
     if (gpu.empty()) {
         gpu.push_back(shaders::PunctualLight{});
     }
-    out.buffer = Buffer::create(context, gpu.size() * sizeof(shaders::PunctualLight),
+    out.lights = Buffer::create(context, gpu.size() * sizeof(shaders::PunctualLight),
                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "punctual lights");
-    out.buffer.upload(gpu);
+    out.lights.upload(gpu);
     return out;
 }
 

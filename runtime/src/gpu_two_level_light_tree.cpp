@@ -52,7 +52,7 @@ GpuTwoLevelLightTree GpuTwoLevelLightTree::create(Context& context, const scene:
 
 TwoLevelLightTreeBuffers GpuTwoLevelLightTree::buffers() const {
     const State& s = *state_;
-    return {s.top_leaf_count, s.triangle_count, s.nodes, s.bottoms, s.leaf_lights, s.emitters, s.punctual.buffer};
+    return {s.top_leaf_count, s.triangle_count, s.nodes, s.bottoms, s.leaf_lights, s.emitters, s.punctual.lights};
 }
 
 }  // namespace vplkit::stages

@@ -189,7 +189,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
 
     // upload_lights validates every light and never returns an empty buffer.
     GpuLights lights = upload_lights(context, scene.lights);
-    out.lights = std::move(lights.buffer);
+    out.lights = std::move(lights.lights);
     out.emissive = Buffer::create(context, emissive.size() * sizeof(shaders::EmitterTriangle),
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "vpl emissive triangles");
     out.emissive.upload(emissive);

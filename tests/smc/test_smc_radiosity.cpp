@@ -134,7 +134,7 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     const auto& pipeline = ctx.pipeline<shader::Pipeline>(vplkit::stages::bvh_spec<shader::Spec>(bvh));
     shader::Bindings b;
     vplkit::stages::bind_bvh(b, bvh);
-    b.lights = gpu_lights.buffer.descriptor();
+    b.lights = gpu_lights.lights.descriptor();
     b.emissive = emissive.descriptor();
     b.emitter_cdf = cdf.descriptor();
     b.albedo = albedo.descriptor();

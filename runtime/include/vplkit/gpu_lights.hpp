@@ -23,24 +23,15 @@ namespace vplkit::stages {
 
 // The scene's punctual lights in the shader's layout (PunctualLight, shaders/include/vplkit/lights.glsl).
 // Never empty (Vulkan has no empty buffers): with no lights it holds one unused entry and count 0.
-struct GpuLights {
-    Buffer buffer;
-    uint32_t count = 0;
-
-    operator LightBuffers() const { return {buffer, count}; }
-};
+using GpuLights = LightSet<Buffer>;
 // Throws vplkit::Error naming the light for a non-finite or negative value.
 GpuLights upload_lights(Context& context, std::span<const scene::Light> lights);
 
 // The scene's emissive triangles (EmissiveTriangle, shaders/include/vplkit/emitters.glsl), each
 // with the probability of being sampled, proportional to its power (luminance of the emitted
 // radiance x area). Never empty: with no emitter it holds one unused entry and count 0.
-struct GpuEmitters {
-    Buffer triangles;
-    uint32_t count = 0;
+struct GpuEmitters : EmitterSet<Buffer> {
     double total_power = 0.0;  // sum of luminance(radiance) x area x pi, watts in luminance
-
-    operator EmitterBuffers() const { return {triangles, count}; }
 };
 GpuEmitters upload_emitters(Context& context, const scene::Scene& scene);
 

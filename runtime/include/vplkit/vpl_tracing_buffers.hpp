@@ -19,28 +19,13 @@ struct Scene;
 
 namespace vplkit::stages {
 
-// Everything the tracer reads about the scene besides the BVH.
-struct VplSources {
-    Buffer lights;           // PunctualLight[max(punctual_count, 1)] (lights.glsl)
-    Buffer emissive;         // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
-    Buffer emitter_cdf;      // float[max(emitter_count, 1)]
-    Buffer triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
-    uint32_t punctual_count = 0;
-    uint32_t emissive_count = 0;
-    // punctual_count + emissive_count, or 0 when no emitter has any power (then no path is traced).
-    uint32_t emitter_count = 0;
-    uint32_t triangle_count = 0;
-    glm::vec3 scene_center{0.0f};  // bounding sphere of the triangles: directional lights cover it
-    float scene_radius = 0.0f;
+// Everything the tracer reads about the scene besides the BVH, owned (stages/vpl_tracing.hpp's
+// VplSourceSet; converts to VplSourceBuffers).
+struct VplSources : VplSourceSet<Buffer> {
     // Sum over emitters of the power they emit, RGB (W): point 4 pi I, spot 2 pi I x the
     // integral of the squared cone attenuation, directional E x pi r^2 of the covering disc,
     // emissive triangle pi L A (x 2 when double-sided). Range windows are not counted.
     glm::vec3 total_power{0.0f};
-
-    operator VplSourceBuffers() const {
-        return {lights,         emissive,      emitter_cdf,    triangle_albedo, punctual_count,
-                emissive_count, emitter_count, triangle_count, scene_center,    scene_radius};
-    }
 };
 
 // Uploads scene.lights (validated like upload_lights: a bad light throws Error naming it), the
@@ -53,19 +38,14 @@ struct VplSources {
 // without triangles or with a material index out of range.
 VplSources upload_vpl_sources(Context& context, const scene::Scene& scene);
 
-// The VPL buffers of one tracing: capacity = paths x max_bounces VPLs.
-struct VplTracingOutput {
-    Buffer vpls;                                // Vpl[capacity]: the first `count` are valid after the pass
-    Buffer bounces;                             // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
-    Buffer count;                               // VplCountBuffer: the number of VPLs, and of paths cut short
-    Buffer path_vpls, path_counts, block_vpls;  // scratch of the packing (VplTracingBuffers)
+// The VPL buffers of one tracing, owned (stages/vpl_tracing.hpp's VplTracingSet; converts to
+// VplTracingBuffers): capacity = paths x max_bounces VPLs.
+struct VplTracingOutput : VplTracingSet<Buffer> {
     uint32_t capacity = 0;
 
     // Throws Error when the options are invalid or the VPL buffer would exceed the device's
     // maxStorageBufferRange.
     static VplTracingOutput create(Context& context, const VplTracingOptions& options);
-
-    operator VplTracingBuffers() const { return {vpls, bounces, count, path_vpls, path_counts, block_vpls}; }
 };
 
 struct VplCounts {

@@ -11,17 +11,24 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <type_traits>
 
 namespace vplkit::stages {
 
 // The scene's emissive triangles (EmissiveTriangle[max(count, 1)], shaders/include/vplkit/emitters.glsl),
 // each with its entry of the selection CDF (selection_cdf.hpp; weights proportional to power).
 // Never empty: with no emitter it holds one unused entry and count is 0. The runtime fills it
-// from a scene (vplkit/gpu_lights.hpp: upload_emitters).
-struct EmitterBuffers {
-    BufferView triangles;
+// from a scene (vplkit/gpu_lights.hpp: upload_emitters, which owns them as GpuEmitters).
+template <class BufferT>
+struct EmitterSet {
+    BufferT triangles;
     uint32_t count = 0;
+
+    operator EmitterSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {triangles, count};
+    }
 };
+using EmitterBuffers = EmitterSet<BufferView>;
 
 struct DirectEmissiveParams {
     glm::vec3 camera_position{0.0f};

@@ -10,17 +10,22 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <type_traits>
 
 namespace vplkit::stages {
 
 // The scene's punctual lights in the shader's layout (PunctualLight, shaders/include/vplkit/lights.glsl),
 // read by direct light and VPL tracing: PunctualLight[max(count, 1)] (Vulkan has no empty
 // buffers: with no lights it holds one unused entry and count is 0). The runtime fills it from a
-// scene's lights (vplkit/gpu_lights.hpp: upload_lights).
-struct LightBuffers {
-    BufferView lights;
+// scene's lights (vplkit/gpu_lights.hpp: upload_lights, which owns them as a LightSet<Buffer>).
+template <class BufferT>
+struct LightSet {
+    BufferT lights;
     uint32_t count = 0;
+
+    operator LightSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) { return {lights, count}; }
 };
+using LightBuffers = LightSet<BufferView>;
 
 struct DirectLightParams {
     glm::vec3 camera_position{0.0f};

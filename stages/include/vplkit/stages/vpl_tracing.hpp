@@ -27,6 +27,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <type_traits>
 
 namespace vplkit::stages {
 
@@ -38,11 +39,12 @@ struct VplTracingOptions {
 
 // Everything the tracer reads about the scene besides the BVH (all read only). The runtime
 // fills them from a scene (vplkit/vpl_tracing_buffers.hpp: upload_vpl_sources).
-struct VplSourceBuffers {
-    BufferView lights;           // PunctualLight[max(punctual_count, 1)] (lights.glsl)
-    BufferView emissive;         // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
-    BufferView emitter_cdf;      // float[max(emitter_count, 1)]: selection_cdf of the emitters' powers
-    BufferView triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
+template <class BufferT>
+struct VplSourceSet {
+    BufferT lights;           // PunctualLight[max(punctual_count, 1)] (lights.glsl)
+    BufferT emissive;         // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
+    BufferT emitter_cdf;      // float[max(emitter_count, 1)]: selection_cdf of the emitters' powers
+    BufferT triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
     uint32_t punctual_count = 0;
     uint32_t emissive_count = 0;
     // punctual_count + emissive_count, or 0 when no emitter has any power (then no path is traced).
@@ -50,20 +52,34 @@ struct VplSourceBuffers {
     uint32_t triangle_count = 0;
     glm::vec3 scene_center{0.0f};  // bounding sphere of the triangles: directional lights cover it
     float scene_radius = 0.0f;
+
+    operator VplSourceSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {lights,         emissive,      emitter_cdf,    triangle_albedo, punctual_count,
+                emissive_count, emitter_count, triangle_count, scene_center,    scene_radius};
+    }
 };
+// What the tracer reads, as views; the runtime's VplSources owns them (vplkit/vpl_tracing_buffers.hpp).
+using VplSourceBuffers = VplSourceSet<BufferView>;
 
 // What one tracing writes. The VPLs come out ordered by path, then bounce: the seed fixes the
 // order as well as the set.
-struct VplTracingBuffers {
-    BufferView vpls;     // Vpl[capacity]: the first `count` are valid after the pass
-    BufferView bounces;  // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
-    BufferView count;    // VplCountBuffer: the number of VPLs, and of paths cut short
+template <class BufferT>
+struct VplTracingSet {
+    BufferT vpls;     // Vpl[capacity]: the first `count` are valid after the pass
+    BufferT bounces;  // uint32_t[capacity]: the bounce (1 = first surface hit) of each VPL
+    BufferT count;    // VplCountBuffer: the number of VPLs, and of paths cut short
     // Scratch: each path's VPLs at fixed slots (Vpl[capacity]), its VPL count (uint32_t[paths]),
     // and per block of vpl_tracing_block_size paths its VPLs, then its first output slot.
-    BufferView path_vpls;
-    BufferView path_counts;
-    BufferView block_vpls;
+    BufferT path_vpls;
+    BufferT path_counts;
+    BufferT block_vpls;
+
+    operator VplTracingSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
+        return {vpls, bounces, count, path_vpls, path_counts, block_vpls};
+    }
 };
+// As views; the runtime's VplTracingOutput owns them.
+using VplTracingBuffers = VplTracingSet<BufferView>;
 
 // Paths per block of the packing (the workgroup size of vpl_block_counts.comp and compact_vpls.comp).
 uint32_t vpl_tracing_block_size();
