@@ -87,7 +87,7 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
     if (flc_triangle_order_.empty()) flc_triangle_order_ = triangle_order(scene_source_);
     const stages::FlcSubdivision subdivision = [&] {
         try {
-            return stages::flc_subdivision_for(flc_triangle_areas_, partition);
+            return stages::flc_subdivision_for(flc_triangle_areas_, partition, stages::flc_max_candidates(context_));
         } catch (const Error& e) {
             // The stage speaks of its partition; name the settings that make it.
             throw Error(std::string(e.what()) + " (`flc_vpls_per_point`, `flc_levels`, `flc_mu`)");

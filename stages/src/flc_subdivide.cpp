@@ -9,8 +9,14 @@
 
 namespace vplkit::stages {
 
-FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition) {
+uint64_t flc_max_candidates(const Device& device) {
+    return std::min(kFlcMaxCandidates, device.limits().max_storage_buffer_range / sizeof(shaders::FlcCandidate));
+}
+
+FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition,
+                                   uint64_t max_candidates) {
     validate(partition);
+    max_candidates = std::min(max_candidates, kFlcMaxCandidates);
     const double target = 0.99 * flc_divergence_area(partition);
     FlcSubdivision out;
     uint64_t total = 0;
@@ -19,13 +25,14 @@ FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const
         if (!std::isfinite(area) || !(area > target)) continue;
         const double root = std::ceil(std::sqrt(area / target));
         // Beyond the candidate limit the count cannot fit anyway (and side^2 could overflow).
-        auto side = root < double(kFlcMaxCandidates) ? uint64_t(root) : kFlcMaxCandidates;
-        while (side < kFlcMaxCandidates && double(side) * double(side) * target < area) ++side;  // the root's rounding
-        if (side >= kFlcMaxCandidates || total + triangle_areas.size() + side * side > kFlcMaxCandidates) {
+        auto side = root < double(max_candidates) ? uint64_t(root) : max_candidates;
+        while (side < max_candidates && double(side) * double(side) * target < area) ++side;  // the root's rounding
+        if (side >= max_candidates || total + triangle_areas.size() + side * side > max_candidates) {
             throw Error(
                 "flc: the divergent triangles' subdivision needs more than " +
-                std::to_string(kFlcMaxCandidates - triangle_areas.size()) + " sub-triangles (triangle " +
-                std::to_string(t) + ", area " + std::to_string(area) + ", needs " + std::to_string(side) +
+                std::to_string(max_candidates - std::min<uint64_t>(max_candidates, triangle_areas.size())) +
+                " sub-triangles (triangle " + std::to_string(t) + ", area " + std::to_string(area) + ", needs " +
+                std::to_string(side) +
                 "^2): the partition needs a larger s0 (fewer VPLs per point), a larger level_count or a larger mu");
         }
         out.entries.push_back({uint32_t(t), uint32_t(side), uint32_t(total)});
@@ -41,9 +48,9 @@ void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivide
     validate(partition);
     if (triangle_count == 0) throw Error("flc subdivide: the scene has no triangle");
     const uint64_t candidates = uint64_t(triangle_count) + subdivision.sub_count;
-    if (candidates > kFlcMaxCandidates) {
+    if (candidates > flc_max_candidates(device)) {  // the dispatch folds; the buffers must fit a binding
         throw Error("flc subdivide: " + std::to_string(candidates) + " candidates, at most " +
-                    std::to_string(kFlcMaxCandidates));
+                    std::to_string(flc_max_candidates(device)) + " on this device (32 bytes each, bound whole)");
     }
     const auto need = [](const BufferView& view, uint64_t bytes, const char* what) {
         if (view.size < bytes) {

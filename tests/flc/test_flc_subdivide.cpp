@@ -242,3 +242,27 @@ TEST_CASE("flc subdivide: a subdivision beyond the candidate limit is refused") 
         CHECK(std::string(e.what()).find("--") == std::string::npos);
     }
 }
+
+TEST_CASE("flc subdivide: past 65,535 workgroups of 64 candidates the limit is the device's binding range") {
+    // The flc passes fold their dispatches (vplkit/dispatch.glsl), so the subdivision itself takes
+    // up to kFlcMaxCandidates (2^31); a device takes as many as its FlcCandidate buffer's binding
+    // holds. 3000^2 sub-triangles and two triangles: 9,000,002 candidates, 140,626 workgroups.
+    const FlcPartition partition = test_partition();
+    const double target = 0.99 * vplkit::stages::flc_divergence_area(partition);
+    const std::vector<double> areas = {0.5 * target, 2999.5 * 2999.5 * target};
+    const vplkit::stages::FlcSubdivision subdivision = vplkit::stages::flc_subdivision_for(areas, partition);
+    REQUIRE(subdivision.entries.size() == 1);
+    CHECK(subdivision.entries[0].side == 3000u);
+    CHECK(subdivision.sub_count == 3000u * 3000u);
+
+    vplkit::Context& ctx = vplkit::test::context();
+    const uint64_t device_max = vplkit::stages::flc_max_candidates(ctx);
+    CHECK(device_max > 65535ull * 64ull);  // lavapipe: 2^27 bytes / 32 = 4,194,304
+    CHECK(device_max == std::min<uint64_t>(vplkit::stages::kFlcMaxCandidates,
+                                           ctx.limits().max_storage_buffer_range / sizeof(FlcCandidate)));
+    if (device_max < 2 + 3000ull * 3000ull) {
+        CHECK_THROWS_WITH_AS(vplkit::stages::flc_subdivision_for(areas, partition, device_max),
+                             doctest::Contains("the partition needs a larger s0 (fewer VPLs per point)"),
+                             vplkit::Error);
+    }
+}

@@ -113,9 +113,15 @@ void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& 
                             const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
                             const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params);
 
-// Candidates (scene triangles + sub-triangles) in all: every flc pass is one dispatch of 64-thread
-// groups, at most 65535 of them.
-inline constexpr uint64_t kFlcMaxCandidates = 65535ull * 64ull;
+// Candidates (scene triangles + sub-triangles) in all: a 32-bit index, each flc pass one dispatch of
+// 64-thread groups (folded into rows past 65,535 of them: vplkit/dispatch.glsl; 2^31 threads fold
+// with every index below 2^32). The candidate buffers must also fit one storage-buffer binding:
+// flc_max_candidates(device) is the smaller of the two.
+inline constexpr uint64_t kFlcMaxCandidates = 1ull << 31;
+
+// The candidates a device takes: kFlcMaxCandidates, or fewer where the FlcCandidate buffer (32 bytes
+// a candidate, bound whole) would pass maxStorageBufferRange (4,194,304 on lavapipe's 2^27 bytes).
+uint64_t flc_max_candidates(const Device& device);
 
 // The divergent triangles' subdivision (seed 002 sec. 6): which triangles are cut, into how many.
 struct FlcSubdivision {
@@ -125,9 +131,11 @@ struct FlcSubdivision {
 
 // Every triangle of area A > 0.99 S~_N (a 1% margin over the candidates pass's float test) gets
 // side m = ceil(sqrt(A / (0.99 S~_N))): m^2 sub-triangles of area A / m^2 <= 0.99 S~_N, regular.
-// Throws vplkit::Error when triangle_count + sub_count would exceed kFlcMaxCandidates (fewer VPLs
-// per point, more levels or a larger mu), or on a bad partition. Non-finite areas are left alone.
-FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition);
+// Throws vplkit::Error when triangle_count + sub_count would exceed max_candidates (pass
+// flc_max_candidates(device); fewer VPLs per point, more levels or a larger mu), or on a bad
+// partition. Non-finite areas are left alone.
+FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const FlcPartition& partition,
+                                   uint64_t max_candidates = kFlcMaxCandidates);
 
 struct FlcSubdivideBuffers {
     BufferView vertices;          // scene::Vertex[]; read
