@@ -104,7 +104,23 @@ const char* const kBenchUsageText =
     "  --width, --height  image size (default 128x128 on a CPU device, 512x512 on a GPU)\n"
     "  --frames F       frames per point (default 3, at least 2)\n"
     "  --reference-frames R   frames averaged for the reference (default 16)\n"
-    "  --quick          a smoke test: 32x32, 1 and 4 spp, 2 frames, a 2-frame reference of 16 spp\n";
+    "  --quick          a smoke test: 32x32, 1 and 4 spp, 2 frames, a 2-frame reference of 16 spp\n"
+    "\n"
+    "usage: vplkit bench bvh [--counts N,N,...] [--scene NAME|FILE] [--runs R] [--rays N] [--csv FILE]\n"
+    "                        [--device SEL]\n"
+    "\n"
+    "The host's binned SAH BVH against the GPU LBVH (Morton codes, radix sort, Karras 2012), on\n"
+    "random triangle soups and a scene: build time (host: wall clock, one core; GPU: timestamps,\n"
+    "median of R runs after a warm-up, per stage), GPU refit time, nodes, depth, SAH cost, and\n"
+    "millions of rays per second through each tree (closest hit and occlusion, the same rays).\n"
+    "Checks that both trees give the same nearest hits.\n"
+    "  --counts N,...   soup sizes in triangles (default 50000,200000,1000000; none with --scene\n"
+    "                   unless given)\n"
+    "  --scene S        also a standard set-up (scenes/setups.txt) or a .gltf/.glb file\n"
+    "  --runs R         timed runs of each GPU build, refit and trace (default 5)\n"
+    "  --rays N         rays traced per tree (default 262144)\n"
+    "  --csv FILE       also write the figures as CSV\n"
+    "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n";
 
 }  // namespace
 
@@ -144,23 +160,27 @@ int run_bench(Args& args) {
     if (auto scene = args.value("--scene")) {
         const auto what = args.positional();
         if (what && *what == "direct") return run_bench_direct(args, *scene);
+        if (what && *what == "bvh") return run_bench_bvh(args, *scene);
         if (what && *what != "gi") {
-            throw UsageError("--scene is for bench gi or bench direct, not bench " + *what);
+            throw UsageError("--scene is for bench gi, bench direct or bench bvh, not bench " + *what);
         }
         return run_bench_gi(args, *scene);
     }
     const auto what = args.positional();
     if (!what) {
-        throw UsageError("bench needs a benchmark name: sort, tree, gi --scene NAME or direct --scene NAME");
+        throw UsageError("bench needs a benchmark name: sort, tree, bvh, gi --scene NAME or direct --scene NAME");
     }
     if (*what == "tree") {
         return run_bench_tree(args);
+    }
+    if (*what == "bvh") {
+        return run_bench_bvh(args, std::nullopt);
     }
     if (*what == "gi" || *what == "direct") {
         throw UsageError("bench " + *what + " needs --scene NAME");
     }
     if (*what != "sort") {
-        throw UsageError("unknown benchmark '" + *what + "' (available: sort, tree, gi, direct)");
+        throw UsageError("unknown benchmark '" + *what + "' (available: sort, tree, bvh, gi, direct)");
     }
     ContextOptions options;
     if (auto device = args.value("--device")) {

@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 
+#include <optional>
 #include <string>
 
 namespace vplkit::cli {
@@ -33,5 +34,7 @@ int run_bench_tree(Args& args);
 int run_bench_gi(Args& args, const std::string& scene);
 // `vplkit bench direct --scene NAME`: the flat and the tree direct-light samplers, RMSE vs time.
 int run_bench_direct(Args& args, const std::string& scene);
+// `vplkit bench bvh [--scene NAME]`: the host and the GPU BVH builds, refit, rays per second.
+int run_bench_bvh(Args& args, const std::optional<std::string>& scene);
 
 }  // namespace vplkit::cli

@@ -31,7 +31,7 @@ const Command kCommands[] = {
      vplkit::cli::render_usage, vplkit::cli::run_render},
     {"plan", "the stages a frame of a scene would run and why (render's options; no device work)",
      fixed_usage<&vplkit::cli::kPlanUsage>, vplkit::cli::run_plan},
-    {"bench", "GPU timings of the kit's stages (sort, tree; gi --scene NAME: accuracy vs time of every method)",
+    {"bench", "GPU timings of the kit's stages (sort, tree, bvh; gi --scene NAME: accuracy vs time of every method)",
      vplkit::cli::bench_usage, vplkit::cli::run_bench},
     {"compare", "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
      fixed_usage<&vplkit::cli::kCompareUsage>, vplkit::cli::run_compare},

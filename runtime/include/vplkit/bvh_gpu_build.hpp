@@ -61,7 +61,15 @@ public:
     // different count or a vertex build_bvh would refuse. A triangle left out at the build stays out.
     void refit(std::span<const glm::vec3> vertices);
 
+    // The build or refit passes over this object's buffers (the input as last uploaded), for a
+    // caller that records them into its own list (a benchmark, a frame that rebuilds); node
+    // count, scene scale and stats are not read back. Nothing for a scene without triangles.
+    // This object must outlive the recording.
+    void add_build_passes(StepList& passes);
+    void add_refit_passes(StepList& passes);
+
 private:
+    stages::BvhGpuBuildBuffers buffers() const;
     void upload_input(std::span<const glm::vec3> vertices);
     void run(bool build);
 

@@ -135,15 +135,28 @@ void GpuBvhBuild::upload_input(std::span<const glm::vec3> vertices) {
     input_.upload(records_);
 }
 
+stages::BvhGpuBuildBuffers GpuBvhBuild::buffers() const {
+    return {input_, bvh_.nodes, bvh_.triangles, info_, build_nodes_, build_links_, keys_, order_};
+}
+
+void GpuBvhBuild::add_build_passes(StepList& passes) {
+    if (!kept_.empty()) {
+        stages::add_bvh_gpu_build_passes(*context_, passes, *sorter_, buffers(), uint32_t(kept_.size()), options_);
+    }
+}
+
+void GpuBvhBuild::add_refit_passes(StepList& passes) {
+    if (!kept_.empty()) {
+        stages::add_bvh_gpu_refit_passes(*context_, passes, buffers(), uint32_t(kept_.size()), options_);
+    }
+}
+
 void GpuBvhBuild::run(bool build) {
-    const uint32_t count = uint32_t(kept_.size());
-    const stages::BvhGpuBuildBuffers buffers{input_,       bvh_.nodes,   bvh_.triangles, info_,
-                                             build_nodes_, build_links_, keys_,          order_};
     PassList passes(build ? "gpu bvh build" : "gpu bvh refit");
     if (build) {
-        stages::add_bvh_gpu_build_passes(*context_, passes, *sorter_, buffers, count, options_);
+        add_build_passes(passes);
     } else {
-        stages::add_bvh_gpu_refit_passes(*context_, passes, buffers, count, options_);
+        add_refit_passes(passes);
     }
     passes.run(*context_);
     timings_ = passes.timings();
