@@ -288,6 +288,8 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
             light_tree_ = stages::GpuLightTree::create(context_, scene_source_, emitters_);
             light_tree_->add_build_passes(context_, direct_passes);
         }
+        const stages::DirectLightTree tree = two_level ? stages::DirectLightTree(two_level_light_tree_->buffers())
+                                                       : stages::DirectLightTree(light_tree_->buffers());
         tree_scratch = stages::RtslcScratch::create(context_, w, h, tree_options);
         tree_counters = stages::create_gi_counters(context_, "direct tree counters");
         if (tree_options.interleave > 1) {
@@ -295,23 +297,13 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
             tree_light.emplace(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "tree light"));
             direct_total.emplace(
                 Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance total"));
-            if (two_level) {
-                stages::add_direct_light_tree_interleaved_passes(
-                    context_, direct_passes, gbuffer, gpu_bvh_, two_level_light_tree_->buffers(), view.position,
-                    *tree_light, *tree_counters, tree_options, *tree_scratch);
-            } else {
-                stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_,
-                                                                 light_tree_->buffers(), view.position, *tree_light,
-                                                                 *tree_counters, tree_options, *tree_scratch);
-            }
+            stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_, tree,
+                                                             view.position, *tree_light, *tree_counters, tree_options,
+                                                             *tree_scratch);
             stages::add_compose_pass(context_, direct_passes, direct, *tree_light, *direct_total);
-        } else if (two_level) {
-            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_,
-                                                 two_level_light_tree_->buffers(), view.position, direct,
-                                                 *tree_counters, tree_options, *tree_scratch);
         } else {
-            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, light_tree_->buffers(),
-                                                 view.position, direct, *tree_counters, tree_options, *tree_scratch);
+            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, tree, view.position,
+                                                 direct, *tree_counters, tree_options, *tree_scratch);
         }
     }
     Image& direct_out = direct_total ? *direct_total : direct;

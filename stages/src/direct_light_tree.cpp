@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <string>
+#include <variant>
 
 namespace vplkit::stages {
 
@@ -129,41 +130,24 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
 }  // namespace
 
 void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                                  const SceneLightTreeBuffers& tree, glm::vec3 camera_position,
-                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
+                                  const DirectLightTree& tree, glm::vec3 camera_position, const ImageView& radiance,
+                                  const BufferView& counters, const RtslcOptions& options,
                                   const RtslcScratchBuffers& scratch) {
     if (options.interleave != 1) {
         refuse("interleaved sampling writes the tree's light alone: use add_direct_light_tree_interleaved_passes");
     }
-    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, radiance, counters, options, scratch);
-}
-
-void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                                  const TwoLevelLightTreeBuffers& tree, glm::vec3 camera_position,
-                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
-                                  const RtslcScratchBuffers& scratch) {
-    if (options.interleave != 1) {
-        refuse("interleaved sampling writes the tree's light alone: use add_direct_light_tree_interleaved_passes");
-    }
-    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, radiance, counters, options, scratch);
+    const TreeView view = std::visit([](const auto& t) { return view_of(t); }, tree);
+    add_passes(device, passes, gbuffer, bvh, view, camera_position, radiance, counters, options, scratch);
 }
 
 void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
-                                              const BvhBuffers& bvh, const TwoLevelLightTreeBuffers& tree,
+                                              const BvhBuffers& bvh, const DirectLightTree& tree,
                                               glm::vec3 camera_position, const ImageView& tree_light,
                                               const BufferView& counters, const RtslcOptions& options,
                                               const RtslcScratchBuffers& scratch) {
     if (options.interleave < 2) refuse("interleaved passes need interleave >= 2");
-    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, tree_light, counters, options, scratch);
-}
-
-void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
-                                              const BvhBuffers& bvh, const SceneLightTreeBuffers& tree,
-                                              glm::vec3 camera_position, const ImageView& tree_light,
-                                              const BufferView& counters, const RtslcOptions& options,
-                                              const RtslcScratchBuffers& scratch) {
-    if (options.interleave < 2) refuse("interleaved passes need interleave >= 2");
-    add_passes(device, passes, gbuffer, bvh, view_of(tree), camera_position, tree_light, counters, options, scratch);
+    const TreeView view = std::visit([](const auto& t) { return view_of(t); }, tree);
+    add_passes(device, passes, gbuffer, bvh, view, camera_position, tree_light, counters, options, scratch);
 }
 
 }  // namespace vplkit::stages

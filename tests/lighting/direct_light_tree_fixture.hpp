@@ -268,19 +268,14 @@ public:
         options.interleave = interleave;
         auto scratch = vplkit::stages::RtslcScratch::create(ctx_, kSize, kSize, options);
         vplkit::PassList passes("direct light tree test");
-        auto add = [&](const auto& tree) {
-            if (interleave > 1) {
-                vplkit::stages::add_direct_light_tree_interleaved_passes(ctx_, passes, gbuffer_, bvh_, tree, kCamera,
-                                                                         radiance, counters_, options, scratch);
-            } else {
-                vplkit::stages::add_direct_light_tree_passes(ctx_, passes, gbuffer_, bvh_, tree, kCamera, radiance,
-                                                             counters_, options, scratch);
-            }
-        };
-        if (two_level_) {
-            add(two_level_->buffers());
+        const vplkit::stages::DirectLightTree tree = two_level_ ? vplkit::stages::DirectLightTree(two_level_->buffers())
+                                                                : vplkit::stages::DirectLightTree(tree_.buffers());
+        if (interleave > 1) {
+            vplkit::stages::add_direct_light_tree_interleaved_passes(ctx_, passes, gbuffer_, bvh_, tree, kCamera,
+                                                                     radiance, counters_, options, scratch);
         } else {
-            add(tree_.buffers());
+            vplkit::stages::add_direct_light_tree_passes(ctx_, passes, gbuffer_, bvh_, tree, kCamera, radiance,
+                                                         counters_, options, scratch);
         }
         passes.run(ctx_);
         counts = vplkit::stages::read_gi_counters(counters_);

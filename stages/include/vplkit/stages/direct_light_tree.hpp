@@ -24,7 +24,7 @@
 // variant writes the tree's light alone into its own target (add_direct_light_tree_interleaved_passes);
 // the caller adds it to the rest (the renderer composes the two).
 //
-// Two-level (seed 003 sec. 3.1; the overloads taking TwoLevelLightTreeBuffers): the same passes
+// Two-level (seed 003 sec. 3.1; a DirectLightTree holding TwoLevelLightTreeBuffers): the same passes
 // with the cut in the top tree and a second traversal into the chosen mesh light's bottom tree
 // (vplkit/two_level_light_tree.glsl; direct_light_tree.comp's kTwoLevel). The lights and the
 // estimator are the same: only the tree the pmf comes from differs.
@@ -38,6 +38,8 @@
 #include "vplkit/stages/views.hpp"
 
 #include <glm/vec3.hpp>
+
+#include <variant>
 
 namespace vplkit::stages {
 
@@ -55,30 +57,22 @@ struct TwoLevelLightTreeBuffers {
 // Throws vplkit::Error for bad options (rtslc's validate), naming "direct light tree".
 void validate_direct_light_tree(const RtslcOptions& options);
 
+// Either tree: one-level (scene_light_tree.hpp) or two-level. Both convert to it.
+using DirectLightTree = std::variant<SceneLightTreeBuffers, TwoLevelLightTreeBuffers>;
+
 // Adds the passes above (options.interleave must be 1). `scratch` as rtslc's
 // (rtslc_scratch_requirements(width, height, options)). Read `counters` afterwards and distrust the image when
 // cut_short > 0. Throws vplkit::Error for bad options, a tree without lights, a target of the wrong format or size, a
 // scratch made for other options, or a counters buffer too small.
 void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                                  const SceneLightTreeBuffers& tree, glm::vec3 camera_position,
-                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
+                                  const DirectLightTree& tree, glm::vec3 camera_position, const ImageView& radiance,
+                                  const BufferView& counters, const RtslcOptions& options,
                                   const RtslcScratchBuffers& scratch);
 
 // The interleaved variant: writes the tree's direct light alone (reconstructed) into `tree_light`
 // (RGBA32F, storage, the G-buffer's size); needs options.interleave >= 2 and scratch.estimates.
 void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
-                                              const BvhBuffers& bvh, const SceneLightTreeBuffers& tree,
-                                              glm::vec3 camera_position, const ImageView& tree_light,
-                                              const BufferView& counters, const RtslcOptions& options,
-                                              const RtslcScratchBuffers& scratch);
-
-// The two-level tree's variants of the two above.
-void add_direct_light_tree_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                                  const TwoLevelLightTreeBuffers& tree, glm::vec3 camera_position,
-                                  const ImageView& radiance, const BufferView& counters, const RtslcOptions& options,
-                                  const RtslcScratchBuffers& scratch);
-void add_direct_light_tree_interleaved_passes(Device& device, StepList& passes, const GbufferViews& gbuffer,
-                                              const BvhBuffers& bvh, const TwoLevelLightTreeBuffers& tree,
+                                              const BvhBuffers& bvh, const DirectLightTree& tree,
                                               glm::vec3 camera_position, const ImageView& tree_light,
                                               const BufferView& counters, const RtslcOptions& options,
                                               const RtslcScratchBuffers& scratch);
