@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // GPU BVH build, step 5 (see vplkit/bvh_build.glsl): each slot's depth, by walking up its parent
 // pointers (no thread waits for another, unlike a bottom-up pass with atomics), and its kind in
-// the output tree; the tree's depths and leaf counts into the info buffer (reduced per
+// the output tree (and, for the box passes, its level word); the tree's depths and leaf counts into the info buffer (reduced per
 // workgroup in shared memory, then one set of atomics).
 
 #include "vplkit/bvh_build.glsl"
@@ -12,6 +12,9 @@ layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) buffer BvhBuildLinkBuffer { BvhBuildLink items[]; } links;
 layout(std430, set = 0, binding = 1) buffer BvhBuildInfoBuffer { BvhBuildInfo value; } info;
+// The keys buffer, free once the hierarchy is built: each slot's depth when it is an interior
+// node, else kBvhBuildNone, so that the per-depth box passes read 4 bytes a slot, not a link.
+layout(std430, set = 0, binding = 2) writeonly buffer BvhBuildLevelBuffer { uint items[]; } levels;
 
 layout(push_constant) uniform BvhBuildDepthsPush {
     uint triangle_count;
@@ -53,6 +56,7 @@ void main() {
         bool leaf = kept && (count <= push.max_leaf_triangles || depth == push.max_depth);
         links.items[slot].depth = depth;
         links.items[slot].kind = leaf ? kBvhBuildLeaf : (kept ? kBvhBuildInterior : kBvhBuildHidden);
+        levels.items[slot] = kept && !leaf ? depth : kBvhBuildNone;
         if (slot >= n - 1u) {
             atomicMax(shared_lbvh_depth, depth);
         }

@@ -12,6 +12,8 @@ layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) buffer BvhBuildNodeBuffer { BvhBuildNode items[]; } nodes;
 layout(std430, set = 0, binding = 1) buffer BvhBuildLinkBuffer { BvhBuildLink items[]; } links;
+// Each slot's depth when it is an interior node, else kBvhBuildNone (bvh_build_depths.comp).
+layout(std430, set = 0, binding = 2) readonly buffer BvhBuildLevelBuffer { uint items[]; } levels;
 
 layout(push_constant) uniform BvhBuildLevelPush {
     uint internal_count;  // triangle count - 1: only internal slots can be interior nodes
@@ -20,8 +22,7 @@ layout(push_constant) uniform BvhBuildLevelPush {
 
 void main() {
     uint slot = linear_thread_index();
-    if (slot >= push.internal_count || links.items[slot].kind != kBvhBuildInterior ||
-        links.items[slot].depth != push.depth) {
+    if (slot >= push.internal_count || levels.items[slot] != push.depth) {
         return;
     }
     BvhBuildNode node = nodes.items[slot];

@@ -103,6 +103,7 @@ void add_boxes_and_write(Device& device, StepList& passes, const BvhGpuBuildBuff
         shaders::bvh_build_level::Bindings level_bindings;
         level_bindings.nodes = b.build_nodes.descriptor();
         level_bindings.links = b.build_links.descriptor();
+        level_bindings.levels = b.keys.descriptor();
         for (uint32_t depth = options.max_depth; depth-- > 0;) {
             passes.add("bvh build level " + std::to_string(depth),
                        binding_uses<shaders::bvh_build_level::Module>(level_bindings),
@@ -191,6 +192,7 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
     shaders::bvh_build_depths::Bindings depth_bindings;
     depth_bindings.links = b.build_links.descriptor();
     depth_bindings.info = b.info.descriptor();
+    depth_bindings.levels = b.keys.descriptor();
     passes.add("bvh build depths", binding_uses<shaders::bvh_build_depths::Module>(depth_bindings),
                [&depths, bindings = depth_bindings, count, slots, options](VkCommandBuffer cmd) {
                    shaders::bvh_build_depths::Push push{};

@@ -15,7 +15,8 @@
 //                output tree: subtrees of at most max_leaf_triangles collapse into one leaf;
 //                a node at max_depth becomes a leaf of its whole subtree (a capped leaf);
 //   6. leaves    each leaf's triangles copied into leaf order, and its box;
-//   7. levels    interior boxes, one dispatch per depth, deepest first (max_depth of them):
+//   7. levels    interior boxes, one dispatch per depth, deepest first (max_depth of them,
+//                each reading a 4-byte level word a node, kept in the keys buffer):
 //                no atomics-and-flags bottom-up walk, whose memory barriers in divergent flow
 //                lavapipe does not honour;
 //   8. write     each node's depth-first position (walking up: a right child follows its left
@@ -62,7 +63,7 @@ struct BvhGpuBuildBuffers {
     BufferView info;         // BvhBuildInfo (bvh_build.glsl); written, for the caller to read back
     BufferView build_nodes;  // BvhBuildNode[2 count - 1]; scratch, which a refit reads again
     BufferView build_links;  // BvhBuildLink[2 count - 1]; scratch, which a refit reads again
-    BufferView keys;         // uint64_t[count]; scratch, also the sorter's pairs
+    BufferView keys;         // uint64_t[count]: the sort keys, then each node's level word; a refit reads it
     BufferView order;        // uint32_t[count]: the input triangle at each leaf-order position; a refit reads it
 };
 
