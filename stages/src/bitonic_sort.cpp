@@ -3,6 +3,7 @@
 #include "vplkit/barriers.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/stages/device.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 #include "vplkit/stages/steps.hpp"
 #include "vplkit/shaders/bitonic_global_step.hpp"
 #include "vplkit/shaders/bitonic_local.hpp"
@@ -45,13 +46,12 @@ void check_options(const Device& device, uint32_t count, const BitonicSortOption
                     " bytes of shared memory; the device has " +
                     std::to_string(device.limits().max_shared_memory_bytes));
     }
+    // The widest dispatches: one thread per pair of the padded count (folded into rows past 65,535
+    // workgroups).
     const uint64_t padded = std::bit_ceil(uint64_t(count));
-    const uint64_t groups = padded / 2 / size;
-    if (groups > device.limits().max_workgroup_count[0]) {
-        throw Error("bitonic sort: " + std::to_string(count) + " pairs need " + std::to_string(groups) +
-                    " workgroups in one dispatch; the device allows " +
-                    std::to_string(device.limits().max_workgroup_count[0]) + " (raise the workgroup size)");
-    }
+    shaders::bitonic_local::Pipeline pair_grid;  // groups() needs only the workgroup size
+    pair_grid.workgroup_size = {size, 1, 1};
+    check_dispatch_groups(pair_grid, "bitonic sort", uint32_t(padded / 2));
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 #include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 #include "vplkit/stages/light_tree.hpp"
 
 #include "vplkit/barriers.hpp"
@@ -49,14 +50,11 @@ void check(const Device& device, uint32_t count, const LightTreeOptions& options
         throw Error("light tree: group_levels " + std::to_string(options.group_levels) + " is outside 0.." +
                     std::to_string(kLightTreeMaxGroupLevels) + " (0: the device's default)");
     }
-    // The leaf dispatch is the widest: one thread per leaf.
+    // The leaf dispatch is the widest: one thread per leaf (folded into rows past 65,535 workgroups).
     const uint64_t leaf_count = light_tree_leaf_count(count);
-    const uint64_t groups = (leaf_count + size - 1) / size;
-    if (groups > info.max_workgroup_count[0]) {
-        throw Error("light tree: " + std::to_string(leaf_count) + " leaves need " + std::to_string(groups) +
-                    " workgroups in one dispatch; the device allows " + std::to_string(info.max_workgroup_count[0]) +
-                    " (raise the workgroup size)");
-    }
+    shaders::light_tree_leaves::Pipeline leaves_grid;  // groups() needs only the workgroup size
+    leaves_grid.workgroup_size = {size, 1, 1};
+    check_dispatch_groups(leaves_grid, "light tree", uint32_t(leaf_count));
     const uint64_t node_bytes = uint64_t(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
     const uint64_t leaf_bytes = leaf_count * sizeof(shaders::Vpl);
     if (std::max(node_bytes, leaf_bytes) > info.max_storage_buffer_range) {

@@ -2,6 +2,7 @@
 
 #include "vplkit/barriers.hpp"
 #include "vplkit/stages/device.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 #include "vplkit/stages/steps.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/radix_copy.hpp"
@@ -108,14 +109,17 @@ RadixSortOptions resolved_options(const Limits& limits, uint32_t max_count, cons
                     " bytes, more than the device's storage-buffer range of " +
                     std::to_string(limits.max_storage_buffer_range));
     }
-    // The largest dispatches: one workgroup per tile (histogram, scatter). The scans have a
-    // workgroup per 1024 counts, of which a tile has 2^digit_bits, and the copy loops.
+    // The largest dispatches: one workgroup per tile (histogram, scatter), folded into rows past
+    // 65,535 workgroups. The scans have a workgroup per 1024 counts, of which a tile has
+    // 2^digit_bits, and the copy loops.
     const uint64_t tiles = tile_count(resolved, max_count);
-    if (tiles > limits.max_workgroup_count[0]) {
-        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " + std::to_string(tiles) +
-                    " workgroups in one dispatch; the device allows " + std::to_string(limits.max_workgroup_count[0]) +
-                    " (raise the workgroup size or items per thread)");
+    shaders::radix_histogram::Pipeline tile_grid;  // groups() needs only the workgroup size
+    tile_grid.workgroup_size = {resolved.workgroup_size, 1, 1};
+    if (tiles * resolved.workgroup_size > UINT32_MAX) {
+        throw Error("radix sort: " + std::to_string(max_count) + " pairs need " + std::to_string(tiles) + " tiles of " +
+                    std::to_string(resolved.workgroup_size) + " threads, past 2^32 threads");
     }
+    check_dispatch_groups(tile_grid, "radix sort", uint32_t(tiles * resolved.workgroup_size));
     if (VkDeviceSize(scan_levels(limits, resolved, max_count).front().length) * sizeof(uint32_t) >
         limits.max_storage_buffer_range) {
         throw Error("radix sort: the digit counts of " + std::to_string(max_count) +

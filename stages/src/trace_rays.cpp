@@ -5,6 +5,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/trace_closest.hpp"
 #include "vplkit/shaders/trace_occlusion.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@ void record_trace(Device& device, StepList& passes, const char* name, std::vecto
                   BufferView nodes, BufferView triangles, BufferView alpha, BufferView rays, BufferView results,
                   uint32_t ray_count) {
     const auto& pipeline = device.pipeline<Pipeline>(spec);
+    check_dispatch_groups(pipeline, name, ray_count);  // past 65,535 workgroups the grid is folded
     passes.add(name, std::move(uses),
                [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
                    Bindings bindings;
@@ -49,13 +51,6 @@ void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     if (results.size < uint64_t(ray_count) * result_size) {
         throw Error(std::string(name) + ": buffer '" + results.name + "' holds fewer than " +
                     std::to_string(ray_count) + " results");
-    }
-    const uint64_t group_size = mode == TraceMode::closest_hit ? shaders::trace_closest::kWorkgroupSize[0]
-                                                               : shaders::trace_occlusion::kWorkgroupSize[0];
-    const uint64_t max_rays = group_size * device.limits().max_workgroup_count[0];
-    if (ray_count > max_rays) {
-        throw Error(std::string(name) + ": " + std::to_string(ray_count) + " rays, one dispatch holds at most " +
-                    std::to_string(max_rays) + " on this device");
     }
     // Views by value: the caller's may be temporaries (a GpuBvh or Buffer converted at the call).
     const BufferView nodes = bvh.nodes;

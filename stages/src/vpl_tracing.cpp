@@ -6,6 +6,7 @@
 #include "vplkit/shaders/vpl_block_counts.hpp"
 #include "vplkit/shaders/vpl_block_offsets.hpp"
 #include "vplkit/stages/binding_uses.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 
 #include <limits>
 #include <string>
@@ -111,11 +112,7 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
                          const VplTracingOptions& options, const VplTracingBuffers& output) {
     const uint32_t capacity = require_buffers(options, output);
     const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>(bvh_spec<shaders::trace_vpls::Spec>(bvh));
-    const uint64_t max_paths = uint64_t(pipeline.workgroup_size[0]) * device.limits().max_workgroup_count[0];
-    if (options.paths > max_paths) {
-        throw Error("VPL tracing: " + std::to_string(options.paths) + " paths exceed one dispatch's " +
-                    std::to_string(max_paths));
-    }
+    check_dispatch_groups(pipeline, "VPL tracing", options.paths);  // past 65,535 workgroups the grid is folded
 
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     const BufferView count = output.count;
