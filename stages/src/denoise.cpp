@@ -46,7 +46,7 @@ void check(bool ok, const std::string& what) {
 
 }  // namespace
 
-void validate_denoise_options(const DenoiseOptions& o) {
+void validate(const DenoiseOptions& o) {
     auto finite_non_negative = [](float v) { return std::isfinite(v) && v >= 0.0f; };
     check(std::isfinite(o.albedo_floor) && o.albedo_floor > 0.0f,
           "albedo_floor " + std::to_string(o.albedo_floor) + " must be > 0 (demodulation divides by it)");
@@ -68,7 +68,7 @@ void validate_denoise_options(const DenoiseOptions& o) {
 
 void add_demodulate_pass(Device& device, StepList& passes, const ImageView& radiance, const ImageView& albedo,
                          const ImageView& position, const ImageView& irradiance, const DenoiseOptions& options) {
-    validate_denoise_options(options);
+    validate(options);
     validate_images(
         "denoise demodulate",
         {{&irradiance, kFloat4}, {&radiance, kFloat4}, {&albedo, kGbufferAlbedoFormat}, {&position, kFloat4}});
@@ -89,7 +89,7 @@ void add_demodulate_pass(Device& device, StepList& passes, const ImageView& radi
 
 void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
                          const ImageView& radiance, const DenoiseOptions& options) {
-    validate_denoise_options(options);
+    validate(options);
     validate_images("denoise remodulate",
                     {{&radiance, kFloat4}, {&irradiance, kFloat4}, {&albedo, kGbufferAlbedoFormat}});
     const auto& pipeline = device.pipeline<shaders::remodulate::Pipeline>();
@@ -108,7 +108,7 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
 void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
                             const ImageView& albedo, const ImageView& position, const ImageView& clamped,
                             const ImageView& excess, const ImageView& spread, const DenoiseOptions& options) {
-    validate_denoise_options(options);
+    validate(options);
     validate_images("denoise firefly clamp", {{&clamped, kFloat4},
                                               {&irradiance, kFloat4},
                                               {&position, kFloat4},
@@ -155,7 +155,7 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
                                   const DenoiseHistory& next, const ImageView& accumulated, const ImageView& moments,
                                   const glm::mat4& previous_view_projection, bool has_history,
                                   const DenoiseOptions& options) {
-    validate_denoise_options(options);
+    validate(options);
     validate_images("denoise temporal", {{&accumulated, kFloat4},
                                          {&moments, kFloat4},
                                          {&irradiance, kFloat4},
@@ -200,7 +200,7 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
 void add_variance_estimate_pass(Device& device, StepList& passes, const ImageView& accumulated,
                                 const ImageView& moments, const ImageView& position, const ImageView& normal,
                                 const ImageView& estimated, const DenoiseOptions& options) {
-    validate_denoise_options(options);
+    validate(options);
     validate_images("denoise variance", {{&estimated, kFloat4},
                                          {&accumulated, kFloat4},
                                          {&moments, kFloat4},
@@ -226,7 +226,7 @@ void add_variance_estimate_pass(Device& device, StepList& passes, const ImageVie
 
 void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
                      const ImageView& normal, const ImageView& filtered, int step, const DenoiseOptions& options) {
-    validate_denoise_options(options);
+    validate(options);
     check(step >= 1, "a-trous step " + std::to_string(step) + " must be at least 1");
     validate_images("denoise a-trous",
                     {{&filtered, kFloat4}, {&source, kFloat4}, {&position, kFloat4}, {&normal, kFloat4}});

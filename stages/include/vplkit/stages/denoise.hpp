@@ -63,7 +63,7 @@ struct DenoiseOptions {
 
 // Throws vplkit::Error naming the first option that is out of range (not finite, negative, a
 // cap of 0, more than 10 a-trous iterations).
-void validate_denoise_options(const DenoiseOptions& options);
+void validate(const DenoiseOptions& options);
 
 // One frame's history as temporal_accumulate.comp reads (previous) or writes (next) it.
 struct DenoiseHistory {
