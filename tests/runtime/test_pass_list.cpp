@@ -10,11 +10,13 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/runtime_test/fill_sequence.hpp"
 #include "vplkit/runtime_test/scale_add.hpp"
+#include "vplkit/stages/dispatch_groups.hpp"
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
 
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 using vplkit::BarrierRecord;
@@ -310,6 +312,24 @@ TEST_CASE("uses that cannot happen are rejected when the pass is added") {
     passes.add("merged", {Use::read(buffer, Stage::compute), Use::read(buffer, Stage::transfer)}, nothing);
     passes.run(ctx);
     CHECK(passes.barrier_count() == 0);
+}
+
+TEST_CASE("a grid past 65,535 workgroups that cannot be folded is refused, naming the pass or the step") {
+    // fill_sequence.comp reads gl_GlobalInvocationID: its grid is not folded (docs/codegen.md).
+    vplkit::Context& ctx = vplkit::test::context();
+    fill_sequence::Spec spec;
+    spec.local_size_x = 1;
+    const auto& pipeline = ctx.pipeline<fill_sequence::Pipeline>(spec);
+    CHECK_FALSE(fill_sequence::kFoldsGrid);
+    vplkit::stages::check_dispatch_groups(pipeline, "fill", 65535);
+    CHECK_THROWS_WITH_AS(vplkit::stages::check_dispatch_groups(pipeline, "fill", 65536),
+                         doctest::Contains("fill: shader 'fill_sequence': 65536 x 1 x 1 threads need 65536 x 1 x 1 "
+                                           "workgroups, more than 65535"),
+                         vplkit::Error);
+    // Thrown while recording (a step that skipped the check): the step list names the step.
+    vplkit::StepList steps;
+    steps.add("too wide", {}, [](VkCommandBuffer) { throw std::length_error("shader 'x': too wide"); });
+    CHECK_THROWS_WITH_AS(steps.record(VK_NULL_HANDLE), "step 'too wide': shader 'x': too wide", vplkit::Error);
 }
 
 TEST_CASE("an empty pass list runs") {
