@@ -92,13 +92,15 @@ void main() {
     links.items[slot].count = last - first + 1u;
     // The split bit: x in the highest bit of each Morton triple, then y, then z (morton.glsl);
     // the left child holds the 0s, the lower coordinates along that axis. Positions only (equal
-    // codes): any axis.
+    // codes) or the masked bit: any axis.
     uint axis = 0u;
+    uint split_bit = kBvhBuildNone;
     if (delta_node < 32) {
-        uint bit = uint(31 - delta_node);
-        axis = 2u - bit % 3u;
+        split_bit = uint(31 - delta_node);
+        axis = 2u - split_bit % 3u;
     }
     links.items[slot].axis = axis;
+    links.items[slot].split_bit = split_bit;
     links.items[left].parent = slot;
     links.items[right].parent = slot;
     if (slot == 0u) {

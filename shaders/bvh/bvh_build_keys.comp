@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 // GPU BVH build, step 2 (see vplkit/bvh_build.glsl): each triangle's 30-bit Morton code of its
 // centroid in the centroid box (Karras 2012, sec. 4), as a sort key, with the triangle's index
-// as the value. Equal codes are told apart by their sorted position in the hierarchy step
+// as the value; alpha-tested triangles' keys have kBvhBuildMaskedBit set (bvh_build.glsl). Equal codes are told apart by their sorted position in the hierarchy step
 // (Karras 2012: the key concatenated with its index), and the stable sort keeps them in input order.
 
 #include "vplkit/bvh_build.glsl"
@@ -30,9 +30,11 @@ void main() {
                    ordered_to_float(info.value.centroid_lo[2]));
     vec3 hi = vec3(ordered_to_float(info.value.centroid_hi[0]), ordered_to_float(info.value.centroid_hi[1]),
                    ordered_to_float(info.value.centroid_hi[2]));
+    BvhTriangle tri = input_triangles.items[i];
     vec3 box_lo, box_hi;
-    bvh_build_triangle_box(input_triangles.items[i], box_lo, box_hi);
+    bvh_build_triangle_box(tri, box_lo, box_hi);
     vec3 center = 0.5 * (box_lo + box_hi);
-    keys.items[i] = uint64_t(morton_code_30(morton_cell(center, lo, hi)));
+    uint masked = tri.alpha != 0u ? 1u << kBvhBuildMaskedBit : 0u;
+    keys.items[i] = uint64_t(masked | morton_code_30(morton_cell(center, lo, hi)));
     order.items[i] = i;
 }

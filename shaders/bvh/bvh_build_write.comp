@@ -61,5 +61,8 @@ void main() {
         info.value.node_count = link.size;
         vec3 m = max(abs(out_node.lo), abs(out_node.hi));
         info.value.scene_scale = max(max(m.x, m.y), max(m.z, kBvhBuildMinScale));
+        // Opaque and masked triangles both present: the root splits between them.
+        bool split = link.kind == kBvhBuildInterior && link.split_bit == kBvhBuildMaskedBit;
+        info.value.masked_root = split ? out_node.index : 0u;
     }
 }

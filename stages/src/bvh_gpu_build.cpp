@@ -51,6 +51,9 @@ void check_buffers(const BvhGpuBuildBuffers& b, uint32_t count) {
     check_size(b.build_links, s.build_links, "build links");
     check_size(b.keys, s.keys, "keys");
     check_size(b.order, s.order, "order");
+    if (b.alpha) {
+        check_size(b.alpha, sizeof(uint32_t), "alpha records");
+    }
 }
 
 // Clears what the bounds pass reduces into (an empty centroid box, scale 0) and, for a build,
@@ -203,6 +206,17 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
                });
 
     add_boxes_and_write(device, passes, b, count, options);
+
+    if (b.alpha) {
+        // Word 0 of the alpha records: the masked subtree's root (bvh.glsl's bvh_masked_root).
+        const BufferView info = b.info, alpha = b.alpha;
+        passes.add("bvh build masked root", {Use::transfer_src(info), Use::transfer_dst(alpha)},
+                   [info, alpha](VkCommandBuffer cmd) {
+                       const VkBufferCopy copy{info.offset + offsetof(shaders::BvhBuildInfo, masked_root), alpha.offset,
+                                               sizeof(uint32_t)};
+                       vkCmdCopyBuffer(cmd, info.buffer, alpha.buffer, 1, &copy);
+                   });
+    }
 }
 
 void add_bvh_gpu_refit_passes(Device& device, StepList& passes, const BvhGpuBuildBuffers& b, uint32_t count,

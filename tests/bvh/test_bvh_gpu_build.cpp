@@ -22,6 +22,7 @@
 #include <glm/vec3.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -101,7 +102,9 @@ std::vector<BvhRay> random_rays(const Triangles& triangles, uint32_t count, uint
 // Every stored triangle in exactly one leaf, each one of the input triangles (by id) with its
 // vertices, every child box inside its parent's, every triangle inside its leaf's box, the
 // depth-first layout (first child next), depth and leaf sizes within the stated limits.
-void check_structure(const GpuBvhBuild& build, const Triangles& triangles, uint32_t max_leaf, uint32_t max_depth) {
+// `records`: each input triangle's alpha record offset (empty: all 0).
+void check_structure(const GpuBvhBuild& build, const Triangles& triangles, uint32_t max_leaf, uint32_t max_depth,
+                     const std::vector<uint32_t>& records = {}) {
     const auto& gpu = build.bvh();
     const auto nodes = gpu.nodes.download<BvhNode>(gpu.node_count);
     const auto stored = gpu.triangles.download<BvhTriangle>(gpu.triangle_count);
@@ -137,7 +140,8 @@ void check_structure(const GpuBvhBuild& build, const Triangles& triangles, uint3
                 ++id_seen[tri.id];
                 wrong_vertices += to_glm(tri.v0) != triangles[3 * tri.id] ||
                                   to_glm(tri.v1) != triangles[3 * tri.id + 1] ||
-                                  to_glm(tri.v2) != triangles[3 * tri.id + 2] || tri.alpha != 0;
+                                  to_glm(tri.v2) != triangles[3 * tri.id + 2] ||
+                                  tri.alpha != (records.empty() ? 0u : records[tri.id]);
             }
             continue;
         }
@@ -174,10 +178,8 @@ struct Comparison {
     size_t hits = 0, ties = 0, failures = 0;
 };
 
-// Traces `rays` through the host build of `triangles` and through `gpu`; see the top of the file.
-Comparison compare_with_host(const Triangles& triangles, const vplkit::GpuBvh& gpu, const std::vector<BvhRay>& rays) {
-    const vplkit::Bvh host_bvh = vplkit::build_bvh(triangles);
-    const vplkit::GpuBvh host = vplkit::upload_bvh(vplkit::test::context(), host_bvh);
+// Traces `rays` through `host` and `gpu`; see the top of the file.
+Comparison compare_traces(const vplkit::GpuBvh& host, const vplkit::GpuBvh& gpu, const std::vector<BvhRay>& rays) {
     const auto host_hits = vplkit::bvh_test::trace_closest(host, rays);
     const auto gpu_hits = vplkit::bvh_test::trace_closest(gpu, rays);
     const auto host_occluded = vplkit::bvh_test::trace_occlusion(host, rays);
@@ -203,6 +205,12 @@ Comparison compare_with_host(const Triangles& triangles, const vplkit::GpuBvh& g
     CHECK(c.failures == 0);
     CHECK(double(c.ties) <= 0.01 * double(c.hits));
     return c;
+}
+
+// Traces `rays` through the host build of `triangles` and through `gpu`.
+Comparison compare_with_host(const Triangles& triangles, const vplkit::GpuBvh& gpu, const std::vector<BvhRay>& rays) {
+    const vplkit::GpuBvh host = vplkit::upload_bvh(vplkit::test::context(), vplkit::build_bvh(triangles));
+    return compare_traces(host, gpu, rays);
 }
 
 void check_scene(const Triangles& triangles, uint32_t ray_count, uint32_t seed) {
@@ -320,6 +328,63 @@ TEST_CASE("bvh gpu build: a refit after moving the vertices gives the hits of a 
     CHECK(build.bvh().node_count == nodes_before);
     check_structure(build, moved, vplkit::kBvhMaxLeafTriangles, vplkit::kBvhMaxDepth);
     compare_with_host(moved, build.bvh(), random_rays(moved, 20000, 80));
+}
+
+TEST_CASE("bvh gpu build: alpha-tested triangles in a subtree of their own - the split layout and the host's hits") {
+    // Every fourth triangle opaque (no record); the others with alpha records (bvh.glsl) of one
+    // material, cutoff 0.5, no texture, corner alphas: (1, 1, 0) half cut out, (0, 0, 0) cut out,
+    // (1, 1, 1) tested but solid.
+    const Triangles soup = vplkit::bvh_test::random_soup(2000, 83, 0.1f);
+    vplkit::GpuBvhAlphaRecords alpha;
+    alpha.words = {0u, std::bit_cast<uint32_t>(0.5f), 0u, 0u, 0u, 0u};
+    std::vector<uint8_t> masked;
+    for (uint32_t t = 0; t < 2000; ++t) {
+        if (t % 4 == 0) {
+            alpha.triangle_records.push_back(0);
+            masked.push_back(0);
+            continue;
+        }
+        const float a[3][3] = {{1, 1, 0}, {0, 0, 0}, {1, 1, 1}};
+        const float* corner = a[t % 4 - 1];
+        alpha.triangle_records.push_back(uint32_t(alpha.words.size()));
+        masked.push_back(1);
+        alpha.words.insert(alpha.words.end(), 6, 0u);  // UVs: no texture
+        for (int k = 0; k < 3; ++k) alpha.words.push_back(std::bit_cast<uint32_t>(corner[k]));
+        alpha.words.push_back(1u);  // the material record
+    }
+    const GpuBvhBuild build(vplkit::test::context(), soup, {}, {}, &alpha);
+    const auto& gpu = build.bvh();
+    CHECK(gpu.alpha_tests);
+    REQUIRE(build.stats().masked_root != 0);
+    const auto nodes = gpu.nodes.download<BvhNode>(gpu.node_count);
+    CHECK(nodes[0].index == build.stats().masked_root);
+    CHECK(gpu.alpha.download<uint32_t>(1)[0] == build.stats().masked_root);
+    // The opaque subtree at node 1 holds exactly the triangles without a record, first.
+    const auto stored = gpu.triangles.download<BvhTriangle>(gpu.triangle_count);
+    size_t misplaced = 0;
+    for (uint32_t i = 0; i < stored.size(); ++i) misplaced += (i < 500) != (stored[i].alpha == 0);
+    CHECK(misplaced == 0);
+    check_structure(build, soup, vplkit::kBvhMaxLeafTriangles, vplkit::kBvhMaxDepth, alpha.triangle_records);
+
+    // The host's split BVH with the same records.
+    vplkit::Bvh host_bvh = vplkit::build_bvh_split(soup, masked);
+    REQUIRE(host_bvh.masked_root != 0);
+    for (auto& tri : host_bvh.triangles) tri.alpha = alpha.triangle_records[tri.id];
+    host_bvh.alpha = alpha.words;
+    host_bvh.alpha[0] = host_bvh.masked_root;
+    const vplkit::GpuBvh host = vplkit::upload_bvh(vplkit::test::context(), host_bvh);
+    const auto rays = random_rays(soup, 20000, 84);
+    const auto c = compare_traces(host, gpu, rays);
+    CHECK(c.hits > 1000);
+    // The alpha test ran: nearest hits on every kind but the cut-out one.
+    uint32_t per_kind[4] = {};
+    for (const auto& hit : vplkit::bvh_test::trace_closest(gpu, rays)) {
+        if (hit.id != kBvhNoHit) ++per_kind[hit.id % 4];
+    }
+    CHECK(per_kind[0] > 200);
+    CHECK(per_kind[1] > 100);
+    CHECK(per_kind[2] == 0);
+    CHECK(per_kind[3] > 200);
 }
 
 TEST_CASE("bvh gpu build: degenerate triangles are left out and bad input refused as the host refuses it") {

@@ -35,7 +35,15 @@ struct GpuBvhBuildStats {
     uint32_t lbvh_depth = 0;     // of the deepest leaf of the LBVH before collapsing and capping
     uint32_t largest_leaf = 0;   // triangles in the largest leaf
     uint32_t capped_leaves = 0;  // leaves at max_depth with more than max_leaf_triangles triangles
+    uint32_t masked_root = 0;    // the split layout's masked subtree root (vplkit/bvh.hpp), else 0
     double gpu_ms = 0.0;         // GPU time of the last build or refit (every pass)
+};
+
+// Alpha-test records for the GPU build: bvh.glsl's bvh_alpha words (word 0 is the build's to
+// write) and, per input triangle, the offset of its triangle record in them (0: opaque).
+struct GpuBvhAlphaRecords {
+    std::vector<uint32_t> words;
+    std::vector<uint32_t> triangle_records;
 };
 
 class GpuBvhBuild {
@@ -43,14 +51,16 @@ public:
     // Builds the BVH of `vertices.size() / 3` triangles with `triangle_ids` (empty: a triangle's
     // id is its index). Throws vplkit::Error for what build_bvh refuses (naming the triangle),
     // and when a buffer would exceed the device's maxStorageBufferRange. Triangles of zero area
-    // are left out, as build_bvh leaves them out; a scene of none gives the empty leaf.
+    // are left out, as build_bvh leaves them out; a scene of none gives the empty leaf. With
+    // `alpha`, the triangles with a record go to a subtree of their own (the split layout) and
+    // bvh() traces with the alpha test; Error for a record count other than one per triangle.
     GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids = {},
-                const stages::BvhGpuBuildOptions& options = {});
+                const stages::BvhGpuBuildOptions& options = {}, const GpuBvhAlphaRecords* alpha = nullptr);
 
     GpuBvhBuild(GpuBvhBuild&&) noexcept = default;
     GpuBvhBuild& operator=(GpuBvhBuild&&) noexcept = default;
 
-    // For every stage that traces (alpha records: none; word 0 is 0, one tree).
+    // For every stage that traces.
     const GpuBvh& bvh() const { return bvh_; }
     const GpuBvhBuildStats& stats() const { return stats_; }
     // Per-pass GPU times of the last build or refit.

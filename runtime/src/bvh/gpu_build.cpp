@@ -63,7 +63,7 @@ void set(shaders::vec3& out, const glm::vec3& v) {
 }  // namespace
 
 GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids,
-                         const stages::BvhGpuBuildOptions& options)
+                         const stages::BvhGpuBuildOptions& options, const GpuBvhAlphaRecords* alpha)
     : context_(&context), options_(options) {
     if (vertices.size() % 3 != 0) {
         throw Error("GPU BVH build: " + std::to_string(vertices.size()) +
@@ -77,6 +77,11 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
     if (!triangle_ids.empty() && triangle_ids.size() != triangle_count) {
         throw Error("GPU BVH build: " + std::to_string(triangle_ids.size()) + " triangle ids for " +
                     std::to_string(triangle_count) + " triangles");
+    }
+    if (alpha && (alpha->triangle_records.size() != triangle_count || alpha->words.empty())) {
+        throw Error("GPU BVH build: " + std::to_string(alpha->triangle_records.size()) + " alpha records for " +
+                    std::to_string(triangle_count) + " triangles (and " + std::to_string(alpha->words.size()) +
+                    " words: word 0 at least)");
     }
     stats_.input_triangles = uint32_t(triangle_count);
     for (size_t t = 0; t < triangle_count; ++t) {
@@ -94,6 +99,7 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
         kept_.push_back(uint32_t(t));
         shaders::BvhTriangle record{};
         record.id = id;
+        record.alpha = alpha ? alpha->triangle_records[t] : 0u;
         records_.push_back(record);
     }
 
@@ -108,9 +114,11 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
     const stages::BvhGpuBuildSizes sizes = stages::bvh_gpu_build_sizes(count);
     bvh_.nodes = storage(context, sizes.nodes, "bvh nodes");
     bvh_.triangles = storage(context, sizes.triangles, "bvh triangles");
-    bvh_.alpha = storage(context, sizeof(uint32_t), "bvh alpha");
-    bvh_.alpha.upload(std::vector<uint32_t>{0u});
-    bvh_.alpha_tests = false;
+    const std::vector<uint32_t> opaque = {0u};
+    const std::vector<uint32_t>& words = alpha ? alpha->words : opaque;
+    bvh_.alpha = storage(context, words.size() * sizeof(uint32_t), "bvh alpha");
+    bvh_.alpha.upload(words);
+    bvh_.alpha_tests = alpha != nullptr;
     bvh_.triangle_count = count;
     input_ = storage(context, sizes.input, "bvh build input");
     info_ = storage(context, sizes.info, "bvh build info");
@@ -136,7 +144,9 @@ void GpuBvhBuild::upload_input(std::span<const glm::vec3> vertices) {
 }
 
 stages::BvhGpuBuildBuffers GpuBvhBuild::buffers() const {
-    return {input_, bvh_.nodes, bvh_.triangles, info_, build_nodes_, build_links_, keys_, order_};
+    return {input_, bvh_.nodes,   bvh_.triangles,
+            info_,  build_nodes_, build_links_,
+            keys_,  order_,       bvh_.alpha_tests ? BufferView(bvh_.alpha) : BufferView{}};
 }
 
 void GpuBvhBuild::add_build_passes(StepList& passes) {
@@ -171,6 +181,7 @@ void GpuBvhBuild::run(bool build) {
         stats_.lbvh_depth = info.lbvh_depth;
         stats_.largest_leaf = info.largest_leaf;
         stats_.capped_leaves = info.capped_leaves;
+        stats_.masked_root = info.masked_root;
         // The leaf pass loops over a leaf's triangles, and lavapipe ends a loop after 65,535
         // iterations: a larger (capped) leaf may have lost triangles.
         if (info.largest_leaf > kLargestLeaf) {

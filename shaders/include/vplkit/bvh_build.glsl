@@ -13,6 +13,11 @@
 // more than max_leaf_triangles and lies above max_depth; a kept slot is a leaf when it covers
 // at most max_leaf_triangles, or lies at max_depth (a capped leaf: it then takes every
 // triangle of its subtree, so the tree never outgrows the traversal's stack).
+//
+// Alpha-tested triangles (BvhTriangle::alpha != 0) get key bit kBvhBuildMaskedBit above the
+// Morton code, so they sort after the opaque ones and, when both kinds exist, the root splits
+// exactly between them: node 1 is the opaque subtree, the root's second child the masked one,
+// vplkit/bvh.hpp's split layout (BvhBuildInfo::masked_root, for word 0 of bvh_alpha).
 
 // The caller's triangles (bvh.glsl's BvhTriangle, the same struct: the generated types.hpp
 // holds one of each name, and the two must agree).
@@ -41,7 +46,7 @@ struct BvhBuildLink {
     uint size;    // output nodes in its output subtree (kept slots only)
     uint axis;    // interior: the axis of the Morton bit that splits it (left child below)
     uint kind;    // kBvhBuildHidden, kBvhBuildInterior or kBvhBuildLeaf
-    uint unused;
+    uint split_bit;  // interior: the key bit its children differ in (kBvhBuildNone: only positions)
 };
 
 // What the build reports (read back by the caller), and the bounds its passes share.
@@ -57,10 +62,12 @@ struct BvhBuildInfo {
     uint largest_leaf;    // triangles in the largest output leaf
     uint capped_leaves;   // leaves at max_depth with more than max_leaf_triangles triangles
     float scene_scale;    // bvh_scene_scale() of the output tree (its padded root box)
-    uint unused[2];
+    uint masked_root;     // the split layout's masked subtree root (vplkit/bvh.hpp), else 0
+    uint unused;
 };
 
 const uint kBvhBuildNone = 0xffffffffu;
+const uint kBvhBuildMaskedBit = 30u;
 const uint kBvhBuildHidden = 0u;
 const uint kBvhBuildInterior = 1u;
 const uint kBvhBuildLeaf = 2u;

@@ -33,8 +33,10 @@
 // Input: the caller's triangles as BvhTriangle records (v0, v1, v2, id, alpha) in any order,
 // already checked as build_bvh checks them (finite, below kBvhMaxCoordinate, no reserved id)
 // and without zero-area ones, which the host build leaves out (the runtime's GpuBvhBuild does
-// all that). Alpha-tested triangles are not split off: a caller with alpha records keeps word
-// 0 of its bvh_alpha at 0 (one tree, the alpha test everywhere: correct, slower for rays).
+// all that). Alpha-tested triangles (alpha != 0) go to a subtree of their own, as
+// build_bvh_split puts them (vplkit/bvh.hpp's split layout: node 1 the opaque subtree, the
+// root's second child the masked one), when both kinds exist; the build writes that root into
+// word 0 of the caller's alpha records (BvhGpuBuildBuffers::alpha; 0 for one tree).
 
 #include "vplkit/bvh.hpp"
 #include "vplkit/shaders/types.hpp"
@@ -53,8 +55,9 @@ struct BvhGpuBuildOptions {
     uint32_t max_depth = kBvhMaxDepth;                   // 1..kBvhMaxDepth
 };
 
-// Sort key bits the sorter must order by (RadixSortOptions::key_bits): the Morton code's.
-inline constexpr uint32_t kBvhBuildKeyBits = 30;
+// Sort key bits the sorter must order by (RadixSortOptions::key_bits): the Morton code's 30,
+// and above them the bit of alpha-tested triangles (4 passes of 8 bits).
+inline constexpr uint32_t kBvhBuildKeyBits = 31;
 
 struct BvhGpuBuildBuffers {
     BufferView input;        // BvhTriangle[count], the caller's order; read (a refit reads the new vertices here)
@@ -65,6 +68,9 @@ struct BvhGpuBuildBuffers {
     BufferView build_links;  // BvhBuildLink[2 count - 1]; scratch, which a refit reads again
     BufferView keys;         // uint64_t[count]: the sort keys, then each node's level word; a refit reads it
     BufferView order;        // uint32_t[count]: the input triangle at each leaf-order position; a refit reads it
+    // Optional: the caller's alpha-test records (bvh.glsl's bvh_alpha) that the input's alpha
+    // fields point into; the build writes word 0 (the masked subtree's root, or 0).
+    BufferView alpha;
 };
 
 // Bytes of each buffer for `count` triangles.
