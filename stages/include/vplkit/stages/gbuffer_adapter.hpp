@@ -32,6 +32,19 @@
 //
 // Units: albedo is a reflectance in [0, 1]; the kit's BRDF is albedo / pi (radiometric). A
 // renderer that shades albedo * N.L uses lights pi times weaker than the kit's for the same image.
+//
+// A renderer with reversed Z, RG16 SNORM octahedral normals in view space and an sRGB albedo:
+//   vplkit::stages::GbufferAdapterOptions o;
+//   o.inverse_view_projection = glm::inverse(projection * view);
+//   o.depth = vplkit::stages::DepthConvention::reversed;
+//   o.normal_encoding = vplkit::stages::GbufferNormalEncoding::octahedral;
+//   o.normal_space = vplkit::stages::GbufferNormalSpace::view;
+//   o.view_to_world = glm::mat3(glm::inverse(view));
+//   o.roughness = -1.0f;  // its materials are Lambertian
+//   vplkit::stages::add_gbuffer_adapter_pass(device, steps, {depth, normal, albedo, {}}, o, gbuffer);
+// Pixel (x, y) is read at clip x = (x + 0.5) / width * 2 - 1, y = (y + 0.5) / height * 2 - 1
+// (Vulkan's viewport: row 0 at clip y = -1). A renderer that flips its viewport (negative height,
+// row 0 at clip y = +1) passes inverse(projection * view) * diag(1, -1, 1, 1).
 
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
