@@ -1,7 +1,8 @@
 #ifndef VPLKIT_BVH_GLSL
 #define VPLKIT_BVH_GLSL
 
-// Ray queries against the scene's triangle BVH (built on the host: runtime/include/vplkit/bvh.hpp),
+// Ray queries against the scene's triangle BVH (built on the host, stages/include/vplkit/bvh.hpp,
+// or on the device, stages/include/vplkit/stages/bvh_gpu_build.hpp: the same layout),
 // for every stage that needs visibility: shadow rays (bvh_occluded), first hits
 // (bvh_closest_hit), and the visibility of a segment between two surface points
 // (bvh_segment_occluded). Plain compute code, so it runs on every Vulkan device, lavapipe
