@@ -64,6 +64,8 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
                     "' are smaller than hybrid_cut_requirements");
     }
     add_gi_counters_clear(passes, counters, "gi counters clear");
+    // Report the caller's names, not the bindings' ("sst_nodes", "cuts").
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, trees.sst, trees.leaves, cuts.blocks, cuts.cuts});
     const glm::vec3 camera = camera_position;
     const auto& cut_pipeline = device.pipeline<shaders::hybrid_cut::Pipeline>();
     shaders::hybrid_cut::Bindings cut_bindings;

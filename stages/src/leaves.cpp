@@ -22,6 +22,7 @@ void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& 
         throw Error("gather leaves: buffers '" + vpls.name + "' / '" + sorted_values.name + "' are smaller than " +
                     std::to_string(count) + " VPLs");
     }
+    passes.names({vpls, sorted_values, leaves});  // report the caller's names, not "order"
     const auto& pipeline = device.pipeline<shaders::gather_leaves::Pipeline>();
     shaders::gather_leaves::Bindings bindings;
     bindings.vpls = vpls.descriptor();

@@ -69,6 +69,7 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     push.leaf_count = leaves_in_tree;
     push.nu_min = options.nu_min;
     push.sigma_max = options.sigma_max;
+    passes.names({leaves, nodes, counters});  // report the caller's names, not the bindings'
     shaders::build_sst::Bindings bindings;
     bindings.leaves = leaves.descriptor();
     bindings.nodes = nodes.descriptor();

@@ -26,6 +26,8 @@ void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbu
     add_gi_counters_clear(passes, counters, "gi counters clear");
     const auto& pipeline = device.pipeline<shaders::sst_gi::Pipeline>(
         bvh_spec(bvh, glossy_lobe_spec(options.glossy, shaders::sst_gi::Spec{})));
+    // Report the caller's names, not the bindings' ("sst_nodes").
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, trees.sst, trees.leaves});
     shaders::sst_gi::Bindings bindings;
     bind_bvh(bindings, bvh);
     bind_gbuffer(bindings, gbuffer);

@@ -175,9 +175,9 @@ std::vector<MergedUse> merge_uses(const std::vector<Use>& uses, const std::strin
     return merged;
 }
 
-ResourceUse resource_use(const MergedUse& m, const std::string& step) {
+ResourceUse resource_use(const MergedUse& m, const std::string& step, const std::string& name) {
     ResourceUse out;
-    out.name = m.use->name();
+    out.name = name;
     out.buffer = m.use->is_image() ? VK_NULL_HANDLE : m.use->buffer.buffer;
     out.image = m.use->is_image() ? m.use->image.image : VK_NULL_HANDLE;
     out.step = step;
@@ -230,8 +230,33 @@ StepList& StepList::add(std::string name, std::vector<Use> uses, Record record) 
     if (!record) throw Error("vplkit: pass '" + name + "' has no recording function");
     // Validate now, where the caller's mistake is, rather than at recording.
     merge_uses(uses, name);
+    for (const Use& use : uses) {
+        if (use.binding_name) continue;
+        if (use.is_image()) {
+            this->name(use.image);
+        } else {
+            this->name(use.buffer);
+        }
+    }
     steps_.push_back({std::move(name), std::move(uses), std::move(record), tag_});
     return *this;
+}
+
+void StepList::name(const BufferView& view) {
+    if (view && !view.name.empty()) buffer_names_.emplace(view.buffer, view.name);
+}
+
+void StepList::name(const ImageView& view) {
+    if (view && !view.name.empty()) image_names_.emplace(view.image, view.name);
+}
+
+const std::string& StepList::name_of(const Use& use) const {
+    if (use.is_image()) {
+        const auto it = image_names_.find(use.image.image);
+        return it != image_names_.end() ? it->second : use.name();
+    }
+    const auto it = buffer_names_.find(use.buffer.buffer);
+    return it != buffer_names_.end() ? it->second : use.name();
 }
 
 std::vector<ResourceUse> StepList::entry() const {
@@ -239,7 +264,7 @@ std::vector<ResourceUse> StepList::entry() const {
     std::map<uint64_t, bool> seen;
     for (const Step& step : steps_) {
         for (const MergedUse& m : merge_uses(step.uses, step.name)) {
-            if (seen.emplace(m.key(), true).second) out.push_back(resource_use(m, step.name));
+            if (seen.emplace(m.key(), true).second) out.push_back(resource_use(m, step.name, name_of(*m.use)));
         }
     }
     return out;
@@ -252,9 +277,9 @@ std::vector<ResourceUse> StepList::exit() const {
         for (const MergedUse& m : merge_uses(step.uses, step.name)) {
             const auto [it, inserted] = index.emplace(m.key(), out.size());
             if (inserted) {
-                out.push_back(resource_use(m, step.name));
+                out.push_back(resource_use(m, step.name, name_of(*m.use)));
             } else {
-                out[it->second] = resource_use(m, step.name);
+                out[it->second] = resource_use(m, step.name, name_of(*m.use));
             }
         }
     }
@@ -299,7 +324,7 @@ std::vector<BarrierRecord> StepList::record(VkCommandBuffer cmd, const Hooks& ho
                 if (!need.hazards) continue;
                 BarrierRecord record;
                 record.pass = i;
-                record.resource = use.name();
+                record.resource = name_of(use);
                 record.is_image = use.is_image();
                 record.hazards = need.hazards;
                 record.src_stages = need.src_stages;

@@ -45,6 +45,7 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
     const BufferView& bounds = buffers.bounds;
     const BufferView& keys = buffers.keys;
     const BufferView& values = buffers.values;
+    passes.names({vpls, bounds, keys, values});  // report the caller's names, not the bindings'
 
     passes.add("vpl bounds clear", {Use::transfer_dst(bounds)}, [bounds](VkCommandBuffer cmd) {
         // An empty box: lo at the largest ordered value, hi at the smallest.

@@ -3,7 +3,10 @@
 // binding of a generated Bindings (vplkit/shaders/<name>.hpp) becomes a Use with the access the
 // SPIR-V declares (kBindingAccess: readonly -> read, writeonly -> write, else read and write).
 // Buffers come from the descriptors themselves; an image binding names only a VkImageView, so
-// the images the bindings use are passed in and matched by view.
+// the images the bindings use are passed in and matched by view. A buffer's use carries the
+// binding's name ("order"), marked Use::binding_name: StepList reports the caller's view name
+// instead once the stage function has named the view (StepList::name); images carry the
+// caller's ImageView, name included.
 //
 //   shaders::build_sst::Bindings b;
 //   b.leaves = leaves.descriptor(); ...
@@ -52,7 +55,11 @@ std::vector<Use> binding_uses(const typename Module::Bindings& bindings, const s
                 if (writes[i].pBufferInfo != nullptr) {
                     const VkDescriptorBufferInfo& info = writes[i].pBufferInfo[e];
                     if (info.buffer == VK_NULL_HANDLE) continue;
-                    uses.push_back({BufferView{info.buffer, info.offset, info.range, name}, {}, access, stage});
+                    // A descriptor carries no name: the binding's stands in until the stage
+                    // function names the caller's view (StepList::name).
+                    Use use{BufferView{info.buffer, info.offset, info.range, name}, {}, access, stage};
+                    use.binding_name = true;
+                    uses.push_back(use);
                     continue;
                 }
                 const VkDescriptorImageInfo& info = writes[i].pImageInfo[e];

@@ -22,6 +22,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -57,6 +59,10 @@ struct Use {
     // stage and access: GENERAL for shader access (valid for both storage and sampled images),
     // TRANSFER_SRC/DST_OPTIMAL for transfer reads/writes, the attachment layouts for attachments.
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;
+    // The name is the shader binding's ("order", "nodes"), not the caller's view's: set by
+    // binding_uses, whose descriptors carry no name. StepList reports such a resource under the
+    // caller's name when one is known (see StepList::name).
+    bool binding_name = false;
 
     bool is_image() const { return bool(image); }
     const std::string& name() const { return is_image() ? image.name : buffer.name; }
@@ -97,7 +103,7 @@ enum Hazard : uint32_t {
 // One buffer or image barrier that recording inserted.
 struct BarrierRecord {
     size_t pass = 0;       // index of the step it was recorded before
-    std::string resource;  // the buffer's or image's name ("" when unnamed)
+    std::string resource;  // the buffer's or image's name (see StepList::name; "" when unnamed)
     bool is_image = false;
     uint32_t hazards = 0;  // Hazard bits
     VkPipelineStageFlags2 src_stages = 0;
@@ -114,7 +120,7 @@ struct BarrierRecord {
 // One resource's access as Vulkan sees it: what the caller's barrier before a stage must make
 // visible to (entry), or what work after it must wait for (exit).
 struct ResourceUse {
-    std::string name;
+    std::string name;                  // the caller's view name (see StepList::name)
     VkBuffer buffer = VK_NULL_HANDLE;  // one of buffer and image
     VkImage image = VK_NULL_HANDLE;
     std::string step;              // the first (entry) or last (exit) step that uses it
@@ -144,6 +150,20 @@ public:
     // what it captures must live until then.
     StepList& add(std::string name, std::vector<Use> uses, Record record);
 
+    // Names a caller's buffer or image for entry(), exit() and the barrier records. A step built
+    // from a shader's bindings (binding_uses) knows only the binding names ("order", "nodes",
+    // "counters"), so each stage function names the views it was handed here; a use added with a
+    // caller's view (Use::read(view), an image matched by binding_uses) names its resource too.
+    // The reported name is always the caller's view name (the first one given for a handle); only
+    // a resource whose views all have an empty name is reported under its binding name.
+    void name(const BufferView& view);
+    void name(const ImageView& view);
+    void names(std::initializer_list<BufferView> views) {
+        for (const BufferView& view : views) name(view);
+    }
+    // The name entry(), exit() and record() report for `use`'s resource.
+    const std::string& name_of(const Use& use) const;
+
     // Records every step into `cmd`, in order, with the barriers between them. Images whose
     // view carries a layout pointer are transitioned from it (and it is updated). The command
     // buffer must be in the recording state and allow compute (and, for raster steps, graphics).
@@ -164,6 +184,8 @@ public:
     bool empty() const { return steps_.empty(); }
     virtual void clear() {
         steps_.clear();
+        buffer_names_.clear();
+        image_names_.clear();
         tag_ = 0;
     }
 
@@ -176,6 +198,8 @@ public:
 
 private:
     std::vector<Step> steps_;
+    std::map<VkBuffer, std::string> buffer_names_;  // the caller's names, by handle
+    std::map<VkImage, std::string> image_names_;
     uint32_t tag_ = 0;
 };
 
