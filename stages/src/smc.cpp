@@ -107,6 +107,15 @@ float min_neighbour_distance2(float scene_scale) {
     return d * d;
 }
 
+// One step of a shader whose only push constant is the VPL budget.
+template <class Module, class Pipeline>
+void add_budget_dispatch(StepList& passes, std::string name, const Pipeline& pipeline,
+                         const typename Module::Bindings& bindings, uint32_t budget, DispatchThreads threads) {
+    typename Pipeline::Push push{};
+    push.budget = budget;
+    add_dispatch<Module>(passes, std::move(name), pipeline, bindings, push, threads);
+}
+
 }  // namespace
 
 void add_smc_density_pass(Device& device, StepList& passes, const BufferView& state, const BufferView& queries,
@@ -127,9 +136,8 @@ void add_smc_density_pass(Device& device, StepList& passes, const BufferView& st
     push.queries_are_vpls = queries_are_vpls ? 1u : 0u;
     push.min_distance2 = min_neighbour_distance2(scene_scale);
     push.fallback_area = lone_vpl_area(scene_scale);
-    passes.add(queries_are_vpls ? "smc vpl density" : "smc candidate density",
-               binding_uses<shaders::smc_density::Module>(b, {}),
-               [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+    add_dispatch<shaders::smc_density::Module>(passes, queries_are_vpls ? "smc vpl density" : "smc candidate density",
+                                               pipeline, b, push, push.budget);
 }
 
 void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
@@ -169,9 +177,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.emitter_count = sources.emitter_count;
         push.triangle_count = sources.triangle_count;
         push.moved_only = moved_only ? 1u : 0u;
-        passes.add(moved_only ? "smc radiosity of new vpls" : "smc radiosity",
-                   binding_uses<shaders::smc_radiosity::Module>(b, {}),
-                   [&pipeline, b, push](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, push.budget); });
+        add_dispatch<shaders::smc_radiosity::Module>(passes, moved_only ? "smc radiosity of new vpls" : "smc radiosity",
+                                                     pipeline, b, push, push.budget);
     };
 
     // Everything but |Y| (the first word) starts each update at zero.
@@ -222,10 +229,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         b.valid = buffers.valid.descriptor();
         b.invalid_list = buffers.invalid_list.descriptor();
         b.counters = counters.descriptor();
-        shaders::smc_invalid_list::Push push{};
-        push.budget = budget;
-        add_dispatch<shaders::smc_invalid_list::Module>(passes, "smc invalid list", pipeline, b, push,
-                                                        pipeline.workgroup_size[0]);  // one workgroup
+        add_budget_dispatch<shaders::smc_invalid_list::Module>(passes, "smc invalid list", pipeline, b, budget,
+                                                               pipeline.workgroup_size[0]);  // one workgroup
     }
     for (uint32_t round = 0; round < options.visibility_rounds && options.visibility_tries > 0; ++round) {
         const auto& pipeline =
@@ -250,11 +255,9 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         cb.state = buffers.state.descriptor();
         cb.valid = buffers.valid.descriptor();
         cb.counters = counters.descriptor();
-        shaders::smc_revalidate_claims::Push claims_push{};
-        claims_push.budget = budget;
-        add_dispatch<shaders::smc_revalidate_claims::Module>(
-            passes, "smc revalidate claims", device.pipeline<shaders::smc_revalidate_claims::Pipeline>(), cb,
-            claims_push, budget);
+        add_budget_dispatch<shaders::smc_revalidate_claims::Module>(
+            passes, "smc revalidate claims", device.pipeline<shaders::smc_revalidate_claims::Pipeline>(), cb, budget,
+            budget);
     }
 
     sorter.add_pass(passes, buffers.pool_keys, buffers.pool_values, pool, "smc resample sort");
@@ -278,7 +281,6 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
     add_smc_density_pass(device, passes, buffers.state, buffers.candidates, buffers.candidate_density, counters, budget,
                          1, false, bvh.scene_scale);
     {
-        const auto& pipeline = device.pipeline<shaders::smc_selection_keys::Pipeline>();
         shaders::smc_selection_keys::Bindings b;
         b.state = buffers.state.descriptor();
         b.candidate_density = buffers.candidate_density.descriptor();
@@ -287,9 +289,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         b.candidate_keys = buffers.candidate_keys.descriptor();
         b.candidate_values = buffers.candidate_values.descriptor();
         b.counters = counters.descriptor();
-        shaders::smc_selection_keys::Push push{};
-        push.budget = budget;
-        add_dispatch<shaders::smc_selection_keys::Module>(passes, "smc selection keys", pipeline, b, push, push.budget);
+        add_budget_dispatch<shaders::smc_selection_keys::Module>(
+            passes, "smc selection keys", device.pipeline<shaders::smc_selection_keys::Pipeline>(), b, budget, budget);
     }
     sorter.add_pass(passes, buffers.vpl_keys, buffers.vpl_values, budget, "smc vpl intensity sort");
     sorter.add_pass(passes, buffers.candidate_keys, buffers.candidate_values, budget, "smc candidate intensity sort");
@@ -310,30 +311,26 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         add_dispatch<shaders::smc_select::Module>(passes, "smc select", pipeline, b, push, 1u);
     }
     {
-        const auto& pipeline = device.pipeline<shaders::smc_replace::Pipeline>();
         shaders::smc_replace::Bindings b;
         b.candidates = buffers.candidates.descriptor();
         b.moves = buffers.moves.descriptor();
         b.state = buffers.state.descriptor();
         b.valid = buffers.valid.descriptor();
         b.counters = counters.descriptor();
-        shaders::smc_replace::Push push{};
-        push.budget = budget;
-        add_dispatch<shaders::smc_replace::Module>(passes, "smc replace", pipeline, b, push, push.budget);
+        add_budget_dispatch<shaders::smc_replace::Module>(
+            passes, "smc replace", device.pipeline<shaders::smc_replace::Pipeline>(), b, budget, budget);
     }
     add_radiosity_pass(buffers.state, true);
     add_smc_density_pass(device, passes, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
                          smc_render_neighbours(budget), true, bvh.scene_scale);
     {
-        const auto& pipeline = device.pipeline<shaders::smc_vpls::Pipeline>();
         shaders::smc_vpls::Bindings b;
         b.state = buffers.state.descriptor();
         b.density = buffers.vpl_density.descriptor();
         b.vpls = buffers.vpls.descriptor();
         b.counters = counters.descriptor();
-        shaders::smc_vpls::Push push{};
-        push.budget = budget;
-        add_dispatch<shaders::smc_vpls::Module>(passes, "smc vpls", pipeline, b, push, push.budget);
+        add_budget_dispatch<shaders::smc_vpls::Module>(
+            passes, "smc vpls", device.pipeline<shaders::smc_vpls::Pipeline>(), b, budget, budget);
     }
 }
 

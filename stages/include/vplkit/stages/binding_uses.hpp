@@ -80,16 +80,44 @@ std::vector<Use> binding_uses(const typename Module::Bindings& bindings, const s
     return uses;
 }
 
+// The threads of one dispatch: a count (x), or an image's width by height ({x, y}).
+struct DispatchThreads {
+    DispatchThreads(uint32_t x_, uint32_t y_ = 1, uint32_t z_ = 1) : x(x_), y(y_), z(z_) {}  // implicit: a count is x
+    uint32_t x;
+    uint32_t y;
+    uint32_t z;
+};
+
 // One dispatch of Module's `pipeline` over `threads` threads as a step, its uses from the
-// bindings (the shape every compute step of the kit has):
+// bindings (the shape every compute step of the kit has). The push constants are computed by
+// the caller and captured by value:
 //   add_dispatch<shaders::smc_vpls::Module>(passes, "smc vpls", pipeline, b, push, budget);
+//   add_dispatch<shaders::tonemap::Module>(passes, "tonemap", pipeline, b, push, {hdr.width, hdr.height}, {hdr, ldr});
 template <class Module, class Pipeline>
 void add_dispatch(StepList& passes, std::string name, const Pipeline& pipeline,
-                  const typename Module::Bindings& bindings, const typename Pipeline::Push& push, uint32_t threads,
+                  const typename Module::Bindings& bindings, const typename Pipeline::Push& push,
+                  DispatchThreads threads, const std::vector<ImageView>& images = {}) {
+    passes.add(std::move(name), binding_uses<Module>(bindings, images),
+               [&pipeline, bindings, push, threads](VkCommandBuffer cmd) {
+                   pipeline.dispatch(cmd, bindings, push, threads.x, threads.y, threads.z);
+               });
+}
+
+// A generated Pipeline of a shader without push constants (it declares no Push).
+template <class Pipeline>
+concept PipelineWithoutPush = !requires {
+    typename Pipeline::Push;
+};
+
+// The same for a shader without push constants.
+template <class Module, PipelineWithoutPush Pipeline>
+void add_dispatch(StepList& passes, std::string name, const Pipeline& pipeline,
+                  const typename Module::Bindings& bindings, DispatchThreads threads,
                   const std::vector<ImageView>& images = {}) {
-    passes.add(
-        std::move(name), binding_uses<Module>(bindings, images),
-        [&pipeline, bindings, push, threads](VkCommandBuffer cmd) { pipeline.dispatch(cmd, bindings, push, threads); });
+    passes.add(std::move(name), binding_uses<Module>(bindings, images),
+               [&pipeline, bindings, threads](VkCommandBuffer cmd) {
+                   pipeline.dispatch(cmd, bindings, threads.x, threads.y, threads.z);
+               });
 }
 
 }  // namespace vplkit::stages
