@@ -20,9 +20,8 @@ void add_compose_pass(Device& device, StepList& passes, const ImageView& direct,
     b.direct = direct.descriptor();
     b.indirect = indirect.descriptor();
     b.composed = composed.descriptor();
-    passes.add(
-        "compose", binding_uses<shaders::compose::Module>(b, {direct, indirect, composed}),
-        [&pipeline, b, composed](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, composed.width, composed.height); });
+    add_dispatch<shaders::compose::Module>(passes, "compose", pipeline, b, {composed.width, composed.height},
+                                           {direct, indirect, composed});
 }
 
 }  // namespace vplkit::stages

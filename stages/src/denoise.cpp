@@ -80,11 +80,9 @@ void add_demodulate_pass(Device& device, StepList& passes, const ImageView& radi
     b.irradiance = irradiance.descriptor();
     shaders::demodulate::Push push{};
     push.albedo_floor = options.albedo_floor;
-    passes.add("denoise demodulate",
-               binding_uses<shaders::demodulate::Module>(b, {radiance, albedo, position, irradiance}),
-               [&pipeline, b, push, irradiance](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, b, push, irradiance.width, irradiance.height);
-               });
+    add_dispatch<shaders::demodulate::Module>(passes, "denoise demodulate", pipeline, b, push,
+                                              {irradiance.width, irradiance.height},
+                                              {radiance, albedo, position, irradiance});
 }
 
 void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& albedo,
@@ -99,10 +97,8 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
     b.radiance = radiance.descriptor();
     shaders::remodulate::Push push{};
     push.albedo_floor = options.albedo_floor;
-    passes.add("denoise remodulate", binding_uses<shaders::remodulate::Module>(b, {irradiance, albedo, radiance}),
-               [&pipeline, b, push, radiance](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
-               });
+    add_dispatch<shaders::remodulate::Module>(passes, "denoise remodulate", pipeline, b, push,
+                                              {radiance.width, radiance.height}, {irradiance, albedo, radiance});
 }
 
 void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
@@ -128,12 +124,9 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
     push.k_sigma = options.firefly_k_sigma;
     push.albedo_floor = options.albedo_floor;
     push.min_history = options.min_temporal_history;
-    passes.add(
-        "denoise firefly clamp",
-        binding_uses<shaders::firefly_clamp::Module>(b, {irradiance, position, clamped, excess, albedo, moments}),
-        [&clamp, b, push, clamped](VkCommandBuffer cmd) {
-            clamp.dispatch(cmd, b, push, clamped.width, clamped.height);
-        });
+    add_dispatch<shaders::firefly_clamp::Module>(passes, "denoise firefly clamp", clamp, b, push,
+                                                 {clamped.width, clamped.height},
+                                                 {irradiance, position, clamped, excess, albedo, moments});
     const auto& gather = device.pipeline<shaders::firefly_spread::Pipeline>();
     shaders::firefly_spread::Bindings g;
     g.clamped = clamped.descriptor();
@@ -143,11 +136,9 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
     g.albedo = albedo.descriptor();
     shaders::firefly_spread::Push spread_push{};
     spread_push.albedo_floor = options.albedo_floor;
-    passes.add("denoise firefly spread",
-               binding_uses<shaders::firefly_spread::Module>(g, {clamped, excess, position, spread, albedo}),
-               [&gather, g, spread_push, spread](VkCommandBuffer cmd) {
-                   gather.dispatch(cmd, g, spread_push, spread.width, spread.height);
-               });
+    add_dispatch<shaders::firefly_spread::Module>(passes, "denoise firefly spread", gather, g, spread_push,
+                                                  {spread.width, spread.height},
+                                                  {clamped, excess, position, spread, albedo});
 }
 
 void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageView& irradiance,
@@ -188,13 +179,10 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
     push.max_history = options.max_history;
     push.has_history = has_history ? 1u : 0u;
     push.static_max_history = options.static_max_history;
-    passes.add("denoise temporal",
-               binding_uses<shaders::temporal_accumulate::Module>(
-                   b, {irradiance, position, normal, previous.position, previous.normal, previous.color,
-                       previous.moments, accumulated, moments, next.position, next.normal}),
-               [&pipeline, b, push, accumulated](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, b, push, accumulated.width, accumulated.height);
-               });
+    add_dispatch<shaders::temporal_accumulate::Module>(
+        passes, "denoise temporal", pipeline, b, push, {accumulated.width, accumulated.height},
+        {irradiance, position, normal, previous.position, previous.normal, previous.color, previous.moments,
+         accumulated, moments, next.position, next.normal});
 }
 
 void add_variance_estimate_pass(Device& device, StepList& passes, const ImageView& accumulated,
@@ -217,11 +205,9 @@ void add_variance_estimate_pass(Device& device, StepList& passes, const ImageVie
     push.sigma_plane = options.sigma_plane_fraction * options.scene_scale;
     push.sigma_normal = options.sigma_normal;
     push.min_history = options.min_temporal_history;
-    passes.add("denoise variance",
-               binding_uses<shaders::variance_estimate::Module>(b, {accumulated, moments, position, normal, estimated}),
-               [&pipeline, b, push, estimated](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, b, push, estimated.width, estimated.height);
-               });
+    add_dispatch<shaders::variance_estimate::Module>(passes, "denoise variance", pipeline, b, push,
+                                                     {estimated.width, estimated.height},
+                                                     {accumulated, moments, position, normal, estimated});
 }
 
 void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
@@ -241,11 +227,8 @@ void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, 
     push.sigma_plane = options.sigma_plane_fraction * options.scene_scale;
     push.sigma_normal = options.sigma_normal;
     push.sigma_luminance = options.sigma_luminance;
-    passes.add("denoise a-trous " + std::to_string(step),
-               binding_uses<shaders::atrous::Module>(b, {source, position, normal, filtered}),
-               [&pipeline, b, push, filtered](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, b, push, filtered.width, filtered.height);
-               });
+    add_dispatch<shaders::atrous::Module>(passes, "denoise a-trous " + std::to_string(step), pipeline, b, push,
+                                          {filtered.width, filtered.height}, {source, position, normal, filtered});
 }
 
 }  // namespace vplkit::stages

@@ -94,10 +94,7 @@ void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidat
     push.level_count = int32_t(partition.level_count);
     push.s0 = partition.s0;
     push.mu = partition.mu;
-    passes.add("flc candidates", binding_uses<shader::Module>(bindings),
-               [&pipeline, bindings, push, triangle_count](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, bindings, push, triangle_count);
-               });
+    add_dispatch<shader::Module>(passes, "flc candidates", pipeline, bindings, push, triangle_count);
 }
 
 void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
@@ -130,10 +127,8 @@ void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBu
         shader::Push push{};
         push.first = first;
         push.end = first + std::min(span, triangle_count - first);
-        passes.add("flc compact", binding_uses<shader::Module>(bindings),
-                   [&pipeline, bindings, push](VkCommandBuffer cmd) {
-                       pipeline.dispatch(cmd, bindings, push, pipeline.workgroup_size[0]);  // one workgroup
-                   });
+        add_dispatch<shader::Module>(passes, "flc compact", pipeline, bindings, push,
+                                     pipeline.workgroup_size[0]);  // one workgroup
     }
 }
 
@@ -174,10 +169,7 @@ void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& 
     push.s0 = partition.s0;
     push.mu = partition.mu;
     push.scene_area = partition.scene_area;
-    passes.add("flc vpl light", binding_uses<shader::Module>(bindings),
-               [&pipeline, bindings, push, triangle_count](VkCommandBuffer cmd) {
-                   pipeline.dispatch(cmd, bindings, push, triangle_count);
-               });
+    add_dispatch<shader::Module>(passes, "flc vpl light", pipeline, bindings, push, triangle_count);
 }
 
 }  // namespace vplkit::stages

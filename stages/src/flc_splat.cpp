@@ -79,10 +79,7 @@ void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffer
     args_bindings.draw = buffers.draw_args.descriptor();
     args::Push args_push{};
     args_push.vpl_capacity = vpl_capacity;
-    passes.add("flc splat args", binding_uses<args::Module>(args_bindings),
-               [&args_pipeline, args_bindings, args_push](VkCommandBuffer cmd) {
-                   args_pipeline.dispatch(cmd, args_bindings, args_push, 1);
-               });
+    add_dispatch<args::Module>(passes, "flc splat args", args_pipeline, args_bindings, args_push, 1);
 
     const GraphicsPipeline& pipeline = device.pipeline<FlcSplatPipeline>().pipeline;
     vert::Bindings vpl_bindings;
@@ -139,12 +136,8 @@ void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffer
     untile_push.max_distance = gi_similarity_distance(options.blur_max_distance, scene_scale);
     untile_push.min_cos = options.blur_min_cos;
     const uint32_t w = indirect.width, h = indirect.height;
-    passes.add(
-        "flc untile",
-        binding_uses<untile::Module>(untile_bindings, {tiled, gbuffer.position, gbuffer.geometric_normal, indirect}),
-        [&untile_pipeline, untile_bindings, untile_push, w, h](VkCommandBuffer cmd) {
-            untile_pipeline.dispatch(cmd, untile_bindings, untile_push, w, h);
-        });
+    add_dispatch<untile::Module>(passes, "flc untile", untile_pipeline, untile_bindings, untile_push, {w, h},
+                                 {tiled, gbuffer.position, gbuffer.geometric_normal, indirect});
 }
 
 }  // namespace vplkit::stages

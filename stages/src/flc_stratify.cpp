@@ -118,10 +118,8 @@ void add_flc_stratify_passes(Device& device, StepList& passes, const FlcStratify
         push.s0 = partition.s0;
         push.mu = partition.mu;
         push.scene_area = partition.scene_area;
-        passes.add("flc stratify", binding_uses<shader::Module>(bindings),
-                   [&pipeline, bindings, push](VkCommandBuffer cmd) {
-                       pipeline.dispatch(cmd, bindings, push, pipeline.workgroup_size[0]);  // one workgroup
-                   });
+        add_dispatch<shader::Module>(passes, "flc stratify", pipeline, bindings, push,
+                                     pipeline.workgroup_size[0]);  // one workgroup
     }
 }
 

@@ -82,9 +82,7 @@ void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivide
     push.s0 = partition.s0;
     push.mu = partition.mu;
     const auto threads = uint32_t(candidates);
-    passes.add(
-        "flc subdivide", binding_uses<shader::Module>(bindings),
-        [&pipeline, bindings, push, threads](VkCommandBuffer cmd) { pipeline.dispatch(cmd, bindings, push, threads); });
+    add_dispatch<shader::Module>(passes, "flc subdivide", pipeline, bindings, push, threads);
 }
 
 }  // namespace vplkit::stages

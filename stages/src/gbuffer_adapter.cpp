@@ -116,9 +116,7 @@ void add_gbuffer_adapter_pass(Device& device, StepList& passes, const GbufferAda
     if (inputs.material) images.push_back(inputs.material);
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     const uint32_t width = gbuffer.width(), height = gbuffer.height();
-    passes.add(
-        "gbuffer from depth", binding_uses<shader::Module>(b, images),
-        [&pipeline, b, push, width, height](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, width, height); });
+    add_dispatch<shader::Module>(passes, "gbuffer from depth", pipeline, b, push, {width, height}, images);
 }
 
 }  // namespace vplkit::stages

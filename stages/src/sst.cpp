@@ -74,9 +74,7 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     bindings.leaves = leaves.descriptor();
     bindings.nodes = nodes.descriptor();
     bindings.counters = counters.descriptor();
-    passes.add(
-        "build sst", binding_uses<shaders::build_sst::Module>(bindings),
-        [&pipeline, bindings, push, threads](VkCommandBuffer cmd) { pipeline.dispatch(cmd, bindings, push, threads); });
+    add_dispatch<shaders::build_sst::Module>(passes, "build sst", pipeline, bindings, push, threads);
 }
 
 }  // namespace vplkit::stages
