@@ -74,12 +74,9 @@ void add_bounds(Device& device, StepList& passes, const BvhGpuBuildBuffers& b, u
     shaders::bvh_build_bounds::Bindings bindings;
     bindings.input_triangles = b.input.descriptor();
     bindings.info = b.info.descriptor();
-    passes.add("bvh build bounds", binding_uses<shaders::bvh_build_bounds::Module>(bindings),
-               [&pipeline, bindings, count](VkCommandBuffer cmd) {
-                   shaders::bvh_build_bounds::Push push{};
-                   push.triangle_count = count;
-                   pipeline.dispatch(cmd, bindings, push, count);
-               });
+    shaders::bvh_build_bounds::Push push{};
+    push.triangle_count = count;
+    add_dispatch<shaders::bvh_build_bounds::Module>(passes, "bvh build bounds", pipeline, bindings, push, count);
 }
 
 // Steps 6 to 8, shared by the build and the refit.
@@ -93,12 +90,10 @@ void add_boxes_and_write(Device& device, StepList& passes, const BvhGpuBuildBuff
     leaf_bindings.nodes = b.build_nodes.descriptor();
     leaf_bindings.links = b.build_links.descriptor();
     leaf_bindings.triangles = b.triangles.descriptor();
-    passes.add("bvh build leaves", binding_uses<shaders::bvh_build_leaves::Module>(leaf_bindings),
-               [&leaves, bindings = leaf_bindings, count, slots](VkCommandBuffer cmd) {
-                   shaders::bvh_build_leaves::Push push{};
-                   push.triangle_count = count;
-                   leaves.dispatch(cmd, bindings, push, slots);
-               });
+    shaders::bvh_build_leaves::Push leaf_push{};
+    leaf_push.triangle_count = count;
+    add_dispatch<shaders::bvh_build_leaves::Module>(passes, "bvh build leaves", leaves, leaf_bindings, leaf_push,
+                                                    slots);
 
     // Interior nodes lie above max_depth (a node there is a leaf); none exist for one triangle.
     if (count > 1) {
@@ -108,14 +103,11 @@ void add_boxes_and_write(Device& device, StepList& passes, const BvhGpuBuildBuff
         level_bindings.links = b.build_links.descriptor();
         level_bindings.levels = b.keys.descriptor();
         for (uint32_t depth = options.max_depth; depth-- > 0;) {
-            passes.add("bvh build level " + std::to_string(depth),
-                       binding_uses<shaders::bvh_build_level::Module>(level_bindings),
-                       [&level, bindings = level_bindings, count, depth](VkCommandBuffer cmd) {
-                           shaders::bvh_build_level::Push push{};
-                           push.internal_count = count - 1;
-                           push.depth = depth;
-                           level.dispatch(cmd, bindings, push, count - 1);
-                       });
+            shaders::bvh_build_level::Push level_push{};
+            level_push.internal_count = count - 1;
+            level_push.depth = depth;
+            add_dispatch<shaders::bvh_build_level::Module>(passes, "bvh build level " + std::to_string(depth), level,
+                                                           level_bindings, level_push, count - 1);
         }
     }
 
@@ -125,12 +117,9 @@ void add_boxes_and_write(Device& device, StepList& passes, const BvhGpuBuildBuff
     write_bindings.links = b.build_links.descriptor();
     write_bindings.info = b.info.descriptor();
     write_bindings.bvh_nodes = b.nodes.descriptor();
-    passes.add("bvh build write", binding_uses<shaders::bvh_build_write::Module>(write_bindings),
-               [&write, bindings = write_bindings, count, slots](VkCommandBuffer cmd) {
-                   shaders::bvh_build_write::Push push{};
-                   push.triangle_count = count;
-                   write.dispatch(cmd, bindings, push, slots);
-               });
+    shaders::bvh_build_write::Push write_push{};
+    write_push.triangle_count = count;
+    add_dispatch<shaders::bvh_build_write::Module>(passes, "bvh build write", write, write_bindings, write_push, slots);
 }
 
 }  // namespace
@@ -170,12 +159,9 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
     key_bindings.info = b.info.descriptor();
     key_bindings.keys = b.keys.descriptor();
     key_bindings.order = b.order.descriptor();
-    passes.add("bvh build keys", binding_uses<shaders::bvh_build_keys::Module>(key_bindings),
-               [&keys, bindings = key_bindings, count](VkCommandBuffer cmd) {
-                   shaders::bvh_build_keys::Push push{};
-                   push.triangle_count = count;
-                   keys.dispatch(cmd, bindings, push, count);
-               });
+    shaders::bvh_build_keys::Push key_push{};
+    key_push.triangle_count = count;
+    add_dispatch<shaders::bvh_build_keys::Module>(passes, "bvh build keys", keys, key_bindings, key_push, count);
 
     sorter.add_pass(passes, b.keys, b.order, count, "bvh build sort");
 
@@ -184,26 +170,22 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
     hierarchy_bindings.keys = b.keys.descriptor();
     hierarchy_bindings.nodes = b.build_nodes.descriptor();
     hierarchy_bindings.links = b.build_links.descriptor();
-    passes.add("bvh build hierarchy", binding_uses<shaders::bvh_build_hierarchy::Module>(hierarchy_bindings),
-               [&hierarchy, bindings = hierarchy_bindings, count, slots](VkCommandBuffer cmd) {
-                   shaders::bvh_build_hierarchy::Push push{};
-                   push.triangle_count = count;
-                   hierarchy.dispatch(cmd, bindings, push, slots);
-               });
+    shaders::bvh_build_hierarchy::Push hierarchy_push{};
+    hierarchy_push.triangle_count = count;
+    add_dispatch<shaders::bvh_build_hierarchy::Module>(passes, "bvh build hierarchy", hierarchy, hierarchy_bindings,
+                                                       hierarchy_push, slots);
 
     const auto& depths = device.pipeline<shaders::bvh_build_depths::Pipeline>();
     shaders::bvh_build_depths::Bindings depth_bindings;
     depth_bindings.links = b.build_links.descriptor();
     depth_bindings.info = b.info.descriptor();
     depth_bindings.levels = b.keys.descriptor();
-    passes.add("bvh build depths", binding_uses<shaders::bvh_build_depths::Module>(depth_bindings),
-               [&depths, bindings = depth_bindings, count, slots, options](VkCommandBuffer cmd) {
-                   shaders::bvh_build_depths::Push push{};
-                   push.triangle_count = count;
-                   push.max_leaf_triangles = options.max_leaf_triangles;
-                   push.max_depth = options.max_depth;
-                   depths.dispatch(cmd, bindings, push, slots);
-               });
+    shaders::bvh_build_depths::Push depth_push{};
+    depth_push.triangle_count = count;
+    depth_push.max_leaf_triangles = options.max_leaf_triangles;
+    depth_push.max_depth = options.max_depth;
+    add_dispatch<shaders::bvh_build_depths::Module>(passes, "bvh build depths", depths, depth_bindings, depth_push,
+                                                    slots);
 
     add_boxes_and_write(device, passes, b, count, options);
 

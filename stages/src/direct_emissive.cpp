@@ -25,17 +25,14 @@ void add_direct_emissive_pass(Device& device, StepList& passes, const GbufferVie
     bind_gbuffer(bindings, gbuffer);
     bindings.emitters = emitters.triangles.descriptor();
     bindings.radiance = radiance.descriptor();
-    passes.add(
-        "direct emissive",
-        binding_uses<shaders::direct_emissive::Module>(bindings, gbuffer_images(gbuffer, {radiance})),
-        [&pipeline, b = bindings, emitters, params, radiance](VkCommandBuffer cmd) {
-            shaders::direct_emissive::Push push{};
-            push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
-            push.emitter_count = emitters.count;
-            push.samples = params.samples;
-            push.seed = params.seed;
-            pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
-        });
+    shaders::direct_emissive::Push push{};
+    push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
+    push.emitter_count = emitters.count;
+    push.samples = params.samples;
+    push.seed = params.seed;
+    add_dispatch<shaders::direct_emissive::Module>(passes, "direct emissive", pipeline, bindings, push,
+                                                   {radiance.width, radiance.height},
+                                                   gbuffer_images(gbuffer, {radiance}));
 }
 
 }  // namespace vplkit::stages

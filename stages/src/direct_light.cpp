@@ -18,16 +18,13 @@ void add_direct_light_pass(Device& device, StepList& passes, const GbufferViews&
     bindings.gbuffer_emission = gbuffer.emission.descriptor();
     bindings.lights = lights.lights.descriptor();
     bindings.radiance = radiance.descriptor();
-    passes.add(
-        "direct light",
-        binding_uses<shaders::direct_light::Module>(bindings, gbuffer_images(gbuffer, {gbuffer.emission, radiance})),
-        [&pipeline, b = bindings, lights, params, radiance](VkCommandBuffer cmd) {
-            shaders::direct_light::Push push{};
-            push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
-            push.light_count = lights.count;
-            push.background = {params.background.x, params.background.y, params.background.z};
-            pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
-        });
+    shaders::direct_light::Push push{};
+    push.camera_position = {params.camera_position.x, params.camera_position.y, params.camera_position.z};
+    push.light_count = lights.count;
+    push.background = {params.background.x, params.background.y, params.background.z};
+    add_dispatch<shaders::direct_light::Module>(passes, "direct light", pipeline, bindings, push,
+                                                {radiance.width, radiance.height},
+                                                gbuffer_images(gbuffer, {gbuffer.emission, radiance}));
 }
 
 }  // namespace vplkit::stages

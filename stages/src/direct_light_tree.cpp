@@ -103,23 +103,21 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
     const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);
-        passes.add("direct light tree",
-                   binding_uses<shaders::direct_light_tree::Module>(b, gbuffer_images(gbuffer, {samples_target})),
-                   [&pipeline, b, tree, scratch, samples_target, camera, options, first, end](VkCommandBuffer cmd) {
-                       shaders::direct_light_tree::Push push{};
-                       push.camera_position = camera;
-                       push.seed = options.seed;
-                       push.frame = options.frame;
-                       push.block_size = options.block_size;
-                       push.cut_size = options.samples_per_pixel;
-                       push.blocks_x = scratch.blocks_x();
-                       push.leaf_count = tree.leaf_count;
-                       push.triangle_count = tree.triangle_count;
-                       push.slot_first = first;
-                       push.slot_end = end;
-                       push.interleave = options.interleave;
-                       pipeline.dispatch(cmd, b, push, samples_target.width, samples_target.height);
-                   });
+        shaders::direct_light_tree::Push push{};
+        push.camera_position = camera;
+        push.seed = options.seed;
+        push.frame = options.frame;
+        push.block_size = options.block_size;
+        push.cut_size = options.samples_per_pixel;
+        push.blocks_x = scratch.blocks_x();
+        push.leaf_count = tree.leaf_count;
+        push.triangle_count = tree.triangle_count;
+        push.slot_first = first;
+        push.slot_end = end;
+        push.interleave = options.interleave;
+        add_dispatch<shaders::direct_light_tree::Module>(passes, "direct light tree", pipeline, b, push,
+                                                         {samples_target.width, samples_target.height},
+                                                         gbuffer_images(gbuffer, {samples_target}));
     }
     if (options.interleave > 1) {
         add_rtslc_interleave_pass(device, passes, gbuffer, scratch, radiance, options,

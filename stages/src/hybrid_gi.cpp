@@ -74,19 +74,17 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
     bind_gbuffer(cut_bindings, gbuffer);
     cut_bindings.blocks = cuts.blocks.descriptor();
     cut_bindings.cuts = cuts.cuts.descriptor();
-    passes.add("hybrid cuts", binding_uses<shaders::hybrid_cut::Module>(cut_bindings, gbuffer_images(gbuffer)),
-               [&cut_pipeline, b = cut_bindings, bvh, trees, cuts, camera, options](VkCommandBuffer cmd) {
-                   shaders::hybrid_cut::Push push{};
-                   push.camera_position = {camera.x, camera.y, camera.z};
-                   push.block_size = options.block_size;
-                   push.blocks_x = cuts.blocks_x;
-                   push.blocks_y = cuts.blocks_y;
-                   push.cut_size = cuts.cut_size;
-                   push.leaf_count = trees.leaf_count;
-                   push.vpl_count = trees.count;
-                   push.scene_scale = bvh.scene_scale;
-                   cut_pipeline.dispatch(cmd, b, push, cuts.blocks_x * cuts.blocks_y);
-               });
+    shaders::hybrid_cut::Push cut_push{};
+    cut_push.camera_position = {camera.x, camera.y, camera.z};
+    cut_push.block_size = options.block_size;
+    cut_push.blocks_x = cuts.blocks_x;
+    cut_push.blocks_y = cuts.blocks_y;
+    cut_push.cut_size = cuts.cut_size;
+    cut_push.leaf_count = trees.leaf_count;
+    cut_push.vpl_count = trees.count;
+    cut_push.scene_scale = bvh.scene_scale;
+    add_dispatch<shaders::hybrid_cut::Module>(passes, "hybrid cuts", cut_pipeline, cut_bindings, cut_push,
+                                              cuts.blocks_x * cuts.blocks_y, gbuffer_images(gbuffer));
     shaders::hybrid_gi::Spec spec;
     spec.kTraversal = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
     const auto& gi_pipeline =
@@ -100,25 +98,22 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
     gi_bindings.cuts = cuts.cuts.descriptor();
     gi_bindings.indirect = indirect.descriptor();
     gi_bindings.gi_counters = counters.descriptor();
-    passes.add("hybrid gi", binding_uses<shaders::hybrid_gi::Module>(gi_bindings, gbuffer_images(gbuffer, {indirect})),
-               [&gi_pipeline, b = gi_bindings, trees, cuts, camera, indirect, options,
-                similarity_distance](VkCommandBuffer cmd) {
-                   shaders::hybrid_gi::Push push{};
-                   push.camera_position = {camera.x, camera.y, camera.z};
-                   push.block_size = options.block_size;
-                   push.blocks_x = cuts.blocks_x;
-                   push.blocks_y = cuts.blocks_y;
-                   push.cut_size = cuts.cut_size;
-                   push.leaf_count = trees.leaf_count;
-                   push.vpl_count = trees.count;
-                   push.seed = options.seed;
-                   push.frame = options.frame;
-                   push.visibility = options.visibility ? 1u : 0u;
-                   push.min_cos = options.similarity_min_cos;
-                   push.max_distance = similarity_distance;
-                   push.mock_cuts = options.mock_cuts ? 1u : 0u;
-                   gi_pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
-               });
+    shaders::hybrid_gi::Push gi_push{};
+    gi_push.camera_position = {camera.x, camera.y, camera.z};
+    gi_push.block_size = options.block_size;
+    gi_push.blocks_x = cuts.blocks_x;
+    gi_push.blocks_y = cuts.blocks_y;
+    gi_push.cut_size = cuts.cut_size;
+    gi_push.leaf_count = trees.leaf_count;
+    gi_push.vpl_count = trees.count;
+    gi_push.seed = options.seed;
+    gi_push.frame = options.frame;
+    gi_push.visibility = options.visibility ? 1u : 0u;
+    gi_push.min_cos = options.similarity_min_cos;
+    gi_push.max_distance = similarity_distance;
+    gi_push.mock_cuts = options.mock_cuts ? 1u : 0u;
+    add_dispatch<shaders::hybrid_gi::Module>(passes, "hybrid gi", gi_pipeline, gi_bindings, gi_push,
+                                             {indirect.width, indirect.height}, gbuffer_images(gbuffer, {indirect}));
 }
 
 }  // namespace vplkit::stages

@@ -28,13 +28,10 @@ void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& 
     bindings.vpls = vpls.descriptor();
     bindings.order = sorted_values.descriptor();
     bindings.leaves = leaves.descriptor();
-    passes.add("gather leaves", binding_uses<shaders::gather_leaves::Module>(bindings),
-               [&pipeline, bindings, count, leaves_needed](VkCommandBuffer cmd) {
-                   shaders::gather_leaves::Push push{};
-                   push.count = count;
-                   push.leaf_count = leaves_needed;
-                   pipeline.dispatch(cmd, bindings, push, leaves_needed);
-               });
+    shaders::gather_leaves::Push push{};
+    push.count = count;
+    push.leaf_count = leaves_needed;
+    add_dispatch<shaders::gather_leaves::Module>(passes, "gather leaves", pipeline, bindings, push, leaves_needed);
 }
 
 }  // namespace vplkit::stages

@@ -147,13 +147,11 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
     shaders::light_tree_leaves::Bindings leaf_bindings;
     leaf_bindings.leaves = leaves.descriptor(0, leaf_bytes);
     leaf_bindings.nodes = nodes.descriptor(0, node_bytes);
-    passes.add("light tree leaves", binding_uses<shaders::light_tree_leaves::Module>(leaf_bindings),
-               [&leaves_pipeline, bindings = leaf_bindings, count, leaf_count](VkCommandBuffer cmd) {
-                   shaders::light_tree_leaves::Push push{};
-                   push.count = count;
-                   push.leaf_count = leaf_count;
-                   leaves_pipeline.dispatch(cmd, bindings, push, leaf_count);
-               });
+    shaders::light_tree_leaves::Push leaf_push{};
+    leaf_push.count = count;
+    leaf_push.leaf_count = leaf_count;
+    add_dispatch<shaders::light_tree_leaves::Module>(passes, "light tree leaves", leaves_pipeline, leaf_bindings,
+                                                     leaf_push, leaf_count);
     add_light_tree_level_passes(device, passes, nodes, count, options);
 }
 

@@ -61,15 +61,12 @@ void add_scene_light_tree_passes(Device& device, StepList& passes, const SceneLi
     b.emitters = sources.emitters.descriptor();
     b.lights = sources.punctual.descriptor();
     b.nodes = tree.nodes.descriptor();
-    passes.add(
-        "light tree scene leaves", binding_uses<shaders::light_tree_scene_leaves::Module>(b),
-        [&pipeline, b, count, leaf_count = tree.leaf_count, triangles = sources.triangle_count](VkCommandBuffer cmd) {
-            shaders::light_tree_scene_leaves::Push push{};
-            push.count = count;
-            push.leaf_count = leaf_count;
-            push.triangle_count = triangles;
-            pipeline.dispatch(cmd, b, push, leaf_count);
-        });
+    shaders::light_tree_scene_leaves::Push push{};
+    push.count = count;
+    push.leaf_count = tree.leaf_count;
+    push.triangle_count = sources.triangle_count;
+    add_dispatch<shaders::light_tree_scene_leaves::Module>(passes, "light tree scene leaves", pipeline, b, push,
+                                                           tree.leaf_count);
     add_light_tree_level_passes(device, passes, tree.nodes, count, options);
 }
 

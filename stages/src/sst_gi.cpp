@@ -35,18 +35,16 @@ void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbu
     bindings.sst_leaves = trees.leaves.descriptor();
     bindings.indirect = indirect.descriptor();
     bindings.gi_counters = counters.descriptor();
-    passes.add("sst gi", binding_uses<shaders::sst_gi::Module>(bindings, gbuffer_images(gbuffer, {indirect})),
-               [&pipeline, b = bindings, bvh, trees, camera_position, indirect, options](VkCommandBuffer cmd) {
-                   shaders::sst_gi::Push push{};
-                   push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
-                   push.samples_per_pixel = options.samples_per_pixel;
-                   push.leaf_count = trees.leaf_count;
-                   push.vpl_count = trees.count;
-                   push.seed = options.seed;
-                   push.frame = options.frame;
-                   push.visibility = options.visibility ? 1u : 0u;
-                   pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
-               });
+    shaders::sst_gi::Push push{};
+    push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
+    push.samples_per_pixel = options.samples_per_pixel;
+    push.leaf_count = trees.leaf_count;
+    push.vpl_count = trees.count;
+    push.seed = options.seed;
+    push.frame = options.frame;
+    push.visibility = options.visibility ? 1u : 0u;
+    add_dispatch<shaders::sst_gi::Module>(passes, "sst gi", pipeline, bindings, push, {indirect.width, indirect.height},
+                                          gbuffer_images(gbuffer, {indirect}));
 }
 
 }  // namespace vplkit::stages

@@ -30,12 +30,10 @@ void add_tonemap_passes(Device& device, StepList& passes, const ImageView& hdr, 
     bindings.hdr = hdr.descriptor(VK_IMAGE_LAYOUT_GENERAL);
     bindings.ldr = ldr.descriptor(VK_IMAGE_LAYOUT_GENERAL);
     bindings.stats = stats.descriptor();
-    passes.add("tonemap", binding_uses<shaders::tonemap::Module>(bindings, {hdr, ldr}),
-               [&pipeline, bindings, hdr, exposure](VkCommandBuffer cmd) {
-                   shaders::tonemap::Push push{};
-                   push.exposure = exposure;
-                   pipeline.dispatch(cmd, bindings, push, hdr.width, hdr.height);
-               });
+    shaders::tonemap::Push push{};
+    push.exposure = exposure;
+    add_dispatch<shaders::tonemap::Module>(passes, "tonemap", pipeline, bindings, push, {hdr.width, hdr.height},
+                                           {hdr, ldr});
 }
 
 }  // namespace vplkit::stages

@@ -59,12 +59,10 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
     shaders::vpl_bounds::Bindings bounds_bindings;
     bounds_bindings.vpls = vpls.descriptor();
     bounds_bindings.bounds = bounds.descriptor();
-    passes.add("vpl bounds", binding_uses<shaders::vpl_bounds::Module>(bounds_bindings),
-               [&bounds_pipeline, bindings = bounds_bindings, count](VkCommandBuffer cmd) {
-                   shaders::vpl_bounds::Push push{};
-                   push.vpl_count = count;
-                   bounds_pipeline.dispatch(cmd, bindings, push, count);
-               });
+    shaders::vpl_bounds::Push bounds_push{};
+    bounds_push.vpl_count = count;
+    add_dispatch<shaders::vpl_bounds::Module>(passes, "vpl bounds", bounds_pipeline, bounds_bindings, bounds_push,
+                                              count);
 
     const auto& keys_pipeline = device.pipeline<shaders::morton_keys::Pipeline>();
     shaders::morton_keys::Bindings keys_bindings;
@@ -72,12 +70,9 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
     keys_bindings.bounds = bounds.descriptor();
     keys_bindings.keys = keys.descriptor();
     keys_bindings.values = values.descriptor();
-    passes.add("morton keys", binding_uses<shaders::morton_keys::Module>(keys_bindings),
-               [&keys_pipeline, bindings = keys_bindings, count](VkCommandBuffer cmd) {
-                   shaders::morton_keys::Push push{};
-                   push.vpl_count = count;
-                   keys_pipeline.dispatch(cmd, bindings, push, count);
-               });
+    shaders::morton_keys::Push keys_push{};
+    keys_push.vpl_count = count;
+    add_dispatch<shaders::morton_keys::Module>(passes, "morton keys", keys_pipeline, keys_bindings, keys_push, count);
 }
 
 }  // namespace vplkit::stages
