@@ -1,6 +1,6 @@
 # cmake --install: the libraries, their headers (runtime, stages and the generated shader headers),
 # the GLSL sources and lib/cmake/vplkit/vplkitConfig.cmake, so that a project can
-#   find_package(vplkit CONFIG REQUIRED)
+#   find_package(vplkit CONFIG REQUIRED)                     # or COMPONENTS stages: no TinyGLTF needed
 #   target_link_libraries(app PRIVATE vplkit::runtime)   # or vplkit::stages, vplkit::shaders
 # The same vplkit:: names are aliases in the build tree (add_subdirectory, FetchContent).
 include(CMakePackageConfigHelpers)
@@ -14,7 +14,10 @@ if(NOT vplkit_IS_TOP_LEVEL)
   set(vplkit_SHADER_DIR "${PROJECT_SOURCE_DIR}/shaders" PARENT_SCOPE)
 endif()
 
-install(TARGETS vplkit_shaders vplkit_stages vplkit_runtime EXPORT vplkitTargets)
+# Two export sets, so that a caller of the stages alone needs neither TinyGLTF nor Threads (the
+# runtime's own dependencies): vplkitConfig.cmake loads the runtime's only when asked or found.
+install(TARGETS vplkit_shaders vplkit_stages EXPORT vplkitStagesTargets)
+install(TARGETS vplkit_runtime EXPORT vplkitRuntimeTargets)
 # Not part of the package's targets; installed for users who generate headers for their own shaders.
 install(TARGETS vplkit-codegen)
 
@@ -30,7 +33,8 @@ install(DIRECTORY "${CMAKE_BINARY_DIR}/generated/vplkit_shaders/"
 install(DIRECTORY "${PROJECT_SOURCE_DIR}/shaders/" DESTINATION "${VPLKIT_INSTALL_SHADERDIR}"
         FILES_MATCHING PATTERN "*.comp" PATTERN "*.vert" PATTERN "*.frag" PATTERN "*.glsl")
 
-install(EXPORT vplkitTargets NAMESPACE vplkit:: DESTINATION "${VPLKIT_INSTALL_CMAKEDIR}")
+install(EXPORT vplkitStagesTargets NAMESPACE vplkit:: DESTINATION "${VPLKIT_INSTALL_CMAKEDIR}")
+install(EXPORT vplkitRuntimeTargets NAMESPACE vplkit:: DESTINATION "${VPLKIT_INSTALL_CMAKEDIR}")
 configure_package_config_file("${CMAKE_CURRENT_LIST_DIR}/vplkitConfig.cmake.in"
   "${PROJECT_BINARY_DIR}/vplkitConfig.cmake"
   INSTALL_DESTINATION "${VPLKIT_INSTALL_CMAKEDIR}"
