@@ -1,5 +1,6 @@
 #include "vplkit/stages/brsm.hpp"
 
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/brsm_contribution.hpp"
 #include "vplkit/shaders/brsm_filter.hpp"
@@ -90,24 +91,22 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     contribution_push.core_radius = options.core_radius * scene_scale;
     contribution_push.max_radius = options.max_radius * scene_scale;
     contribution_push.scene_scale = scene_scale;
-    passes.add(
-        "brsm contribution",
-        {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(gbuffer.position),
-         Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
-         Use::write(light.contribution), Use::write(light.flux_mips)},
-        [&contribution, rsm_position, rsm_normal, rsm_flux, gbuffer, light, contribution_push](VkCommandBuffer cmd) {
-            shaders::brsm_contribution::Bindings b;
-            b.rsm_position = rsm_position.descriptor();
-            b.rsm_normal = rsm_normal.descriptor();
-            b.rsm_flux = rsm_flux.descriptor();
-            b.gbuffer_position = gbuffer.position.descriptor();
-            b.gbuffer_normal = gbuffer.normal.descriptor();
-            b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-            b.gbuffer_albedo = gbuffer.albedo.descriptor();
-            b.contribution = light.contribution.descriptor();
-            b.flux_luminance = light.flux_mips.descriptor();
-            contribution.dispatch(cmd, b, contribution_push, contribution_push.map_size, contribution_push.map_size);
-        });
+    shaders::brsm_contribution::Bindings contribution_bindings;
+    contribution_bindings.rsm_position = rsm_position.descriptor();
+    contribution_bindings.rsm_normal = rsm_normal.descriptor();
+    contribution_bindings.rsm_flux = rsm_flux.descriptor();
+    contribution_bindings.gbuffer_position = gbuffer.position.descriptor();
+    contribution_bindings.gbuffer_normal = gbuffer.normal.descriptor();
+    contribution_bindings.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+    contribution_bindings.gbuffer_albedo = gbuffer.albedo.descriptor();
+    contribution_bindings.contribution = light.contribution.descriptor();
+    contribution_bindings.flux_luminance = light.flux_mips.descriptor();
+    add_dispatch(passes, "brsm contribution",
+                 {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(gbuffer.position),
+                  Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
+                  Use::write(light.contribution), Use::write(light.flux_mips)},
+                 contribution, contribution_bindings, contribution_push,
+                 {contribution_push.map_size, contribution_push.map_size});
 
     shaders::brsm_filter::Spec filter_spec;
     filter_spec.kFilterRadius = int32_t(options.filter_radius);
@@ -117,18 +116,16 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     filter_push.sigma = options.filter_sigma;
     filter_push.min_cos = options.similarity_min_cos;
     filter_push.max_distance = options.similarity_max_distance * scene_scale;
-    passes.add("brsm filter",
-               {Use::read(map.position), Use::read(map.normal), Use::read(light.contribution),
-                Use::read(light.flux_mips), Use::write(light.contribution_mips)},
-               [&filter, rsm_position, rsm_normal, light, filter_push](VkCommandBuffer cmd) {
-                   shaders::brsm_filter::Bindings b;
-                   b.rsm_position = rsm_position.descriptor();
-                   b.rsm_normal = rsm_normal.descriptor();
-                   b.contribution = light.contribution.descriptor();
-                   b.flux_luminance = light.flux_mips.descriptor();
-                   b.filtered = light.contribution_mips.descriptor();
-                   filter.dispatch(cmd, b, filter_push, filter_push.map_size, filter_push.map_size);
-               });
+    shaders::brsm_filter::Bindings filter_bindings;
+    filter_bindings.rsm_position = rsm_position.descriptor();
+    filter_bindings.rsm_normal = rsm_normal.descriptor();
+    filter_bindings.contribution = light.contribution.descriptor();
+    filter_bindings.flux_luminance = light.flux_mips.descriptor();
+    filter_bindings.filtered = light.contribution_mips.descriptor();
+    add_dispatch(passes, "brsm filter",
+                 {Use::read(map.position), Use::read(map.normal), Use::read(light.contribution),
+                  Use::read(light.flux_mips), Use::write(light.contribution_mips)},
+                 filter, filter_bindings, filter_push, {filter_push.map_size, filter_push.map_size});
 
     add_importance_mip_levels_pass(device, passes, light.contribution_mips, size);
     add_importance_mip_levels_pass(device, passes, light.flux_mips, size);
@@ -138,15 +135,13 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     importance_push.texel_count = size * size;
     importance_push.top_offset = top;
     importance_push.defensive_fraction = options.defensive_fraction;
-    passes.add("brsm importance",
-               {Use::read(light.contribution_mips), Use::read(light.flux_mips), Use::write(light.importance_mips)},
-               [&importance, light, importance_push](VkCommandBuffer cmd) {
-                   shaders::brsm_importance::Bindings b;
-                   b.contribution = light.contribution_mips.descriptor();
-                   b.flux = light.flux_mips.descriptor();
-                   b.importance = light.importance_mips.descriptor();
-                   importance.dispatch(cmd, b, importance_push, importance_push.texel_count);
-               });
+    shaders::brsm_importance::Bindings importance_bindings;
+    importance_bindings.contribution = light.contribution_mips.descriptor();
+    importance_bindings.flux = light.flux_mips.descriptor();
+    importance_bindings.importance = light.importance_mips.descriptor();
+    add_dispatch(passes, "brsm importance",
+                 {Use::read(light.contribution_mips), Use::read(light.flux_mips), Use::write(light.importance_mips)},
+                 importance, importance_bindings, importance_push, importance_push.texel_count);
     add_importance_mip_levels_pass(device, passes, light.importance_mips, size);
     add_warp_samples_pass(device, passes, light.importance_mips, light.samples, light.warp_count, size, light.vpl_share,
                           seed);
@@ -156,32 +151,27 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     vpls_push.sample_count = light.vpl_share;
     vpls_push.map_size = size;
     vpls_push.capacity = output.capacity;
-    passes.add(
-        "brsm vpls",
-        {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(light.samples),
-         Use::read(light.warp_count), Use::read(output.count), Use::write(output.vpls)},
-        [&vpls, rsm_position, rsm_normal, rsm_flux, light, vpl_buffer, vpl_count, vpls_push](VkCommandBuffer cmd) {
-            shaders::brsm_vpls::Bindings b;
-            b.rsm_position = rsm_position.descriptor();
-            b.rsm_normal = rsm_normal.descriptor();
-            b.rsm_flux = rsm_flux.descriptor();
-            b.samples = light.samples.descriptor();
-            b.warp = light.warp_count.descriptor();
-            b.vpl_count = vpl_count.descriptor();
-            b.vpls = vpl_buffer.descriptor();
-            vpls.dispatch(cmd, b, vpls_push, vpls_push.sample_count);
-        });
+    shaders::brsm_vpls::Bindings vpls_bindings;
+    vpls_bindings.rsm_position = rsm_position.descriptor();
+    vpls_bindings.rsm_normal = rsm_normal.descriptor();
+    vpls_bindings.rsm_flux = rsm_flux.descriptor();
+    vpls_bindings.samples = light.samples.descriptor();
+    vpls_bindings.warp = light.warp_count.descriptor();
+    vpls_bindings.vpl_count = vpl_count.descriptor();
+    vpls_bindings.vpls = vpl_buffer.descriptor();
+    add_dispatch(passes, "brsm vpls",
+                 {Use::read(map.position), Use::read(map.normal), Use::read(map.flux), Use::read(light.samples),
+                  Use::read(light.warp_count), Use::read(output.count), Use::write(output.vpls)},
+                 vpls, vpls_bindings, vpls_push, vpls_push.sample_count);
 
     const auto& count = device.pipeline<shaders::brsm_vpl_count::Pipeline>();
     shaders::brsm_vpl_count::Push count_push{};
     count_push.sample_count = light.vpl_share;
-    passes.add("brsm vpl count", {Use::read(light.warp_count), Use::read_write(output.count)},
-               [&count, light, vpl_count, count_push](VkCommandBuffer cmd) {
-                   shaders::brsm_vpl_count::Bindings b;
-                   b.warp = light.warp_count.descriptor();
-                   b.vpl_count = vpl_count.descriptor();
-                   count.dispatch(cmd, b, count_push, 1);
-               });
+    shaders::brsm_vpl_count::Bindings count_bindings;
+    count_bindings.warp = light.warp_count.descriptor();
+    count_bindings.vpl_count = vpl_count.descriptor();
+    add_dispatch(passes, "brsm vpl count", {Use::read(light.warp_count), Use::read_write(output.count)}, count,
+                 count_bindings, count_push, 1);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "vplkit/stages/exact_gi.hpp"
 
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/exact_gi.hpp"
 #include "vplkit/shaders/types.hpp"
@@ -43,28 +44,26 @@ void add_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, co
     auto spec = bvh_spec<shaders::exact_gi::Spec>(bvh);
     spec.kExactMinDistanceFraction = min_distance_fraction;
     const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>(spec);
-    passes.add("exact gi",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
-                Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
-                Use::read(vpls), Use::read_write(indirect), Use::read_write(counters)},
-               [&pipeline, gbuffer, bvh, vpls, first, count, camera_position, indirect, counters](VkCommandBuffer cmd) {
-                   shaders::exact_gi::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.bvh_alpha = bvh.alpha.descriptor();
-                   b.gbuffer_position = gbuffer.position.descriptor();
-                   b.gbuffer_normal = gbuffer.normal.descriptor();
-                   b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-                   b.gbuffer_albedo = gbuffer.albedo.descriptor();
-                   b.vpls = vpls.descriptor();
-                   b.indirect = indirect.descriptor();
-                   b.counters = counters.descriptor();
-                   shaders::exact_gi::Push push{};
-                   push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
-                   push.vpl_first = first;
-                   push.vpl_count = count;
-                   pipeline.dispatch(cmd, b, push, indirect.width, indirect.height);
-               });
+    shaders::exact_gi::Bindings b;
+    b.bvh_nodes = bvh.nodes.descriptor();
+    b.bvh_triangles = bvh.triangles.descriptor();
+    b.bvh_alpha = bvh.alpha.descriptor();
+    b.gbuffer_position = gbuffer.position.descriptor();
+    b.gbuffer_normal = gbuffer.normal.descriptor();
+    b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
+    b.gbuffer_albedo = gbuffer.albedo.descriptor();
+    b.vpls = vpls.descriptor();
+    b.indirect = indirect.descriptor();
+    b.counters = counters.descriptor();
+    shaders::exact_gi::Push push{};
+    push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
+    push.vpl_first = first;
+    push.vpl_count = count;
+    add_dispatch(passes, "exact gi",
+                 {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(gbuffer.position),
+                  Use::read(gbuffer.normal), Use::read(gbuffer.geometric_normal), Use::read(gbuffer.albedo),
+                  Use::read(vpls), Use::read_write(indirect), Use::read_write(counters)},
+                 pipeline, b, push, {indirect.width, indirect.height});
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "vplkit/stages/importance_warp.hpp"
 
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/importance_mips.hpp"
 #include "vplkit/shaders/warp_samples.hpp"
@@ -67,16 +68,13 @@ void add_importance_mip_levels_pass(Device& device, StepList& passes, const Buff
     for (uint32_t src_size = size; src_size > 1; src_size /= 2) {
         const uint32_t dst_size = src_size / 2;
         const uint32_t dst_offset = src_offset + src_size * src_size;
-        passes.add("importance mips", {Use::read_write(mips)},
-                   [&pipeline, mips, src_offset, dst_offset, dst_size](VkCommandBuffer cmd) {
-                       shaders::importance_mips::Bindings bindings;
-                       bindings.mips = mips.descriptor();
-                       shaders::importance_mips::Push push{};
-                       push.src_offset = src_offset;
-                       push.dst_offset = dst_offset;
-                       push.dst_size = dst_size;
-                       pipeline.dispatch(cmd, bindings, push, dst_size * dst_size);
-                   });
+        shaders::importance_mips::Bindings bindings;
+        bindings.mips = mips.descriptor();
+        shaders::importance_mips::Push push{};
+        push.src_offset = src_offset;
+        push.dst_offset = dst_offset;
+        push.dst_size = dst_size;
+        add_dispatch(passes, "importance mips", {Use::read_write(mips)}, pipeline, bindings, push, dst_size * dst_size);
         src_offset = dst_offset;
     }
 }
@@ -94,19 +92,17 @@ void add_warp_samples_pass(Device& device, StepList& passes, const BufferView& m
     const auto& pipeline = device.pipeline<shaders::warp_samples::Pipeline>();
     const uint32_t levels = uint32_t(std::countr_zero(size));
     const uint32_t top_offset = uint32_t(floats - 1);
-    passes.add("warp samples", {Use::read(mips), Use::write(samples), Use::write(count)},
-               [&pipeline, mips, samples, count, sample_count, seed, levels, top_offset](VkCommandBuffer cmd) {
-                   shaders::warp_samples::Bindings bindings;
-                   bindings.mips = mips.descriptor();
-                   bindings.samples = samples.descriptor();
-                   bindings.result = count.descriptor();
-                   shaders::warp_samples::Push push{};
-                   push.sample_count = sample_count;
-                   push.seed = seed;
-                   push.levels = levels;
-                   push.top_offset = top_offset;
-                   pipeline.dispatch(cmd, bindings, push, sample_count);
-               });
+    shaders::warp_samples::Bindings bindings;
+    bindings.mips = mips.descriptor();
+    bindings.samples = samples.descriptor();
+    bindings.result = count.descriptor();
+    shaders::warp_samples::Push push{};
+    push.sample_count = sample_count;
+    push.seed = seed;
+    push.levels = levels;
+    push.top_offset = top_offset;
+    add_dispatch(passes, "warp samples", {Use::read(mips), Use::write(samples), Use::write(count)}, pipeline, bindings,
+                 push, sample_count);
 }
 
 }  // namespace vplkit::stages

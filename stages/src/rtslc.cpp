@@ -1,4 +1,5 @@
 #include "vplkit/stages/rtslc.hpp"
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/glossy_lobe.hpp"
 
 #include "vplkit/error.hpp"
@@ -113,33 +114,30 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     const ImageView radiance = options.interleave > 1 ? scratch.estimates : indirect;
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);
-        passes.add("rtslc gi",
-                   gbuffer_bvh_uses(gbuffer, bvh,
-                                    {Use::read(trees.light_tree), Use::read(trees.leaves), Use::read(scratch.cuts),
-                                     Use::read_write(counters), Use::read_write(radiance)}),
-                   [&gi_pipeline, gbuffer, bvh, trees, scratch, counters, radiance, camera, options, first,
-                    end](VkCommandBuffer cmd) {
-                       shaders::rtslc_gi::Bindings b;
-                       bind_bvh(b, bvh);
-                       bind_gbuffer(b, gbuffer);
-                       b.light_tree = trees.light_tree.descriptor();
-                       b.leaves = trees.leaves.descriptor();
-                       b.cuts = scratch.cuts.descriptor();
-                       b.gi_counters = counters.descriptor();
-                       b.radiance = radiance.descriptor();
-                       shaders::rtslc_gi::Push push{};
-                       push.camera_position = camera;
-                       push.seed = options.seed;
-                       push.frame = options.frame;
-                       push.block_size = options.block_size;
-                       push.cut_size = options.samples_per_pixel;
-                       push.blocks_x = scratch.blocks_x();
-                       push.leaf_count = trees.leaf_count;
-                       push.interleave = options.interleave;
-                       push.slot_first = first;
-                       push.slot_end = end;
-                       gi_pipeline.dispatch(cmd, b, push, radiance.width, radiance.height);
-                   });
+        shaders::rtslc_gi::Bindings gi_bindings;
+        bind_bvh(gi_bindings, bvh);
+        bind_gbuffer(gi_bindings, gbuffer);
+        gi_bindings.light_tree = trees.light_tree.descriptor();
+        gi_bindings.leaves = trees.leaves.descriptor();
+        gi_bindings.cuts = scratch.cuts.descriptor();
+        gi_bindings.gi_counters = counters.descriptor();
+        gi_bindings.radiance = radiance.descriptor();
+        shaders::rtslc_gi::Push push{};
+        push.camera_position = camera;
+        push.seed = options.seed;
+        push.frame = options.frame;
+        push.block_size = options.block_size;
+        push.cut_size = options.samples_per_pixel;
+        push.blocks_x = scratch.blocks_x();
+        push.leaf_count = trees.leaf_count;
+        push.interleave = options.interleave;
+        push.slot_first = first;
+        push.slot_end = end;
+        add_dispatch(passes, "rtslc gi",
+                     gbuffer_bvh_uses(gbuffer, bvh,
+                                      {Use::read(trees.light_tree), Use::read(trees.leaves), Use::read(scratch.cuts),
+                                       Use::read_write(counters), Use::read_write(radiance)}),
+                     gi_pipeline, gi_bindings, push, {radiance.width, radiance.height});
     }
 
     if (options.interleave > 1) {

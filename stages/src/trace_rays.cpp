@@ -2,6 +2,7 @@
 
 #include "vplkit/stages/trace_rays.hpp"
 
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/trace_closest.hpp"
 #include "vplkit/shaders/trace_occlusion.hpp"
@@ -21,18 +22,15 @@ void record_trace(Device& device, StepList& passes, const char* name, std::vecto
                   uint32_t ray_count) {
     const auto& pipeline = device.pipeline<Pipeline>(spec);
     check_dispatch_groups(pipeline, name, ray_count);  // past 65,535 workgroups the grid is folded
-    passes.add(name, std::move(uses),
-               [&pipeline, nodes, triangles, alpha, rays, results, ray_count](VkCommandBuffer cmd) {
-                   Bindings bindings;
-                   bindings.bvh_nodes = nodes.descriptor();
-                   bindings.bvh_triangles = triangles.descriptor();
-                   bindings.bvh_alpha = alpha.descriptor();
-                   bindings.rays = rays.descriptor();
-                   bindings.*ResultBinding = results.descriptor();
-                   Push push{};
-                   push.ray_count = ray_count;
-                   pipeline.dispatch(cmd, bindings, push, ray_count);
-               });
+    Bindings bindings;
+    bindings.bvh_nodes = nodes.descriptor();
+    bindings.bvh_triangles = triangles.descriptor();
+    bindings.bvh_alpha = alpha.descriptor();
+    bindings.rays = rays.descriptor();
+    bindings.*ResultBinding = results.descriptor();
+    Push push{};
+    push.ray_count = ray_count;
+    add_dispatch(passes, name, std::move(uses), pipeline, bindings, push, ray_count);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "vplkit/stages/upsample.hpp"
 
+#include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/gbuffer_downsample.hpp"
 #include "vplkit/shaders/types.hpp"
@@ -80,24 +81,22 @@ uint32_t half_resolution(uint32_t full) {
 void add_gbuffer_downsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half) {
     validate_half_gbuffer("gbuffer downsample", full, half);
     const auto& pipeline = device.pipeline<shaders::gbuffer_downsample::Pipeline>();
-    passes.add("gbuffer downsample",
-               {Use::read(full.position), Use::read(full.normal), Use::read(full.geometric_normal),
-                Use::read(full.albedo), Use::read(full.emission), Use::write(half.position), Use::write(half.normal),
-                Use::write(half.geometric_normal), Use::write(half.albedo), Use::write(half.emission)},
-               [&pipeline, full, half](VkCommandBuffer cmd) {
-                   shaders::gbuffer_downsample::Bindings b;
-                   b.full_position = full.position.descriptor();
-                   b.full_normal = full.normal.descriptor();
-                   b.full_geometric_normal = full.geometric_normal.descriptor();
-                   b.full_albedo = full.albedo.descriptor();
-                   b.full_emission = full.emission.descriptor();
-                   b.half_position = half.position.descriptor();
-                   b.half_normal = half.normal.descriptor();
-                   b.half_geometric_normal = half.geometric_normal.descriptor();
-                   b.half_albedo = half.albedo.descriptor();
-                   b.half_emission = half.emission.descriptor();
-                   pipeline.dispatch(cmd, b, half.width(), half.height());
-               });
+    shaders::gbuffer_downsample::Bindings b;
+    b.full_position = full.position.descriptor();
+    b.full_normal = full.normal.descriptor();
+    b.full_geometric_normal = full.geometric_normal.descriptor();
+    b.full_albedo = full.albedo.descriptor();
+    b.full_emission = full.emission.descriptor();
+    b.half_position = half.position.descriptor();
+    b.half_normal = half.normal.descriptor();
+    b.half_geometric_normal = half.geometric_normal.descriptor();
+    b.half_albedo = half.albedo.descriptor();
+    b.half_emission = half.emission.descriptor();
+    add_dispatch(passes, "gbuffer downsample",
+                 {Use::read(full.position), Use::read(full.normal), Use::read(full.geometric_normal),
+                  Use::read(full.albedo), Use::read(full.emission), Use::write(half.position), Use::write(half.normal),
+                  Use::write(half.geometric_normal), Use::write(half.albedo), Use::write(half.emission)},
+                 pipeline, b, {half.width(), half.height()});
 }
 
 UpsampleOptions upsample_options_for_scene(float scene_scale) {
@@ -126,20 +125,18 @@ void add_upsample_pass(Device& device, StepList& passes, const GbufferViews& ful
     shaders::upsample_bilateral::Push push{};
     push.min_cos = options.min_cos;
     push.max_distance = options.max_distance;
-    passes.add("upsample",
-               {Use::read(full.position), Use::read(full.normal), Use::read(half.position), Use::read(half.normal),
-                Use::read(half_indirect), Use::write(full_indirect), Use::read_write(counters)},
-               [&pipeline, full, half, half_indirect, full_indirect, counters, push](VkCommandBuffer cmd) {
-                   shaders::upsample_bilateral::Bindings b;
-                   b.full_position = full.position.descriptor();
-                   b.full_normal = full.normal.descriptor();
-                   b.half_position = half.position.descriptor();
-                   b.half_normal = half.normal.descriptor();
-                   b.half_indirect = half_indirect.descriptor();
-                   b.full_indirect = full_indirect.descriptor();
-                   b.counters = counters.descriptor();
-                   pipeline.dispatch(cmd, b, push, full_indirect.width, full_indirect.height);
-               });
+    shaders::upsample_bilateral::Bindings b;
+    b.full_position = full.position.descriptor();
+    b.full_normal = full.normal.descriptor();
+    b.half_position = half.position.descriptor();
+    b.half_normal = half.normal.descriptor();
+    b.half_indirect = half_indirect.descriptor();
+    b.full_indirect = full_indirect.descriptor();
+    b.counters = counters.descriptor();
+    add_dispatch(passes, "upsample",
+                 {Use::read(full.position), Use::read(full.normal), Use::read(half.position), Use::read(half.normal),
+                  Use::read(half_indirect), Use::write(full_indirect), Use::read_write(counters)},
+                 pipeline, b, push, {full_indirect.width, full_indirect.height});
 }
 
 }  // namespace vplkit::stages

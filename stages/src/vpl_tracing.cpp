@@ -132,24 +132,22 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     push.capacity = capacity;
     // vpl_capacity refused max_bounces = 2^32 - 1: this does not wrap.
     push.step_limit = options.max_bounces + 1;
-    passes.add("trace vpls",
-               {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(sources.lights),
-                Use::read(sources.emissive), Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo),
-                Use::write(output.path_vpls), Use::write(output.path_counts), Use::read_write(count)},
-               [&pipeline, bvh, sources, output, push](VkCommandBuffer cmd) {
-                   shaders::trace_vpls::Bindings b;
-                   b.bvh_nodes = bvh.nodes.descriptor();
-                   b.bvh_triangles = bvh.triangles.descriptor();
-                   b.bvh_alpha = bvh.alpha.descriptor();
-                   b.lights = sources.lights.descriptor();
-                   b.emissive = sources.emissive.descriptor();
-                   b.emitter_cdf = sources.emitter_cdf.descriptor();
-                   b.albedo = sources.triangle_albedo.descriptor();
-                   b.path_vpls = output.path_vpls.descriptor();
-                   b.vpl_count = output.count.descriptor();
-                   b.path_vpl_counts = output.path_counts.descriptor();
-                   pipeline.dispatch(cmd, b, push, push.path_count);
-               });
+    shaders::trace_vpls::Bindings b;
+    b.bvh_nodes = bvh.nodes.descriptor();
+    b.bvh_triangles = bvh.triangles.descriptor();
+    b.bvh_alpha = bvh.alpha.descriptor();
+    b.lights = sources.lights.descriptor();
+    b.emissive = sources.emissive.descriptor();
+    b.emitter_cdf = sources.emitter_cdf.descriptor();
+    b.albedo = sources.triangle_albedo.descriptor();
+    b.path_vpls = output.path_vpls.descriptor();
+    b.vpl_count = output.count.descriptor();
+    b.path_vpl_counts = output.path_counts.descriptor();
+    add_dispatch(passes, "trace vpls",
+                 {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(sources.lights),
+                  Use::read(sources.emissive), Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo),
+                  Use::write(output.path_vpls), Use::write(output.path_counts), Use::read_write(count)},
+                 pipeline, b, push, push.path_count);
 
     add_pack_vpls_passes(device, passes, options, output);
 }

@@ -120,4 +120,24 @@ void add_dispatch(StepList& passes, std::string name, const Pipeline& pipeline,
                });
 }
 
+// The same with the uses written by the caller (steps whose uses are not derived from the
+// bindings yet; deriving them would change the barriers recorded).
+template <class Pipeline>
+void add_dispatch(StepList& passes, std::string name, std::vector<Use> uses, const Pipeline& pipeline,
+                  const typename Pipeline::Bindings& bindings, const typename Pipeline::Push& push,
+                  DispatchThreads threads) {
+    passes.add(std::move(name), std::move(uses), [&pipeline, bindings, push, threads](VkCommandBuffer cmd) {
+        pipeline.dispatch(cmd, bindings, push, threads.x, threads.y, threads.z);
+    });
+}
+
+// The same for a shader without push constants.
+template <PipelineWithoutPush Pipeline>
+void add_dispatch(StepList& passes, std::string name, std::vector<Use> uses, const Pipeline& pipeline,
+                  const typename Pipeline::Bindings& bindings, DispatchThreads threads) {
+    passes.add(std::move(name), std::move(uses), [&pipeline, bindings, threads](VkCommandBuffer cmd) {
+        pipeline.dispatch(cmd, bindings, threads.x, threads.y, threads.z);
+    });
+}
+
 }  // namespace vplkit::stages
