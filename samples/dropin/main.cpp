@@ -121,6 +121,9 @@ int main() {
         const vplkit::Bvh bvh = vplkit::build_bvh(scene.floor);
 
         // The kit's view of the device: pipelines are created on it once, on first use.
+        // The device was created with vplkit::stages::required_device_features() (plain_vulkan.cpp):
+        // Vulkan 1.3, VK_KHR_push_descriptor, shaderInt64, scalarBlockLayout, synchronization2,
+        // dynamicRendering.
         vplkit::stages::Device kit(gpu.physical_device, gpu.device);
 
         // Buffers, sized by the stages' requirements and allocated by the "renderer".

@@ -1,5 +1,7 @@
 #include "plain_vulkan.hpp"
 
+#include "vplkit/stages/device_requirements.hpp"
+
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -12,17 +14,6 @@ void check(VkResult result, const char* call) {
 }
 
 namespace {
-
-bool has_extension(VkPhysicalDevice device, const char* name) {
-    uint32_t count = 0;
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr);
-    std::vector<VkExtensionProperties> extensions(count);
-    vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data());
-    for (const auto& e : extensions) {
-        if (std::strcmp(e.extensionName, name) == 0) return true;
-    }
-    return false;
-}
 
 bool has_layer(const char* name) {
     uint32_t count = 0;
@@ -83,10 +74,7 @@ Gpu Gpu::create(bool validation) {
             VkPhysicalDeviceProperties properties;
             vkGetPhysicalDeviceProperties(device, &properties);
             const bool cpu = properties.deviceType == VK_PHYSICAL_DEVICE_TYPE_CPU;
-            if (cpu != (pass == 1) || properties.apiVersion < VK_API_VERSION_1_3 ||
-                !has_extension(device, VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME)) {
-                continue;
-            }
+            if (cpu != (pass == 1) || !vplkit::stages::missing_device_features(device).empty()) continue;
             int best = -1;
             uint32_t families = 0;
             vkGetPhysicalDeviceQueueFamilyProperties(device, &families, nullptr);
@@ -104,29 +92,26 @@ Gpu Gpu::create(bool validation) {
         }
     }
     if (gpu.physical_device == VK_NULL_HANDLE) {
-        throw std::runtime_error("no Vulkan 1.3 device with VK_KHR_push_descriptor and a compute queue");
+        std::string why;  // what the kit would miss on each device
+        for (VkPhysicalDevice device : devices) {
+            for (const std::string& m : vplkit::stages::missing_device_features(device)) why += " " + m + ";";
+        }
+        throw std::runtime_error("no device with a compute queue and what vplkit's stages need:" + why);
     }
 
-    // What the kit's shaders use: 64-bit integers (sort keys), scalar block layout (vec3 arrays),
-    // synchronization2 (the stages' barriers), push descriptors (every kit pipeline).
-    VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    f13.synchronization2 = VK_TRUE;
-    VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES, &f13};
-    f12.scalarBlockLayout = VK_TRUE;
-    f12.shaderBufferInt64Atomics = VK_TRUE;
-    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &f12};
-    features.features.shaderInt64 = VK_TRUE;
+    // Exactly what vplkit's stages need (vplkit/stages/device_requirements.hpp); a renderer adds
+    // its own features to these structs and its own extensions to the list.
+    vplkit::stages::DeviceRequirements kit_needs = vplkit::stages::required_device_features();
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
     queue_info.queueFamilyIndex = gpu.queue_family;
     queue_info.queueCount = 1;
     queue_info.pQueuePriorities = &priority;
-    const char* extension = VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME;
-    VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, &features};
+    VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO, kit_needs.chain()};
     device_info.queueCreateInfoCount = 1;
     device_info.pQueueCreateInfos = &queue_info;
-    device_info.enabledExtensionCount = 1;
-    device_info.ppEnabledExtensionNames = &extension;
+    device_info.enabledExtensionCount = uint32_t(kit_needs.extensions.size());
+    device_info.ppEnabledExtensionNames = kit_needs.extensions.data();
     DROPIN_CHECK(vkCreateDevice(gpu.physical_device, &device_info, nullptr, &gpu.device));
     vkGetDeviceQueue(gpu.device, gpu.queue_family, 0, &gpu.queue);
 

@@ -26,8 +26,8 @@ struct Gpu {
     std::string name;  // the device's name
 
     // The first device (a GPU before a CPU implementation) with a compute queue and what vplkit's
-    // stages need: Vulkan 1.3 (synchronization2), VK_KHR_push_descriptor, scalarBlockLayout,
-    // shaderInt64. `validation`: enable VK_LAYER_KHRONOS_validation when it is installed.
+    // stages need (vplkit::stages::required_device_features(), enabled as it lists them).
+    // `validation`: enable VK_LAYER_KHRONOS_validation when it is installed.
     static Gpu create(bool validation);
     void destroy();
 

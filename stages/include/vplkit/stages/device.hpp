@@ -9,8 +9,9 @@
 //   vplkit::stages::add_sst_passes(kit, steps, leaves, nodes, counters, count);
 //   steps.record(cmd);
 //
-// The device must have VK_KHR_push_descriptor and synchronization2 enabled (every kit pipeline
-// pushes its descriptors), plus scalarBlockLayout (see README: "Use it in your renderer").
+// The device must have been created with what required_device_features() lists (Vulkan 1.3,
+// VK_KHR_push_descriptor, shaderInt64, scalarBlockLayout, synchronization2, dynamicRendering;
+// vplkit/stages/device_requirements.hpp), and missing_device_features() says what a device lacks.
 
 #include "vplkit/error.hpp"
 #include "vplkit/stages/views.hpp"

@@ -1,0 +1,80 @@
+// required_device_features and its check: one list of what the kit's shaders and recording use
+// (SPIR-V capabilities: Shader, Int64, ImageQuery; scalar block layout; synchronization2 barriers;
+// dynamic rendering in the raster stages; push descriptors), so README, headers and samples cite
+// one function instead of three lists.
+
+#include "vplkit/stages/device_requirements.hpp"
+
+#include <algorithm>
+
+namespace vplkit::stages {
+namespace {
+
+std::string version_name(uint32_t version) {
+    return std::to_string(VK_API_VERSION_MAJOR(version)) + "." + std::to_string(VK_API_VERSION_MINOR(version));
+}
+
+}  // namespace
+
+DeviceRequirements required_device_features() {
+    DeviceRequirements needs;
+    needs.extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    needs.features.features.shaderInt64 = VK_TRUE;
+    needs.features12.scalarBlockLayout = VK_TRUE;
+    needs.features13.synchronization2 = VK_TRUE;
+    needs.features13.dynamicRendering = VK_TRUE;
+    needs.chain();
+    return needs;
+}
+
+DeviceSupport DeviceSupport::query(VkPhysicalDevice physical_device) {
+    DeviceSupport support;
+    VkPhysicalDeviceProperties properties;
+    vkGetPhysicalDeviceProperties(physical_device, &properties);
+    support.api_version = properties.apiVersion;
+    uint32_t count = 0;
+    vkEnumerateDeviceExtensionProperties(physical_device, nullptr, &count, nullptr);
+    std::vector<VkExtensionProperties> extensions(count);
+    vkEnumerateDeviceExtensionProperties(physical_device, nullptr, &count, extensions.data());
+    for (const VkExtensionProperties& e : extensions) support.extensions.emplace_back(e.extensionName);
+    // The 1.2/1.3 structs may only be queried on a device that has that version.
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    if (support.api_version >= VK_API_VERSION_1_3) {
+        features.pNext = &support.features12;
+        support.features12.pNext = &support.features13;
+    } else if (support.api_version >= VK_API_VERSION_1_2) {
+        features.pNext = &support.features12;
+    }
+    vkGetPhysicalDeviceFeatures2(physical_device, &features);
+    support.features = features.features;
+    support.features12.pNext = nullptr;
+    support.features13.pNext = nullptr;
+    return support;
+}
+
+std::vector<std::string> missing_device_features(const DeviceSupport& support, const DeviceRequirements& needs) {
+    std::vector<std::string> missing;
+    if (support.api_version < needs.api_version) {
+        missing.push_back("Vulkan " + version_name(needs.api_version) + " (the device has " +
+                          version_name(support.api_version) + ")");
+    }
+    for (const char* extension : needs.extensions) {
+        if (std::find(support.extensions.begin(), support.extensions.end(), extension) == support.extensions.end())
+            missing.push_back(std::string("extension ") + extension);
+    }
+    auto check = [&](VkBool32 needed, VkBool32 offered, const char* name, const char* version) {
+        if (needed && !offered) missing.push_back(std::string("feature ") + name + " (Vulkan " + version + ")");
+    };
+    // Every flag that required_device_features() sets.
+    check(needs.features.features.shaderInt64, support.features.shaderInt64, "shaderInt64", "1.0");
+    check(needs.features12.scalarBlockLayout, support.features12.scalarBlockLayout, "scalarBlockLayout", "1.2");
+    check(needs.features13.synchronization2, support.features13.synchronization2, "synchronization2", "1.3");
+    check(needs.features13.dynamicRendering, support.features13.dynamicRendering, "dynamicRendering", "1.3");
+    return missing;
+}
+
+std::vector<std::string> missing_device_features(VkPhysicalDevice physical_device, const DeviceRequirements& needs) {
+    return missing_device_features(DeviceSupport::query(physical_device), needs);
+}
+
+}  // namespace vplkit::stages
