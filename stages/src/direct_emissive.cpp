@@ -21,6 +21,8 @@ void add_direct_emissive_pass(Device& device, StepList& passes, const GbufferVie
         device.pipeline<shaders::direct_emissive::Pipeline>(bvh_spec<shaders::direct_emissive::Spec>(bvh));
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     shaders::direct_emissive::Bindings bindings;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, emitters.triangles});
     bind_bvh(bindings, bvh);
     bind_gbuffer(bindings, gbuffer);
     bindings.emitters = emitters.triangles.descriptor();

@@ -13,6 +13,8 @@ void add_direct_light_pass(Device& device, StepList& passes, const GbufferViews&
     const auto& pipeline = device.pipeline<shaders::direct_light::Pipeline>(bvh_spec<shaders::direct_light::Spec>(bvh));
     // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
     shaders::direct_light::Bindings bindings;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, lights.lights});
     bind_bvh(bindings, bvh);
     bind_gbuffer(bindings, gbuffer);
     bindings.gbuffer_emission = gbuffer.emission.descriptor();

@@ -90,6 +90,9 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
     const auto& pipeline = device.pipeline<shaders::direct_light_tree::Pipeline>(bvh_spec(bvh, spec));
     const ImageView samples_target = options.interleave > 1 ? scratch.estimates : radiance;
     shaders::direct_light_tree::Bindings b;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, tree.nodes, tree.leaf_lights, tree.emitters, tree.punctual,
+                  tree.bottoms, scratch.cuts, counters});
     bind_bvh(b, bvh);
     bind_gbuffer(b, gbuffer);
     b.light_tree = tree.nodes.descriptor();

@@ -115,6 +115,8 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);
         shaders::rtslc_gi::Bindings gi_bindings;
+        // Report the caller's names, not the bindings' (StepList::name).
+        passes.names({bvh.nodes, bvh.triangles, bvh.alpha, trees.light_tree, trees.leaves, scratch.cuts, counters});
         bind_bvh(gi_bindings, bvh);
         bind_gbuffer(gi_bindings, gbuffer);
         gi_bindings.light_tree = trees.light_tree.descriptor();

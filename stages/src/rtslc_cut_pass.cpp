@@ -17,6 +17,8 @@ void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gb
     spec.kShareOutSlots = share_out_slots ? 1u : 0u;
     const auto& cut_pipeline = device.pipeline<shaders::rtslc_cut::Pipeline>(spec);
     shaders::rtslc_cut::Bindings cut_bindings;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, light_tree, scratch.cuts, scratch.representatives, counters});
     bind_bvh(cut_bindings, bvh);
     bind_gbuffer(cut_bindings, gbuffer);
     cut_bindings.light_tree = light_tree.descriptor();
@@ -44,6 +46,8 @@ void add_rtslc_interleave_pass(Device& device, StepList& passes, const GbufferVi
                                float similarity_distance) {
     const auto& interleave_pipeline = device.pipeline<shaders::rtslc_interleave::Pipeline>();
     shaders::rtslc_interleave::Bindings interleave_bindings;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.name(scratch.cuts);
     interleave_bindings.gbuffer_position = gbuffer.position.descriptor();
     interleave_bindings.gbuffer_normal = gbuffer.normal.descriptor();
     interleave_bindings.cuts = scratch.cuts.descriptor();

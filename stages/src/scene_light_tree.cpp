@@ -56,6 +56,8 @@ void add_scene_light_tree_passes(Device& device, StepList& passes, const SceneLi
     spec.local_size_x = options.workgroup_size;
     const auto& pipeline = device.pipeline<shaders::light_tree_scene_leaves::Pipeline>(spec);
     shaders::light_tree_scene_leaves::Bindings b;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({sources.proxies, tree.leaf_lights, sources.emitters, sources.punctual, tree.nodes});
     b.proxies = sources.proxies.descriptor();
     b.order = tree.leaf_lights.descriptor();
     b.emitters = sources.emitters.descriptor();

@@ -74,6 +74,7 @@ void add_pack_vpls_passes(Device& device, StepList& passes, const VplTracingOpti
     // The stable compaction: each path's VPLs to the VPLs of the paths before it.
     require_buffers(options, output);
     const uint32_t blocks = block_count(options.paths);
+    passes.names({output.path_counts, output.block_vpls, output.count, output.path_vpls, output.vpls, output.bounces});
     {
         shaders::vpl_block_counts::Bindings b;
         b.path_vpl_counts = output.path_counts.descriptor();
