@@ -58,6 +58,11 @@ void check_buffers(const BvhGpuBuildBuffers& b, uint32_t count) {
 
 // Clears what the bounds pass reduces into (an empty centroid box, scale 0) and, for a build,
 // the statistics the depth and write passes gather.
+// Reports the caller's names, not the bindings' (StepList::name).
+void name_views(StepList& passes, const BvhGpuBuildBuffers& b) {
+    passes.names({b.input, b.nodes, b.triangles, b.info, b.build_nodes, b.build_links, b.keys, b.order, b.alpha});
+}
+
 void add_clear(StepList& passes, const BufferView& info, bool statistics) {
     passes.add("bvh build clear", {Use::transfer_dst(info)}, [info, statistics](VkCommandBuffer cmd) {
         const VkDeviceSize lo = offsetof(shaders::BvhBuildInfo, centroid_lo);
@@ -143,6 +148,7 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
                               uint32_t count, const BvhGpuBuildOptions& options) {
     validate(options, count);
     check_buffers(b, count);
+    name_views(passes, b);
     if (sorter.options().key_bits < kBvhBuildKeyBits || sorter.max_count() < count) {
         throw Error("GPU BVH build: the sorter orders " + std::to_string(sorter.options().key_bits) +
                     " key bits of up to " + std::to_string(sorter.max_count()) + " pairs; the build needs " +
@@ -205,6 +211,7 @@ void add_bvh_gpu_refit_passes(Device& device, StepList& passes, const BvhGpuBuil
                               const BvhGpuBuildOptions& options) {
     validate(options, count);
     check_buffers(b, count);
+    name_views(passes, b);
     add_clear(passes, b.info, false);
     add_bounds(device, passes, b, count);
     add_boxes_and_write(device, passes, b, count, options);

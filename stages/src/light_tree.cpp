@@ -92,6 +92,7 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
 void add_light_tree_level_passes(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
                                  const LightTreeOptions& options) {
     check(device, count, options);
+    passes.name(nodes);  // report the caller's name, not the binding's
     const uint32_t leaf_count = light_tree_leaf_count(count);
     const VkDeviceSize node_bytes = VkDeviceSize(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);
     if (nodes.size < node_bytes) {
@@ -128,6 +129,7 @@ void add_light_tree_level_passes(Device& device, StepList& passes, const BufferV
 void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
                            uint32_t count, const LightTreeOptions& options) {
     check(device, count, options);
+    passes.names({leaves, nodes});  // report the caller's names, not the bindings'
     const uint32_t leaf_count = light_tree_leaf_count(count);
     const VkDeviceSize leaf_bytes = VkDeviceSize(leaf_count) * sizeof(shaders::Vpl);
     const VkDeviceSize node_bytes = VkDeviceSize(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode);

@@ -1,6 +1,6 @@
 // StepList::entry()/exit() and the recorded barriers name each resource by the caller's view,
 // never by a shader binding ("order", "nodes", "counters"): a frame graph matches them back to its
-// own buffers by name. A real chain (VPL keys -> radix sort -> gather leaves -> SST) over buffers
+// own buffers by name. A real chain (VPL keys -> radix sort -> gather leaves -> SST, light tree) over buffers
 // whose names no shader binding has.
 
 #include "vplkit/buffer.hpp"
@@ -8,6 +8,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/leaves.hpp"
+#include "vplkit/stages/light_tree.hpp"
 #include "vplkit/stages/radix_sort.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
@@ -38,9 +39,11 @@ TEST_CASE("step names: entry, exit and barriers report the caller's view names t
     auto leaf_buffer = buffer(leaves * sizeof(vplkit::shaders::Vpl), "my leaves");
     auto nodes = buffer(vplkit::stages::sst_node_count(count) * sizeof(vplkit::shaders::SstNode), "my tree");
     auto counters = buffer(vplkit::stages::sst_counter_count(count) * sizeof(uint32_t), "my counters");
+    auto light_nodes =
+        buffer(vplkit::stages::light_tree_node_count(count) * sizeof(vplkit::shaders::LightTreeNode), "my light tree");
     const std::set<std::string> caller_names = {
-        "my lights",         "my bounds",         "my keys",   "my order", "my scratch keys",
-        "my scratch values", "my scratch counts", "my leaves", "my tree",  "my counters"};
+        "my lights",         "my bounds", "my keys", "my order",    "my scratch keys", "my scratch values",
+        "my scratch counts", "my leaves", "my tree", "my counters", "my light tree"};
     // Defined VPLs, so the chain can also run (the names are the point, not the values).
     std::vector<vplkit::shaders::Vpl> lights(count);
     for (uint32_t i = 0; i < count; ++i) {
@@ -56,6 +59,7 @@ TEST_CASE("step names: entry, exit and barriers report the caller's view names t
     sorter.add_pass(passes, keys, values, count);
     vplkit::stages::add_gather_leaves_pass(ctx, passes, vpls, values, leaf_buffer, count);
     vplkit::stages::add_sst_passes(ctx, passes, leaf_buffer, nodes, counters, count);
+    vplkit::stages::add_light_tree_passes(ctx, passes, leaf_buffer, light_nodes, count);
 
     for (const auto& records : {passes.entry(), passes.exit()}) {
         std::set<std::string> seen;
