@@ -70,6 +70,8 @@ double flc_divergence_area(const FlcPartition& p) {
 
 void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidateBuffers& buffers,
                              const FlcPartition& partition, uint32_t triangle_count, uint32_t seed) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({buffers.vertices, buffers.indices, buffers.vertex_random, buffers.candidates});
     validate(partition);
     if (triangle_count == 0) throw Error("flc candidates: the scene has no triangle");
     // One random integer per vertex (scene::Vertex is 72 bytes): a scene built by hand, or by a
@@ -99,6 +101,8 @@ void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidat
 
 void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBuffers& buffers, uint32_t level_count,
                             uint32_t triangle_count) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({buffers.candidates, buffers.counts, buffers.kept_triangles, buffers.divergent_triangles});
     if (level_count < 1 || level_count > kFlcMaxLevels) {
         throw Error("flc compact: level count " + std::to_string(level_count) + " is outside 1.." +
                     std::to_string(kFlcMaxLevels));
@@ -135,6 +139,9 @@ void add_flc_compact_passes(Device& device, StepList& passes, const FlcCompactBu
 void add_flc_vpl_light_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const LightBuffers& lights,
                             const EmitterBuffers& emitters, const FlcVplLightBuffers& buffers,
                             const FlcPartition& partition, uint32_t triangle_count, const FlcVplLightParams& params) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, lights.lights, emitters.triangles, buffers.candidates,
+                  buffers.counts, buffers.kept_triangles, buffers.triangle_albedo, buffers.vpls});
     validate(partition);
     if (triangle_count == 0) throw Error("flc vpl light: the scene has no triangle");
     if (params.emitter_samples == 0) throw Error("flc vpl light: emitter samples per VPL must be at least 1");

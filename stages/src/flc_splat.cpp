@@ -37,6 +37,8 @@ void add_flc_splat_passes(Device& device, StepList& passes, const FlcSplatBuffer
                           const ImageView& indirect, const CameraView& view, const FlcPartition& partition,
                           uint32_t vpl_capacity, float scene_scale, const FlcSplatOptions& options,
                           const ImageView& tiled) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({buffers.candidates, buffers.counts, buffers.kept_triangles, buffers.vpls, buffers.draw_args});
     validate(partition);
     const uint32_t n = options.subtiles;
     if (n < 1 || n > kFlcMaxSubtiles) {

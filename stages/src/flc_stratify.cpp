@@ -88,6 +88,8 @@ std::vector<uint32_t> flc_candidate_order(std::span<const uint32_t> triangle_ord
 
 void add_flc_stratify_passes(Device& device, StepList& passes, const FlcStratifyBuffers& buffers,
                              const FlcPartition& partition, uint32_t candidate_count, uint32_t seed) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({buffers.candidates, buffers.order, buffers.carries});
     validate(partition);
     if (candidate_count == 0) throw Error("flc stratify: the scene has no triangle");
     const auto need = [](const BufferView& view, uint64_t bytes, const char* what) {

@@ -45,6 +45,9 @@ FlcSubdivision flc_subdivision_for(std::span<const double> triangle_areas, const
 void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivideBuffers& buffers,
                             const FlcPartition& partition, const FlcSubdivision& subdivision, uint32_t triangle_count,
                             uint32_t seed) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({buffers.vertices, buffers.indices, buffers.vertex_random, buffers.entries, buffers.candidates,
+                  buffers.triangle_albedo, buffers.candidate_albedo});
     validate(partition);
     if (triangle_count == 0) throw Error("flc subdivide: the scene has no triangle");
     const uint64_t candidates = uint64_t(triangle_count) + subdivision.sub_count;
