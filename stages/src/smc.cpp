@@ -121,6 +121,8 @@ void add_budget_dispatch(StepList& passes, std::string name, const Pipeline& pip
 void add_smc_density_pass(Device& device, StepList& passes, const BufferView& state, const BufferView& queries,
                           const BufferView& density, const BufferView& counters, uint32_t budget, uint32_t k,
                           bool queries_are_vpls, float scene_scale) {
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({state, queries, density, counters});
     if (k < 1 || k > kSmcMaxNeighbours) {
         throw Error("smc density: k must be 1.." + std::to_string(kSmcMaxNeighbours) + ", got " + std::to_string(k));
     }
@@ -152,6 +154,30 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
     const BvhBuffers& bvh = scene.bvh;
     const VplSourceBuffers& sources = scene.sources;
     const uint32_t budget = options.budget;
+    // Report the caller's names, not the bindings' (StepList::name).
+    passes.names({bvh.nodes,
+                  bvh.triangles,
+                  bvh.alpha,
+                  sources.lights,
+                  sources.emissive,
+                  sources.emitter_cdf,
+                  sources.triangle_albedo,
+                  buffers.candidate_density,
+                  buffers.candidate_keys,
+                  buffers.candidate_values,
+                  buffers.candidates,
+                  buffers.counters,
+                  buffers.hits,
+                  buffers.invalid_list,
+                  buffers.moves,
+                  buffers.pool_keys,
+                  buffers.pool_values,
+                  buffers.state,
+                  buffers.valid,
+                  buffers.vpl_density,
+                  buffers.vpl_keys,
+                  buffers.vpl_values,
+                  buffers.vpls});
     const uint32_t pool = needed.pool;
 
     // Line 7 over the candidates, line 18 over the VPLs that entered Y (their own seeds).
