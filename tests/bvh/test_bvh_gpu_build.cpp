@@ -8,6 +8,18 @@
 // answer, exactly. Only which of two triangles at the very same t is reported may differ (a ray
 // through a shared edge, overlapping soup triangles): a tie, accepted when the two t agree to
 // 1e-5 relative (bvh_test_support.hpp's tolerance) and rare.
+//
+// The shaders each check covers (the build's passes, shaders/bvh/; the reference is the host
+// build and a per-node walk of the result):
+//   bvh_build_bounds     the root box and scene scale equal the host's, bit for bit
+//   bvh_build_keys       the alpha split case (the masked key bit puts the masked triangles in the
+//                        root's second subtree; removing it failed that case)
+//   bvh_build_hierarchy  every triangle in exactly one leaf, every triangle inside its leaf's box
+//   bvh_build_depths     the reported depth and the capped leaves (the 38-deep LBVH case)
+//   bvh_build_leaves     each leaf's triangles are the input's vertices and ids
+//   bvh_build_level      every child box inside its parent's (breaking the passes above depth 3
+//                        failed all seven build cases), the same hits as the host for every ray
+//   bvh_build_write      the depth-first layout the traversal reads, node count and leaf counts
 
 #include "bvh_test_support.hpp"
 #include "vplkit/bvh.hpp"

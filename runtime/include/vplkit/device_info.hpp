@@ -108,7 +108,8 @@ struct DeviceChoice {
 //   "cpu", "lavapipe"   the CPU device
 //   "<n>"               device index n as listed by enumerate_devices()
 //   anything else       the device whose name contains it (case-insensitive)
-// `source` says where the request came from for messages ("VPLKIT_DEVICE", "--device").
+// `source` says where the request came from for messages (the environment variable, or the
+// command line's device option).
 // Throws Error naming the request and listing the devices when none matches, or naming the
 // missing features when the requested device cannot run vplkit.
 DeviceChoice choose_device(const std::vector<DeviceInfo>& devices, const std::string& request,
