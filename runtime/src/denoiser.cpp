@@ -57,6 +57,7 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
                                          next.views(), accumulated, next.moments, previous_view_projection_,
                                          has_history_, temporal_options);
     ImageView result = accumulated;
+    variance_from_ = spatial ? 2 : int(current_);
     // The firefly clamp acts on the accumulated image, not on the frame: the history keeps the
     // unclamped mean (unbiased, so a static view converges), and the clamp, which keeps the
     // light anyway, shapes only what is shown and filtered.
@@ -95,6 +96,14 @@ double Denoiser::firefly_moved_fraction() {
         given += 0.2126 * t[0] + 0.7152 * t[1] + 0.0722 * t[2];
     given += taken;
     return given > 0.0 ? taken / given : 0.0;
+}
+
+std::vector<float> Denoiser::variance() {
+    std::vector<float> out;
+    if (variance_from_ < 0) return out;
+    Image& image = variance_from_ == 2 ? estimated_ : history_[variance_from_].color;
+    for (const auto& t : image.download<std::array<float, 4>>()) out.push_back(t[3]);
+    return out;
 }
 
 }  // namespace vplkit

@@ -18,7 +18,11 @@
 #include "vplkit/stages/tonemap.hpp"
 #include "vplkit/vpl_tracing_buffers.hpp"
 
+#include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
+
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <sstream>
 #include <string>
@@ -55,6 +59,23 @@ std::vector<float> rgb_of(Image& image) {
 
 void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
     all.insert(all.end(), more.begin(), more.end());
+}
+
+// RenderedImage's albedo, normal and depth from the frame's G-buffer (renderer.hpp).
+void read_back_aovs(stages::GbufferImages& gbuffer, const scene::Camera& camera, RenderedImage& out) {
+    const auto position = gbuffer.position.download<std::array<float, 4>>();
+    const auto normal = gbuffer.normal.download<std::array<float, 4>>();
+    const auto albedo = gbuffer.albedo.download<std::array<uint16_t, 4>>();  // RGBA16F
+    const glm::vec3 forward = glm::normalize(camera.forward);
+    for (size_t i = 0; i < position.size(); ++i) {
+        const bool covered = position[i][3] > 0.5f;
+        const glm::vec3 p{position[i][0], position[i][1], position[i][2]};
+        out.depth.push_back(covered ? glm::dot(p - camera.position, forward) : INFINITY);
+        for (int c = 0; c < 3; ++c) {
+            out.normal.push_back(covered ? normal[i][c] : 0.0f);
+            out.albedo.push_back(covered ? glm::unpackHalf1x16(albedo[i][c]) : 0.0f);
+        }
+    }
 }
 
 }  // namespace
@@ -212,6 +233,7 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
     append(out.timings, passes.timings());
     denoiser_->end_frame(view.view_projection);
     out.firefly_moved_fraction = denoiser_->firefly_moved_fraction();
+    if (settings.read_back_aovs) out.indirect_variance = denoiser_->variance();
 }
 
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {
@@ -241,6 +263,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         plan_frame(scene_source_, settings, view_key_of(view, w, h),
                    {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key, denoise_history});
     out.plan_summary = plan.summary();
+    out.plan = plan;
     out.vpl_source = plan.vpl_source;
     for (const PlannedStage& s : plan.stages) {
         if (s.runs) out.stages_run.push_back(stage_name(s.stage));
@@ -361,6 +384,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     out.direct = rgb_of(direct_out);
     out.indirect = rgb_of(indirect);
     out.non_finite_pixels = stats.download<uint32_t>(1)[0];
+    if (settings.read_back_aovs) read_back_aovs(gbuffer, camera, out);
     return out;
 }
 

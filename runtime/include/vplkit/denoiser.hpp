@@ -45,6 +45,10 @@ public:
     // off outliers and spread over their neighbours (none of it is lost: the spread keeps the
     // remodulated sum, tests/denoise). Downloads two images; 0 when the clamp is off.
     double firefly_moved_fraction();
+    // The last frame's luminance variance of the demodulated indirect light, a float per pixel,
+    // rows top to bottom: what the a-trous filter weighs by (svgf), or the running variance of
+    // the accumulation (temporal). Downloads one image; empty before the first frame.
+    std::vector<float> variance();
 
 private:
     struct History {
@@ -56,6 +60,8 @@ private:
     uint32_t current_ = 0;  // the history set this frame writes
     bool has_history_ = false;
     bool clamped_this_frame_ = false;
+    // Whose alpha holds the last frame's variance: history_[i].color (0, 1), estimated_ (2), none (-1).
+    int variance_from_ = -1;
     glm::mat4 previous_view_projection_{1.0f};
 };
 

@@ -160,6 +160,9 @@ struct RenderSettings {
     // flc: n x n interleaved sub-tiles (seed 002 sec. 6; 1: off): the splat's cost / n^2, then
     // untiling and a geometry-aware n x n blur.
     uint32_t flc_subtiles = 1;
+    // Also return what a layered image file holds beside the light: RenderedImage::albedo, normal,
+    // depth and, with a denoiser, indirect_variance. Three or four more downloads a frame.
+    bool read_back_aovs = false;
     // Called during long indirect-light work with (done, total) units of work.
     std::function<void(uint32_t done, uint32_t total)> progress;
     // Called during the SMC warm-up with (updates done, updates in all).

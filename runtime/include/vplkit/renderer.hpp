@@ -11,6 +11,7 @@
 #include "vplkit/gpu_two_level_light_tree.hpp"
 #include "vplkit/gpu_scene.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/planner.hpp"
 #include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/brsm.hpp"
@@ -33,7 +34,6 @@ namespace vplkit {
 
 class Context;
 class Image;
-struct FramePlan;
 namespace stages {
 struct GbufferImages;
 }
@@ -76,6 +76,12 @@ struct RenderedImage {
     // --denoise: the firefly clamp's luminance moved (taken off outliers of the accumulated image,
     // spread over their neighbours: none is lost) over the luminance it was given.
     double firefly_moved_fraction = 0.0;
+    FramePlan plan;  // every stage, kept or left out, with the reason (planner.hpp)
+    // With RenderSettings::read_back_aovs, rows top to bottom: the G-buffer's linear base colour
+    // and unit shading normal (3 floats per pixel; 0 where no surface was drawn), the distance
+    // along the camera's forward axis (1 float; +infinity where no surface was drawn) and, when
+    // the denoiser ran, its luminance variance of the demodulated indirect light (1 float).
+    std::vector<float> albedo, normal, depth, indirect_variance;
 };
 
 class Renderer {
