@@ -47,15 +47,24 @@ VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions
 
 void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, bool build_light_tree, bool build_sst,
                                 const VplTreeBuildTags& tags) {
+    add_build_passes(passes, vpls, ElementCount(count), build_light_tree, build_sst, tags);
+}
+
+void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, const ElementCount& vpl_count,
+                                bool build_light_tree, bool build_sst, const VplTreeBuildTags& tags) {
+    if (vpl_count.capacity != count) {
+        throw Error("vpl trees: made for " + std::to_string(count) + " VPLs, given a count of capacity " +
+                    std::to_string(vpl_count.capacity));
+    }
     Scratch& s = *scratch_;
     passes.set_tag(tags.sort);
-    add_vpl_key_passes(*context_, passes, {vpls, s.bounds, s.keys, s.values}, count);
-    s.sorter.add_pass(passes, s.keys, s.values, count);
-    add_gather_leaves_pass(*context_, passes, vpls, s.values, leaves, count);
+    add_vpl_key_passes(*context_, passes, {vpls, s.bounds, s.keys, s.values}, vpl_count);
+    s.sorter.add_pass(passes, s.keys, s.values, count);  // the padding's keys sort last
+    add_gather_leaves_pass(*context_, passes, vpls, s.values, leaves, vpl_count);
     passes.set_tag(tags.light_tree);
-    if (build_light_tree) add_light_tree_passes(*context_, passes, leaves, light_tree, count, options_.light_tree);
+    if (build_light_tree) add_light_tree_passes(*context_, passes, leaves, light_tree, vpl_count, options_.light_tree);
     passes.set_tag(tags.sst);
-    if (build_sst) add_sst_passes(*context_, passes, leaves, sst, s.sst_counters, count, options_.sst);
+    if (build_sst) add_sst_passes(*context_, passes, leaves, sst, s.sst_counters, vpl_count, options_.sst);
     passes.set_tag(0);
 }
 

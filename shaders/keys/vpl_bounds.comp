@@ -7,15 +7,18 @@
 #include "vplkit/vpl.glsl"
 #include "vplkit/ordered_float.glsl"
 #include "vplkit/dispatch.glsl"
+#include "vplkit/element_count.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) readonly buffer VplBuffer { Vpl items[]; } vpls;
 // Ordered-uint encoded box (see ordered_float.glsl); decoded by morton_keys.comp.
 layout(std430, set = 0, binding = 1) buffer VplBoundsBuffer { uint lo[3]; uint hi[3]; } bounds;
+VPLKIT_DECLARE_ELEMENT_COUNT(2)
 
 layout(push_constant) uniform VplBoundsPush {
-    uint vpl_count;
+    uint vpl_count;   // capacity: the VPLs the buffer holds room for
+    uint count_word;  // element_count.glsl
 } push;
 
 shared uint shared_lo[3];
@@ -29,7 +32,7 @@ void main() {
     barrier();
 
     uint i = linear_thread_index();
-    if (i < push.vpl_count) {
+    if (i < element_count(push.vpl_count, push.count_word)) {
         vec3 p = vpls.items[i].position;
         // Non-finite positions would make the whole box meaningless; they are left out here
         // (and rejected on the host when VPLs are uploaded).

@@ -14,6 +14,7 @@
 
 #include "vplkit/sst.glsl"
 #include "vplkit/dispatch.glsl"
+#include "vplkit/element_count.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
@@ -23,19 +24,21 @@ layout(std430, set = 0, binding = 0) readonly buffer LeafBuffer { Vpl items[]; }
 layout(std430, set = 0, binding = 1) coherent buffer SstNodeBuffer { SstNode items[]; } nodes;
 // Arrivals per inner node; index = node index (the lowest inner level needs none).
 layout(std430, set = 0, binding = 2) buffer SstCounterBuffer { uint items[]; } counters;
+VPLKIT_DECLARE_ELEMENT_COUNT(3)
 
 layout(push_constant) uniform BuildSstPush {
-    uint count;        // real VPLs (leaves at index >= count are bogus)
+    uint count;        // real VPLs (leaves at index >= count are bogus), or the capacity (count_word)
     uint leaf_count;   // L: count rounded up to a power of two
     float nu_min;      // seed 004 eq. 3 thresholds
     float sigma_max;   // world units (a standard deviation along the normal)
+    uint count_word;   // element_count.glsl
 } push;
 
 // Whether any thread of the workgroup is still climbing, per loop step (three slots; see below).
 shared uint workgroup_climbing[3];
 
 SstNode leaf_node(uint leaf) {
-    return leaf < push.count ? sst_leaf_node(leaves.items[leaf], push.nu_min, push.sigma_max) : sst_empty_node();
+    return leaf < element_count(push.count, push.count_word) ? sst_leaf_node(leaves.items[leaf], push.nu_min, push.sigma_max) : sst_empty_node();
 }
 
 void main() {

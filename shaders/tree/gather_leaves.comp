@@ -7,16 +7,19 @@
 
 #include "vplkit/vpl.glsl"
 #include "vplkit/dispatch.glsl"
+#include "vplkit/element_count.glsl"
 
 layout(local_size_x = 256, local_size_x_id = 0) in;  // 256 unless specialized
 
 layout(std430, set = 0, binding = 0) readonly buffer VplBuffer { Vpl items[]; } vpls;
 layout(std430, set = 0, binding = 1) readonly buffer SortValueBuffer { uint items[]; } order;
 layout(std430, set = 0, binding = 2) writeonly buffer LeafBuffer { Vpl items[]; } leaves;
+VPLKIT_DECLARE_ELEMENT_COUNT(3)
 
 layout(push_constant) uniform GatherLeavesPush {
-    uint count;       // real VPLs
+    uint count;       // real VPLs, or the capacity when count_word names the GPU's count
     uint leaf_count;  // count rounded up to a power of two
+    uint count_word;  // element_count.glsl
 } push;
 
 void main() {
@@ -24,7 +27,7 @@ void main() {
     if (i >= push.leaf_count) {
         return;
     }
-    if (i < push.count) {
+    if (i < element_count(push.count, push.count_word)) {
         leaves.items[i] = vpls.items[order.items[i]];
     } else {
         leaves.items[i] = Vpl(vec3(0.0), vec3(0.0), vec3(0.0));

@@ -9,7 +9,8 @@
 namespace vplkit::stages {
 
 void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& vpls, const BufferView& sorted_values,
-                            const BufferView& leaves, uint32_t count) {
+                            const BufferView& leaves, const ElementCount& element_count) {
+    const uint32_t count = element_count.capacity;
     if (count == 0) {
         throw Error("gather leaves: no VPLs (a tree needs at least one)");
     }
@@ -28,9 +29,11 @@ void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& 
     bindings.vpls = vpls.descriptor();
     bindings.order = sorted_values.descriptor();
     bindings.leaves = leaves.descriptor();
+    bindings.element_count_words = element_count.descriptor(vpls);
     shaders::gather_leaves::Push push{};
     push.count = count;
     push.leaf_count = leaves_needed;
+    push.count_word = element_count.push_word();
     add_dispatch<shaders::gather_leaves::Module>(passes, "gather leaves", pipeline, bindings, push, leaves_needed);
 }
 

@@ -127,7 +127,8 @@ void add_light_tree_level_passes(Device& device, StepList& passes, const BufferV
 }
 
 void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
-                           uint32_t count, const LightTreeOptions& options) {
+                           const ElementCount& element_count, const LightTreeOptions& options) {
+    const uint32_t count = element_count.capacity;
     check(device, count, options);
     passes.names({leaves, nodes});  // report the caller's names, not the bindings'
     const uint32_t leaf_count = light_tree_leaf_count(count);
@@ -149,9 +150,11 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
     shaders::light_tree_leaves::Bindings leaf_bindings;
     leaf_bindings.leaves = leaves.descriptor(0, leaf_bytes);
     leaf_bindings.nodes = nodes.descriptor(0, node_bytes);
+    leaf_bindings.element_count_words = element_count.descriptor(leaves);
     shaders::light_tree_leaves::Push leaf_push{};
     leaf_push.count = count;
     leaf_push.leaf_count = leaf_count;
+    leaf_push.count_word = element_count.push_word();
     add_dispatch<shaders::light_tree_leaves::Module>(passes, "light tree leaves", leaves_pipeline, leaf_bindings,
                                                      leaf_push, leaf_count);
     add_light_tree_level_passes(device, passes, nodes, count, options);

@@ -28,7 +28,8 @@ void check_range(const Device& device, const BufferView& buffer, uint64_t needed
 }  // namespace
 
 void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
-                    const BufferView& counters, uint32_t count, const SstOptions& options) {
+                    const BufferView& counters, const ElementCount& element_count, const SstOptions& options) {
+    const uint32_t count = element_count.capacity;
     if (count == 0) {
         throw Error("sst: no VPLs (a tree needs at least one)");
     }
@@ -69,11 +70,13 @@ void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, 
     push.leaf_count = leaves_in_tree;
     push.nu_min = options.nu_min;
     push.sigma_max = options.sigma_max;
+    push.count_word = element_count.push_word();
     passes.names({leaves, nodes, counters});  // report the caller's names, not the bindings'
     shaders::build_sst::Bindings bindings;
     bindings.leaves = leaves.descriptor();
     bindings.nodes = nodes.descriptor();
     bindings.counters = counters.descriptor();
+    bindings.element_count_words = element_count.descriptor(leaves);
     add_dispatch<shaders::build_sst::Module>(passes, "build sst", pipeline, bindings, push, threads);
 }
 

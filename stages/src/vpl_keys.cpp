@@ -37,9 +37,10 @@ void validate_vpls(std::span<const shaders::Vpl> vpls) {
     }
 }
 
-void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& buffers, uint32_t count) {
-    if (count == 0 || count > kMaxKeyedVpls) {
-        throw Error("VPL keys: count " + std::to_string(count) + " is outside 1.." + std::to_string(kMaxKeyedVpls));
+void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& buffers, const ElementCount& count) {
+    const uint32_t capacity = count.capacity;
+    if (capacity == 0 || capacity > kMaxKeyedVpls) {
+        throw Error("VPL keys: count " + std::to_string(capacity) + " is outside 1.." + std::to_string(kMaxKeyedVpls));
     }
     const BufferView& vpls = buffers.vpls;
     const BufferView& bounds = buffers.bounds;
@@ -59,10 +60,12 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
     shaders::vpl_bounds::Bindings bounds_bindings;
     bounds_bindings.vpls = vpls.descriptor();
     bounds_bindings.bounds = bounds.descriptor();
+    bounds_bindings.element_count_words = count.descriptor(vpls);
     shaders::vpl_bounds::Push bounds_push{};
-    bounds_push.vpl_count = count;
+    bounds_push.vpl_count = capacity;
+    bounds_push.count_word = count.push_word();
     add_dispatch<shaders::vpl_bounds::Module>(passes, "vpl bounds", bounds_pipeline, bounds_bindings, bounds_push,
-                                              count);
+                                              capacity);
 
     const auto& keys_pipeline = device.pipeline<shaders::morton_keys::Pipeline>();
     shaders::morton_keys::Bindings keys_bindings;
@@ -70,9 +73,12 @@ void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& b
     keys_bindings.bounds = bounds.descriptor();
     keys_bindings.keys = keys.descriptor();
     keys_bindings.values = values.descriptor();
+    keys_bindings.element_count_words = count.descriptor(vpls);
     shaders::morton_keys::Push keys_push{};
-    keys_push.vpl_count = count;
-    add_dispatch<shaders::morton_keys::Module>(passes, "morton keys", keys_pipeline, keys_bindings, keys_push, count);
+    keys_push.vpl_count = capacity;
+    keys_push.count_word = count.push_word();
+    add_dispatch<shaders::morton_keys::Module>(passes, "morton keys", keys_pipeline, keys_bindings, keys_push,
+                                               capacity);
 }
 
 }  // namespace vplkit::stages

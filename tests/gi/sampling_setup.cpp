@@ -93,16 +93,35 @@ Scene glossy_room(uint32_t width, uint32_t height, uint32_t vpl_count) {
 
 Rendered render(const Scene& scene, const RunOptions& options) {
     Context& ctx = test::context();
-    auto [gbuffer, bvh, vpls] = test::upload(ctx, scene.width, scene.height, scene.pixels, scene.triangles, scene.vpls);
+    const uint32_t capacity = options.gpu_count_capacity;
+    std::vector<test::TestVpl> uploaded = scene.vpls;
+    std::mt19937 garbage_rng(99);
+    std::uniform_real_distribution<float> garbage(-5.0f, 5.0f);
+    while (uploaded.size() < capacity) {  // bright, finite junk: it must not reach the trees
+        const glm::vec3 p{garbage(garbage_rng), garbage(garbage_rng), garbage(garbage_rng)};
+        uploaded.push_back({p, glm::normalize(p + glm::vec3(0.0f, 6.0f, 0.0f)), glm::vec3(100.0f)});
+    }
+    auto [gbuffer, bvh, vpls] = test::upload(ctx, scene.width, scene.height, scene.pixels, scene.triangles, uploaded);
     stages::VplTreeOptions tree_options;
     tree_options.sst = options.sst;
-    auto trees = stages::VplTrees::create(ctx, uint32_t(scene.vpls.size()), tree_options);
+    auto trees = stages::VplTrees::create(ctx, capacity > 0 ? capacity : uint32_t(scene.vpls.size()), tree_options);
     auto indirect = Image::create(ctx, scene.width, scene.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                   VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
     auto counters = stages::create_gi_counters(ctx);
 
     PassList passes("sampling test");
-    trees.add_build_passes(passes, vpls);
+    Buffer count_words;
+    if (capacity > 0) {
+        std::vector<uint32_t> words(options.gpu_count_word + 1, 12345u);
+        words.back() = options.gpu_count >= 0 ? uint32_t(options.gpu_count) : uint32_t(scene.vpls.size());
+        count_words = Buffer::create(ctx, words.size() * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                     MemoryUse::device, "vpl count");
+        count_words.upload(words);
+        trees.add_build_passes(passes, vpls,
+                               stages::ElementCount::on_gpu(count_words, options.gpu_count_word, capacity));
+    } else {
+        trees.add_build_passes(passes, vpls);
+    }
     Rendered out;
     if (options.method == Method::sst) {
         stages::SstGiOptions o;

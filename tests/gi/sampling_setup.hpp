@@ -73,6 +73,13 @@ struct RunOptions {
     // The glossy branch, every method (max_roughness > 1: every receiver chooses a lobe).
     stages::GlossyLobeOptions glossy;
     bool rtslc_lobe_mis = true;  // rtslc with the glossy branch: MIS over the lobes, or the lobe split
+    // > 0: the VPLs sit in a buffer of this capacity (the slots past them hold garbage) and the
+    // trees are built over their count as the GPU sees it (stages/element_count.hpp), never read
+    // back. `gpu_count_word` is the count's word in its buffer; `gpu_count` overrides the count
+    // written there (default: the scene's VPL count).
+    uint32_t gpu_count_capacity = 0;
+    uint32_t gpu_count_word = 3;
+    int64_t gpu_count = -1;
 };
 
 Rendered render(const Scene& scene, const RunOptions& options);

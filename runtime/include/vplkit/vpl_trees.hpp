@@ -4,6 +4,7 @@
 // and the stochastic substitute tree. The buffers stay alive with the VplTrees object.
 
 #include "vplkit/buffer.hpp"
+#include "vplkit/stages/element_count.hpp"
 #include "vplkit/stages/light_tree.hpp"
 #include "vplkit/stages/sort.hpp"
 #include "vplkit/stages/sst.hpp"
@@ -44,6 +45,11 @@ struct VplTrees : VplTreeSet<Buffer> {
     // hybrid the SST).
     void add_build_passes(PassList& passes, const Buffer& vpls, bool light_tree = true, bool sst = true,
                           const VplTreeBuildTags& tags = {});
+    // The same over the count a GPU pass wrote (ElementCount::on_gpu, its capacity this object's
+    // `count`): the trees are those of the capacity with every VPL past the count bogus padding,
+    // so a frame samples VPLs it never read back.
+    void add_build_passes(PassList& passes, const Buffer& vpls, const ElementCount& vpl_count, bool light_tree = true,
+                          bool sst = true, const VplTreeBuildTags& tags = {});
 
 private:
     struct Scratch;

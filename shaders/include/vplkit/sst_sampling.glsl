@@ -41,8 +41,16 @@ SstNode sst_fetch(uint node, uint leaf_count, uint count) {
     if (leaf >= count) {
         return sst_empty_node();
     }
+    Vpl vpl = sst_leaves.items[leaf];
+    // A tree built over a count the GPU wrote (element_count.glsl) is sized for its capacity:
+    // `count` is then the capacity and the padding past the real count is told by its data, the
+    // all-zero bogus leaf (gather_leaves.comp). A real VPL's normal is never zero (one that were
+    // would reflect nothing anyway).
+    if (vpl.normal == vec3(0.0)) {
+        return sst_empty_node();
+    }
     // Thresholds do not matter: a leaf always ends a traversal.
-    return sst_leaf_node(sst_leaves.items[leaf], 0.0, 0.0);
+    return sst_leaf_node(vpl, 0.0, 0.0);
 }
 
 // A child's weight w = a / d2 (seed 004 eq. 5 with V = 1): a = material x cosine x intensity,

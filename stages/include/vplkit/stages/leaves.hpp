@@ -4,6 +4,7 @@
 
 #include <bit>
 #include "vplkit/stages/device.hpp"
+#include "vplkit/stages/element_count.hpp"
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
@@ -15,9 +16,10 @@ inline uint32_t leaf_count(uint32_t count) {
     return count <= 1 ? 1u : std::bit_ceil(count);
 }
 
-// Adds the pass "gather leaves". `leaves` holds leaf_count(count) Vpls; `sorted_values` holds
-// the count VPL indices in key order (the values the key sort moved).
+// Adds the pass "gather leaves". `leaves` holds leaf_count(count.capacity) Vpls; `sorted_values`
+// holds the VPL indices in key order (the values the key sort moved). With a GPU count every
+// slot past the count becomes a bogus (all-zero) leaf.
 void add_gather_leaves_pass(Device& device, StepList& passes, const BufferView& vpls, const BufferView& sorted_values,
-                            const BufferView& leaves, uint32_t count);
+                            const BufferView& leaves, const ElementCount& count);
 
 }  // namespace vplkit::stages

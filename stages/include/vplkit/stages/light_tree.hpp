@@ -11,6 +11,7 @@
 // the empty box [+FLT_MAX, -FLT_MAX]; no field is ever Inf or NaN for finite input.
 
 #include "vplkit/stages/device.hpp"
+#include "vplkit/stages/element_count.hpp"
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
@@ -51,11 +52,12 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels);
 
 // Adds the passes "light tree leaves" and "light tree levels" (the groups, with compute
 // barriers between them). `leaves` holds light_tree_leaf_count(count) Vpls in sorted order, the
-// first `count` real; `nodes` receives light_tree_node_count(count) LightTreeNodes.
+// first `count` real; `nodes` receives light_tree_node_count(count) LightTreeNodes. With a GPU
+// count, the sizes are those of its capacity and the leaves past the count become empty nodes.
 // Throws vplkit::Error for count 0 or above kLightTreeMaxLeaves, bad options, buffers too small,
 // or a tree the device cannot dispatch or address in one storage buffer.
 void add_light_tree_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
-                           uint32_t count, const LightTreeOptions& options = {});
+                           const ElementCount& count, const LightTreeOptions& options = {});
 
 // Adds only the pass "light tree levels" (nothing for one leaf): the internal levels over a leaf
 // level someone else wrote into `nodes` (light_tree_node_count(count) nodes; the leaves at

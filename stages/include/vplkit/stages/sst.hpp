@@ -48,9 +48,10 @@ inline uint32_t sst_counter_count(uint32_t count) {
 // Adds two passes: "sst clear counters" (vkCmdFillBuffer) and "build sst".
 // `leaves` holds leaf_count(count) Vpls in sorted order (index >= count: bogus, any data);
 // `nodes` gets sst_node_count(count) SstNodes; `counters` holds sst_counter_count(count) uints
-// (contents on entry do not matter). Throws vplkit::Error for count 0, a buffer too small,
-// thresholds that are not finite or a sigma_max < 0, or a workgroup size the device refuses.
+// (contents on entry do not matter); with a GPU count, every size is that of the capacity.
+// Throws vplkit::Error for capacity 0, a buffer too small, thresholds that are not finite or a
+// sigma_max < 0, or a workgroup size the device refuses.
 void add_sst_passes(Device& device, StepList& passes, const BufferView& leaves, const BufferView& nodes,
-                    const BufferView& counters, uint32_t count, const SstOptions& options = {});
+                    const BufferView& counters, const ElementCount& count, const SstOptions& options = {});
 
 }  // namespace vplkit::stages

@@ -4,6 +4,7 @@
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/device.hpp"
+#include "vplkit/stages/element_count.hpp"
 #include "vplkit/stages/steps.hpp"
 
 #include <cstdint>
@@ -21,14 +22,16 @@ inline constexpr uint32_t kVplBoundsBytes = sizeof(shaders::VplBoundsBuffer);
 void validate_vpls(std::span<const shaders::Vpl> vpls);
 
 struct VplKeyBuffers {
-    BufferView vpls;    // Vpl[count]; read
+    BufferView vpls;    // Vpl[capacity]; read
     BufferView bounds;  // kVplBoundsBytes; written here
-    BufferView keys;    // uint64_t[count]; written here
-    BufferView values;  // uint32_t[count]; written here (VPL index)
+    BufferView keys;    // uint64_t[capacity]; written here
+    BufferView values;  // uint32_t[capacity]; written here (VPL index)
 };
 
 // Adds three passes to `passes`: clear the bounds, reduce the bounds, write the keys.
-// `count` must be at least 1 and at most kMaxKeyedVpls.
-void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& buffers, uint32_t count);
+// `count.capacity` must be at least 1 and at most kMaxKeyedVpls. With a GPU count, the slots
+// from the count to the capacity get the largest key (value: the slot), so a sort of all
+// `capacity` pairs puts the real VPLs first, in order.
+void add_vpl_key_passes(Device& device, StepList& passes, const VplKeyBuffers& buffers, const ElementCount& count);
 
 }  // namespace vplkit::stages
