@@ -66,7 +66,8 @@ void Context::init(const ContextOptions& options) {
         validation_->callback = options_.on_validation_message;
     }
 
-    const auto created = detail::create_instance(validation_.get(), options_.synchronization_validation);
+    const auto created =
+        detail::create_instance(validation_.get(), options_.synchronization_validation, options_.instance_extensions);
     instance_ = created.instance;
     if (validation_) messenger_ = detail::create_messenger(instance_, validation_.get());
 
@@ -136,6 +137,15 @@ void Context::init(const ContextOptions& options) {
     }
     // The spec requires enabling it wherever it is offered (MoltenVK).
     if (extensions.count("VK_KHR_portability_subset")) device_extensions.push_back("VK_KHR_portability_subset");
+    for (const std::string& name : options_.device_extensions) {
+        if (!extensions.count(name)) {
+            throw Error("vplkit: the device " + info_.name + " does not offer the extension " + name +
+                        " (asked for in device_extensions)");
+        }
+        bool listed = false;
+        for (const char* e : device_extensions) listed = listed || name == e;
+        if (!listed) device_extensions.push_back(name.c_str());
+    }
 
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queue_info{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -39,7 +39,8 @@ bool has_instance_extension(const char* layer, const char* name) {
 
 }  // namespace
 
-InstanceResult create_instance(ValidationSink* sink, bool synchronization_validation) {
+InstanceResult create_instance(ValidationSink* sink, bool synchronization_validation,
+                               const std::vector<std::string>& extra) {
     uint32_t loader_version = VK_API_VERSION_1_0;
     VPLKIT_CHECK(vkEnumerateInstanceVersion(&loader_version));
     if (loader_version < VK_API_VERSION_1_3) {
@@ -91,6 +92,15 @@ InstanceResult create_instance(ValidationSink* sink, bool synchronization_valida
         }
     }
     if (result.debug_utils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    for (const std::string& name : extra) {
+        if (!has_instance_extension(nullptr, name.c_str())) {
+            throw Error("vplkit: the Vulkan loader does not offer the instance extension " + name +
+                        " (asked for in instance_extensions)");
+        }
+        bool listed = false;
+        for (const char* e : extensions) listed = listed || name == e;
+        if (!listed) extensions.push_back(name.c_str());
+    }
 
     info.enabledLayerCount = uint32_t(layers.size());
     info.ppEnabledLayerNames = layers.data();

@@ -3,6 +3,9 @@
 
 #include <vulkan/vulkan.h>
 
+#include <string>
+#include <vector>
+
 namespace vplkit::detail {
 
 struct ValidationSink;
@@ -13,7 +16,9 @@ struct InstanceResult {
 };
 
 // `sink` non-null = validation: enables VK_LAYER_KHRONOS_validation (Error when it is not
-// installed) and routes instance creation/destruction messages to the sink as well.
-InstanceResult create_instance(ValidationSink* sink, bool synchronization_validation);
+// installed) and routes instance creation/destruction messages to the sink as well. `extra`:
+// further extensions (ContextOptions::instance_extensions); Error names one that is missing.
+InstanceResult create_instance(ValidationSink* sink, bool synchronization_validation,
+                               const std::vector<std::string>& extra = {});
 
 }  // namespace vplkit::detail

@@ -45,6 +45,12 @@ struct ContextOptions {
     // false: device-local memory is never mapped even where it is host-visible (lavapipe,
     // integrated GPUs), so uploads and downloads take the staging path a discrete GPU takes.
     bool map_device_memory = true;
+    // Further extensions to enable, beyond the kit's own: a window needs what
+    // glfwGetRequiredInstanceExtensions() lists (VK_KHR_surface and the platform's) and the device
+    // extension VK_KHR_swapchain. create() throws Error naming one the loader or the chosen
+    // device does not offer. The kit itself uses none of them.
+    std::vector<std::string> instance_extensions;
+    std::vector<std::string> device_extensions;
 };
 
 // A Context is a stages::Device (stage functions take one): its pipelines and limits.
