@@ -28,6 +28,10 @@ extern const char* const kCompareUsage;
 int run_sequence(Args& args);
 extern const char* const kSequenceUsage;
 
+// `vplkit view`: the renderer in a window with a settings panel; --screenshot for scripts.
+int run_view(Args& args);
+extern const char* const kViewUsage;
+
 // `vplkit bench tree` and `vplkit bench gi --scene NAME` (reached through run_bench; their
 // usage is part of bench_usage()).
 int run_bench_tree(Args& args);

@@ -37,6 +37,8 @@ const Command kCommands[] = {
      fixed_usage<&vplkit::cli::kCompareUsage>, vplkit::cli::run_compare},
     {"sequence", "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
      fixed_usage<&vplkit::cli::kSequenceUsage>, vplkit::cli::run_sequence},
+    {"view", "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
+     fixed_usage<&vplkit::cli::kViewUsage>, vplkit::cli::run_view},
 };
 
 void print_usage(std::FILE* out) {

@@ -1,0 +1,124 @@
+// `vplkit view --screenshot` on lavapipe under xvfb-run: the window's image (not the renderer's
+// buffer) comes back lit, at the window's size, with the panel drawn over it; bad input fails
+// before a window opens. Each case runs the program, with the validation layer on.
+
+#include <doctest/doctest.h>
+
+#include "vplkit/image_io.hpp"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+#include <sys/wait.h>
+
+namespace {
+
+struct Run {
+    int exit_code = -1;
+    std::string output;
+};
+
+// Runs vplkit with `args` (already quoted), stdout and stderr together.
+Run run_vplkit(const std::string& args, bool with_display = true) {
+    std::string command = "VPLKIT_DEVICE=cpu ";
+    if (with_display) command += std::string(VPLKIT_XVFB_RUN) + " -a -s '-screen 0 640x480x24' ";
+    command += std::string(VPLKIT_PROGRAM) + " " + args + " 2>&1";
+    Run run;
+    FILE* pipe = popen(command.c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    char buffer[4096];
+    while (size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) run.output.append(buffer, n);
+    const int status = pclose(pipe);
+    run.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return run;
+}
+
+std::string output_path(const std::string& name) {
+    const std::filesystem::path path = std::filesystem::path(VPLKIT_VIEW_TEST_DIR) / name;
+    std::filesystem::remove(path);
+    return path.string();
+}
+
+double mean_of(const vplkit::PngImage& image, int channel) {
+    double sum = 0.0;
+    for (size_t i = size_t(channel); i < image.rgba.size(); i += 4) sum += image.rgba[i];
+    return sum / double(image.width * image.height);
+}
+
+}  // namespace
+
+TEST_CASE("view screenshot: the window shows the lit Cornell box") {
+    const std::string png = output_path("cornell.png");
+    const Run run = run_vplkit(
+        "view --scene cornell --width 96 --height 72 --no-panel --frames 2 --validation "
+        "--screenshot " +
+        png);
+    INFO(run.output);
+    REQUIRE(run.exit_code == 0);
+    CHECK(run.output.find("wrote " + png + " (96x72") != std::string::npos);
+    const vplkit::PngImage image = vplkit::read_png(png);
+    REQUIRE(image.width == 96);
+    REQUIRE(image.height == 72);
+    // Lit, and the box's walls: its left wall red, its right wall green (a black or a garbled
+    // window fails one of these).
+    const double luminance = (mean_of(image, 0) + mean_of(image, 1) + mean_of(image, 2)) / 3.0;
+    CHECK(luminance > 40.0);
+    auto at = [&](uint32_t x, uint32_t y, int c) { return int(image.rgba[(size_t(y) * image.width + x) * 4 + c]); };
+    CHECK(at(22, 36, 0) > at(22, 36, 1) + 40);  // left wall: red
+    CHECK(at(74, 36, 1) > at(74, 36, 0) + 40);  // right wall: green
+}
+
+TEST_CASE("view screenshot: the frame is scaled into a larger window and the panel drawn over it") {
+    const std::string plain = output_path("plain.png");
+    const std::string panel = output_path("panel.png");
+    const std::string common = "view --scene cornell --width 64 --height 48 --window 480x360 --frames 1 --validation ";
+    const Run without = run_vplkit(common + "--no-panel --screenshot " + plain);
+    const Run with = run_vplkit(common + "--screenshot " + panel);
+    INFO(without.output);
+    INFO(with.output);
+    REQUIRE(without.exit_code == 0);
+    REQUIRE(with.exit_code == 0);
+    const vplkit::PngImage a = vplkit::read_png(plain);
+    const vplkit::PngImage b = vplkit::read_png(panel);
+    REQUIRE(a.width == 480);
+    REQUIRE(a.height == 360);
+    REQUIRE(b.width == 480);
+    REQUIRE(b.height == 360);
+    CHECK((mean_of(a, 0) + mean_of(a, 1) + mean_of(a, 2)) / 3.0 > 40.0);  // scaled up, still lit
+    // The panel's corner (top left) differs; the far corner of the frame (bottom right) does not.
+    auto region_difference = [&](uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
+        double sum = 0.0;
+        for (uint32_t y = y0; y < y1; ++y)
+            for (uint32_t x = x0; x < x1; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const size_t i = (size_t(y) * a.width + x) * 4 + size_t(c);
+                    sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
+                }
+        return sum / double((x1 - x0) * (y1 - y0) * 3);
+    };
+    CHECK(region_difference(10, 10, 60, 30) > 10.0);
+    CHECK(region_difference(420, 300, 470, 350) < 1.0);
+}
+
+TEST_CASE("view: bad input fails before a window opens, with one clear line") {
+    const Run jpeg = run_vplkit("view --screenshot shot.jpg", false);
+    CHECK(jpeg.exit_code == 2);
+    CHECK(jpeg.output.find("--screenshot expects a .png file name, got 'shot.jpg'") != std::string::npos);
+    const Run folder = run_vplkit("view --screenshot /nonexistent-folder/shot.png", false);
+    CHECK(folder.exit_code == 2);
+    CHECK(folder.output.find("the folder /nonexistent-folder does not exist") != std::string::npos);
+    const Run size = run_vplkit("view --window 320by240", false);
+    CHECK(size.exit_code == 2);
+    CHECK(size.output.find("--window expects WIDTHxHEIGHT, got '320by240'") != std::string::npos);
+}
+
+TEST_CASE("view: without a display it says so and exits 1") {
+    const Run run = run_vplkit("view --frames 1", false);
+    INFO(run.output);
+    // Under a desktop session a display exists: nothing to check there.
+    if (std::getenv("DISPLAY") || std::getenv("WAYLAND_DISPLAY")) return;
+    CHECK(run.exit_code == 1);
+    CHECK(run.output.find("view: cannot open a window") != std::string::npos);
+}
