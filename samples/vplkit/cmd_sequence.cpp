@@ -7,6 +7,8 @@
 #include "commands.hpp"
 #include "plot.hpp"
 #include "render_request.hpp"
+#include "render_stats.hpp"
+#include "stats_json.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -34,7 +36,7 @@ namespace vplkit::cli {
 const char* const kSequenceUsage =
     "usage: vplkit sequence --out DIR [--scene NAME|FILE] [--path orbit|FILE] [--frames N]\n"
     "                       [--orbit-degrees D] [--pfm] [--fresh-vpls] [--reference] [--reference-paths P]\n"
-    "                       [--cache DIR] [render's options: --method, --vpl-source, --vpls, ...]\n"
+    "                       [--cache DIR] [--stats FILE.json] [render's options: --method, --vpl-source, ...]\n"
     "\n"
     "Renders N frames along a camera path and writes DIR/frame_NNNN.png (and .pfm with --pfm,\n"
     "linear radiance) and DIR/stage_times.csv (each frame's GPU time per stage). A renderer lives\n"
@@ -43,6 +45,10 @@ const char* const kSequenceUsage =
     "                    turning --orbit-degrees (default 30) over the sequence; or a keyframe file,\n"
     "                    one key per line: TIME PX PY PZ TX TY TZ (position, target), interpolated\n"
     "  --frames N        frames (default 16)\n"
+    "  --stats FILE      also a JSON file: the device, the plans (each stage kept or left out and\n"
+    "                    why, per run of frames alike), GPU times (frame_ms: the median frame's sum\n"
+    "                    over every pass; per stage and pass), each frame's counters (and metrics\n"
+    "                    with --reference); a number that is not finite is written as null\n"
     "  --denoise D       svgf (default for sampled methods), temporal or off: the indirect-light\n"
     "                    filter, its history carried along the path (exact is never filtered)\n"
     "  --fresh-vpls      ir, brsm: new VPLs every frame (seed + frame), as seed 001's comparison draws\n"
@@ -130,9 +136,20 @@ int run_sequence(Args& args) {
         reference_paths = parse_whole_number("--reference-paths", *text, 1u << 22);
     }
     const std::filesystem::path cache = args.value("--cache").value_or("out/sequence-cache");
+    const auto stats_path = args.value("--stats");
     RenderRequest request = parse_render_request(args);
     args.finish();
     if (!out_text) throw UsageError("--out DIR is required");
+    if (stats_path) {
+        const std::filesystem::path stats_file = *stats_path;
+        if (stats_file.extension() != ".json") {
+            throw UsageError("--stats expects a .json file name, got '" + *stats_path + "'");
+        }
+        const std::filesystem::path folder = stats_file.parent_path().empty() ? "." : stats_file.parent_path();
+        if (!std::filesystem::is_directory(folder)) {
+            throw UsageError("--stats: the folder " + folder.string() + " does not exist");
+        }
+    }
     validate_render_request(request);
     RenderSettings& settings = request.settings;
     // Sequences are what the filter is for: svgf unless asked otherwise (never for exact).
@@ -193,6 +210,10 @@ int run_sequence(Args& args) {
     std::string times = "frame,stage,gpu_ms\n";
     std::string metrics_csv = "frame,mean_abs_error,mean_abs_error_change\n";
     TemporalErrorMeter meter;
+    // --stats: each frame's passes, plan and counters.
+    std::vector<std::vector<PassTiming>> frame_timings;
+    PlanLog plans;
+    nlohmann::ordered_json frame_stats = nlohmann::ordered_json::array();
     const auto start = std::chrono::steady_clock::now();
     for (uint32_t f = 0; f < frames; ++f) {
         settings.frame = f;
@@ -258,11 +279,47 @@ int run_sequence(Args& args) {
             status += ", |E| " + std::to_string(m.mean_abs_error.back());
             if (f > 0) status += ", |E'| " + std::to_string(m.mean_abs_error_change.back());
         }
+        frame_timings.push_back(image.timings);
+        plans.add(f, image.plan);
+        frame_stats.push_back(
+            {{"frame_index", f}, {"gpu_ms", json_number(total)}, {"counters", counters_stats(image, settings)}});
+        if (image.plan.runs(FrameStage::denoise))
+            frame_stats.back()["firefly_moved_fraction"] = json_number(image.firefly_moved_fraction);
+        if (reference) {
+            frame_stats.back()["mean_abs_error"] = json_number(meter.result().mean_abs_error.back());
+            if (f > 0)
+                frame_stats.back()["mean_abs_error_change"] = json_number(meter.result().mean_abs_error_change.back());
+        }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::fprintf(stderr, "[sequence] frame %u/%u: %.1f ms GPU%s (%.0f s so far)\n", f + 1, frames, total,
                      status.c_str(), elapsed);
     }
     write_text(out_dir / "stage_times.csv", times);
+    if (stats_path) {
+        nlohmann::ordered_json stats = stats_header("sequence");
+        stats["device"] = device_stats(context->info());
+        stats["scene"] = {{"name", loaded.described},
+                          {"triangles", scene.triangle_count()},
+                          {"lights", scene.lights.size()},
+                          {"emissive_triangles", scene.emissive_triangles.size()}};
+        stats["settings"] = {{"method", gi_method_name(settings.method)},
+                             {"denoise", denoise_mode_name(settings.denoise)},
+                             {"path", keys ? path_arg : "orbit"},
+                             {"fresh_vpls", fresh_vpls}};
+        stats["width"] = settings.width;
+        stats["height"] = settings.height;
+        stats["frames"] = frames;
+        stats["out"] = out_dir.string();
+        stats["plans"] = plans.json();
+        stats.update(timing_stats(frame_timings));
+        if (reference) {
+            stats["average_mean_abs_error"] = json_number(meter.result().average_error());
+            stats["average_mean_abs_error_change"] = json_number(meter.result().average_error_change());
+        }
+        stats["per_frame"] = frame_stats;
+        write_json_file(*stats_path, stats);
+        std::printf("wrote %s\n", stats_path->c_str());
+    }
     std::printf("wrote %u frames and stage_times.csv to %s\n", frames, out_dir.string().c_str());
     if (!reference) return 0;
 
