@@ -1,11 +1,13 @@
-// What `vplkit bench gi` measured, written out: points.csv and points.json (every point), the
-// plots (error vs frame time with the Pareto front, levels per traversal, block size, VPL count
-// vs build time), the equal-time table with its images and x10 difference pictures, the
-// upsampling and mock-cut tables, and report.md embedding them (thesis ch. 7's set).
+// What `vplkit bench gi` measured, written out: points.csv and points.json (every point, the
+// curves and the Pareto front), the equal-time table with its images and x10 difference
+// pictures, the upsampling and mock-cut tables, report.md embedding them (thesis ch. 7's set),
+// and the plots scripts/plot.py draws from points.json (error vs frame time with the Pareto
+// front, levels per traversal, block size, VPL count vs build time).
 
 #include "bench_gi.hpp"
 #include "bench_timing.hpp"
-#include "plot.hpp"
+#include "plot_script.hpp"
+#include "stats_json.hpp"
 
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
@@ -48,15 +50,6 @@ std::string fixed(double v, int digits) {
     char text[64];
     std::snprintf(text, sizeof text, "%.*f", digits, v);
     return text;
-}
-
-std::string json_string(const std::string& s) {
-    std::string out = "\"";
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
-    }
-    return out + "\"";
 }
 
 std::vector<const BenchPoint*> select(const BenchRun& run, const std::string& method, const std::string& sweep) {
@@ -121,37 +114,78 @@ std::string csv(const BenchRun& run) {
     return s.str();
 }
 
-std::string json(const BenchRun& run) {
-    std::ostringstream s;
-    s.precision(9);
-    s << "{\n  \"scene\": " << json_string(run.scene) << ",\n  \"device\": " << json_string(run.device)
-      << ",\n  \"width\": " << run.width << ",\n  \"height\": " << run.height
-      << ",\n  \"vpl_source\": " << json_string(run.vpl_source) << ",\n  \"vpl_budget\": " << run.vpl_budget
-      << ",\n  \"seed\": " << run.seed << ",\n  \"exact_wall_ms\": " << run.exact_wall_ms
-      << ",\n  \"exact_cached\": " << (run.exact_cached ? "true" : "false")
-      << ",\n  \"relmse_epsilon\": " << kRelativeMseEpsilon << ",\n  \"target_ms\": " << run.target_ms
-      << ",\n  \"points\": [\n";
-    for (size_t i = 0; i < run.points.size(); ++i) {
-        const BenchPoint& p = run.points[i];
-        s << "    {\"method\": " << json_string(p.method) << ", \"sweep\": " << json_string(p.sweep)
-          << ", \"spp\": " << p.spp << ", \"block\": " << p.block << ", \"interleave\": " << p.interleave
-          << ", \"half\": " << (p.half ? "true" : "false") << ", \"mock_cuts\": " << (p.mock_cuts ? "true" : "false")
-          << ", \"vpls\": " << p.vpls << ", \"frames\": " << p.frames << ", \"frame_ms\": " << p.frame_ms
-          << ", \"frame_min_ms\": " << p.frame_min_ms << ", \"frame_max_ms\": " << p.frame_max_ms
-          << ", \"gi_ms\": " << p.gi_ms << ", \"trees_ms\": " << p.trees_ms << ", \"vpls_ms\": " << p.vpls_ms
-          << ", \"rmse\": " << p.rmse << ", \"ssim\": " << p.ssim << ", \"relmse\": " << p.relmse
-          << ", \"levels_per_traversal\": " << p.levels_per_traversal << ", \"mock_cut_pixels\": " << p.mock_cut_pixels
-          << ", \"dropped_samples\": " << p.dropped_samples << ", \"image\": " << json_string(p.image)
-          << ", \"flc_navg\": " << p.flc_navg << ", \"stages\": [";
-        for (size_t k = 0; k < p.stages.size(); ++k) {
-            const BenchPoint::StageTime& t = p.stages[k];
-            s << (k ? ", " : "") << "{\"name\": " << json_string(t.name) << ", \"median_ms\": " << t.median_ms
-              << ", \"min_ms\": " << t.min_ms << ", \"max_ms\": " << t.max_ms << "}";
+// points.json: the run, every point, the curves (which sweeps each takes, which traverse the
+// trees) and the Pareto front as indices into the points, so that the plots (scripts/plot.py)
+// need no knowledge of the method table and ring the front report.md lists.
+nlohmann::json points_json(const BenchRun& run) {
+    using nlohmann::json;
+    json points = json::array();
+    for (const BenchPoint& p : run.points) {
+        json stages = json::array();
+        for (const BenchPoint::StageTime& t : p.stages) {
+            stages.push_back({{"name", t.name},
+                              {"median_ms", json_number(t.median_ms)},
+                              {"min_ms", json_number(t.min_ms)},
+                              {"max_ms", json_number(t.max_ms)}});
         }
-        s << "]}" << (i + 1 < run.points.size() ? ",\n" : "\n");
+        points.push_back({{"method", p.method},
+                          {"sweep", p.sweep},
+                          {"label", p.label()},
+                          {"spp", p.spp},
+                          {"block", p.block},
+                          {"interleave", p.interleave},
+                          {"half", p.half},
+                          {"mock_cuts", p.mock_cuts},
+                          {"denoised", p.denoised},
+                          {"vpls", p.vpls},
+                          {"frames", p.frames},
+                          {"frame_ms", json_number(p.frame_ms)},
+                          {"frame_min_ms", json_number(p.frame_min_ms)},
+                          {"frame_max_ms", json_number(p.frame_max_ms)},
+                          {"gi_ms", json_number(p.gi_ms)},
+                          {"trees_ms", json_number(p.trees_ms)},
+                          {"vpls_ms", json_number(p.vpls_ms)},
+                          {"rmse", json_number(p.rmse)},
+                          {"ssim", json_number(p.ssim)},
+                          {"relmse", json_number(p.relmse)},
+                          {"levels_per_traversal", json_number(p.levels_per_traversal)},
+                          {"mock_cut_pixels", p.mock_cut_pixels},
+                          {"dropped_samples", p.dropped_samples},
+                          {"image", p.image},
+                          {"flc_navg", json_number(p.flc_navg)},
+                          {"stages", stages}});
     }
-    s << "  ]\n}\n";
-    return s.str();
+    json curve_list = json::array();
+    for (const GiBenchCurveOf& c : gi_bench_curves()) {
+        json sweeps = json::array();
+        std::string_view rest = c.curve->sweeps;
+        while (!rest.empty()) {
+            const size_t comma = rest.find(',');
+            sweeps.push_back(std::string(rest.substr(0, comma)));
+            rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
+        }
+        curve_list.push_back({{"name", std::string(c.curve->name)},
+                              {"quality_sweep", std::string(c.quality_sweep())},
+                              {"sweeps", sweeps},
+                              {"samples", c.method->samples}});
+    }
+    json front = json::array();
+    for (const BenchPoint* p : pareto_front(run)) front.push_back(p - run.points.data());
+    return {{"scene", run.scene},
+            {"device", run.device},
+            {"width", run.width},
+            {"height", run.height},
+            {"vpl_source", run.vpl_source},
+            {"vpl_budget", run.vpl_budget},
+            {"seed", run.seed},
+            {"exact_wall_ms", json_number(run.exact_wall_ms)},
+            {"exact_cached", run.exact_cached},
+            {"relmse_epsilon", json_number(kRelativeMseEpsilon)},
+            {"target_ms", json_number(run.target_ms)},
+            {"curves", curve_list},
+            {"vpl_count_curve", vpl_count_curve()},
+            {"pareto_front", front},
+            {"points", points}};
 }
 
 // Each method's point closest to the target frame time (among its spp sweep and its half-res,
@@ -167,102 +201,6 @@ std::vector<const BenchPoint*> equal_time(const BenchRun& run) {
         if (best) out.push_back(best);
     }
     return out;
-}
-
-void write_plots(const std::filesystem::path& folder, const BenchRun& run) {
-    // Thesis Fig. 7.3: RMSE vs time, every spp and half-resolution point, the Pareto front (of
-    // all comparable points, by frame time) ringed. Once against the frame time, once against
-    // the GI and tree time alone: the part that differs between methods (the VPLs are the same).
-    for (bool gi_only : {false, true}) {
-        PlotSpec plot;
-        plot.title = run.scene + ": RMSE vs " + (gi_only ? "GI + tree time" : "frame time") + " (" +
-                     std::to_string(run.width) + "x" + std::to_string(run.height) + ")";
-        plot.x_label = gi_only ? "GI + trees (ms, GPU)" : "frame time (ms, GPU)";
-        plot.y_label = "RMSE (tonemapped)";
-        plot.log_x = true;
-        plot.log_y = true;
-        if (!gi_only) plot.highlight_label = "Pareto front";
-        const auto front = pareto_front(run);
-        for (const std::string& m : curves()) {
-            for (const std::string sweep : {"quality", "resolution", "denoise"}) {
-                Series series;
-                series.name = m + (sweep == "resolution" ? " (half res)" : sweep == "denoise" ? " (svgf)" : "");
-                for (const BenchPoint* p : select(run, m, sweep == "quality" ? quality_sweep(m) : sweep)) {
-                    series.x.push_back(gi_only ? p->gi_ms + p->trees_ms : p->frame_ms);
-                    series.y.push_back(p->rmse);
-                    if (!gi_only && std::find(front.begin(), front.end(), p) != front.end()) {
-                        plot.highlight.push_back({plot.series.size(), series.x.size() - 1});
-                    }
-                }
-                if (!series.x.empty()) plot.series.push_back(series);
-            }
-        }
-        write_plot_png(folder / (gi_only ? "rmse_vs_gi_time.png" : "rmse_vs_time.png"), plot);
-    }
-    // Fig. 7.2: tree levels per traversal vs samples per pixel.
-    {
-        PlotSpec plot;
-        plot.title = run.scene + ": tree levels per traversal";
-        plot.x_label = "samples per pixel";
-        plot.y_label = "levels per traversal";
-        plot.log_x = true;
-        for (const std::string& m : curves()) {
-            if (!find_gi_bench_curve(m)->method->samples) continue;  // no tree traversals
-            Series series;
-            series.name = m;
-            for (const BenchPoint* p : select(run, m, "spp")) {
-                series.x.push_back(p->spp);
-                series.y.push_back(p->levels_per_traversal);
-            }
-            plot.series.push_back(series);
-        }
-        write_plot_png(folder / "levels.png", plot);
-    }
-    // Fig. 7.5: block size vs RMSE and vs GI time (8 spp).
-    for (bool time : {false, true}) {
-        PlotSpec plot;
-        plot.title = run.scene + (time ? ": cut block size vs GI time (8 spp)" : ": cut block size vs RMSE (8 spp)");
-        plot.x_label = "block size k (pixels)";
-        plot.y_label = time ? "GI time (ms, GPU)" : "RMSE (tonemapped)";
-        plot.log_x = true;
-        for (const std::string& m : curves("block")) {
-            std::vector<const BenchPoint*> points = select(run, m, "block");
-            if (const BenchPoint* p = base_point(run, m, 8)) points.push_back(p);
-            std::sort(points.begin(), points.end(),
-                      [](const BenchPoint* a, const BenchPoint* b) { return a->block < b->block; });
-            Series series;
-            series.name = m;
-            for (const BenchPoint* p : points) {
-                series.x.push_back(p->block);
-                series.y.push_back(time ? p->gi_ms : p->rmse);
-            }
-            plot.series.push_back(series);
-        }
-        write_plot_png(folder / (time ? "block_size_time.png" : "block_size_rmse.png"), plot);
-    }
-    // VPL count vs build time (hybrid, 8 spp): VPL generation and the trees.
-    {
-        PlotSpec plot;
-        plot.title = run.scene + ": VPL count vs build time";
-        plot.x_label = "VPLs";
-        plot.y_label = "GPU time (ms)";
-        plot.log_x = true;
-        plot.log_y = true;
-        const std::string m = vpl_count_curve();
-        std::vector<const BenchPoint*> points = select(run, m, "vpls");
-        if (const BenchPoint* p = base_point(run, m, 8)) points.push_back(p);
-        std::sort(points.begin(), points.end(),
-                  [](const BenchPoint* a, const BenchPoint* b) { return a->vpls < b->vpls; });
-        Series trees{"trees (keys, sort, leaves, light tree, SST)"}, vpls{"VPL generation"}, gi{m + " GI, 8 spp"};
-        for (const BenchPoint* p : points) {
-            for (Series* s : {&trees, &vpls, &gi}) s->x.push_back(p->vpls);
-            trees.y.push_back(p->trees_ms);
-            vpls.y.push_back(p->vpls_ms);
-            gi.y.push_back(p->gi_ms);
-        }
-        plot.series = {trees, vpls, gi};
-        write_plot_png(folder / "vpl_count_build_time.png", plot);
-    }
 }
 
 // The equal-time images: each method's frame and |frame - exact| x 10.
@@ -295,8 +233,7 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
         }
     }
     write_file(folder / "points.csv", csv(run));
-    write_file(folder / "points.json", json(run));
-    write_plots(folder, run);
+    write_json_file(folder / "points.json", points_json(run));
     const auto same_time = equal_time(run);
     write_equal_time_images(folder, run, same_time);
 
@@ -416,6 +353,8 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
     }
     md << "\nEvery point: points.csv, points.json; every frame: images/.\n";
     write_file(folder / "report.md", md.str());
+    // Last: the data and the report are on disk whatever the plotting does.
+    draw_plots("bench-gi", folder);
 }
 
 }  // namespace vplkit::cli

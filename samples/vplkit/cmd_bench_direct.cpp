@@ -3,12 +3,12 @@
 // all of them (stochastic lightcuts, direct_light_tree.hpp), one-level and two-level (a bottom tree
 // per mesh light under a top tree, seed 003 sec. 3.1), at 1..64 samples per pixel, against
 // a converged reference (the flat sampler's mean over many frames: it is unbiased, as the tree
-// is). Writes DIR/points.csv, two plots (PNG), a frame of each (PNG) and DIR/report.md with the
-// equal-time comparison.
+// is). Writes DIR/points.csv, a frame of each (PNG), DIR/report.md with the equal-time comparison
+// and two plots (PNG, scripts/plot.py).
 
 #include "cli.hpp"
 #include "commands.hpp"
-#include "plot.hpp"
+#include "plot_script.hpp"
 #include "scene_warnings.hpp"
 
 #include "vplkit/context.hpp"
@@ -212,31 +212,6 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
     }
     write_text(out / "points.csv", csv.str());
 
-    // Plots.
-    PlotSpec time_plot;
-    time_plot.title = "direct light: relative RMSE vs time (" + setup.name + ")";
-    time_plot.x_label = "direct-light GPU time (ms)";
-    time_plot.y_label = "relative RMSE";
-    time_plot.log_x = time_plot.log_y = true;
-    PlotSpec spp_plot = time_plot;
-    spp_plot.title = "direct light: relative RMSE vs samples per pixel (" + setup.name + ")";
-    spp_plot.x_label = "samples per pixel";
-    for (DirectSampler sampler : samplers) {
-        Series by_time, by_spp;
-        by_time.name = by_spp.name = direct_sampler_name(sampler);
-        for (const DirectPoint& p : points) {
-            if (p.sampler != sampler) continue;
-            by_time.x.push_back(p.direct_ms);
-            by_time.y.push_back(p.relative_rmse);
-            by_spp.x.push_back(p.spp);
-            by_spp.y.push_back(p.relative_rmse);
-        }
-        time_plot.series.push_back(by_time);
-        spp_plot.series.push_back(by_spp);
-    }
-    write_plot_png(out / "rmse_vs_time.png", time_plot);
-    write_plot_png(out / "rmse_vs_spp.png", spp_plot);
-
     // report.md
     std::ostringstream md;
     md << "# Direct light: flat sampler vs one- and two-level light trees (" << setup.name << ")\n\n"
@@ -274,6 +249,7 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
           "![tree2](tree2_spp.png)\n";
     write_text(out / "report.md", md.str());
     std::printf("wrote %s\n", (out / "report.md").string().c_str());
+    draw_plots("bench-direct", out);  // rmse_vs_time.png, rmse_vs_spp.png from points.csv
     return 0;
 }
 

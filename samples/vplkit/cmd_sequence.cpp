@@ -5,7 +5,7 @@
 
 #include "camera_path.hpp"
 #include "commands.hpp"
-#include "plot.hpp"
+#include "plot_script.hpp"
 #include "render_request.hpp"
 #include "render_stats.hpp"
 #include "stats_json.hpp"
@@ -325,21 +325,6 @@ int run_sequence(Args& args) {
 
     write_text(out_dir / "metrics.csv", metrics_csv);
     const TemporalError& m = meter.result();
-    PlotSpec plot;
-    plot.title = "seed 001 temporal metrics: " + loaded.described;
-    plot.x_label = "frame";
-    plot.y_label = "Reinhard luminance error";
-    Series e{"|E| (mean abs. error)", {}, {}}, de{"|E'| (mean abs. error change, eq. 10)", {}, {}};
-    for (uint32_t f = 0; f < frames; ++f) {
-        e.x.push_back(f);
-        e.y.push_back(m.mean_abs_error[f]);
-        if (f > 0) {
-            de.x.push_back(f);
-            de.y.push_back(m.mean_abs_error_change[f]);
-        }
-    }
-    plot.series = {e, de};
-    write_plot_png(out_dir / "metrics.png", plot);
     const char* source = settings.vpl_source == VplSource::smc    ? "smc"
                          : settings.vpl_source == VplSource::brsm ? "brsm"
                          : settings.vpl_source == VplSource::ir   ? "ir"
@@ -359,7 +344,11 @@ int run_sequence(Args& args) {
            << "![metrics](metrics.png)\n\nPer frame: `metrics.csv`; stage times: `stage_times.csv`.\n";
     write_text(out_dir / "report.md", report.str());
     std::printf("average |E| %.5f, average |E'| %.5f\n", m.average_error(), m.average_error_change());
-    std::printf("wrote metrics.csv, metrics.png and report.md to %s\n", out_dir.string().c_str());
+    std::printf("wrote metrics.csv and report.md to %s\n", out_dir.string().c_str());
+    // metrics.png from metrics.csv, titled with the scene's short name: a set-up's, or a file's stem.
+    const std::string scene_name = request.scene_arg.empty() ? loaded.described.substr(0, loaded.described.find(" ("))
+                                                             : std::filesystem::path(request.scene_arg).stem().string();
+    draw_plots("sequence", out_dir, {"--scene", scene_name});
     return 0;
 }
 
