@@ -3,9 +3,12 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "frame_exr.hpp"
 #include "render_request.hpp"
+#include "render_stats.hpp"
 #include "scene_warnings.hpp"
 #include "setting_flags.hpp"
+#include "stats_json.hpp"
 #include "vpl_view.hpp"
 
 #include "vplkit/context.hpp"
@@ -24,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -36,13 +40,21 @@ namespace vplkit::cli {
 namespace {
 
 // Fails before any rendering when a file could not be written there.
-void check_output(const std::string& option, const std::filesystem::path& path, const std::string& extension) {
-    if (path.extension() != extension) {
-        throw UsageError(option + " expects a " + extension + " file name, got '" + path.string() + "'");
+void check_output(const std::string& option, const std::filesystem::path& path,
+                  std::initializer_list<std::string> extensions) {
+    if (std::find(extensions.begin(), extensions.end(), path.extension().string()) == extensions.end()) {
+        std::string names;
+        for (const std::string& e : extensions) names += (names.empty() ? "" : " or ") + e;
+        throw UsageError(option + " expects a " + names + " file name, got '" + path.string() + "'");
     }
     const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
     if (!std::filesystem::is_directory(folder)) {
         throw UsageError(option + ": the folder " + folder.string() + " does not exist");
+    }
+    // Found now rather than after a long render (the writers fail cleanly either way).
+    if (std::filesystem::is_directory(path)) throw UsageError(option + ": " + path.string() + " is a folder");
+    if (::access(folder.c_str(), W_OK) != 0) {
+        throw UsageError(option + ": the folder " + folder.string() + " is not writable");
     }
 }
 
@@ -404,16 +416,22 @@ int render_or_plan(Args& args, bool plan_only) {
     const auto out_indirect = args.value("--out-indirect");
     uint32_t frames = 1;
     if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
+    const auto stats_path = plan_only ? std::nullopt : args.value("--stats");
     if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
         throw UsageError(
             "--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
     }
     args.finish();
     validate_render_request(request);
-    check_output("--out", out, ".png");
-    if (out_hdr) check_output("--out-hdr", *out_hdr, ".pfm");
-    if (out_direct) check_output("--out-direct", *out_direct, ".pfm");
-    if (out_indirect) check_output("--out-indirect", *out_indirect, ".pfm");
+    check_output("--out", out, {".png", ".exr"});
+    if (out_hdr) check_output("--out-hdr", *out_hdr, {".pfm", ".exr"});
+    if (out_direct) check_output("--out-direct", *out_direct, {".pfm"});
+    if (out_indirect) check_output("--out-indirect", *out_indirect, {".pfm"});
+    if (stats_path) check_output("--stats", *stats_path, {".json"});
+    const auto is_exr = [](const std::filesystem::path& path) { return path.extension() == ".exr"; };
+    if (settings.vpls_only && is_exr(out)) throw UsageError("--vpls-only draws the VPLs into a PNG: give --out a .png");
+    // The EXR's albedo, normal, depth and variance layers come from the G-buffer and the denoiser.
+    settings.read_back_aovs = is_exr(out) || (out_hdr && is_exr(*out_hdr));
 
     LoadedScene loaded = load_request_scene(request);
     const scene::Scene& scene = loaded.scene;
@@ -462,6 +480,8 @@ int render_or_plan(Args& args, bool plan_only) {
     // Several frames: the first pays for lavapipe's shader compiles at first dispatch (and a
     // GPU's warm-up); the times printed are each stage's median over the frames after it.
     std::vector<std::vector<std::pair<std::string, double>>> frame_stages;
+    std::vector<std::vector<PassTiming>> frame_timings;  // for --stats
+    PlanLog plans;
     RenderedImage image;
     for (uint32_t frame = 0; frame < frames; ++frame) {
         if (frames > 1) std::fprintf(stderr, "[render] frame %u/%u\n", frame + 1, frames);
@@ -469,6 +489,8 @@ int render_or_plan(Args& args, bool plan_only) {
         if (settings.denoise != DenoiseMode::off) settings.frame = frame;
         image = renderer.render(scene.camera(), settings);
         if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
+        frame_timings.push_back(image.timings);
+        plans.add(frame, image.plan);
     }
     std::printf("%s\n", image.plan_summary.c_str());
     for (const std::string& note : image.notes) std::printf("note: %s\n", with_flags(note).c_str());
@@ -539,6 +561,39 @@ int render_or_plan(Args& args, bool plan_only) {
         std::printf("exact gi by the host's wall clock: %.3f ms\n", image.exact_gi_wall_ms);
     }
 
+    std::vector<std::string> written;
+    const auto wrote = [&written](const std::filesystem::path& path) {
+        std::printf("wrote %s\n", path.string().c_str());
+        written.push_back(path.string());
+    };
+    const auto write_stats = [&] {
+        if (!stats_path) return;
+        nlohmann::ordered_json stats = stats_header("render");
+        stats["device"] = device_stats(device);
+        stats["scene"] = {{"name", described},
+                          {"triangles", scene.triangle_count()},
+                          {"materials", scene.materials.size()},
+                          {"lights", scene.lights.size()},
+                          {"emissive_triangles", scene.emissive_triangles.size()},
+                          {"load_ms", json_number(load_ms)},
+                          {"bvh_build_ms", json_number(renderer.bvh_build_ms())}};
+        stats["settings"] = {{"method", gi_method_name(settings.method)},
+                             {"denoise", denoise_mode_name(settings.denoise)},
+                             {"exposure", json_number(settings.exposure)},
+                             {"seed", settings.seed}};
+        stats["width"] = image.width;
+        stats["height"] = image.height;
+        stats["frames"] = frames;
+        stats["plans"] = plans.json();
+        stats.update(timing_stats(frame_timings));
+        stats["counters"] = counters_stats(image, settings);
+        // Null when the denoiser did not run (no firefly clamp).
+        stats["firefly_moved_fraction"] =
+            image.plan.runs(FrameStage::denoise) ? json_number(image.firefly_moved_fraction) : nullptr;
+        stats["outputs"] = written;
+        write_json_file(*stats_path, stats);
+        std::printf("wrote %s\n", stats_path->c_str());
+    };
     if (settings.vpls_only) {
         if (image.vpl_count == 0) {
             throw Error("render: no VPLs were placed (no light reaches a reflecting surface); no image written");
@@ -548,23 +603,32 @@ int render_or_plan(Args& args, bool plan_only) {
         std::printf("vpl view: %u VPLs seen by the camera, %u hidden behind nearer surfaces, %u off screen\n",
                     drawn.visible, drawn.hidden, drawn.off_screen);
         write_png(out, image.width, image.height, drawn.rgba8);
-        std::printf("wrote %s\n", out.string().c_str());
+        wrote(out);
+        write_stats();
         return 0;
     }
-    write_png(out, image.width, image.height, image.rgba8);
-    std::printf("wrote %s\n", out.string().c_str());
-    if (out_hdr) {
+    if (is_exr(out)) {
+        write_frame_exr(out, image, settings);
+    } else {
+        write_png(out, image.width, image.height, image.rgba8);
+    }
+    wrote(out);
+    if (out_hdr && is_exr(*out_hdr)) {
+        write_frame_exr(*out_hdr, image, settings);
+        wrote(*out_hdr);
+    } else if (out_hdr) {
         write_pfm(*out_hdr, image.width, image.height, image.radiance);
-        std::printf("wrote %s\n", out_hdr->c_str());
+        wrote(*out_hdr);
     }
     if (out_direct) {
         write_pfm(*out_direct, image.width, image.height, image.direct);
-        std::printf("wrote %s\n", out_direct->c_str());
+        wrote(*out_direct);
     }
     if (out_indirect) {
         write_pfm(*out_indirect, image.width, image.height, image.indirect);
-        std::printf("wrote %s\n", out_indirect->c_str());
+        wrote(*out_indirect);
     }
+    write_stats();
     return 0;
 }
 
