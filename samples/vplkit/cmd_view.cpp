@@ -17,6 +17,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/image_io.hpp"
+#include "vplkit/image_metrics.hpp"
 #include "vplkit/renderer.hpp"
 
 #include <GLFW/glfw3.h>
@@ -27,12 +28,14 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace vplkit::cli {
 
 const char* const kViewUsage =
     "usage: vplkit view [render's scene and method options] [--screenshot FILE.png [--frames N]]\n"
-    "                   [--window WxH] [--no-panel]\n"
+    "                   [--window WxH] [--no-panel] [--compare-exact]\n"
     "\n"
     "A window showing the renderer's frames, with a panel to change the method and its settings\n"
     "while it runs (the planner's reasons and per-stage GPU times alongside).\n"
@@ -44,7 +47,9 @@ const char* const kViewUsage =
     "  --screenshot FILE.png  render --frames frames, write the window's image to FILE.png, exit\n"
     "  --frames N             frames before the screenshot (default 1), or before closing without one\n"
     "  --window WxH           the window's size (default: the frame's size); the frame is scaled to fit\n"
-    "  --no-panel             start with the panel hidden\n";
+    "  --no-panel             start with the panel hidden\n"
+    "  --compare-exact        render the exact frame (every VPL at every pixel) once at start and show\n"
+    "                         each frame's relative RMSE against it (the panel's button does the same)\n";
 
 namespace {
 
@@ -95,6 +100,19 @@ void on_scroll(GLFWwindow*, double, double y) {
     g_presses.scroll += y;
 }
 
+// The frame with every VPL at every pixel (GiMethod::exact) for this view and VPL settings: the
+// reference "compare with exact" measures against. Slow on purpose; the VPLs are the cached ones.
+std::vector<float> exact_radiance(Renderer& renderer, const scene::Camera& camera, const RenderSettings& settings) {
+    RenderSettings exact = settings;
+    exact.method = GiMethod::exact;
+    exact.denoise = DenoiseMode::off;
+    exact.half_resolution_gi = false;
+    exact.frame = 0;
+    std::printf("view: rendering the exact frame for comparison...\n");
+    std::fflush(stdout);
+    return renderer.render(camera, exact).radiance;
+}
+
 }  // namespace
 
 int run_view(Args& args) {
@@ -104,6 +122,7 @@ int run_view(Args& args) {
     std::optional<WindowSize> window_size;
     if (auto text = args.value("--window")) window_size = parse_window_size(*text);
     bool show_panel = !args.flag("--no-panel");
+    bool compare_exact = args.flag("--compare-exact");
     RenderRequest request = parse_render_request(args);
     args.finish();
     validate_render_request(request);
@@ -134,12 +153,15 @@ int run_view(Args& args) {
     glfwSetKeyCallback(window.handle(), on_key);
     glfwSetScrollCallback(window.handle(), on_scroll);
     ViewCamera camera(scene.camera(), loaded.target);
-    ViewPanel panel(scene);
+    ViewPanel panel;
 
     uint32_t frame = 0;  // frames since the view or the settings last changed (accumulation)
     uint32_t shown = 0;
     auto last = std::chrono::steady_clock::now();
     RenderedImage image;
+    RenderSettings accepted = settings;  // the last settings the renderer took
+    std::vector<float> exact;            // the exact frame of this view and settings, on request
+    std::optional<double> exact_error;   // the last frame's relative RMSE against it
     while (!window.close_requested()) {
         window.poll_events();
         const auto now = std::chrono::steady_clock::now();
@@ -153,10 +175,30 @@ int run_view(Args& args) {
 
         gui.begin_frame();
         const bool changed = show_panel && panel.draw(settings, image);
-        if (moved || changed) frame = 0;
+        if (moved || changed) {
+            frame = 0;
+            exact.clear();
+        }
         settings.frame = frame++;
-        image = renderer.render(camera.camera(), settings);
+        try {
+            image = renderer.render(camera.camera(), settings);
+            accepted = settings;
+        } catch (const Error& e) {
+            if (!changed) throw;
+            // A combination the renderer refuses (e.g. BRSM without a punctual light): say why
+            // in the panel and go back to the last settings it took.
+            panel.set_error(with_flags(e.what()));
+            settings = accepted;
+            frame = 0;
+            continue;
+        }
         panel.add_frame(image);
+        if (panel.take_exact_request() || std::exchange(compare_exact, false)) {
+            exact = exact_radiance(renderer, camera.camera(), settings);
+        }
+        exact_error = std::nullopt;
+        if (exact.size() == image.radiance.size()) exact_error = relative_rmse(image.radiance, exact);
+        panel.set_exact_error(exact_error);
 
         const bool last_frame = frames && shown + 1 == *frames;
         const bool capture = (screenshot && last_frame) || g_presses.screenshot;
@@ -179,6 +221,7 @@ int run_view(Args& args) {
         }
         if (last_frame) break;
     }
+    if (exact_error) std::printf("relative RMSE against the exact frame: %.5f\n", *exact_error);
     if (image.non_finite_pixels > 0) {
         std::printf("warning: %u pixels of the last frame were NaN or infinite (magenta)\n", image.non_finite_pixels);
     }

@@ -46,18 +46,7 @@ bool slide_count(const char* label, uint32_t& value, int low, int high) {
     return true;
 }
 
-// What decides the plan: a key over the settings the planner reads.
-std::string plan_key(const RenderSettings& s) {
-    std::ostringstream key;
-    key << int(s.method) << ' ' << int(s.vpl_source) << ' ' << s.vpl_paths << ' ' << s.brsm.vpl_count << ' '
-        << s.smc.budget << ' ' << s.half_resolution_gi << ' ' << int(s.denoise) << ' ' << int(s.glossy_branch) << ' '
-        << s.samples_per_pixel << ' ' << int(s.direct_sampler);
-    return key.str();
-}
-
 }  // namespace
-
-ViewPanel::ViewPanel(const scene::Scene& scene) : scene_(scene) {}
 
 bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
     ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
@@ -67,11 +56,10 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
     ImGui::SetNextWindowSize(ImVec2(360, std::max(height, 120.0f)), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.8f);
     bool changed = false;
-    update_plan(settings);
     if (ImGui::Begin("vplkit")) {
         ImGui::Text("%ux%u, %u VPLs, frame %u", last.width, last.height, last.vpl_count, settings.frame);
         RenderSettings edited = settings;
-        if (draw_settings(edited)) {
+        if (draw_settings(edited, last.plan)) {
             try {
                 validate_gi_settings(edited);
                 settings = edited;
@@ -82,14 +70,18 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
             }
         }
         if (!error_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", error_.c_str());
-        if (ImGui::CollapsingHeader("plan")) draw_plan(settings);
+        draw_exact_error();
+        if (ImGui::CollapsingHeader("plan")) {
+            std::istringstream lines(with_flags(last.plan.describe()));
+            for (std::string line; std::getline(lines, line);) ImGui::TextWrapped("%s", line.c_str());
+        }
         if (ImGui::CollapsingHeader("GPU time per stage", ImGuiTreeNodeFlags_DefaultOpen)) draw_times(last);
     }
     ImGui::End();
     return changed;
 }
 
-bool ViewPanel::draw_settings(RenderSettings& s) {
+bool ViewPanel::draw_settings(RenderSettings& s, const FramePlan& plan) {
     bool changed = false;
     std::vector<std::string> methods;
     for (const GiMethodInfo& m : gi_methods()) methods.emplace_back(m.name);
@@ -120,7 +112,7 @@ bool ViewPanel::draw_settings(RenderSettings& s) {
         int source = int(std::find(std::begin(order), std::end(order), s.vpl_source) - std::begin(order));
         if (choose("VPL source", source, {"auto", "ir", "brsm", "smc"})) s.vpl_source = order[source], changed = true;
         // The count the resolved source reads.
-        const VplSource resolved = s.vpl_source == VplSource::automatic ? plan_.vpl_source : s.vpl_source;
+        const VplSource resolved = s.vpl_source == VplSource::automatic ? plan.vpl_source : s.vpl_source;
         if (resolved == VplSource::brsm) {
             changed |= slide_count("VPLs (brsm)", s.brsm.vpl_count, 16, 1 << 16);
         } else if (resolved == VplSource::smc) {
@@ -134,18 +126,14 @@ bool ViewPanel::draw_settings(RenderSettings& s) {
     return changed;
 }
 
-void ViewPanel::update_plan(const RenderSettings& settings) {
-    const std::string key = plan_key(settings);
-    if (key != planned_key_) {
-        plan_ = plan_frame(scene_, settings, "");
-        planned_key_ = key;
+void ViewPanel::draw_exact_error() {
+    if (ImGui::Button("compare with exact")) exact_requested_ = true;
+    ImGui::SameLine();
+    if (exact_error_) {
+        ImGui::Text("relative RMSE %.4f", *exact_error_);
+    } else {
+        ImGui::TextDisabled("(renders every VPL once: slow)");
     }
-}
-
-void ViewPanel::draw_plan(const RenderSettings& settings) {
-    update_plan(settings);
-    std::istringstream lines(with_flags(plan_.describe()));
-    for (std::string line; std::getline(lines, line);) ImGui::TextWrapped("%s", line.c_str());
 }
 
 void ViewPanel::draw_times(const RenderedImage& last) {

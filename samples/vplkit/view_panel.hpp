@@ -1,30 +1,27 @@
 #pragma once
 // The viewer's panel (Dear ImGui): the method and its main settings, the VPL source and count,
-// the glossy lobe, the exposure; the planner's plan with its reasons; each stage's GPU time over
-// the last frames as a graph. Changing a setting re-plans the frame (the renderer decides
-// what to rebuild from the plan's keys).
+// the glossy lobe, the exposure; the last frame's plan with the planner's reasons; the error
+// against an exact frame on request; each stage's GPU time over the last frames as a graph.
+// Changing a setting re-plans the next frame (the renderer decides what to rebuild from the
+// plan's keys).
 
 #include "vplkit/planner.hpp"
 #include "vplkit/render_settings.hpp"
 
 #include <deque>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace vplkit {
 struct RenderedImage;
-namespace scene {
-struct Scene;
 }
-}  // namespace vplkit
 
 namespace vplkit::cli {
 
 class ViewPanel {
 public:
-    explicit ViewPanel(const scene::Scene& scene);
-
     // Draws the panel (between Gui::begin_frame and record) for the frame `last`. Returns true
     // when it changed `settings` (only to settings validate_gi_settings accepts).
     bool draw(RenderSettings& settings, const RenderedImage& last);
@@ -33,17 +30,20 @@ public:
     // Shows a message under the settings (e.g. why the renderer refused them) until they change.
     void set_error(std::string message) { error_ = std::move(message); }
 
+    // "compare with exact" was pressed since the last call.
+    bool take_exact_request() { return std::exchange(exact_requested_, false); }
+    // The frame's relative RMSE against the exact frame of the same view and VPLs; none: no
+    // such frame (the view or the settings changed since).
+    void set_exact_error(std::optional<double> error) { exact_error_ = error; }
+
 private:
-    void update_plan(const RenderSettings& settings);
-    bool draw_settings(RenderSettings& settings);
-    void draw_plan(const RenderSettings& settings);
+    bool draw_settings(RenderSettings& settings, const FramePlan& plan);
+    void draw_exact_error();
     void draw_times(const RenderedImage& last);
 
-    const scene::Scene& scene_;
     std::string error_;
-    // The plan of the settings it was made for (planning is pure, but not free on a big scene).
-    std::string planned_key_;
-    FramePlan plan_;
+    bool exact_requested_ = false;
+    std::optional<double> exact_error_;
     // Each stage's GPU milliseconds over the last frames, stages in the order first seen.
     std::vector<std::pair<std::string, std::deque<float>>> stage_ms_;
     std::deque<float> total_ms_;
