@@ -67,6 +67,31 @@ uint32_t require_buffers(const VplTracingOptions& options, const VplTracingBuffe
     return needed.capacity;
 }
 
+// `sources` with every empty view (a kind with no record) replaced by the albedo buffer, which
+// the shader never reads in its place (it reads lights, emitters and the CDF below their counts
+// only); throws Error when a buffer is smaller than its count's records.
+VplSourceBuffers bound_sources(const VplSourceBuffers& sources) {
+    if (sources.triangle_count == 0 || !sources.triangle_albedo) {
+        throw Error("VPL tracing: the sources have no triangle albedo (triangle_count must be >= 1)");
+    }
+    if (sources.emitter_count != 0 && sources.emitter_count != sources.punctual_count + sources.emissive_count) {
+        throw Error("VPL tracing: emitter_count must be 0 or punctual_count + emissive_count");
+    }
+    VplSourceBuffers bound = sources;
+    auto check = [&](BufferView& view, uint64_t count, uint64_t record, const char* what) {
+        if (count > 0 && (!view || view.size < count * record)) {
+            throw Error("VPL tracing: the " + std::string(what) + " buffer '" + view.name + "' holds fewer than " +
+                        std::to_string(count) + " records");
+        }
+        if (count == 0) view = sources.triangle_albedo;
+    };
+    check(bound.lights, sources.punctual_count, sizeof(shaders::PunctualLight), "lights");
+    check(bound.emissive, sources.emissive_count, sizeof(shaders::EmitterTriangle), "emissive triangles");
+    check(bound.emitter_cdf, sources.emitter_count, sizeof(float), "emitter CDF");
+    check(bound.triangle_albedo, sources.triangle_count, sizeof(shaders::vec4), "triangle albedo");
+    return bound;
+}
+
 }  // namespace
 
 void add_pack_vpls_passes(Device& device, StepList& passes, const VplTracingOptions& options,
@@ -112,6 +137,7 @@ void add_pack_vpls_passes(Device& device, StepList& passes, const VplTracingOpti
 void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
                          const VplTracingOptions& options, const VplTracingBuffers& output) {
     const uint32_t capacity = require_buffers(options, output);
+    const VplSourceBuffers bound = bound_sources(sources);
     const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>(bvh_spec<shaders::trace_vpls::Spec>(bvh));
     check_dispatch_groups(pipeline, "VPL tracing", options.paths);  // past 65,535 workgroups the grid is folded
 
@@ -137,16 +163,16 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     b.bvh_nodes = bvh.nodes.descriptor();
     b.bvh_triangles = bvh.triangles.descriptor();
     b.bvh_alpha = bvh.alpha.descriptor();
-    b.lights = sources.lights.descriptor();
-    b.emissive = sources.emissive.descriptor();
-    b.emitter_cdf = sources.emitter_cdf.descriptor();
-    b.albedo = sources.triangle_albedo.descriptor();
+    b.lights = bound.lights.descriptor();
+    b.emissive = bound.emissive.descriptor();
+    b.emitter_cdf = bound.emitter_cdf.descriptor();
+    b.albedo = bound.triangle_albedo.descriptor();
     b.path_vpls = output.path_vpls.descriptor();
     b.vpl_count = output.count.descriptor();
     b.path_vpl_counts = output.path_counts.descriptor();
     add_dispatch(passes, "trace vpls",
-                 {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(sources.lights),
-                  Use::read(sources.emissive), Use::read(sources.emitter_cdf), Use::read(sources.triangle_albedo),
+                 {Use::read(bvh.nodes), Use::read(bvh.triangles), Use::read(bvh.alpha), Use::read(bound.lights),
+                  Use::read(bound.emissive), Use::read(bound.emitter_cdf), Use::read(bound.triangle_albedo),
                   Use::write(output.path_vpls), Use::write(output.path_counts), Use::read_write(count)},
                  pipeline, b, push, push.path_count);
 

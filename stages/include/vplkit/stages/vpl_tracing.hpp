@@ -38,13 +38,15 @@ struct VplTracingOptions {
 };
 
 // Everything the tracer reads about the scene besides the BVH (all read only). The runtime
-// fills them from a scene (vplkit/vpl_tracing_buffers.hpp: upload_vpl_sources).
+// fills them from a scene (vplkit/vpl_tracing_buffers.hpp: upload_vpl_sources), a renderer from
+// its own lights and triangles (renderer_vpl_sources.hpp: vpl_sources_from_renderer). A buffer
+// whose count is 0 may be an empty view (no buffer): no dummy record is needed.
 template <class BufferT>
 struct VplSourceSet {
-    BufferT lights;           // PunctualLight[max(punctual_count, 1)] (lights.glsl)
-    BufferT emissive;         // EmitterTriangle[max(emissive_count, 1)] (trace_vpls.comp)
-    BufferT emitter_cdf;      // float[max(emitter_count, 1)]: selection_cdf of the emitters' powers
-    BufferT triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb)
+    BufferT lights;           // PunctualLight[punctual_count] (lights.glsl)
+    BufferT emissive;         // EmitterTriangle[emissive_count] (trace_vpls.comp)
+    BufferT emitter_cdf;      // float[emitter_count]: selection_cdf of the emitters' powers
+    BufferT triangle_albedo;  // vec4[triangle_count]: diffuse reflectance per scene triangle (rgb), >= 1
     uint32_t punctual_count = 0;
     uint32_t emissive_count = 0;
     // punctual_count + emissive_count, or 0 when no emitter has any power (then no path is traced).
@@ -102,8 +104,10 @@ VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options
 // Adds the passes "vpl count clear", "trace vpls" (each path's VPLs to its fixed slots), then
 // "vpl block counts", "vpl block offsets" and "compact vpls" (a stable compaction by path): reads
 // the BVH and `sources`, writes `output` (count cleared first). Every buffer of `output` must
-// hold what vpl_tracing_requirements(options) says (Error otherwise); paths must fit one
-// dispatch (Error).
+// hold what vpl_tracing_requirements(options) says, each source buffer its count's records, and
+// triangle_count must be >= 1 (Error otherwise); paths must fit one dispatch (Error). The VPL
+// count is word 0 of output.count: ElementCount::on_gpu(output.count, 0, capacity) hands it to
+// the key, leaf and tree passes without a read-back.
 void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
                          const VplTracingOptions& options, const VplTracingBuffers& output);
 
