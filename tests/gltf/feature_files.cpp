@@ -1,5 +1,7 @@
 #include "feature_files.hpp"
 
+#include "animation_files.hpp"
+
 #include <glm/vec4.hpp>
 
 #include <cmath>
@@ -311,6 +313,7 @@ const std::vector<FeatureFile>& feature_files() {
         {"skinned_quad", [] { return skinned_quad(90.0f); }},
         {"two_cameras", [] { return two_cameras(); }},
         {"quantized_quad", [] { return quantized_quad(kUnsignedShort); }},
+        {"animated_scene", [] { return animated_scene(); }},
     };
     return files;
 }

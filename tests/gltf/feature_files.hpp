@@ -1,9 +1,10 @@
 #pragma once
 // One small glTF per feature of issue 19 (vertex colours, texture transforms, morph targets,
-// skins, orthographic cameras, alpha masks, quantized attributes, and a file with features
-// vplkit skips), each with a point light so `vplkit render` takes it as it is. Written by
-// write_gltf_features (a ctest fixture, for the command-line tests) and used directly by the
-// gltf suite; the CPU expectations the tests compare with are stated beside each builder.
+// skins, orthographic cameras, alpha masks, quantized attributes, an animated scene from
+// animation_files.hpp, and a file with features vplkit skips), each with a point light so
+// `vplkit render` takes it as it is. Written by write_gltf_features (a ctest fixture, for the
+// command-line tests) and used directly by the gltf suite; the CPU expectations the tests
+// compare with are stated beside each builder.
 
 #include "gltf_builder.hpp"
 
@@ -92,9 +93,9 @@ GltfBuilder two_cameras();
 // `declare` false leaves the extension out of extensionsUsed (the loader must refuse the file).
 GltfBuilder quantized_quad(int position_type, bool declare = true);
 
-// A quad plus a POINTS primitive, an animation (a translation of the quad's node) and
-// extensionsUsed KHR_materials_clearcoat (not required): the loader skips all three, so
-// `vplkit render` warns three times (each once) and --strict fails.
+// A quad plus a POINTS primitive, an animation (a translation of the quad's node, skipped when
+// no time is given) and extensionsUsed KHR_materials_clearcoat (not required): the loader skips
+// all three, so `vplkit render` warns three times (each once) and --strict fails.
 GltfBuilder skipped_features();
 
 }  // namespace gltf_features

@@ -211,6 +211,14 @@ std::vector<std::string> warning_lines(const LoadWarnings& warnings);
 // The dropped zero-area triangles as a line (empty when there were none): they change no image.
 std::string degenerate_triangles_note(const LoadWarnings& warnings);
 
+// One glTF animation of the file (glTF 2.0 3.11), for a sequence to loop or clamp over.
+struct Animation {
+    std::string name;      // the file's ("" when unnamed)
+    double start = 0.0;    // its earliest key, seconds
+    double end = 0.0;      // its latest key, seconds (end - start: its duration)
+    bool applied = false;  // posed into this scene (see LoadOptions::time and ::animation)
+};
+
 struct Scene {
     std::filesystem::path source;  // the file it was loaded from
 
@@ -240,6 +248,11 @@ struct Scene {
     Bounds bounds;  // of every triangle's vertices
     LoadWarnings warnings;
 
+    // The file's animations in the file's order, and the time the scene is posed at (unset: the
+    // rest pose, every animation ignored).
+    std::vector<Animation> animations;
+    std::optional<double> time;
+
     size_t triangle_count() const { return indices.size() / 3; }
     const Camera& camera() const { return cameras.at(active_camera); }
 };
@@ -248,6 +261,17 @@ struct LoadOptions {
     // The camera to make active (index into the file's cameras, as Scene::cameras orders them).
     // A file without that camera is an error. Unset: camera 0, or the generated one.
     std::optional<uint32_t> camera;
+    // The time, in seconds, to pose the scene at: nodes (hence meshes, skins' joints, lights and
+    // cameras) and morph weights take the animations' values at it (glTF 2.0 3.11, Appendix C).
+    // Each channel is clamped to its own keys: before its first key it holds the first key's
+    // value, after its last the last's (no wrapping: a sequence loops or clamps by choosing the
+    // time from Scene::animations). Unset: the rest pose, the animations ignored (warned), unless
+    // `animation` is set, which then poses the scene at that animation's start.
+    std::optional<double> time;
+    // The animation to play: a name of one of the file's animations, else its index in the file
+    // (decimal). Unset: every animation of the file at `time`; where two of them animate the same
+    // node property the later in the file wins (warned). A name or index the file lacks is an error.
+    std::optional<std::string> animation;
 };
 
 // Loads `path` (.gltf with external or embedded buffers and images, or .glb) and the scene it
@@ -260,7 +284,10 @@ struct LoadOptions {
 // missing or truncated buffer, missing or undecodable image a material uses, an accessor or
 // bufferView outside its buffer, an index outside its vertices, NaN/Inf in a vertex attribute or a
 // transform, no triangle left, an extension in extensionsRequired that vplkit does not support,
-// options.camera out of range.
+// options.camera out of range, options.animation not in the file, a malformed animation (a
+// sampler whose times are not strictly increasing, key and value counts that disagree, a channel
+// naming a node the file lacks or one that has a matrix, a path animated twice in one animation;
+// every animation is checked, applied or not).
 Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options = {});
 
 // The random integer load_gltf gives vertex `vertex` (the file's index within its primitive) of

@@ -1,12 +1,14 @@
 // load_gltf: tinygltf parses the file and loads its buffers; everything it does not check
 // (indices into arrays, accessor and bufferView bounds, finite values, required extensions) is
 // checked before the data is used, and each failure is one Error naming file and problem. The
-// jobs live in their own files: gltf_file (reading, extensions), gltf_materials (materials and
+// jobs live in their own files: gltf_file (reading, extensions), gltf_animation (the nodes posed
+// at the time asked for, gltf_animation_sampler interpolating), gltf_materials (materials and
 // textures), gltf_nodes (the node tree, skins, morph weights), gltf_primitives (decoding),
 // gltf_lights_cameras, gltf_pose (morphing and skinning), gltf_geometry (world-space triangles),
 // gltf_images (decoding the images materials use). This file puts them together.
 
 #include "scene/gltf_accessors.hpp"
+#include "scene/gltf_animation.hpp"
 #include "scene/gltf_checks.hpp"
 #include "scene/gltf_file.hpp"
 #include "scene/gltf_geometry.hpp"
@@ -61,11 +63,8 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
         }
     }
     detail::check_extensions(source, scene.warnings);
-    if (!model.animations.empty()) {
-        scene.warnings.messages.push_back(std::to_string(model.animations.size()) +
-                                          " animation(s) ignored: the still frame is the file's rest pose (node "
-                                          "transforms, default morph weights)");
-    }
+    // Posed first: from here on the nodes' TRS and weights are their values at options.time.
+    scene.animations = detail::pose_animations(source, model, options, scene.time, scene.warnings);
 
     // Materials first: a primitive's need for tangents depends on its material's normal texture.
     detail::TextureTable textures(source);

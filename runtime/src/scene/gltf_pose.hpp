@@ -1,7 +1,8 @@
 #pragma once
-// The pose of a primitive in the still frame the file states: morph targets at the node's (else
-// the mesh's) default weights, then skinning by the joints' node transforms times their inverse
-// bind matrices (glTF 2.0 3.7.2.2 and 3.7.3). With no animation these are the bind pose's joints.
+// The pose of a primitive in the still frame: morph targets at the node's (else the mesh's)
+// weights, then skinning by the joints' node transforms times their inverse bind matrices (glTF
+// 2.0 3.7.2.2 and 3.7.3). Weights and transforms are the file's, or their animated values at the
+// load's time (gltf_animation writes those into the nodes first).
 
 #include "scene/gltf_geometry.hpp"
 
