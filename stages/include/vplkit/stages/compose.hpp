@@ -1,15 +1,24 @@
 #pragma once
-// compose.comp: composed = direct + indirect radiance (RGBA32F images of one size, storage usage,
-// GENERAL layout).
+// compose*.comp: composed = direct + indirect radiance, a = 1, into the caller's image format:
+// `direct` and `composed` RGBA32F, RGBA16F or RGBA8 UNORM (both the same format; RGBA8 clamps
+// each channel to [0, 1]), `indirect` the kit's RGBA32F. Images of one size, storage usage,
+// GENERAL layout. `direct` and `composed` may be the same image: the indirect light is then
+// added to it in place (a renderer's colour target, say).
 
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
+#include <vulkan/vulkan.h>
+
 namespace vplkit::stages {
 
+// Whether add_compose_pass writes this format.
+bool compose_supports(VkFormat format);
+
 // Adds the pass "compose": reads `direct` and `indirect`, writes `composed`. Throws vplkit::Error
-// when the images differ in size or are not RGBA32F.
+// naming the image when the sizes differ, `indirect` is not RGBA32F, `composed` is not a format
+// compose_supports, or `direct` is not of `composed`'s format.
 void add_compose_pass(Device& device, StepList& passes, const ImageView& direct, const ImageView& indirect,
                       const ImageView& composed);
 
