@@ -148,10 +148,11 @@ int run_view(Args& args) {
     while (!swapchain.recreate(window.framebuffer_size())) window.poll_events();
     Renderer renderer(*context, scene);
     FramePresenter presenter(*context, swapchain);
-    Gui gui(*context, window.handle(), swapchain);
-    // Installed after ImGui's, which it chains to: the panel still sees every key and scroll.
+    // Installed before ImGui's back end starts: it keeps them and calls them after its own, so
+    // both the panel and the viewer see every key and scroll.
     glfwSetKeyCallback(window.handle(), on_key);
     glfwSetScrollCallback(window.handle(), on_scroll);
+    Gui gui(*context, window.handle(), swapchain);
     ViewCamera camera(scene.camera(), loaded.target);
     ViewPanel panel;
 
@@ -171,9 +172,10 @@ int run_view(Args& args) {
         g_presses.toggle_panel = false;
         camera.zoom(g_presses.scroll);
         g_presses.scroll = 0.0;
-        const bool moved = camera.update(window.handle(), seconds, !gui.wants_mouse(), !gui.wants_keyboard());
-
+        // After begin_frame: ImGui has seen this frame's input and knows whether the pointer is
+        // over the panel.
         gui.begin_frame();
+        const bool moved = camera.update(window.handle(), seconds, !gui.wants_mouse(), !gui.wants_keyboard());
         const bool changed = show_panel && panel.draw(settings, image);
         if (moved || changed) {
             frame = 0;

@@ -50,10 +50,13 @@ bool ViewCamera::update(GLFWwindow* window, double seconds, bool mouse_free, boo
     glfwGetCursorPos(window, &x, &y);
     const bool orbit = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
     const bool look = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-    // A drag that starts over the panel belongs to the panel.
-    if (!dragging_ && (orbit || look)) dragging_ = mouse_free;
+    // A drag that starts over the panel belongs to the panel; one that starts on the frame turns
+    // the camera from where the pointer was pressed (frames can be slow: the motion before the
+    // press must not count).
+    const bool starting = !dragging_ && (orbit || look) && mouse_free;
+    if (starting) dragging_ = true;
     if (!orbit && !look) dragging_ = false;
-    if (dragging_) {
+    if (dragging_ && !starting) {
         const float dx = float(x - last_x_) * kRadiansPerPixel;
         const float dy = float(y - last_y_) * kRadiansPerPixel;
         if (dx != 0.0f || dy != 0.0f) {
