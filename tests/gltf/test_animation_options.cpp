@@ -98,7 +98,7 @@ TEST_CASE("gltf animation options: every animation plays by default, or one chos
     CHECK(light_x(start) == 0.5f);
 }
 
-TEST_CASE("gltf animation options: two animations on one property: the later wins, warned") {
+TEST_CASE("gltf animation options: two animations on one property: the later wins, warned (and other warnings)") {
     const ChannelKeys a{0, "translation", "LINEAR", {0, 1}, {0, 0, 0, 1, 0, 0}};
     const ChannelKeys b{0, "translation", "LINEAR", {0, 1}, {0, 0, 0, 3, 0, 0}};
     const Scene scene = load(gltf_features::animated_quad({{"a", {a}}, {"b", {b}}}), 1.0);
@@ -106,6 +106,13 @@ TEST_CASE("gltf animation options: two animations on one property: the later win
     const auto lines = vplkit::scene::warning_lines(scene.warnings);
     REQUIRE(lines.size() == 1);
     CHECK(has(lines[0], "animation 0 'a' and animation 1 'b' both animate node 0 translation"));
+    // A path glTF 2.0 does not define (an extension's): that channel skipped, warned.
+    const ChannelKeys pointer{0, "pointer", "LINEAR", {0, 1}, {0, 0, 0, 1, 0, 0}};
+    const Scene skipped = load(gltf_features::animated_quad({{"p", {pointer}}}), 1.0);
+    CHECK(quad_x(skipped) == 0.0f);
+    REQUIRE(vplkit::scene::warning_lines(skipped.warnings).size() == 1);
+    CHECK(has(vplkit::scene::warning_lines(skipped.warnings)[0],
+              "animation 0 'p' channel 0 animates path 'pointer', which is not a glTF 2.0 node property: skipped"));
     // A time for a file without animations: the rest pose, said.
     const Scene still = load(gltf_features::animated_quad({}), 1.0);
     REQUIRE(vplkit::scene::warning_lines(still.warnings).size() == 1);
