@@ -2,6 +2,7 @@
 
 #include "vplkit/bvh_alpha.hpp"
 
+#include "vplkit/auto_exposure.hpp"
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -285,7 +286,10 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
 
     PassList direct_passes("direct light");
     direct_passes.set_tag(stage_tag(FrameStage::gbuffer));
-    stages::add_gbuffer_pass(context_, direct_passes, scene_, view, gbuffer);
+    // Anti-aliasing: only the raster sees the sub-pixel offset (antialias.hpp).
+    const stages::CameraView raster_view =
+        settings.antialias ? jittered_view(view, subpixel_jitter(settings.frame), w, h) : view;
+    stages::add_gbuffer_pass(context_, direct_passes, scene_, raster_view, gbuffer);
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));
     // With the tree, the direct-light pass adds only the directional lights (they have no position).
     stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_,
@@ -371,18 +375,28 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         if (plan.runs(FrameStage::denoise)) denoise_indirect(settings, view, gbuffer, indirect, demodulated, out);
     }
 
-    PassList output_passes("output");
-    output_passes.set_tag(stage_tag(FrameStage::compose));
-    stages::add_compose_pass(context_, output_passes, direct_out, indirect, composed);
-    output_passes.set_tag(stage_tag(FrameStage::tonemap));
-    stages::add_tonemap_passes(context_, output_passes, composed, display, stats, settings.exposure);
-    output_passes.run(context_);
-    append(out.timings, output_passes.timings());
-
-    out.rgba8 = display.download<uint8_t>();
+    // Composed and read back first: the mean over jittered frames and the automatic exposure
+    // are taken on the host, before the tone curve.
+    PassList compose_passes("output");
+    compose_passes.set_tag(stage_tag(FrameStage::compose));
+    stages::add_compose_pass(context_, compose_passes, direct_out, indirect, composed);
+    compose_passes.run(context_);
+    append(out.timings, compose_passes.timings());
     out.radiance = rgb_of(composed);
     out.direct = rgb_of(direct_out);
     out.indirect = rgb_of(indirect);
+    if (settings.antialias) {
+        const bool average_indirect = !plan.runs(FrameStage::denoise);  // the filter keeps its own mean
+        composed.upload(accumulator_.add(settings.frame, view.view_projection, average_indirect, out.direct,
+                                         out.indirect, out.radiance));
+    }
+    out.exposure = settings.auto_exposure ? auto_exposure(out.radiance).exposure : settings.exposure;
+    PassList output_passes("output");
+    output_passes.set_tag(stage_tag(FrameStage::tonemap));
+    stages::add_tonemap_passes(context_, output_passes, composed, display, stats, out.exposure);
+    output_passes.run(context_);
+    append(out.timings, output_passes.timings());
+    out.rgba8 = display.download<uint8_t>();
     out.non_finite_pixels = stats.download<uint32_t>(1)[0];
     if (settings.read_back_aovs) read_back_aovs(gbuffer, camera, out);
     return out;

@@ -87,7 +87,15 @@ inline constexpr float kSigmaMaxSceneFraction = 0.012f;
 struct RenderSettings {
     uint32_t width = 640;
     uint32_t height = 360;
-    float exposure = 1.0f;       // linear scale before the tone curve
+    float exposure = 1.0f;  // linear scale before the tone curve (unless auto_exposure)
+    // The scale from the frame's own radiance instead (auto_exposure.hpp); RenderedImage::exposure
+    // is the one used.
+    bool auto_exposure = false;
+    // Anti-aliasing on a static camera (antialias.hpp): the G-buffer of frame `frame` > 0 is
+    // rastered with a Halton(2,3) sub-pixel offset (frame 0 at the pixel centres, as without it),
+    // and the image is the mean of the frames since frame 0 on this camera (direct light; the
+    // indirect light too, unless the denoiser accumulates it).
+    bool antialias = false;
     glm::vec3 background{0.0f};  // radiance where no surface was drawn
     // Samples per pixel of sampled direct light. flat: area samples of the emissive triangles
     // (averaged); tree: cut nodes per block, one light sample each (summed), 1..64.

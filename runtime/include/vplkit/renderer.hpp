@@ -4,6 +4,7 @@
 // method (optionally at half resolution), the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH
 // built once, at construction; render() can then be called for any camera and size.
 
+#include "vplkit/antialias.hpp"
 #include "vplkit/bvh_gpu.hpp"
 #include "vplkit/denoiser.hpp"
 #include "vplkit/gpu_light_tree.hpp"
@@ -49,6 +50,7 @@ struct RenderedImage {
     uint32_t width = 0;
     uint32_t height = 0;
     std::vector<uint8_t> rgba8;           // tonemapped sRGB, rows top to bottom
+    float exposure = 1.0f;                // the scale the tone curve was given (settings' or automatic)
     std::vector<float> radiance;          // linear RGB, 3 floats per pixel, rows top to bottom: direct + indirect
     std::vector<float> direct;            // the direct part alone (same layout)
     std::vector<float> indirect;          // the indirect part alone (zero with GiMethod::none)
@@ -152,6 +154,7 @@ private:
     std::optional<stages::SmcState> smc_;
     // --denoise: the filter's history, while the frame size stays the same.
     std::optional<Denoiser> denoiser_;
+    FrameAccumulator accumulator_;  // RenderSettings::antialias: the mean of the frames on this camera
     std::string smc_key_;
     std::optional<stages::VplSources> vpl_sources_;
     const stages::VplSources& vpl_sources();
