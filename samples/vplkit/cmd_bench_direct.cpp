@@ -6,6 +6,7 @@
 // is). Writes DIR/points.csv, a frame of each (PNG), DIR/report.md with the equal-time comparison
 // and two plots (PNG, scripts/plot.py).
 
+#include "camera_flags.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
 #include "plot_script.hpp"
@@ -123,6 +124,7 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
         scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") || scene_name.ends_with(".glb");
     const std::string out_name = is_file ? std::filesystem::path(scene_name).stem().string() : scene_name;
     const std::filesystem::path out = args.value("--out").value_or("out/bench-direct/" + out_name);
+    const CameraFlags camera_flags = parse_camera_flags(args);
     args.finish();
 
     scene::Setup setup;
@@ -134,6 +136,7 @@ int run_bench_direct(Args& args, const std::string& scene_name) {
         setup = scene::load_setups(VPLKIT_SETUPS_FILE).find(scene_name);
         scene = scene::load_setup_scene(setup, {});
     }
+    apply_camera_flags(camera_flags, scene, scene.bounds.center());
     report_scene_warnings(scene, strict);
 
     auto context = Context::create(context_options);

@@ -3,6 +3,7 @@
 // with the exact ground truth (cached on disk); bench_gi_report.cpp writes the results.
 
 #include "bench_gi.hpp"
+#include "camera_flags.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
 #include "scene_warnings.hpp"
@@ -289,6 +290,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") || scene_name.ends_with(".glb");
     std::optional<uint32_t> camera;
     if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
+    const CameraFlags camera_flags = parse_camera_flags(args);
     std::vector<scene::Light> extra_lights;
     while (auto spec = args.value("--sun")) extra_lights.push_back(scene::parse_sun(*spec));
     while (auto spec = args.value("--point")) extra_lights.push_back(scene::parse_point(*spec));
@@ -330,6 +332,7 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
         scene = scene::load_setup_scene(setup, load_options);
     }
     scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
+    apply_camera_flags(camera_flags, scene, scene.bounds.center());  // the exact frames' cache key has the camera
     report_scene_warnings(scene, strict);
     std::filesystem::create_directories(out / "images");
     std::filesystem::create_directories(cache);

@@ -11,6 +11,7 @@
 #include "stats_json.hpp"
 #include "vpl_view.hpp"
 
+#include "vplkit/auto_exposure.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
@@ -73,7 +74,9 @@ std::optional<float> finite_number(const std::string& text) {
 
 float parse_exposure(const std::string& text) {
     const auto value = finite_number(text);
-    if (!value || *value <= 0.0f) throw UsageError("--exposure expects a positive number, got '" + text + "'");
+    if (!value || *value <= 0.0f) {
+        throw UsageError("--exposure expects auto or a positive number (a linear scale), got '" + text + "'");
+    }
     return *value;
 }
 
@@ -178,6 +181,7 @@ RenderRequest parse_render_request(Args& args) {
     if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
     if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
     if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
+    const CameraFlags camera_flags = parse_camera_flags(args);
     std::vector<scene::Light> extra_lights;
     // A malformed light is a command-line mistake: usage, exit 2.
     try {
@@ -187,7 +191,12 @@ RenderRequest parse_render_request(Args& args) {
         throw UsageError(e.what());
     }
     RenderSettings settings;
-    if (auto text = args.value("--exposure")) settings.exposure = parse_exposure(*text);
+    // The tonemapped image's exposure: automatic (auto_exposure.hpp) unless a scale is given.
+    settings.auto_exposure = true;
+    if (auto text = args.value("--exposure"); text && *text != "auto") {
+        settings.auto_exposure = false;
+        settings.exposure = parse_exposure(*text);
+    }
     if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
     if (auto text = args.value("--direct-spp"))
         settings.direct_samples = parse_whole_number("--direct-spp", *text, 65536);
@@ -349,6 +358,7 @@ RenderRequest parse_render_request(Args& args) {
     r.width = width;
     r.height = height;
     r.camera = camera;
+    r.camera_flags = camera_flags;
     r.extra_lights = std::move(extra_lights);
     r.settings = settings;
     r.lambertian = lambertian;
@@ -397,6 +407,7 @@ LoadedScene load_request_scene(RenderRequest& request) {
         settings.height = height.value_or(setup.height ? setup.height : 360);
     }
     scene.lights.insert(scene.lights.end(), request.extra_lights.begin(), request.extra_lights.end());
+    loaded.target = apply_camera_flags(request.camera_flags, scene, loaded.target);
     report_scene_warnings(scene, request.strict);
     if (request.lambertian) scene::use_lambertian_materials(scene);
     loaded.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
@@ -416,6 +427,8 @@ int render_or_plan(Args& args, bool plan_only) {
     const auto out_indirect = args.value("--out-indirect");
     uint32_t frames = 1;
     if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
+    // Several frames on the static camera: jittered and averaged (antialias.hpp) unless asked not to.
+    settings.antialias = !args.flag("--no-antialias") && frames > 1 && !settings.vpls_only;
     const auto stats_path = plan_only ? std::nullopt : args.value("--stats");
     if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
         throw UsageError(
@@ -485,8 +498,9 @@ int render_or_plan(Args& args, bool plan_only) {
     RenderedImage image;
     for (uint32_t frame = 0; frame < frames; ++frame) {
         if (frames > 1) std::fprintf(stderr, "[render] frame %u/%u\n", frame + 1, frames);
-        // Accumulating: every frame draws new samples (the frame counter) over the same VPLs.
-        if (settings.denoise != DenoiseMode::off) settings.frame = frame;
+        // Accumulating: every frame draws new samples (the frame counter) over the same VPLs, and
+        // with anti-aliasing its G-buffer moves by its sub-pixel offset.
+        if (settings.denoise != DenoiseMode::off || settings.antialias) settings.frame = frame;
         image = renderer.render(scene.camera(), settings);
         if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
         frame_timings.push_back(image.timings);
@@ -579,7 +593,7 @@ int render_or_plan(Args& args, bool plan_only) {
                           {"bvh_build_ms", json_number(renderer.bvh_build_ms())}};
         stats["settings"] = {{"method", gi_method_name(settings.method)},
                              {"denoise", denoise_mode_name(settings.denoise)},
-                             {"exposure", json_number(settings.exposure)},
+                             {"exposure", json_number(image.exposure)},
                              {"seed", settings.seed}};
         stats["width"] = image.width;
         stats["height"] = image.height;
@@ -594,6 +608,20 @@ int render_or_plan(Args& args, bool plan_only) {
         write_json_file(*stats_path, stats);
         std::printf("wrote %s\n", stats_path->c_str());
     };
+    if (settings.antialias) {
+        std::printf("anti-aliasing: the mean of %u frames, each G-buffer at a Halton(2,3) sub-pixel offset%s\n", frames,
+                    settings.denoise != DenoiseMode::off && !method.ground_truth
+                        ? " (the indirect light: the filter's own accumulation)"
+                        : "");
+    }
+    if (!settings.vpls_only && settings.auto_exposure) {
+        std::printf(
+            "exposure %.3g (automatic: the lit pixels' %.0fth luminance percentile to %.1f before the tone "
+            "curve; --exposure E fixes it; HDR outputs are not scaled)\n",
+            image.exposure, 100.0 * kAutoExposurePercentile, kAutoExposureTarget);
+    } else if (!settings.vpls_only) {
+        std::printf("exposure %.3g (--exposure)\n", image.exposure);
+    }
     if (settings.vpls_only) {
         if (image.vpl_count == 0) {
             throw Error("render: no VPLs were placed (no light reaches a reflecting surface); no image written");

@@ -45,6 +45,9 @@ const char* const kSequenceUsage =
     "                    turning --orbit-degrees (default 30) over the sequence; or a keyframe file,\n"
     "                    one key per line: TIME PX PY PZ TX TY TZ (position, target), interpolated\n"
     "  --frames N        frames (default 16)\n"
+    "  --position X,Y,Z --target X,Y,Z   orbit: the first frame's place and the orbit's centre\n"
+    "                    (default: the set-up's camera and target); --fov DEG: every frame's\n"
+    "                    vertical field of view (keyframes too); the paths keep +Y up (no --up)\n"
     "  --stats FILE      also a JSON file: the device, the plans (each stage kept or left out and\n"
     "                    why, per run of frames alike), GPU times (frame_ms: the median frame's sum\n"
     "                    over every pass; per stage and pass), each frame's counters (and metrics\n"
@@ -158,6 +161,12 @@ int run_sequence(Args& args) {
         settings.denoise = DenoiseMode::svgf;
     }
     if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
+    if (request.camera_flags.up) throw UsageError("--up: sequence's paths keep +Y up");
+    if (request.camera_flags.position && path_arg != "orbit") {
+        throw UsageError(
+            "--position and --target are for --path orbit (its start and centre): a keyframe file "
+            "places the camera itself (--fov applies to both)");
+    }
     if (fresh_vpls && settings.vpl_source == VplSource::smc) {
         throw UsageError("--fresh-vpls is for --vpl-source ir or brsm: an SMC set persists by design");
     }
@@ -210,6 +219,8 @@ int run_sequence(Args& args) {
     std::string times = "frame,stage,gpu_ms\n";
     std::string metrics_csv = "frame,mean_abs_error,mean_abs_error_change\n";
     TemporalErrorMeter meter;
+    // The metrics' Reinhard curve takes --exposure's scale (1 unless given), not the automatic one.
+    const float metrics_exposure = settings.auto_exposure ? 1.0f : settings.exposure;
     // --stats: each frame's passes, plan and counters.
     std::vector<std::vector<PassTiming>> frame_timings;
     PlanLog plans;
@@ -219,6 +230,12 @@ int run_sequence(Args& args) {
         settings.frame = f;
         if (fresh_vpls) settings.seed = base_seed + f;
         const RenderedImage image = renderer.render(path[f], settings);
+        if (f == 0 && settings.auto_exposure) {
+            // The first frame's automatic exposure for the whole sequence: no flicker between frames.
+            settings.auto_exposure = false;
+            settings.exposure = image.exposure;
+            std::printf("exposure %.3g (automatic, from the first frame, kept for all)\n", image.exposure);
+        }
         if (image.non_finite_pixels > 0) {
             throw Error("sequence: frame " + std::to_string(f) + " has " + std::to_string(image.non_finite_pixels) +
                         " NaN or infinite pixels (a bug: please report it)");
@@ -269,8 +286,8 @@ int run_sequence(Args& args) {
                 write_pfm(cached, r.width, r.height, truth);
                 write_text(cached.string() + ".key", key.str());
             }
-            meter.add_frame(reinhard_luminance(image.indirect, settings.exposure),
-                            reinhard_luminance(truth, settings.exposure));
+            meter.add_frame(reinhard_luminance(image.indirect, metrics_exposure),
+                            reinhard_luminance(truth, metrics_exposure));
             const TemporalError& m = meter.result();
             char line[128];
             std::snprintf(line, sizeof(line), "%u,%.6f,%s\n", f, m.mean_abs_error.back(),

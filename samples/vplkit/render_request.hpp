@@ -3,6 +3,7 @@
 // or a file, extra lights, the BRDF), the size and every indirect-light option, parsed into
 // RenderSettings; then the scene loaded for them. The outputs are each command's own.
 
+#include "camera_flags.hpp"
 #include "cli.hpp"
 
 #include "vplkit/context.hpp"
@@ -23,6 +24,7 @@ struct RenderRequest {
     bool strict = false;    // --strict: a scene warning fails the run
     std::string scene_arg;  // --scene: a set-up name or a file ("" = the default set-up)
     std::optional<uint32_t> width, height, camera;
+    CameraFlags camera_flags;                // --position, --target, --up, --fov
     std::vector<scene::Light> extra_lights;  // --sun, --point
     RenderSettings settings;
     bool lambertian = false;     // --brdf lambert
@@ -37,7 +39,7 @@ void validate_render_request(const RenderRequest& request);
 struct LoadedScene {
     scene::Scene scene;  // with the set-up's and the extra lights, its camera active
     std::string described;
-    // The point the camera looks at: the set-up's target, or the centre of a file's bounds.
+    // The point the camera looks at: --target, the set-up's target, or the centre of a file's bounds.
     glm::vec3 target{0.0f};
     double load_ms = 0.0;
 };

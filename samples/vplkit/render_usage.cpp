@@ -1,6 +1,7 @@
 // The usage of `vplkit render` and `vplkit plan`; render's lists the methods from the method
 // table (gi_methods.hpp).
 
+#include "camera_flags.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
 
@@ -17,7 +18,8 @@ namespace {
 // {method names} and {method help} are replaced from the method table (gi_methods.hpp).
 const char* const kRenderUsageText =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png|.exr] [--width W] [--height H] [--camera N]\n"
-    "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure E]\n"
+    "                     [--position X,Y,Z --target X,Y,Z [--up X,Y,Z]] [--fov DEG]\n"
+    "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure auto|E]\n"
     "                     [--method {method names}] [--spp N] [--block K] [--interleave M]\n"
     "                     [--flc-levels N] [--flc-mu MU] [--flc-navg A] [--flc-subtiles N]\n"
     "                     [--traversal substitute|lightcuts] [--glossy-lobe auto|on|off] [--brdf gltf|lambert]\n"
@@ -26,7 +28,7 @@ const char* const kRenderUsageText =
     "                     [--smc-max-moves M] [--smc-resample R] [--smc-radiosity-samples S] [--smc-warmup W]\n"
     "                     [--rsm-resolution R] [--brsm-samples S] [--brsm-defensive A] [--vpls-only]\n"
     "                     [--seed S] [--direct auto|tree|tree2|flat] [--direct-spp N] [--direct-interleave M]\n"
-    "                     [--frames F] [--denoise off|temporal|svgf] [--firefly-sigma K]\n"
+    "                     [--frames F] [--no-antialias] [--denoise off|temporal|svgf] [--firefly-sigma K]\n"
     "                     [--all-stages] [--no-reuse]\n"
     "                     [--out-hdr IMAGE.pfm|.exr] [--out-direct IMAGE.pfm] [--out-indirect IMAGE.pfm]\n"
     "                     [--stats FILE.json]\n"
@@ -98,9 +100,12 @@ const char* const kRenderUsageText =
     "  --width W        image width (default: the set-up's, else 640)\n"
     "  --height H       image height (default: the set-up's, else 360)\n"
     "  --camera N       use the file's camera N instead of the set-up's\n"
+    "{camera flags}"
     "  --sun ...        add a directional light travelling along (DX,DY,DZ), colour RGB, I lux\n"
     "  --point ...      add a point light at (X,Y,Z), colour RGB, I candela\n"
-    "  --exposure E     linear exposure before the tone curve (default 1)\n"
+    "  --exposure E     the PNG's linear scale before the tone curve, or auto (default): the lit\n"
+    "                   pixels' 95th luminance percentile to 2.0 (about 0.96 on the display); the\n"
+    "                   scale used is printed. HDR outputs (PFM, EXR) are never scaled\n"
     "  --brdf B         gltf (default): the file's metallic-roughness materials; lambert: every\n"
     "                   material a pure Lambertian of its base colour (for diffuse-only references)\n"
     "  --exact-clamp F  exact: the 1/d^2 clamp's d_min as a fraction of the scene scale (default\n"
@@ -126,8 +131,11 @@ const char* const kRenderUsageText =
     "  --firefly-sigma K  with --denoise: move accumulated indirect luminance above the neighbours'\n"
     "                   mean + K sigma onto those neighbours (default 4; 0: off); the share is printed\n"
     "  --frames F       render the frame F times and print each stage's median time over frames\n"
-    "                   (with --denoise: F frames accumulated on the static camera)\n"
-    "                   2..F (the first pays for shader compiles); the image is the same each time\n"
+    "                   2..F (the first pays for shader compiles); the image is the mean of the F\n"
+    "                   frames on the static camera, each with new samples and its G-buffer at a\n"
+    "                   sub-pixel offset (anti-aliasing; with --denoise the filter accumulates the\n"
+    "                   indirect light itself)\n"
+    "  --no-antialias   with --frames: every frame at the pixel centres (the image of one frame)\n"
     "  --device SEL     auto, gpu, cpu (lavapipe), an index, or part of a name\n"
     "  --validation     run with the Vulkan validation layer on\n"
     "  --strict         fail (exit 1, nothing written) when the scene has a warning: a feature of\n"
@@ -159,6 +167,8 @@ std::string render_usage() {
     std::string names;
     for (const GiMethodInfo& m : gi_methods()) names += (names.empty() ? "" : "|") + std::string(m.name);
     std::string text = kRenderUsageText;
+    const std::string_view camera_slot = "{camera flags}";
+    text.replace(text.find(camera_slot), camera_slot.size(), kCameraFlagsUsage);
     const std::string_view names_slot = "{method names}", help_slot = "{method help}";
     text.replace(text.find(names_slot), names_slot.size(), names);
     const size_t help = text.find(help_slot);
@@ -169,7 +179,8 @@ std::string render_usage() {
 
 const char* const kPlanUsage =
     "usage: vplkit plan [render's options: --scene NAME|FILE --method M --vpl-source S --bounces B\n"
-    "                   --gi-resolution R --sun ... --point ... --strict ...]\n"
+    "                   --gi-resolution R --sun ... --point ... --strict ...\n"
+    "                   --position X,Y,Z --target X,Y,Z --up X,Y,Z --fov DEG]\n"
     "\n"
     "Prints the stages a frame with these options would run, and for every stage kept or left out\n"
     "the reason (the effects planner, runtime/include/vplkit/planner.hpp). Reads the scene; no\n"
