@@ -6,6 +6,7 @@
 #include "timestamps.hpp"
 #include "vplkit/context.hpp"
 
+#include <atomic>
 #include <numeric>
 #include <set>
 #include <string>
@@ -62,7 +63,11 @@ void PassList::run(Context& context) {
 
     barriers_ = std::move(barriers);
     const std::vector<double> durations = queries.pair_durations_ms();
-    for (size_t i = 0; i < size(); ++i) timings_.push_back({steps()[i].name, durations.at(i), steps()[i].tag});
+    static std::atomic<uint64_t> submissions{0};
+    const uint64_t submission = ++submissions;
+    for (size_t i = 0; i < size(); ++i) {
+        timings_.push_back({steps()[i].name, durations.at(i), steps()[i].tag, submission});
+    }
 }
 
 }  // namespace vplkit

@@ -18,20 +18,9 @@ namespace vplkit {
 
 class Context;
 
-struct GpuBvh {
-    Buffer nodes;      // BvhNode[node_count]
-    Buffer triangles;  // BvhTriangle[max(triangle_count, 1)]: never empty (Vulkan has no empty buffers)
-    Buffer alpha;      // Bvh::alpha, or one zero word
-    uint32_t node_count = 0;
-    uint32_t triangle_count = 0;       // 0 for an empty scene
-    float scene_scale = kBvhMinScale;  // Bvh::scene_scale, for offset_ray_origin
-    bool alpha_tests = false;          // Bvh::alpha is not empty
-
-    // As the stages take it.
-    operator stages::BvhBuffers() const {
-        return {nodes, triangles, node_count, triangle_count, scene_scale, alpha, alpha_tests};
-    }
-};
+// The BVH's buffers, owned (stages/bvh_buffers.hpp's BvhSet; converts to the BvhBuffers the
+// stages take). upload_bvh and GpuBvhBuild fill every field.
+struct GpuBvh : stages::BvhSet<Buffer> {};
 
 // Device-local buffers with the BVH's nodes and triangles. Throws Error when a buffer would
 // exceed the device's maxStorageBufferRange (naming both sizes).

@@ -33,6 +33,9 @@ struct PassTiming {
     std::string name;
     double gpu_ms = 0.0;  // GPU time from the end of everything before the pass to its own end
     uint32_t tag = 0;     // the pass's Step::tag
+    // The command buffer the pass was recorded in: one number per run() in this process, so
+    // passes with the same number went to the GPU together, with no host work in between.
+    uint64_t submission = 0;
 };
 
 class PassList : public StepList {
