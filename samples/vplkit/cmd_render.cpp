@@ -181,6 +181,14 @@ RenderRequest parse_render_request(Args& args) {
     if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
     if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
     if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
+    std::optional<double> time;
+    if (auto text = args.value("--time")) {
+        const auto value = finite_number(*text);
+        if (!value) throw UsageError("--time expects a finite number of seconds, got '" + *text + "'");
+        time = *value;
+    }
+    const std::optional<std::string> animation = args.value("--animation");
+    if (animation && !time) throw UsageError("--animation needs --time T (the moment to pose it at)");
     const CameraFlags camera_flags = parse_camera_flags(args);
     std::vector<scene::Light> extra_lights;
     // A malformed light is a command-line mistake: usage, exit 2.
@@ -358,6 +366,8 @@ RenderRequest parse_render_request(Args& args) {
     r.width = width;
     r.height = height;
     r.camera = camera;
+    r.time = time;
+    r.animation = animation;
     r.camera_flags = camera_flags;
     r.extra_lights = std::move(extra_lights);
     r.settings = settings;
@@ -389,6 +399,8 @@ LoadedScene load_request_scene(RenderRequest& request) {
     const auto load_start = std::chrono::steady_clock::now();
     scene::LoadOptions load_options;
     load_options.camera = camera;
+    load_options.time = request.time;
+    load_options.animation = request.animation;
     const bool is_file =
         scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
     if (is_file) {

@@ -24,6 +24,8 @@ struct RenderRequest {
     bool strict = false;    // --strict: a scene warning fails the run
     std::string scene_arg;  // --scene: a set-up name or a file ("" = the default set-up)
     std::optional<uint32_t> width, height, camera;
+    std::optional<double> time;              // --time: the file's animations posed at T seconds
+    std::optional<std::string> animation;    // --animation: only this one (name or index)
     CameraFlags camera_flags;                // --position, --target, --up, --fov
     std::vector<scene::Light> extra_lights;  // --sun, --point
     RenderSettings settings;

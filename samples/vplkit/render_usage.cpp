@@ -18,6 +18,7 @@ namespace {
 // {method names} and {method help} are replaced from the method table (gi_methods.hpp).
 const char* const kRenderUsageText =
     "usage: vplkit render [--scene NAME|FILE] [--out IMAGE.png|.exr] [--width W] [--height H] [--camera N]\n"
+    "       [--time T [--animation NAME|INDEX]]\n"
     "                     [--position X,Y,Z --target X,Y,Z [--up X,Y,Z]] [--fov DEG]\n"
     "                     [--sun DX,DY,DZ,R,G,B,I]... [--point X,Y,Z,R,G,B,I]... [--exposure auto|E]\n"
     "                     [--method {method names}] [--spp N] [--block K] [--interleave M]\n"
@@ -100,6 +101,9 @@ const char* const kRenderUsageText =
     "  --width W        image width (default: the set-up's, else 640)\n"
     "  --height H       image height (default: the set-up's, else 360)\n"
     "  --camera N       use the file's camera N instead of the set-up's\n"
+    "  --time T         pose the file's animations at T seconds (each channel holds its first and\n"
+    "                   last keys outside them; default: the rest pose, with a warning)\n"
+    "  --animation A    with --time: only animation A (its name or index; default: all of them)\n"
     "{camera flags}"
     "  --sun ...        add a directional light travelling along (DX,DY,DZ), colour RGB, I lux\n"
     "  --point ...      add a point light at (X,Y,Z), colour RGB, I candela\n"
