@@ -108,7 +108,10 @@ std::vector<float> exact_radiance(Renderer& renderer, const scene::Camera& camer
     exact.denoise = DenoiseMode::off;
     exact.half_resolution_gi = false;
     exact.frame = 0;
-    std::printf("view: rendering the exact frame for comparison...\n");
+    exact.progress = [](uint32_t done, uint32_t total) {
+        if (done == total || done % 1024 < 32) std::fprintf(stderr, "[exact gi] %u/%u VPLs\n", done, total);
+    };
+    std::printf("view: rendering the exact frame for comparison (the window waits)...\n");
     std::fflush(stdout);
     return renderer.render(camera, exact).radiance;
 }
@@ -197,6 +200,9 @@ int run_view(Args& args) {
         panel.add_frame(image);
         if (panel.take_exact_request() || std::exchange(compare_exact, false)) {
             exact = exact_radiance(renderer, camera.camera(), settings);
+            // The exact frame went through the renderer's accumulation (anti-aliasing, the
+            // denoiser's history): the next frame starts them afresh.
+            frame = 0;
         }
         exact_error = std::nullopt;
         if (exact.size() == image.radiance.size()) exact_error = relative_rmse(image.radiance, exact);

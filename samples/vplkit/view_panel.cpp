@@ -57,7 +57,8 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
     ImGui::SetNextWindowBgAlpha(0.8f);
     bool changed = false;
     if (ImGui::Begin("vplkit")) {
-        ImGui::Text("%ux%u, %u VPLs, frame %u", last.width, last.height, last.vpl_count, settings.frame);
+        ImGui::Text("%ux%u, %u VPLs, frame %u, exposure %.2f", last.width, last.height, last.vpl_count, settings.frame,
+                    double(last.exposure));
         RenderSettings edited = settings;
         if (draw_settings(edited, last.plan)) {
             try {
@@ -121,8 +122,12 @@ bool ViewPanel::draw_settings(RenderSettings& s, const FramePlan& plan) {
             changed |= slide_count("light paths (ir)", s.vpl_paths, 16, 1 << 18);
         }
     }
-    changed |= ImGui::SliderFloat("exposure", &s.exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
-    s.exposure = std::max(s.exposure, 0.05f);
+    changed |= ImGui::Checkbox("anti-aliasing (still camera)", &s.antialias);
+    changed |= ImGui::Checkbox("automatic exposure", &s.auto_exposure);
+    if (!s.auto_exposure) {
+        changed |= ImGui::SliderFloat("exposure", &s.exposure, 0.05f, 20.0f, "%.2f", ImGuiSliderFlags_Logarithmic);
+        s.exposure = std::max(s.exposure, 0.05f);
+    }
     return changed;
 }
 
