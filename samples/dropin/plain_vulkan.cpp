@@ -35,21 +35,6 @@ uint32_t memory_type(const Gpu& gpu, uint32_t allowed, VkMemoryPropertyFlags wan
     throw std::runtime_error("no memory type with the properties asked for");
 }
 
-void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to) {
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    barrier.oldLayout = from;
-    barrier.newLayout = to;
-    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
-}
-
 }  // namespace
 
 Gpu Gpu::create(bool validation) {
@@ -81,7 +66,8 @@ Gpu Gpu::create(bool validation) {
             std::vector<VkQueueFamilyProperties> family_properties(families);
             vkGetPhysicalDeviceQueueFamilyProperties(device, &families, family_properties.data());
             for (uint32_t f = 0; f < families && best < 0; ++f) {
-                if (family_properties[f].queueFlags & VK_QUEUE_COMPUTE_BIT) best = int(f);
+                const VkQueueFlags both = VK_QUEUE_GRAPHICS_BIT | VK_QUEUE_COMPUTE_BIT;  // the raster pass, the kit
+                if ((family_properties[f].queueFlags & both) == both) best = int(f);
             }
             if (best >= 0) {
                 gpu.physical_device = device;
@@ -96,7 +82,7 @@ Gpu Gpu::create(bool validation) {
         for (VkPhysicalDevice device : devices) {
             for (const std::string& m : vplkit::stages::missing_device_features(device)) why += " " + m + ";";
         }
-        throw std::runtime_error("no device with a compute queue and what vplkit's stages need:" + why);
+        throw std::runtime_error("no device with a graphics and compute queue and what vplkit's stages need:" + why);
     }
 
     // Exactly what vplkit's stages need (vplkit/stages/device_requirements.hpp); a renderer adds
@@ -186,11 +172,13 @@ void HostBuffer::destroy(const Gpu& gpu) {
     *this = HostBuffer{};
 }
 
-StorageImage StorageImage::create(const Gpu& gpu, uint32_t width, uint32_t height, VkFormat format) {
-    StorageImage image;
+GpuImage GpuImage::create(const Gpu& gpu, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                          VkImageAspectFlags aspect) {
+    GpuImage image;
     image.format = format;
     image.width = width;
     image.height = height;
+    image.aspect = aspect;
     VkImageCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     info.imageType = VK_IMAGE_TYPE_2D;
     info.format = format;
@@ -198,7 +186,7 @@ StorageImage StorageImage::create(const Gpu& gpu, uint32_t width, uint32_t heigh
     info.mipLevels = info.arrayLayers = 1;
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.usage = usage | VK_IMAGE_USAGE_TRANSFER_SRC_BIT;
     DROPIN_CHECK(vkCreateImage(gpu.device, &info, nullptr, &image.image));
     VkMemoryRequirements needs;
     vkGetImageMemoryRequirements(gpu.device, image.image, &needs);
@@ -211,37 +199,55 @@ StorageImage StorageImage::create(const Gpu& gpu, uint32_t width, uint32_t heigh
     view.image = image.image;
     view.viewType = VK_IMAGE_VIEW_TYPE_2D;
     view.format = format;
-    view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    view.subresourceRange = {aspect, 0, 1, 0, 1};
     DROPIN_CHECK(vkCreateImageView(gpu.device, &view, nullptr, &image.view));
     return image;
 }
 
-void StorageImage::destroy(const Gpu& gpu) {
+void GpuImage::destroy(const Gpu& gpu) {
     vkDestroyImageView(gpu.device, view, nullptr);
     vkDestroyImage(gpu.device, image, nullptr);
     vkFreeMemory(gpu.device, memory, nullptr);
-    *this = StorageImage{};
+    *this = GpuImage{};
 }
 
-void to_general(VkCommandBuffer cmd, const StorageImage& image) {
-    image_barrier(cmd, image.image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
+void transition(VkCommandBuffer cmd, const GpuImage& image, VkImageLayout from, VkImageLayout to) {
+    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    barrier.oldLayout = from;
+    barrier.newLayout = to;
+    barrier.srcQueueFamilyIndex = barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    barrier.image = image.image;
+    barrier.subresourceRange = {image.aspect, 0, 1, 0, 1};
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.imageMemoryBarrierCount = 1;
+    dependency.pImageMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
-void copy_buffer_to_image(VkCommandBuffer cmd, const HostBuffer& buffer, const StorageImage& image) {
-    image_barrier(cmd, image.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
+void full_barrier(VkCommandBuffer cmd) {
+    VkMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    barrier.srcStageMask = barrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    barrier.srcAccessMask = barrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.memoryBarrierCount = 1;
+    dependency.pMemoryBarriers = &barrier;
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
+void copy_image_to_buffer(VkCommandBuffer cmd, const GpuImage& image, const HostBuffer& buffer) {
+    full_barrier(cmd);
     VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-    region.imageExtent = {image.width, image.height, 1};
-    vkCmdCopyBufferToImage(cmd, buffer.buffer, image.image, VK_IMAGE_LAYOUT_GENERAL, 1, &region);
-    image_barrier(cmd, image.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
-}
-
-void copy_image_to_buffer(VkCommandBuffer cmd, const StorageImage& image, const HostBuffer& buffer) {
-    image_barrier(cmd, image.image, VK_IMAGE_LAYOUT_GENERAL, VK_IMAGE_LAYOUT_GENERAL);
-    VkBufferImageCopy region{};
-    region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    region.imageSubresource = {image.aspect, 0, 0, 1};
     region.imageExtent = {image.width, image.height, 1};
     vkCmdCopyImageToBuffer(cmd, image.image, VK_IMAGE_LAYOUT_GENERAL, buffer.buffer, 1, &region);
+}
+
+void copy_buffer(VkCommandBuffer cmd, const HostBuffer& from, const HostBuffer& to) {
+    full_barrier(cmd);
+    const VkBufferCopy region{0, 0, from.size};
+    vkCmdCopyBuffer(cmd, from.buffer, to.buffer, 1, &region);
 }
 
 }  // namespace dropin

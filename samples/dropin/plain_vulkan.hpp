@@ -2,7 +2,7 @@
 // The renderer side of the drop-in sample: what an engine already has before it takes a vplkit
 // stage. Plain Vulkan, no vplkit runtime: an instance, a device with the features the kit's
 // shaders need, memory, one queue and a blocking submit. Deliberately minimal (every buffer in
-// host-visible memory, no allocator): an engine brings its own.
+// host-visible memory, no allocator): an engine brings its own. The raster pass is renderer.hpp.
 
 #include <vulkan/vulkan.h>
 
@@ -25,7 +25,7 @@ struct Gpu {
     VkCommandPool pool = VK_NULL_HANDLE;
     std::string name;  // the device's name
 
-    // The first device (a GPU before a CPU implementation) with a compute queue and what vplkit's
+    // The first device (a GPU before a CPU implementation) with a graphics and compute queue and what vplkit's
     // stages need (vplkit::stages::required_device_features(), enabled as it lists them).
     // `validation`: enable VK_LAYER_KHRONOS_validation when it is installed.
     static Gpu create(bool validation);
@@ -46,23 +46,28 @@ struct HostBuffer {
     void destroy(const Gpu& gpu);
 };
 
-// A 2D storage image (one level, one layer) in device-local memory, with a view.
-struct StorageImage {
+// A 2D image (one level, one layer) in device-local memory, with a view of `aspect`.
+struct GpuImage {
     VkImage image = VK_NULL_HANDLE;
     VkImageView view = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;
     VkFormat format = VK_FORMAT_UNDEFINED;
     uint32_t width = 0;
     uint32_t height = 0;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
 
-    static StorageImage create(const Gpu& gpu, uint32_t width, uint32_t height, VkFormat format);
+    static GpuImage create(const Gpu& gpu, uint32_t width, uint32_t height, VkFormat format, VkImageUsageFlags usage,
+                           VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT);
     void destroy(const Gpu& gpu);
 };
 
-// Copies between an image (in GENERAL layout) and a tightly packed buffer, with the barriers.
-void copy_buffer_to_image(VkCommandBuffer cmd, const HostBuffer& buffer, const StorageImage& image);
-void copy_image_to_buffer(VkCommandBuffer cmd, const StorageImage& image, const HostBuffer& buffer);
-// Every image from UNDEFINED to GENERAL (the layout vplkit's compute stages use).
-void to_general(VkCommandBuffer cmd, const StorageImage& image);
+// A layout transition that waits for every earlier command and holds back every later one.
+void transition(VkCommandBuffer cmd, const GpuImage& image, VkImageLayout from, VkImageLayout to);
+// Every earlier command's writes visible to every later command.
+void full_barrier(VkCommandBuffer cmd);
+// Copies an image (in GENERAL layout) to a tightly packed buffer.
+void copy_image_to_buffer(VkCommandBuffer cmd, const GpuImage& image, const HostBuffer& buffer);
+// A buffer's bytes to another buffer, after every earlier command.
+void copy_buffer(VkCommandBuffer cmd, const HostBuffer& from, const HostBuffer& to);
 
 }  // namespace dropin
