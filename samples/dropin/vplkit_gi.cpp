@@ -5,6 +5,7 @@
 #include "vplkit/stages/gbuffer_adapter.hpp"
 #include "vplkit/stages/leaves.hpp"
 #include "vplkit/stages/renderer_vpl_sources.hpp"
+#include "vplkit/stages/svgf.hpp"
 
 #include <glm/matrix.hpp>
 
@@ -87,7 +88,6 @@ IndirectLight::IndirectLight(const Gpu& gpu, const Scene& scene, const Rasterize
     cuts_ = {cuts.blocks_x, cuts.blocks_y, cuts.cut_size, buffer(cuts.blocks_bytes, "cut blocks"),
              buffer(cuts.cuts_bytes, "cuts")};
     denoise_.scene_scale = bvh.scene_scale;
-    denoise_.static_max_history = denoise_.max_history;  // SVGF's history is filtered: capped (as the runtime)
 
     // The kit's images: its G-buffer, the indirect light and the denoiser's, GENERAL throughout.
     auto image = [&](VkFormat format, const char* name) {
@@ -100,14 +100,8 @@ IndirectLight::IndirectLight(const Gpu& gpu, const Scene& scene, const Rasterize
     gbuffer_.geometric_normal = image(vs::kGbufferGeometricNormalFormat, "geometric normal");
     gbuffer_.albedo = image(vs::kGbufferAlbedoFormat, "gbuffer albedo");
     indirect_image_ = images_.size();
-    for (vplkit::ImageView* i :
-         {&indirect_, &irradiance_, &accumulated_, &clamped_, &excess_, &spread_, &estimated_, &ping_, &pong_}) {
-        *i = image(rgba32f, "denoise");
-    }
-    for (vs::DenoiseHistory& s : history_) {
-        s = {image(rgba32f, "history position"), image(rgba32f, "history normal"), image(rgba32f, "history color"),
-             image(rgba32f, "history moments")};
-    }
+    indirect_ = image(rgba32f, "indirect");
+    for (vplkit::ImageView& i : svgf_) i = image(rgba32f, "svgf");
     gpu.submit([&](VkCommandBuffer cmd) {
         for (const GpuImage& i : images_) transition(cmd, i, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
     });
@@ -140,23 +134,9 @@ void IndirectLight::record_gi(VkCommandBuffer cmd, const Camera& camera, uint32_
 }
 
 void IndirectLight::record_denoise_and_compose(VkCommandBuffer cmd, const Camera& camera, uint32_t frame) {
-    // SVGF as the kit's runtime chains it (vplkit/denoiser.hpp): the history alternates by frame.
     vplkit::StepList steps;
-    const vs::DenoiseHistory &previous = history_[(frame + 1) % 2], &next = history_[frame % 2];
-    vs::add_demodulate_pass(*kit_, steps, indirect_, gbuffer_.albedo, gbuffer_.position, irradiance_, denoise_);
-    vs::add_temporal_accumulate_pass(*kit_, steps, irradiance_, gbuffer_.position, gbuffer_.normal, previous, next,
-                                     accumulated_, next.moments, camera.view_projection, frame > 0, denoise_);
-    vs::add_firefly_clamp_pass(*kit_, steps, accumulated_, next.moments, gbuffer_.albedo, gbuffer_.position, clamped_,
-                               excess_, spread_, denoise_);
-    vs::add_variance_estimate_pass(*kit_, steps, spread_, next.moments, gbuffer_.position, gbuffer_.normal, estimated_,
-                                   denoise_);
-    vplkit::ImageView source = estimated_;
-    for (uint32_t i = 0; i < denoise_.atrous_iterations; ++i) {
-        const vplkit::ImageView target = i == 0 ? next.color : i % 2 ? ping_ : pong_;  // the first is the history
-        vs::add_atrous_pass(*kit_, steps, source, gbuffer_.position, gbuffer_.normal, target, 1 << i, denoise_);
-        source = target;
-    }
-    vs::add_remodulate_pass(*kit_, steps, source, gbuffer_.albedo, indirect_, denoise_);
+    vs::add_svgf_passes(*kit_, steps, gbuffer_, indirect_, svgf_, {frame, camera.view_projection, previous_}, denoise_);
+    previous_ = camera.view_projection;  // what the next frame reprojects the history with
     const Rasterizer& r = *targets_;
     vs::add_compose_pass(*kit_, steps, view(r.colour, "colour"), indirect_, view(r.output, "output"));
     record(cmd, steps);

@@ -10,14 +10,16 @@
 #include "renderer.hpp"
 
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/denoise.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/hybrid_gi.hpp"
 #include "vplkit/stages/radix_sort.hpp"
 #include "vplkit/stages/sst.hpp"
+#include "vplkit/stages/svgf.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
+
+#include <glm/mat4x4.hpp>
 
 #include <memory>
 #include <vector>
@@ -57,11 +59,12 @@ private:
     vplkit::BufferView sst_counters_, gi_counters_;
     vplkit::stages::HybridCutBuffers cuts_;
     vplkit::stages::GbufferViews gbuffer_;
-    vplkit::ImageView indirect_, irradiance_, accumulated_, clamped_, excess_, spread_, estimated_, ping_, pong_;
-    vplkit::stages::DenoiseHistory history_[2];
+    vplkit::ImageView indirect_;
+    std::vector<vplkit::ImageView> svgf_{vplkit::stages::kSvgfImageCount};
+    glm::mat4 previous_{1.0f};
     vplkit::stages::SstOptions sst_;
     vplkit::stages::HybridOptions hybrid_;
-    vplkit::stages::DenoiseOptions denoise_;
+    vplkit::stages::DenoiseOptions denoise_;  // the defaults, lengths as shares of the scene scale
 };
 
 }  // namespace dropin
