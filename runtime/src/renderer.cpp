@@ -2,6 +2,8 @@
 
 #include "vplkit/bvh_alpha.hpp"
 
+#include "frame_recording.hpp"
+
 #include "vplkit/auto_exposure.hpp"
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
@@ -22,9 +24,12 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <chrono>
+#include <cstddef>
+#include <memory>
 #include <sstream>
 #include <string>
 
@@ -62,6 +67,18 @@ void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
     all.insert(all.end(), more.begin(), more.end());
 }
 
+// The most a frame keeps of BRSM's per-light shadow maps and buffers before it runs what it has
+// recorded (and frees them): many lights' maps would otherwise all live at once.
+constexpr uint64_t kBrsmFrameBytes = uint64_t(256) << 20;
+
+// A light's BRSM memory: its map's images (position, normal and flux RGBA32F, depth 32-bit) and
+// its working buffers.
+uint64_t brsm_light_bytes(const stages::ShadowMap& map, const stages::BrsmLightBuffers& light) {
+    const uint64_t texels = uint64_t(map.width()) * map.height();
+    return texels * (3 * 16 + 4) + light.contribution.size() + light.contribution_mips.size() + light.flux_mips.size() +
+           light.importance_mips.size() + light.samples.size() + light.warp_count.size();
+}
+
 // RenderedImage's albedo, normal and depth from the frame's G-buffer (renderer.hpp).
 void read_back_aovs(stages::GbufferImages& gbuffer, const scene::Camera& camera, RenderedImage& out) {
     const auto position = gbuffer.position.download<std::array<float, 4>>();
@@ -83,7 +100,8 @@ void read_back_aovs(stages::GbufferImages& gbuffer, const scene::Camera& camera,
 
 Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::CameraView& view,
                                                 stages::GbufferImages& gbuffer, const RenderSettings& settings,
-                                                RenderedImage& out) {
+                                                FrameRecording& frame, RenderedImage& out) {
+    PassList& passes = frame.passes();
     GeneratedVpls generated;
     if (source == VplSource::smc) {
         // The persistent set: one update per frame (and the warm-up before the first).
@@ -96,49 +114,61 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         }
         const stages::SmcScene smc_scene{gpu_bvh_, vpl_sources()};
         const uint32_t updates = smc_->empty() ? settings.smc_warmup + 1 : 1;
-        for (uint32_t u = 0; u < updates; ++u) {
-            PassList passes(u + 1 < updates ? "smc warm-up" : "smc vpls");
-            passes.set_tag(stage_tag(FrameStage::smc_vpls));
-            smc_->add_update(context_, passes, gbuffer, view, smc_scene);
-            passes.run(context_);
-            append(out.timings, passes.timings());
-            if (settings.smc_warmup_progress && updates > 1) settings.smc_warmup_progress(u + 1, updates);
+        if (updates > 1) {
+            // The warm-up (a new set's first frame only) reads this frame's G-buffer and reports
+            // progress: the frame so far runs first, then each warm-up update on its own.
+            frame.submit(context_, out.timings);
+            for (uint32_t u = 0; u + 1 < updates; ++u) {
+                PassList warm_up("smc warm-up");
+                warm_up.set_tag(stage_tag(FrameStage::smc_vpls));
+                smc_->add_update(context_, warm_up, gbuffer, view, smc_scene);
+                warm_up.run(context_);
+                append(out.timings, warm_up.timings());
+                if (settings.smc_warmup_progress) settings.smc_warmup_progress(u + 1, updates);
+            }
         }
-        const stages::SmcCounts counts = smc_->read_counts();
-        out.smc = counts;
-        generated.count = counts.vpls;
-        generated.vpls = Buffer::create(context_, std::max<uint64_t>(counts.vpls, 1) * sizeof(shaders::Vpl),
-                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "smc frame vpls");
-        if (counts.vpls > 0) {
-            PassList copy("smc vpl copy");
-            copy.set_tag(stage_tag(FrameStage::smc_vpls));
-            const BufferView from = smc_->vpls();
-            const BufferView to = generated.vpls;
-            const VkDeviceSize bytes = uint64_t(counts.vpls) * sizeof(shaders::Vpl);
-            copy.add("smc vpl copy", {Use::transfer_src(from), Use::transfer_dst(to)},
-                     [from, to, bytes](VkCommandBuffer cmd) {
-                         const VkBufferCopy region{0, 0, bytes};
-                         vkCmdCopyBuffer(cmd, from.buffer, to.buffer, 1, &region);
-                     });
-            copy.run(context_);
-            append(out.timings, copy.timings());
-        } else {
-            out.notes.push_back("SMC found no reflecting surface the camera sees indirectly: no VPLs");
-        }
+        passes.set_tag(stage_tag(FrameStage::smc_vpls));
+        smc_->add_update(context_, passes, gbuffer, view, smc_scene);
+        // The frame's copy of the set and of its count: the next update changes both.
+        const Buffer& from = smc_->vpls();
+        generated.capacity = uint32_t(from.size() / sizeof(shaders::Vpl));
+        generated.vpls = Buffer::create(context_, from.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
+                                        "smc frame vpls");
+        generated.count_buffer = Buffer::create(context_, sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                MemoryUse::device, "smc frame vpl count");
+        const BufferView vpls_from = from, vpls_to = generated.vpls;
+        const BufferView count_from = smc_->counters(), count_to = generated.count_buffer;
+        passes.add("smc vpl copy",
+                   {Use::transfer_src(vpls_from), Use::transfer_src(count_from), Use::transfer_dst(vpls_to),
+                    Use::transfer_dst(count_to)},
+                   [vpls_from, vpls_to, count_from, count_to](VkCommandBuffer cmd) {
+                       const VkBufferCopy vpls{0, 0, vpls_from.size};
+                       vkCmdCopyBuffer(cmd, vpls_from.buffer, vpls_to.buffer, 1, &vpls);
+                       const VkBufferCopy count{offsetof(shaders::SmcCounters, vpl_count), 0, sizeof(uint32_t)};
+                       vkCmdCopyBuffer(cmd, count_from.buffer, count_to.buffer, 1, &count);
+                   });
+        if (updates > 1 && settings.smc_warmup_progress) settings.smc_warmup_progress(updates, updates);
+        frame.after_run([this, &out] {
+            out.smc = smc_->read_counts();
+            if (out.smc->vpls == 0) {
+                out.notes.push_back("SMC found no reflecting surface the camera sees indirectly: no VPLs");
+            }
+        });
         return generated;
     }
     if (source == VplSource::ir) {
         // Light paths from every emitter through the BVH.
         const stages::VplSources& sources = vpl_sources();
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
-        auto output = stages::VplTracingOutput::create(context_, tracing);
-        PassList passes("vpls");
+        auto& output = frame.hold(stages::VplTracingOutput::create(context_, tracing));
         passes.set_tag(stage_tag(FrameStage::vpl_paths));
         stages::add_trace_vpls_pass(context_, passes, gpu_bvh_, sources, tracing, output);
-        passes.run(context_);
-        append(out.timings, passes.timings());
-        generated.count = stages::download_vpl_count(output);
-        generated.vpls = std::move(output.vpls);
+        generated.capacity = output.capacity;
+        generated.count_word = offsetof(shaders::VplCountBuffer, count) / sizeof(uint32_t);
+        generated.vpls = std::move(output.vpls);  // the frame's scratch stays held until it ran
+        generated.count_buffer = std::move(output.count);
+        // After the frame (the VPLs are the cache's by then, frame_vpls): paths cut short are an error.
+        frame.after_run([this] { stages::checked_vpl_count(cache_.vpls.count_buffer, cache_.vpls.capacity); });
         return generated;
     }
 
@@ -149,35 +179,51 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
                     "is emissive triangles): use `vpl_source` ir");
     }
     if (!scene_source_.emissive_triangles.empty()) {
-        out.notes.push_back("BRSM VPLs come from punctual lights only: the emissive triangles' light has no VPLs");
+        frame.after_run([&out] {
+            out.notes.push_back("BRSM VPLs come from punctual lights only: the emissive triangles' light has no VPLs");
+        });
     }
     stages::BrsmOptions options = settings.brsm;
     options.seed = settings.seed;
-    // One light at a time: its shadow map and working buffers live only while it is placed, so a
-    // scene with many lights needs the memory of one (seed 000 ch. 6, "Multiple Lights").
-    auto output = stages::BrsmOutput::create_for_lights(context_, scene_source_.lights, scene_.bounds(), options);
-    bool cleared = false;
+    // Shared with the after-run reads below: each light's buffers are read and freed after the
+    // submission that placed its VPLs.
+    auto output = std::make_shared<stages::BrsmOutput>(
+        stages::BrsmOutput::create_for_lights(context_, scene_source_.lights, scene_.bounds(), options));
+    passes.set_tag(stage_tag(FrameStage::brsm_vpls));
+    stages::add_brsm_count_clear_pass(passes, *output);
+    // Every light's shadow map and working buffers live until the frame has run, so that the frame
+    // is one command buffer; a scene with many lights runs the frame so far whenever they would
+    // pass kBrsmFrameBytes, which frees them (seed 000 ch. 6, "Multiple Lights", places one light
+    // at a time to need the memory of one).
+    uint64_t held_bytes = 0;
     for (size_t i = 0; i < scene_source_.lights.size(); ++i) {
         const scene::Light& light = scene_source_.lights[i];
-        if (output.lights[i].vpl_share == 0) continue;  // no power
+        if (output->lights[i].vpl_share == 0) continue;  // no power
         auto map = stages::ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution);
-        stages::allocate_brsm_light_buffers(context_, map, output.lights[i]);
-        PassList passes("brsm vpls");
-        passes.set_tag(stage_tag(FrameStage::brsm_vpls));
-        if (!cleared) stages::add_brsm_count_clear_pass(passes, output);
-        cleared = true;
-        stages::add_shadow_map_pass(context_, passes, scene_, map, uint32_t(i));
-        stages::add_brsm_light_passes(context_, passes, gbuffer, view, map, i, gpu_bvh_.scene_scale, options, output);
-        passes.run(context_);
-        append(out.timings, passes.timings());
-        if (stages::download_brsm_light_vpl_count(output, i) == 0) {
-            out.notes.push_back("light " + std::to_string(i) + (light.name.empty() ? "" : " '" + light.name + "'") +
-                                ": its shadow map holds no surface that reflects light, so it has no VPLs");
+        stages::allocate_brsm_light_buffers(context_, map, output->lights[i]);
+        const uint64_t bytes = brsm_light_bytes(map, output->lights[i]);
+        if (held_bytes > 0 && held_bytes + bytes > kBrsmFrameBytes) {
+            frame.submit(context_, out.timings);
+            held_bytes = 0;
         }
-        output.lights[i] = stages::BrsmLightBuffers{0, output.lights[i].vpl_share};  // frees them
+        held_bytes += bytes;
+        stages::ShadowMap& held_map = frame.hold(std::move(map));
+        passes.set_tag(stage_tag(FrameStage::brsm_vpls));
+        stages::add_shadow_map_pass(context_, passes, scene_, held_map, uint32_t(i));
+        stages::add_brsm_light_passes(context_, passes, gbuffer, view, held_map, i, gpu_bvh_.scene_scale, options,
+                                      *output);
+        frame.after_run([output, i, &out, name = light.name] {
+            if (stages::download_brsm_light_vpl_count(*output, i) == 0) {
+                out.notes.push_back("light " + std::to_string(i) + (name.empty() ? "" : " '" + name + "'") +
+                                    ": its shadow map holds no surface that reflects light, so it has no VPLs");
+            }
+            output->lights[i] = stages::BrsmLightBuffers{0, output->lights[i].vpl_share};  // frees them
+        });
     }
-    generated.count = stages::download_brsm_vpl_count(output);
-    generated.vpls = std::move(output.vpls);
+    generated.capacity = output->capacity;
+    generated.vpls = std::move(output->vpls);
+    generated.count_buffer = std::move(output->count);
+    generated.count_word = offsetof(shaders::VplCountBuffer, count) / sizeof(uint32_t);
     return generated;
 }
 
@@ -188,18 +234,28 @@ const stages::VplSources& Renderer::vpl_sources() {
 
 const Renderer::GeneratedVpls& Renderer::frame_vpls(const FramePlan& plan, const stages::CameraView& view,
                                                     stages::GbufferImages& gbuffer, const RenderSettings& settings,
-                                                    RenderedImage& out) {
+                                                    FrameRecording& frame, RenderedImage& out) {
     if (plan.reuse_vpls) {
         out.notes.insert(out.notes.end(), cache_.vpl_notes.begin(), cache_.vpl_notes.end());
         out.reused_vpls = true;
+        out.vpl_count = cache_.vpls.count;
         return cache_.vpls;
     }
-    const size_t notes_before = out.notes.size();
-    GeneratedVpls generated = generate_vpls(plan.vpl_source, view, gbuffer, settings, out);
+    // The notes of making the VPLs, kept for the frames that reuse them: they are written after
+    // the frame runs, between these two marks.
+    auto first_note = std::make_shared<size_t>(0);
+    frame.after_run([&out, first_note] { *first_note = out.notes.size(); });
+    GeneratedVpls generated = generate_vpls(plan.vpl_source, view, gbuffer, settings, frame, out);
     cache_ = FrameCache{};
     cache_.vpl_key = plan.vpl_key;
     cache_.vpls = std::move(generated);
-    cache_.vpl_notes.assign(out.notes.begin() + notes_before, out.notes.end());
+    frame.after_run([this, &out, first_note] {
+        GeneratedVpls& vpls = cache_.vpls;
+        const auto words = vpls.count_buffer.download<uint32_t>(vpls.count_word + 1);
+        vpls.count = std::min(words[vpls.count_word], vpls.capacity);  // sources count attempts past their room
+        out.vpl_count = vpls.count;
+        cache_.vpl_notes.assign(out.notes.begin() + std::ptrdiff_t(*first_note), out.notes.end());
+    });
     return cache_.vpls;
 }
 
@@ -220,21 +276,22 @@ std::string view_key_of(const stages::CameraView& view, uint32_t w, uint32_t h) 
 }  // namespace
 
 void Renderer::denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
-                                stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, RenderedImage& out) {
+                                stages::GbufferImages& gbuffer, Image& indirect, bool demodulated,
+                                FrameRecording& frame, RenderedImage& out) {
     if (!denoiser_ || denoiser_->width() != gbuffer.width() || denoiser_->height() != gbuffer.height()) {
         denoiser_ = Denoiser::create(context_, gbuffer.width(), gbuffer.height());
     }
     if (settings.frame == 0) denoiser_->reset();
     stages::DenoiseOptions options = settings.denoise_options;
     options.scene_scale = gpu_bvh_.scene_scale;
-    PassList passes("denoise");
+    PassList& passes = frame.passes();
     passes.set_tag(stage_tag(FrameStage::denoise));
     denoiser_->add_passes(context_, passes, settings.denoise, gbuffer, indirect, options, demodulated);
-    passes.run(context_);
-    append(out.timings, passes.timings());
-    denoiser_->end_frame(view.view_projection);
-    out.firefly_moved_fraction = denoiser_->firefly_moved_fraction();
-    if (settings.read_back_aovs) out.indirect_variance = denoiser_->variance();
+    denoiser_->end_frame(view.view_projection);  // the next frame's history: only bookkeeping on the host
+    frame.after_run([this, &out, aovs = settings.read_back_aovs] {
+        out.firefly_moved_fraction = denoiser_->firefly_moved_fraction();
+        if (aovs) out.indirect_variance = denoiser_->variance();
+    });
 }
 
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {
@@ -284,7 +341,10 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     if (settings.direct_interleave <= 1) tree_options.block_size = 4;
     if (tree_direct) stages::validate_direct_light_tree(tree_options);  // before any work
 
-    PassList direct_passes("direct light");
+    // The frame, G-buffer to compose, is one command buffer (frame_recording.hpp): no count or
+    // counter is read back before it has run.
+    FrameRecording frame("frame");
+    PassList& direct_passes = frame.passes();
     direct_passes.set_tag(stage_tag(FrameStage::gbuffer));
     // Anti-aliasing: only the raster sees the sub-pixel offset (antialias.hpp).
     const stages::CameraView raster_view =
@@ -340,25 +400,25 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         const VkImageSubresourceRange all{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
         vkCmdClearColorImage(cmd, indirect.handle(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &all);
     });
-    direct_passes.run(context_);
-    append(out.timings, direct_passes.timings());
     out.direct_sampler = plan.direct_sampler;
     if (tree_direct) {
-        out.direct_counts = stages::read_gi_counters(*tree_counters);
-        if (out.direct_counts.cut_short > 0) {
-            throw Error("direct light tree: the driver ended " + std::to_string(out.direct_counts.cut_short) +
-                        " invocations early (a loop iteration limit): the image would be wrong");
-        }
-        if (out.direct_counts.dropped_samples > 0) {
-            out.notes.push_back(std::to_string(out.direct_counts.dropped_samples) + " direct-light samples in " +
-                                std::to_string(out.direct_counts.dropped_pixels) +
-                                " pixels were not finite and were left out");
-        }
+        frame.after_run([&out, &tree_counters] {
+            out.direct_counts = stages::read_gi_counters(*tree_counters);
+            if (out.direct_counts.cut_short > 0) {
+                throw Error("direct light tree: the driver ended " + std::to_string(out.direct_counts.cut_short) +
+                            " invocations early (a loop iteration limit): the image would be wrong");
+            }
+            if (out.direct_counts.dropped_samples > 0) {
+                out.notes.push_back(std::to_string(out.direct_counts.dropped_samples) + " direct-light samples in " +
+                                    std::to_string(out.direct_counts.dropped_pixels) +
+                                    " pixels were not finite and were left out");
+            }
+        });
     }
 
     if (settings.vpls_only) {
-        const GeneratedVpls& generated = frame_vpls(plan, view, gbuffer, settings, out);
-        out.vpl_count = generated.count;
+        const GeneratedVpls& generated = frame_vpls(plan, view, gbuffer, settings, frame, out);
+        frame.submit(context_, out.timings);  // the VPLs themselves are this mode's output
         if (generated.count > 0) {
             for (const auto& v : generated.vpls.download<shaders::Vpl>(generated.count)) {
                 out.vpls.push_back({{v.position.x, v.position.y, v.position.z},
@@ -368,20 +428,20 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         }
         out.gbuffer_position = gbuffer.position.download<float>();
     } else if (settings.method == GiMethod::flc) {
-        render_flc(view, gbuffer, settings, indirect, out);
+        render_flc(view, gbuffer, settings, indirect, frame, out);
     } else if (settings.method != GiMethod::none) {
-        out.vpl_count = frame_vpls(plan, view, gbuffer, settings, out).count;
-        const bool demodulated = render_indirect(plan, view, gbuffer, settings, indirect, out);
-        if (plan.runs(FrameStage::denoise)) denoise_indirect(settings, view, gbuffer, indirect, demodulated, out);
+        frame_vpls(plan, view, gbuffer, settings, frame, out);
+        const bool demodulated = render_indirect(plan, view, gbuffer, settings, indirect, frame, out);
+        if (plan.runs(FrameStage::denoise)) {
+            denoise_indirect(settings, view, gbuffer, indirect, demodulated, frame, out);
+        }
     }
 
     // Composed and read back first: the mean over jittered frames and the automatic exposure
     // are taken on the host, before the tone curve.
-    PassList compose_passes("output");
-    compose_passes.set_tag(stage_tag(FrameStage::compose));
-    stages::add_compose_pass(context_, compose_passes, direct_out, indirect, composed);
-    compose_passes.run(context_);
-    append(out.timings, compose_passes.timings());
+    frame.passes().set_tag(stage_tag(FrameStage::compose));
+    stages::add_compose_pass(context_, frame.passes(), direct_out, indirect, composed);
+    frame.submit(context_, out.timings);
     out.radiance = rgb_of(composed);
     out.direct = rgb_of(direct_out);
     out.indirect = rgb_of(indirect);

@@ -6,6 +6,8 @@
 
 #include "vplkit/renderer.hpp"
 
+#include "frame_recording.hpp"
+
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -80,7 +82,7 @@ std::vector<double> triangle_areas(const scene::Scene& scene) {
 }  // namespace
 
 void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                          const RenderSettings& settings, Image& indirect, RenderedImage& out) {
+                          const RenderSettings& settings, Image& indirect, FrameRecording& frame, RenderedImage& out) {
     stages::FlcPartition partition = flc_partition(settings, scene_.bounds());
     const uint32_t triangles = scene_.triangle_count();
     if (flc_triangle_areas_.empty()) flc_triangle_areas_ = triangle_areas(scene_source_);
@@ -111,28 +113,30 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
                                             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "flc vertex random");
         flc_vertex_random_->upload(scene_source_.vertex_random);
     }
-    auto storage = [&](VkDeviceSize bytes, const char* name, VkBufferUsageFlags more = 0) {
-        return Buffer::create(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | more, MemoryUse::device, name);
+    // The frame's buffers, held until it has run.
+    auto storage = [&](VkDeviceSize bytes, const char* name, VkBufferUsageFlags more = 0) -> Buffer& {
+        return frame.hold(
+            Buffer::create(context_, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | more, MemoryUse::device, name));
     };
     const uint64_t n = candidate_count;
-    auto candidates = storage(n * sizeof(shaders::FlcCandidate), "flc candidates");
-    auto entries = storage(std::max<uint64_t>(subdivision.entries.size(), 1) * sizeof(shaders::FlcSubdivisionEntry),
-                           "flc subdivision");
+    Buffer& candidates = storage(n * sizeof(shaders::FlcCandidate), "flc candidates");
+    Buffer& entries = storage(std::max<uint64_t>(subdivision.entries.size(), 1) * sizeof(shaders::FlcSubdivisionEntry),
+                              "flc subdivision");
     if (!subdivision.entries.empty()) entries.upload(subdivision.entries);
-    auto albedo = storage(n * 4 * sizeof(float), "flc candidate albedo");
-    auto order_buffer = storage(n * sizeof(uint32_t), "flc order");
+    Buffer& albedo = storage(n * 4 * sizeof(float), "flc candidate albedo");
+    Buffer& order_buffer = storage(n * sizeof(uint32_t), "flc order");
     order_buffer.upload(order);
-    auto carries = storage(partition.level_count * sizeof(float), "flc stratify carries");
-    auto counts = storage(stages::flc_count_bytes(partition.level_count), "flc counts");
-    auto kept = storage(n * sizeof(uint32_t), "flc kept triangles");
-    auto divergent = storage(n * sizeof(uint32_t), "flc divergent triangles");
-    auto vpls = storage(n * sizeof(shaders::Vpl), "flc vpls");
-    auto draw_args = storage(stages::kFlcDrawArgsBytes, "flc draw args", VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
+    Buffer& carries = storage(partition.level_count * sizeof(float), "flc stratify carries");
+    Buffer& counts = storage(stages::flc_count_bytes(partition.level_count), "flc counts");
+    Buffer& kept = storage(n * sizeof(uint32_t), "flc kept triangles");
+    Buffer& divergent = storage(n * sizeof(uint32_t), "flc divergent triangles");
+    Buffer& vpls = storage(n * sizeof(shaders::Vpl), "flc vpls");
+    Buffer& draw_args = storage(stages::kFlcDrawArgsBytes, "flc draw args", VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
 
     // Interleaved sub-tiles: the splat's target, n sub-tiles of ceil(size / n) each way.
     stages::FlcSplatOptions splat_options;
     splat_options.subtiles = settings.flc_subtiles;
-    std::optional<Image> tiled;
+    std::optional<Image>& tiled = frame.hold(std::optional<Image>());
     if (splat_options.subtiles > 1) {
         const uint32_t n = splat_options.subtiles;
         tiled.emplace(Image::create(context_, n * stages::flc_subtile_side(gbuffer.width(), n),
@@ -140,7 +144,7 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
                                     VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT, "flc sub-tiles"));
     }
 
-    PassList passes("flc");
+    PassList& passes = frame.passes();
     passes.set_tag(stage_tag(FrameStage::flc_vpls));
     stages::add_flc_candidates_pass(context_, passes,
                                     {scene_.vertices(), scene_.indices(), *flc_vertex_random_, candidates}, partition,
@@ -160,17 +164,16 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
     stages::add_flc_splat_passes(context_, passes, {candidates, counts, kept, vpls, draw_args}, gbuffer, indirect, view,
                                  partition, candidate_count, gpu_bvh_.scene_scale, splat_options,
                                  tiled ? ImageView(*tiled) : ImageView{});
-    passes.run(context_);
-    out.timings.insert(out.timings.end(), passes.timings().begin(), passes.timings().end());
-
-    const auto count = counts.download<uint32_t>(2);
-    out.vpl_count = count[0];
     out.gi_width = gbuffer.width();
     out.gi_height = gbuffer.height();
-    out.notes.push_back("flc: " + std::to_string(count[0]) + " VPLs kept of " + std::to_string(triangles) +
-                        " triangles and " + std::to_string(subdivision.sub_count) + " sub-triangles of " +
-                        std::to_string(count[1]) + " divergent ones");
-    if (count[0] == 0) out.notes.push_back("flc: no triangle was kept: no indirect light");
+    frame.after_run([&out, &counts, triangles, subs = subdivision.sub_count] {
+        const auto count = counts.download<uint32_t>(2);
+        out.vpl_count = count[0];
+        out.notes.push_back("flc: " + std::to_string(count[0]) + " VPLs kept of " + std::to_string(triangles) +
+                            " triangles and " + std::to_string(subs) + " sub-triangles of " + std::to_string(count[1]) +
+                            " divergent ones");
+        if (count[0] == 0) out.notes.push_back("flc: no triangle was kept: no indirect light");
+    });
 }
 
 }  // namespace vplkit

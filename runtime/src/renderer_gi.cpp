@@ -3,6 +3,8 @@
 
 #include "vplkit/renderer.hpp"
 
+#include "frame_recording.hpp"
+
 #include "gi_stage_options.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -41,14 +43,6 @@ const char* denoise_mode_name(DenoiseMode mode) {
     return "?";
 }
 
-namespace {
-
-void append(std::vector<PassTiming>& all, const std::vector<PassTiming>& more) {
-    all.insert(all.end(), more.begin(), more.end());
-}
-
-}  // namespace
-
 void validate_gi_settings(const RenderSettings& settings) {
     if (const auto check = gi_method(settings.method).validate) check(settings);
     if (settings.vpl_source == VplSource::smc) stages::validate(settings.smc);
@@ -68,40 +62,45 @@ RenderSettings with_scene_relative_thresholds(RenderSettings settings, float sce
 }
 
 bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                               const RenderSettings& settings, Image& indirect, RenderedImage& out) {
+                               const RenderSettings& settings, Image& indirect, FrameRecording& frame,
+                               RenderedImage& out) {
     const GeneratedVpls& vpls = cache_.vpls;
     const bool half = settings.half_resolution_gi;
     const uint32_t w = half ? stages::half_resolution(gbuffer.width()) : gbuffer.width();
     const uint32_t h = half ? stages::half_resolution(gbuffer.height()) : gbuffer.height();
     out.gi_width = w;
     out.gi_height = h;
-    if (vpls.count == 0) {
-        out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
-        return false;
-    }
+    // The samplers read the count the GPU wrote: with none, the trees are all padding and the
+    // light is black; the host learns of it after the frame.
+    frame.after_run([this, &out] {
+        if (cache_.vpls.count == 0) {
+            out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
+        }
+    });
     GiStageOptions options = gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
     options.sst.glossy.enabled = options.rtslc.glossy.enabled = options.hybrid.glossy.enabled = plan.glossy_branch;
     const stages::SstGiOptions& sst_options = options.sst;
     const stages::RtslcOptions& rtslc_options = options.rtslc;
     const stages::HybridOptions& hybrid_options = options.hybrid;
+    PassList& passes = frame.passes();
 
     // The G-buffer and target the method works on (the plan's downsample and upsample stages).
-    std::optional<stages::GbufferImages> half_gbuffer;
-    std::optional<Image> half_indirect;
+    stages::GbufferImages* half_gbuffer = nullptr;
+    Image* half_indirect = nullptr;
     if (half) {
-        half_gbuffer = stages::GbufferImages::create(context_, w, h);
-        half_indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
-                                      "half indirect radiance");
-        PassList passes("gi downsample");
+        half_gbuffer = &frame.hold(stages::GbufferImages::create(context_, w, h));
+        half_indirect = &frame.hold(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                                  VK_IMAGE_USAGE_STORAGE_BIT, "half indirect radiance"));
         passes.set_tag(stage_tag(FrameStage::gi_downsample));
         stages::add_gbuffer_downsample_pass(context_, passes, gbuffer, *half_gbuffer);
-        passes.run(context_);
-        append(out.timings, passes.timings());
     }
     stages::GbufferImages& gi_gbuffer = half ? *half_gbuffer : gbuffer;
     Image& gi_target = half ? *half_indirect : indirect;
 
     if (settings.method == GiMethod::exact) {
+        // The reference gathers on the host's count, in chunks the host sizes (lavapipe's loop
+        // limit): the frame so far runs first.
+        frame.submit(context_, out.timings);
         stages::ExactGiOptions options;
         options.progress = settings.progress;
         options.min_distance_fraction = settings.exact_min_distance_fraction;
@@ -112,25 +111,23 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         out.exact_gi_wall_ms = result.wall_ms;
         out.dropped_pixels = result.counts.dropped_pixels;
     } else {
-        PassList passes(gi_method_name(settings.method));
         if (plan.reuse_trees) {
             out.reused_trees = true;
         } else {
-            // Only the trees the method reads (the plan's light tree and SST stages).
+            // Only the trees the method reads (the plan's light tree and SST stages), over the
+            // VPLs' capacity: the padding past the GPU's count sorts last and weighs nothing.
             stages::VplTreeOptions tree_options;
             tree_options.sst = settings.sst;
-            cache_.trees = stages::VplTrees::create(context_, vpls.count, tree_options);
+            cache_.trees = stages::VplTrees::create(context_, vpls.capacity, tree_options);
             cache_.tree_key = plan.tree_key;
             cache_.light_tree = plan.runs(FrameStage::light_tree);
             cache_.sst = plan.runs(FrameStage::sst);
             cache_.trees->add_build_passes(
-                passes, vpls.vpls, cache_.light_tree, cache_.sst,
+                passes, vpls.vpls, vpls.gpu_count(), cache_.light_tree, cache_.sst,
                 {stage_tag(FrameStage::vpl_sort), stage_tag(FrameStage::light_tree), stage_tag(FrameStage::sst)});
         }
         const stages::VplTrees& trees = *cache_.trees;
-        auto counters = stages::create_gi_counters(context_);
-        std::optional<stages::RtslcScratch> rtslc_scratch;
-        std::optional<stages::HybridCuts> hybrid_cuts;
+        Buffer& counters = frame.hold(stages::create_gi_counters(context_));
         if (const std::optional<FrameStage> stage = gi_method(settings.method).stage) {
             passes.set_tag(stage_tag(*stage));
         }
@@ -139,34 +136,36 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
                 stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
                                           counters, sst_options);
                 break;
-            case GiMethod::rtslc:
-                rtslc_scratch = stages::RtslcScratch::create(context_, w, h, rtslc_options);
+            case GiMethod::rtslc: {
+                auto& scratch = frame.hold(stages::RtslcScratch::create(context_, w, h, rtslc_options));
                 stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
-                                         counters, rtslc_options, *rtslc_scratch);
+                                         counters, rtslc_options, scratch);
                 break;
-            case GiMethod::hybrid:
-                hybrid_cuts = stages::HybridCuts::create(context_, w, h, hybrid_options);
+            }
+            case GiMethod::hybrid: {
+                auto& cuts = frame.hold(stages::HybridCuts::create(context_, w, h, hybrid_options));
                 stages::add_hybrid_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
-                                             counters, *hybrid_cuts, hybrid_options);
+                                             counters, cuts, hybrid_options);
                 break;
+            }
             default:
                 throw Error("render: no indirect-light method to run");
         }
-        passes.run(context_);
-        append(out.timings, passes.timings());
-        out.gi_counts = stages::read_gi_counters(counters);
-        out.dropped_pixels = out.gi_counts.dropped_pixels;
-        if (out.gi_counts.cut_short > 0) {
-            throw Error(
-                std::string(gi_method_name(settings.method)) + ": the driver ended " +
-                std::to_string(out.gi_counts.cut_short) +
-                " invocations early (a loop iteration limit): the image would be wrong; use fewer samples per pixel");
-        }
-        if (out.gi_counts.dropped_samples > 0) {
-            out.notes.push_back(std::to_string(out.gi_counts.dropped_samples) + " samples in " +
-                                std::to_string(out.gi_counts.dropped_pixels) +
-                                " pixels were not finite and were left out of the indirect light");
-        }
+        frame.after_run([&out, &counters, method = settings.method] {
+            out.gi_counts = stages::read_gi_counters(counters);
+            out.dropped_pixels = out.gi_counts.dropped_pixels;
+            if (out.gi_counts.cut_short > 0) {
+                throw Error(std::string(gi_method_name(method)) + ": the driver ended " +
+                            std::to_string(out.gi_counts.cut_short) +
+                            " invocations early (a loop iteration limit): the image would be wrong; use fewer "
+                            "samples per pixel");
+            }
+            if (out.gi_counts.dropped_samples > 0) {
+                out.notes.push_back(std::to_string(out.gi_counts.dropped_samples) + " samples in " +
+                                    std::to_string(out.gi_counts.dropped_pixels) +
+                                    " pixels were not finite and were left out of the indirect light");
+            }
+        });
     }
 
     if (!half) return false;
@@ -175,15 +174,15 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     const bool denoised = plan.runs(FrameStage::denoise);
     stages::DenoiseOptions modulation = settings.denoise_options;
     modulation.scene_scale = gpu_bvh_.scene_scale;
-    auto half_irradiance = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
-                                         "half indirect irradiance");
-    std::optional<Image> full_irradiance;
+    Image& half_irradiance = frame.hold(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
+                                                      VK_IMAGE_USAGE_STORAGE_BIT, "half indirect irradiance"));
+    Image* full_irradiance = nullptr;
     if (!denoised) {
-        full_irradiance = Image::create(context_, gbuffer.width(), gbuffer.height(), VK_FORMAT_R32G32B32A32_SFLOAT,
-                                        VK_IMAGE_USAGE_STORAGE_BIT, "indirect irradiance");
+        full_irradiance =
+            &frame.hold(Image::create(context_, gbuffer.width(), gbuffer.height(), VK_FORMAT_R32G32B32A32_SFLOAT,
+                                      VK_IMAGE_USAGE_STORAGE_BIT, "indirect irradiance"));
     }
-    auto counters = stages::create_upsample_counters(context_);
-    PassList passes("gi upsample");
+    Buffer& counters = frame.hold(stages::create_upsample_counters(context_));
     passes.set_tag(stage_tag(FrameStage::gi_upsample));
     stages::add_demodulate_pass(context_, passes, *half_indirect, half_gbuffer->albedo, half_gbuffer->position,
                                 half_irradiance, modulation);
@@ -191,9 +190,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, half_irradiance, upsampled, counters,
                               stages::upsample_options_for_scene(gpu_bvh_.scene_scale));
     if (!denoised) stages::add_remodulate_pass(context_, passes, upsampled, gbuffer.albedo, indirect, modulation);
-    passes.run(context_);
-    append(out.timings, passes.timings());
-    out.upsample_counts = stages::read_upsample_counters(counters);
+    frame.after_run([&out, &counters] { out.upsample_counts = stages::read_upsample_counters(counters); });
     return denoised;
 }
 

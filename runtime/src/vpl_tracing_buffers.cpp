@@ -226,15 +226,27 @@ VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOpti
     return out;
 }
 
-VplCounts download_vpl_counts(const VplTracingOutput& output) {
-    const auto c = output.count.download<shaders::VplCountBuffer>(1)[0];
+namespace {
+
+VplCounts read_vpl_counts(const Buffer& count, uint32_t capacity) {
+    const auto c = count.download<shaders::VplCountBuffer>(1)[0];
     // A path has at most max_bounces VPLs, so the count never passes the capacity; the clamp
     // only guards a caller that traced with options other than the buffers were made for.
-    return {std::min(c.count, output.capacity), c.cut_short};
+    return {std::min(c.count, capacity), c.cut_short};
+}
+
+}  // namespace
+
+VplCounts download_vpl_counts(const VplTracingOutput& output) {
+    return read_vpl_counts(output.count, output.capacity);
 }
 
 uint32_t download_vpl_count(const VplTracingOutput& output) {
-    const VplCounts counts = download_vpl_counts(output);
+    return checked_vpl_count(output.count, output.capacity);
+}
+
+uint32_t checked_vpl_count(const Buffer& count, uint32_t capacity) {
+    const VplCounts counts = read_vpl_counts(count, capacity);
     if (counts.cut_short > 0) {
         throw Error("VPL tracing: the driver cut " + std::to_string(counts.cut_short) +
                     " light paths short (lavapipe ends a shader's loops after 65535 iterations): their flux is "

@@ -35,6 +35,7 @@ namespace vplkit {
 
 class Context;
 class Image;
+class FrameRecording;
 namespace stages {
 struct GbufferImages;
 }
@@ -105,32 +106,45 @@ public:
     uint32_t light_tree_count() const { return light_tree_ ? light_tree_->count() : 0; }
 
 private:
+    // A frame's VPLs. Their count stays on the GPU while the frame runs: the trees and samplers
+    // read it from `count_buffer` (gpu_count()); `count` is read back after the frame.
     struct GeneratedVpls {
-        Buffer vpls;
-        uint32_t count = 0;
+        Buffer vpls;  // Vpl[capacity]; the first `count` are the VPLs
+        uint32_t capacity = 0;
+        Buffer count_buffer;  // the count, at uint32 `count_word`
+        uint32_t count_word = 0;
+        uint32_t count = 0;  // after the frame that made them ran
+        stages::ElementCount gpu_count() const {
+            return stages::ElementCount::on_gpu(count_buffer, count_word, capacity);
+        }
     };
-    // VPLs from `source` for the frame whose G-buffer is `gbuffer`; timings and notes into `out`.
+    // The methods below record into `frame` (one command buffer per frame: frame_recording.hpp)
+    // and leave their read-backs (counts, counters, notes) to run after it.
+
+    // VPLs from `source` for the frame whose G-buffer is `gbuffer`; notes into `out`.
     GeneratedVpls generate_vpls(VplSource source, const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                                const RenderSettings& settings, RenderedImage& out);
+                                const RenderSettings& settings, FrameRecording& frame, RenderedImage& out);
     // The frame's VPLs: the previous frame's when the plan reuses them, else new ones (kept for
     // the next frame).
     const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view,
-                                    stages::GbufferImages& gbuffer, const RenderSettings& settings, RenderedImage& out);
+                                    stages::GbufferImages& gbuffer, const RenderSettings& settings,
+                                    FrameRecording& frame, RenderedImage& out);
     // Indirect light from the cached VPLs by settings.method into `indirect` (full size), at full
     // or half resolution, with the trees the plan builds or reuses (renderer_gi.cpp). At half
     // resolution the light is demodulated before upsampling (texture stays sharp); returns true
     // when `indirect` is left as irradiance for the denoiser to remodulate.
     bool render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                         const RenderSettings& settings, Image& indirect, RenderedImage& out);
+                         const RenderSettings& settings, Image& indirect, FrameRecording& frame, RenderedImage& out);
 
     // --denoise: filters `indirect` in place (radiance, or irradiance when `demodulated`) with the
     // history of the previous frames, and keeps this frame as the next one's history.
     void denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
-                          stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, RenderedImage& out);
+                          stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, FrameRecording& frame,
+                          RenderedImage& out);
 
     // Forward light cuts (seed 002): its own VPLs, splatted into `indirect` (renderer_flc.cpp).
     void render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer, const RenderSettings& settings,
-                    Image& indirect, RenderedImage& out);
+                    Image& indirect, FrameRecording& frame, RenderedImage& out);
     std::optional<Buffer> flc_vertex_random_;  // scene::Scene::vertex_random, uploaded on first use
     std::vector<double> flc_triangle_areas_;   // each triangle's area, for the subdivision (first use)
     // The triangles by centroid Morton code: the stratified decimation's order (first use).

@@ -48,6 +48,8 @@ public:
     SmcCounts read_counts() const;
     // The Vpl buffer the gathers read (its first read_counts().vpls entries).
     const Buffer& vpls() const { return vpls_; }
+    // The SmcCounters the updates write (vpl_count first): the VPL count as the GPU knows it.
+    const Buffer& counters() const { return counters_; }
     // The SmcVpl records of Y (tests: positions, anchors, radiosities).
     const Buffer& state() const { return state_; }
 

@@ -59,5 +59,7 @@ struct VplCounts {
 VplCounts download_vpl_counts(const VplTracingOutput& output);
 // The number of VPLs the last run traced; throws Error when any path was cut short.
 uint32_t download_vpl_count(const VplTracingOutput& output);
+// The same from a VplCountBuffer that outlived its VplTracingOutput (a frame's VPLs keep it).
+uint32_t checked_vpl_count(const Buffer& count, uint32_t capacity);
 
 }  // namespace vplkit::stages
