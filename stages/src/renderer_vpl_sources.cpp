@@ -93,6 +93,23 @@ VplSourceBuffers VplSourceData::views(const BufferView& block) const {
     return out;
 }
 
+glm::vec3 mean_texture_albedo(std::span<const uint8_t> rgba, uint32_t width, uint32_t height, bool srgb) {
+    const size_t texels = size_t(width) * height;
+    if (texels == 0 || rgba.size() < 4 * texels) {
+        throw Error("VPL sources: a " + std::to_string(width) + "x" + std::to_string(height) + " texture needs " +
+                    std::to_string(4 * texels) + " bytes (RGBA8), got " + std::to_string(rgba.size()));
+    }
+    double table[256];
+    for (int i = 0; i < 256; ++i) {
+        const double c = i / 255.0;
+        table[i] = !srgb ? c : c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+    }
+    glm::dvec3 sum(0.0);
+    for (size_t i = 0; i < texels; ++i)
+        sum += glm::dvec3(table[rgba[4 * i]], table[rgba[4 * i + 1]], table[rgba[4 * i + 2]]);
+    return glm::vec3(sum / double(texels));
+}
+
 VplSourceData vpl_sources_from_renderer(std::span<const RendererLight> lights,
                                         std::span<const RendererEmitter> emitters, const RendererSurfaces& surfaces) {
     const std::span<const glm::vec3> v = surfaces.triangles;

@@ -219,6 +219,39 @@ TEST_CASE("renderer VPL sources: one albedo for all triangles is that albedo per
     CHECK(a == b);
 }
 
+TEST_CASE("renderer VPL sources: a texture's mean albedo is the scene loader's") {
+    // The loader's reflectance of a material with a base colour texture (factor 1, not metallic)
+    // is the texture's mean linear colour: the helper must give the same floats.
+    vplkit::Context& ctx = vplkit::test::context();
+    const std::vector<uint8_t> texels = {255, 0,   64,  255, 128, 255, 64, 10,  3,   77, 200, 255,
+                                         90,  180, 250, 0,   17,  33,  99, 255, 240, 1,  128, 255};
+    Scene scene = box_scene(false);
+    vplkit::scene::Image image;
+    image.width = 3;
+    image.height = 2;
+    image.rgba = texels;
+    image.srgb = true;
+    scene.images = {image};
+    scene.textures.resize(1);
+    for (auto& m : scene.materials) {
+        m.base_color_factor = glm::vec4(1.0f);
+        m.base_color_texture = 0;
+    }
+    scene.lights = scene_lights();
+    const auto loader = vplkit::stages::upload_vpl_sources(ctx, scene);
+    const auto rho = loader.triangle_albedo.download<vplkit::shaders::vec4>(scene.triangle_materials.size());
+    const glm::vec3 mean = vplkit::stages::mean_texture_albedo(texels, 3, 2, /*srgb=*/true);
+    CHECK(rho[0].x == mean.x);
+    CHECK(rho[0].y == mean.y);
+    CHECK(rho[0].z == mean.z);
+    // Linear texels are averaged as they are.
+    const glm::vec3 plain = vplkit::stages::mean_texture_albedo(texels, 3, 2, /*srgb=*/false);
+    CHECK(plain.x == doctest::Approx((255 + 128 + 3 + 90 + 17 + 240) / 6.0 / 255.0).epsilon(1e-6));
+    CHECK(plain.x > mean.x);  // decoding sRGB darkens the mid tones
+    CHECK_THROWS_WITH_AS(vplkit::stages::mean_texture_albedo(texels, 4, 2, true),
+                         doctest::Contains("a 4x2 texture needs 32 bytes (RGBA8), got 24"), vplkit::Error);
+}
+
 TEST_CASE("renderer lights: albedo * N.L shading needs pi times the intensity") {
     // Radiance off a Lambertian surface of albedo a under a sun at angle theta: the renderer's
     // a * cos * L, the kit's a / pi * cos * E (vplkit/brdf.glsl) with E the converted light.

@@ -44,6 +44,14 @@ struct RendererSurfaces {
     glm::vec3 albedo{0.5f};
 };
 
+// A texture's mean colour, linear RGB: what a surface textured with it reflects on average, the
+// per-triangle albedo the tracer takes (it has no UVs at a hit; the kit's own loader does the
+// same). `rgba`: width x height texels, 8 bits a channel, RGBA order; `srgb`: the texels are
+// sRGB-encoded colour (a base colour texture), else linear. Multiply by the material's factor
+// (and by 1 - metallic). Throws vplkit::Error when rgba holds fewer than width x height texels
+// or the image is empty.
+glm::vec3 mean_texture_albedo(std::span<const uint8_t> rgba, uint32_t width, uint32_t height, bool srgb);
+
 // The tracer's sources as host data, each array at an offset of its own in one block.
 struct VplSourceData {
     std::vector<shaders::PunctualLight> lights;      // empty: no punctual light
