@@ -8,6 +8,7 @@
 #include "validation_sink.hpp"
 #include "vplkit/barriers.hpp"
 #include "vplkit/buffer.hpp"
+#include "vplkit/stages/device_requirements.hpp"
 
 #include <cstdlib>
 #include <memory>
@@ -82,9 +83,10 @@ void Context::init(const ContextOptions& options) {
     queue_family_ = info_.queue_family;
     vkGetPhysicalDeviceMemoryProperties(physical_device_, &memory_properties_);
 
-    // Required features are switched on; optional ones whenever the device has them, so a stage
-    // can use them after checking info().features. Nothing is enabled that costs performance
-    // (robustBufferAccess stays off).
+    // The features every stage needs, as stages/device_requirements.hpp states them (the one
+    // list a foreign renderer enables too), plus optional ones whenever the device has them, so
+    // the runtime can use them after checking info().features. Nothing is enabled that costs
+    // performance (robustBufferAccess stays off).
     VkPhysicalDeviceShaderAtomicFloatFeaturesEXT atomic_float{
         VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
     VkPhysicalDeviceVulkan13Features s13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
@@ -96,15 +98,12 @@ void Context::init(const ContextOptions& options) {
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2, &s11};
     vkGetPhysicalDeviceFeatures2(physical_device_, &supported);
 
-    VkPhysicalDeviceFeatures2 enable{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    stages::DeviceRequirements needs = stages::required_device_features();
     VkPhysicalDeviceVulkan11Features e11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
-    VkPhysicalDeviceVulkan12Features e12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceVulkan13Features e13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
-    enable.pNext = &e11;
-    e11.pNext = &e12;
-    e12.pNext = &e13;
+    VkPhysicalDeviceFeatures2& enable = *needs.chain(&e11);
+    VkPhysicalDeviceVulkan12Features& e12 = needs.features12;
+    VkPhysicalDeviceVulkan13Features& e13 = needs.features13;
     const VkPhysicalDeviceFeatures& core = supported.features;
-    enable.features.shaderInt64 = VK_TRUE;
     enable.features.shaderFloat64 = core.shaderFloat64;
     enable.features.shaderInt16 = core.shaderInt16;
     enable.features.fragmentStoresAndAtomics = core.fragmentStoresAndAtomics;
@@ -113,7 +112,6 @@ void Context::init(const ContextOptions& options) {
     enable.features.shaderStorageImageWriteWithoutFormat = core.shaderStorageImageWriteWithoutFormat;
     e11.storageBuffer16BitAccess = s11.storageBuffer16BitAccess;
     e11.shaderDrawParameters = s11.shaderDrawParameters;
-    e12.scalarBlockLayout = VK_TRUE;
     e12.shaderBufferInt64Atomics = s12.shaderBufferInt64Atomics;
     e12.shaderSharedInt64Atomics = s12.shaderSharedInt64Atomics;
     e12.storageBuffer8BitAccess = s12.storageBuffer8BitAccess;
@@ -124,15 +122,13 @@ void Context::init(const ContextOptions& options) {
     e12.vulkanMemoryModelDeviceScope = s12.vulkanMemoryModelDeviceScope;
     e12.shaderSubgroupExtendedTypes = s12.shaderSubgroupExtendedTypes;
     e12.timelineSemaphore = s12.timelineSemaphore;
-    e13.synchronization2 = VK_TRUE;
     e13.subgroupSizeControl = s13.subgroupSizeControl;
     e13.computeFullSubgroups = s13.computeFullSubgroups;
     e13.maintenance4 = s13.maintenance4;
-    e13.dynamicRendering = s13.dynamicRendering;
-    std::vector<const char*> device_extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
+    std::vector<const char*> device_extensions = needs.extensions;
     if (has_atomic_float) {
         atomic_float.pNext = nullptr;  // all supported float-atomic features, as queried
-        e13.pNext = &atomic_float;
+        e11.pNext = &atomic_float;
         device_extensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
     }
     // The spec requires enabling it wherever it is offered (MoltenVK).
