@@ -4,7 +4,7 @@ data URI):
 
   glossy_floor/glossy_floor.gltf   a box with a dark glossy floor under coloured walls
 
-The scene of the glossy branch (seed 004 sec. 4.2, shaders/include/vplkit/gi_lobe.glsl): the
+The scene of the glossy branch (the SST paper sec. 4.2, shaders/include/vplkit/gi_lobe.glsl): the
 walls are lit by the point light, and their light, one bounce later, is what the floor reflects:
 the coloured walls' mirror images in the floor are indirect highlights, which a method that
 samples the whole BRDF towards each cluster's mean smears. Run from anywhere:

@@ -11,7 +11,7 @@ prefer the panels near it. Run from anywhere: python3 scenes/make_many_lights.py
 .gltf is what vplkit loads). Deterministic: a fixed random seed. With --emitters N OUT.gltf it
 writes the same box lit by N small triangles on the ceiling instead (cost per emitter count).
 With --mesh-lights OUT.gltf it writes the box lit by irregular mesh lights instead (one- vs
-two-level trees, seed 003 sec. 3.1): 40 round lamps (triangle fans) of 1 to 1536 triangles and
+two-level trees, the RTSLC paper sec. 3.1): 40 round lamps (triangle fans) of 1 to 1536 triangles and
 3 to 25 cm radius on the ceiling and the back wall, and two 1.6 m strip lights of 1024 triangles
 along the ceiling's sides; each lamp its own mesh (one primitive: one mesh light), in one of the
 12 classes. 12,317 emissive triangles in 42 mesh lights.

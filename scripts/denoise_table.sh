@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# |E| and |E'| (seed 001, Reinhard-tonemapped indirect luminance against an exact gather over many
+# |E| and |E'| (the SMC paper, Reinhard-tonemapped indirect luminance against an exact gather over many
 # IR light paths) of hybrid GI along a short orbit, with the filter off and with svgf
 # (`vplkit sequence` defaults to svgf), on the in-repo Cornell box and SponzaLite with the sun.
 # Writes OUT/<scene>-<denoise>/ and OUT/table.md.

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# seed 001 Table 1 on the kit's scenes: IR, BRSM and SMC VPLs at about equal counts, one gather
+# the SMC paper Table 1 on the kit's scenes: IR, BRSM and SMC VPLs at about equal counts, one gather
 # (exact: every VPL with a shadow ray, so the VPLs alone differ), no temporal filtering, a short
 # orbit per scene; |E| and |E'| (Reinhard-tonemapped indirect luminance) against the exact gather
 # over many IR light paths. IR and BRSM draw new VPLs every frame (--fresh-vpls), as the paper's

@@ -24,7 +24,7 @@ void validate_hybrid(const RenderSettings& settings) {
     stages::validate(gi_stage_options(settings, 1.0f).hybrid);
 }
 
-// The thesis' comparison protocol (seed 000 sec. 7.1): hybrid's cuts and blending, rtslc's traversal.
+// The thesis' comparison protocol (the thesis sec. 7.1): hybrid's cuts and blending, rtslc's traversal.
 void lightcuts_traversal(RenderSettings& settings) {
     settings.hybrid_traversal = stages::HybridTraversal::lightcuts;
 }
@@ -94,7 +94,7 @@ constexpr GiMethodInfo kGiMethods[] = {
     {
         .method = GiMethod::flc,
         .name = "flc",
-        .summary = "forward light cuts (seed 002): a VPL per kept triangle (stochastic decimation, stratified), "
+        .summary = "forward light cuts (the FLC paper): a VPL per kept triangle (stochastic decimation, stratified), "
                    "splatted over its support; unshadowed, one bounce",
         .stage = FrameStage::gi_flc,
         .vpls = GiVpls::own,

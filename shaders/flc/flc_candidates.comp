@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-// Forward light cuts, VPL generation (seed 002 secs. 3-4): one VPL candidate per scene triangle,
+// Forward light cuts, VPL generation (the FLC paper secs. 3-4): one VPL candidate per scene triangle,
 // at its centroid, with the level Alg. 1 draws for it (flc_partition.glsl), or kFlcDiscarded, or
 // kFlcDivergent for a triangle larger than S~_N (left to the subdivision path of sec. 6).
 // The triangle's uniform number comes from the xor of its three vertices' random integers and the

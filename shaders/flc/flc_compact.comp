@@ -3,7 +3,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // Forward light cuts: the kept candidates' and the divergent triangles' indices as two compact
 // lists, and how many fell in each level, so the next passes (the subdivision of divergent
-// triangles, the splatting) draw only what survived the decimation (seed 002 sec. 6: the
+// triangles, the splatting) draw only what survived the decimation (the FLC paper sec. 6: the
 // divergent buffer feeds an indirect draw). The host zeroes `counts` first.
 // Both lists are in triangle index order, the same for every scheduling (an atomic append made
 // the draw order, and so the rounding of the additively blended splats, vary): a stable

@@ -1,7 +1,7 @@
 #version 460
 // Forward light cuts: the splatting's indirect draw arguments (VkDrawIndirectCommand) from the
 // compaction's kept count, so the splat pass draws one proxy per kept VPL and none for the
-// discarded triangles (seed 002 sec. 5), without a read-back to the host.
+// discarded triangles (the FLC paper sec. 5), without a read-back to the host.
 
 layout(local_size_x = 1) in;
 

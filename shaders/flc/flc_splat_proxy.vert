@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-// Forward light cuts, splatting (seed 002 sec. 5), vertex stage: instance i is kept VPL i, drawn
+// Forward light cuts, splatting (the FLC paper sec. 5), vertex stage: instance i is kept VPL i, drawn
 // as the screen-space rectangle that bounds its support, so the fragment stage runs only where
 // the VPL can light something. A level-k VPL at y (normal n) lights x only where
 // d(x) = |x - y|^2 / <n, x - y> < D_{k+1} (eq. 14): the level set d = R is the sphere through y

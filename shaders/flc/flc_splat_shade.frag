@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-// Forward light cuts, splatting (seed 002 sec. 5), fragment stage: the receiver is the G-buffer
+// Forward light cuts, splatting (the FLC paper sec. 5), fragment stage: the receiver is the G-buffer
 // surface at this pixel; the VPL's light there, unshadowed (the paper's one bounce has no
 // visibility), times its level's partition weight f~^k(d) (eq. 14, flc_partition.glsl), is added
 // into the indirect image by the pipeline's blending (ONE, ONE, ADD): each kept VPL adds its share,

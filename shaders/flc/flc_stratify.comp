@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
 // Forward light cuts, stratified decimation: the level of every regular candidate, drawn with
-// Alg. 1's probabilities P(t in L_k) = A / S_k (eq. 3, seed 002) but not independently per
+// Alg. 1's probabilities P(t in L_k) = A / S_k (eq. 3, the FLC paper) but not independently per
 // triangle. Independent draws (flc_candidates.comp's Alg. 1) leave each level's count binomial:
 // on a closed sphere lit by 16 VPLs of one level a frame's light was 20% off whenever a VPL more
 // or less was drawn, though the mean over frames was right. Here each level is a systematic

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-// Forward light cuts, divergent triangles (seed 002 sec. 6): a triangle larger than S~_N would need
+// Forward light cuts, divergent triangles (the FLC paper sec. 6): a triangle larger than S~_N would need
 // a keep probability above one, so it is cut into m x m equal sub-triangles (the regular
 // barycentric grid: m^2 triangles of area A / m^2 <= S~_N), and each sub-triangle is a regular
 // candidate with its own draw of Alg. 1. The host picks m from the triangle's area alone

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Forward light cuts, interleaved sub-tiles (seed 002 sec. 6): the splat's n x n sub-tiles put back
+// Forward light cuts, interleaved sub-tiles (the FLC paper sec. 6): the splat's n x n sub-tiles put back
 // in image order (untiling), and the blur that gives every pixel all the VPLs: image pixel p takes
 // the mean of the n x n window around it (one pixel of each sub-tile, so each of the n^2 VPL
 // subsets once) over the neighbours on p's surface: covered, normal within acos(min_cos) of p's,

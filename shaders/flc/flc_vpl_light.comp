@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_scalar_block_layout : require
-// Forward light cuts: the light at each kept VPL (seed 002 sec. 4, eqs. 10-18). A kept triangle t
+// Forward light cuts: the light at each kept VPL (the FLC paper sec. 4, eqs. 10-18). A kept triangle t
 // of level k stands for area S_k = A / P(t in L_k) (eq. 3), so the one-bounce light's estimator
 // sum over kept t of S_k f~^k(t, x) B_t G(t, x) is unbiased when the f~^k sum to 1 (eq. 11).
 // This pass writes each kept VPL's receiver-independent part: the flux

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The half-resolution G-buffer that GI at half resolution shades (seed 000 ch. 6, "Upsampling":
+// The half-resolution G-buffer that GI at half resolution shades (the thesis ch. 6, "Upsampling":
 // indirect light is rendered at half the resolution and joint-bilaterally upsampled). Half pixel
 // (i, j) is a copy of full pixel (2i, 2j) of every image but depth; the half size is
 // ((W + 1) / 2, (H + 1) / 2), so (2i, 2j) is always inside the full image, odd sizes included.

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Shallow light cuts for the `hybrid` method (seed 000 sec. 5.1): one cut of at most cut_size
+// Shallow light cuts for the `hybrid` method (the thesis sec. 5.1): one cut of at most cut_size
 // SST nodes per block_size x block_size pixel block, chosen for the block's representative pixel.
 // Starting from the root, the cut node with the highest expected contribution (eq. 5.2 cosine x
 // material x intensity / clamped squared distance) is replaced by its children until the cut

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Indirect light by the `hybrid` method (seed 000 ch. 5): each pixel blends the shallow cuts of
+// Indirect light by the `hybrid` method (the thesis ch. 5): each pixel blends the shallow cuts of
 // the four blocks around it (Alg. 1: bilinear x geometric-similarity weights; one cut drawn per
 // pixel, where Alg. 1 draws one per slot: see main), or takes the mock cut when none of the four
 // is similar; from every node of its cut it traverses the SST with the expected-contribution
@@ -11,7 +11,7 @@
 // pixel's estimate is the sum over its cut's nodes. The specialization constant kTraversal swaps
 // the traversal for rtslc's to a leaf (sec. 7.1's comparison protocol). With kGlossyLobe
 // (gi_lobe.glsl), a glossy receiver picks the diffuse or the glossy lobe per cut node's traversal
-// (seed 004 sec. 4.2); the cut itself, shared by the block, is chosen for the whole BRDF, and the
+// (the SST paper sec. 4.2); the cut itself, shared by the block, is chosen for the whole BRDF, and the
 // node's share of the estimate is weighed by the probability of the lobe it was sampled in.
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Real-time stochastic lightcuts, cut selection (seed 003 sec. 3.2-3.3): one invocation per
+// Real-time stochastic lightcuts, cut selection (the RTSLC paper sec. 3.2-3.3): one invocation per
 // k x k pixel block. A representative pixel is drawn uniformly among the block's covered pixels;
 // at that pixel rtslc_select_cut (rtslc_tree_sampling.glsl) splits the cut from the root by the
 // largest bound F I / max(d_min^2, eps^2) until it holds cut_size nodes or only leaves; the cut

@@ -1,13 +1,13 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Real-time stochastic lightcuts, light sampling (seed 003 sec. 3.2-3.4): one invocation per
+// Real-time stochastic lightcuts, light sampling (the RTSLC paper sec. 3.2-3.4): one invocation per
 // pixel. For each node of its block's cut (rtslc_cut.comp) that the pixel samples, a traversal
 // from that node to a leaf picks a child per level with the eq. 1-2 probabilities at the pixel
 // (rtslc_child_probability, a fresh random number per level), and the leaf's VPL is evaluated
 // with vpl_contribution (the evaluation every method shares) divided by the path's probability,
 // with one shadow ray. The cut partitions the real VPLs, so the sum over the cut's nodes is an
 // unbiased estimate of the sum over every VPL. With kGlossyLobe (gi_lobe.glsl), a glossy receiver
-// picks the diffuse or the glossy lobe per traversal as sst and hybrid do (seed 004 sec. 4.2) and
+// picks the diffuse or the glossy lobe per traversal as sst and hybrid do (the SST paper sec. 4.2) and
 // steers by that lobe's child weights; with kRtslcLobeMis (the default) the whole BRDF is
 // evaluated at the leaf over the lobes' mixture pmf (rtslc_traverse_lobe_mis), without it only
 // the chosen lobe over the lobe's x the path's probability (the split).

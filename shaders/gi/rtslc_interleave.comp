@@ -1,10 +1,10 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Real-time stochastic lightcuts, reconstruction after interleaved sampling (seed 003 sec. 3.4):
+// Real-time stochastic lightcuts, reconstruction after interleaved sampling (the RTSLC paper sec. 3.4):
 // each pixel of an m x m sub-block sampled only its share of the block's cut nodes
 // (rtslc_interleave_slots), so one pixel's estimate covers ~1/m^2 of the VPLs. Here each pixel
 // x gets the sum of the estimates of the sub-block's pixels y whose geometry is similar to its
-// own (seed 000 eq. 5.3: geometrically_similar, normals within min_cos and positions within
+// own (the thesis eq. 5.3: geometrically_similar, normals within min_cos and positions within
 // max_distance; x itself always), rescaled by c / (the cut nodes those pixels sampled), c = the
 // nodes of the block's cut. When all m^2 pixels are similar they sample every node once and the
 // scale is 1.

@@ -1,13 +1,13 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Indirect light by stochastic substitute tree sampling (the `sst` method, seed 004 sec. 4):
+// Indirect light by stochastic substitute tree sampling (the `sst` method, the SST paper sec. 4):
 // per pixel, samples_per_pixel traversals from the root, each stopping at the first node
 // suitable for sampling or at a leaf; child weights = material x cosine upper bound x intensity
 // / clamped squared distance; the node evaluated as a point light (its VPL, or a position drawn
 // from its substitute distribution) with its colour divided by the path probability, one shadow
 // ray each (to the VPL, or for a substitute to a real VPL of the node: sst_shadow_target); the
 // pixel is the mean of its samples. With kGlossyLobe (gi_lobe.glsl), a glossy receiver picks
-// the diffuse or the glossy lobe per sample (seed 004 sec. 4.2).
+// the diffuse or the glossy lobe per sample (the SST paper sec. 4.2).
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
 

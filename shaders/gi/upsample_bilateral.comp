@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Joint bilateral upsampling of half-resolution indirect light (seed 000 ch. 6, "Upsampling",
+// Joint bilateral upsampling of half-resolution indirect light (the thesis ch. 6, "Upsampling",
 // and 7.4): a bilinear filter over the four half-resolution samples around a full pixel, each
 // weight multiplied by the geometric similarity S of eq. 5.3 (vplkit/geometric_similarity.glsl)
 // between the full pixel and the sample, so light is never blended across creases or depth jumps:

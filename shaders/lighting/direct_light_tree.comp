@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Direct light through the light tree over the scene's lights (seed 003: real-time stochastic
+// Direct light through the light tree over the scene's lights (the RTSLC paper: real-time stochastic
 // lightcuts for direct light), added to the radiance image: one invocation per pixel. The block's
 // cut (gi/rtslc_cut.comp, the same pass rtslc GI runs) partitions the tree's lights; for every
 // sample slot in [slot_first, slot_end) a traversal from its cut node to a leaf (the defensive
@@ -16,7 +16,7 @@
 // the cut is one of the direct light of all the tree's lights (tests/lighting checks the mean).
 // Directional lights are not in the tree (no position); direct_light.comp adds them.
 //
-// Two-level (kTwoLevel = 1, seed 003 sec. 3.1, two_level_light_tree.glsl): the cut is in the top
+// Two-level (kTwoLevel = 1, the RTSLC paper sec. 3.1, two_level_light_tree.glsl): the cut is in the top
 // tree (leaf_count = its leaves) and the traversal from the cut node ends at a top leaf i; a second
 // traversal (the same rtslc_traverse_in) descends bottom tree i to a light. P(light) is the
 // product of the two paths' probabilities, exactly the probability of the path taken.
@@ -176,7 +176,7 @@ void main() {
     // (+1 for j < cut_size mod c) samples are each weighted 1 / n_j, so the sum over the cut's
     // nodes stays unbiased; a lone emitter gets cut_size area samples rather than one.
     //
-    // Interleaved (m > 1, seed 003 sec. 3.4 and eq. 3, as rtslc GI): the pixel samples only its
+    // Interleaved (m > 1, the RTSLC paper sec. 3.4 and eq. 3, as rtslc GI): the pixel samples only its
     // share of the cut's nodes (rtslc_interleave_slots), one sample each; rtslc_interleave.comp
     // then rebuilds every pixel's light from its similar sub-block neighbours' shares.
     bool interleaved = push.interleave > 1u;

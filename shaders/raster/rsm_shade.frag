@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Shadow map + reflective shadow map pass, fragment stage. One texel of a reflective shadow map
-// (Dachsbacher and Stamminger 2005, "Reflective Shadow Maps"; seed 000 section 2.2 and 4.1
+// (Dachsbacher and Stamminger 2005, "Reflective Shadow Maps"; the thesis section 2.2 and 4.1
 // generate VPLs from these texels) is a small surface patch lit by the light: its world
 // position, its normal, and the flux it reflects. The depth attachment of the
 // same pass is the light's shadow map. Images: runtime/include/vplkit/stages/shadow_maps.hpp.

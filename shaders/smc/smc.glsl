@@ -1,10 +1,10 @@
 #ifndef VPLKIT_SMC_GLSL
 #define VPLKIT_SMC_GLSL
 
-// Sequential Monte Carlo instant radiosity (seed 001): the records its stages share.
+// Sequential Monte Carlo instant radiosity (the SMC paper): the records its stages share.
 //
 // One SmcVpl is a point y on a surface with what the sampler knows about it: its radiosity B(y)
-// (estimated once, from a seed of its own: seed 001 sec. 3.2.3), its density p(y) by kNN (eq. 7),
+// (estimated once, from a seed of its own: the SMC paper sec. 3.2.3), its density p(y) by kNN (eq. 7),
 // its intensity I(y) = lum(B) / p (eq. 6), and the camera point it is known to be indirectly
 // visible from (its mailbox, sec. 3.2.2). The same record holds a ray hit of the candidate pool
 // (position = the hit, anchor = the camera point the ray left).

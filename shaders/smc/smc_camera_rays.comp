@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-// SMC, Alg. 1 lines 3 and 5 (seed 001 sec. 3.2.1): camera points X on the surfaces the camera
+// SMC, Alg. 1 lines 3 and 5 (the SMC paper sec. 3.2.1): camera points X on the surfaces the camera
 // sees (random covered pixels of the G-buffer), and from each a ray in a cosine-distributed
 // direction; its first hit with a reflecting surface joins the candidate pool.
 //

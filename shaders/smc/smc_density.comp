@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
-// SMC, Alg. 1 lines 8 and 19 (seed 001 sec. 3.2.4): the density of VPLs on the surfaces by
+// SMC, Alg. 1 lines 8 and 19 (the SMC paper sec. 3.2.4): the density of VPLs on the surfaces by
 // k-nearest-neighbour estimation, as in photon mapping (the k nearest in 3D assumed to lie on
 // the query's plane):
 //     p(y) = k / (I pi r_k(y)^2)                                           (eq. 7)

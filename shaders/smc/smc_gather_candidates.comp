@@ -3,7 +3,7 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // SMC, Alg. 1 line 6: after the pool is sorted by resampling key (smc_camera_rays.comp), its
 // first `budget` entries with a key are the candidates Y^. Each gets a seed of its own for its
-// radiosity estimate, kept for its life as a VPL (seed 001 sec. 3.2.3).
+// radiosity estimate, kept for its life as a VPL (the SMC paper sec. 3.2.3).
 
 #include "vplkit/rng.glsl"
 #include "smc.glsl"

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// SMC, Alg. 1 lines 7 and 18 (seed 001 sec. 3.2.3): the radiosity B(y) = rho(y) E(y) of each
+// SMC, Alg. 1 lines 7 and 18 (the SMC paper sec. 3.2.3): the radiosity B(y) = rho(y) E(y) of each
 // candidate (line 7), and again, independently, of each candidate that entered Y (line 18),
 // by a path tracer with next-event estimation: `samples` paths from y, each gathering the direct
 // irradiance of one emitter (chosen by power, as the light paths choose them) at every vertex,

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// SMC, Alg. 1 line 4 second half (seed 001 sec. 3.2.2): each camera point casts rays towards
+// SMC, Alg. 1 line 4 second half (the SMC paper sec. 3.2.2): each camera point casts rays towards
 // `tries` randomly chosen VPLs of the invalid list (smc_invalid_list.comp, in index order) and
 // claims each it reaches unoccluded, each facing the other. Of a VPL's claimants the one with the
 // lowest pool index wins (atomicMax of its complement in valid[]: a claim is >= 2^31, so it

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-// SMC, Alg. 1 lines 9-17 (seed 001 sec. 3.2.5): which VPLs leave Y and which candidates enter.
+// SMC, Alg. 1 lines 9-17 (the SMC paper sec. 3.2.5): which VPLs leave Y and which candidates enter.
 // One invocation: the decision is a few walks over the sorted intensities (at most 2 I + M_max
 // steps), sequential by nature and negligible next to the ray casting.
 //

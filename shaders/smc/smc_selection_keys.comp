@@ -2,7 +2,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // SMC, Alg. 1 lines 9-17, their inputs: the VPLs by intensity ascending (their intensities from
-// the last update: seed 001 sec. 3.2, "not re-estimated at this point") and the candidates by
+// the last update: the SMC paper sec. 3.2, "not re-estimated at this point") and the candidates by
 // intensity descending, as sort keys. Non-negative floats order as their bits; a candidate's key
 // is the bits' complement (so the strongest comes first), and empty slots get kSmcNoKey (last).
 // A candidate of zero intensity gets kSmcNoKey too: it would bring no light.

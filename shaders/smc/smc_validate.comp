@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// SMC, Alg. 1 line 4 (seed 001 sec. 3.2.2), the mailbox test: a VPL stays valid while the camera
+// SMC, Alg. 1 line 4 (the SMC paper sec. 3.2.2), the mailbox test: a VPL stays valid while the camera
 // still sees the point it was associated with (its anchor: in the view frustum, on the camera's
 // side, and unoccluded from the eye by a BVH ray). smc_invalid_list.comp then lists the others,
 // in index order, for smc_revalidate.comp. Geometry is static, so the anchor still sees the VPL.

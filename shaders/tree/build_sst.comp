@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Builds every inner node of the Stochastic Substitute Tree in one bottom-up dispatch (seed 004
-// sec. 3.3 and 5, seed 000 sec. 4.2.2): one thread per pair of leaves merges its pair into their
+// Builds every inner node of the Stochastic Substitute Tree in one bottom-up dispatch (the SST paper
+// sec. 3.3 and 5, the thesis sec. 4.2.2): one thread per pair of leaves merges its pair into their
 // parent, then climbs. At each inner node above, the first of its two subtrees' threads to
 // arrive stops and the second merges both children and goes on, so exactly one thread reaches
 // the root. No thread ever waits for another workgroup (Vulkan promises no forward progress
@@ -29,7 +29,7 @@ VPLKIT_DECLARE_ELEMENT_COUNT(3)
 layout(push_constant) uniform BuildSstPush {
     uint count;        // real VPLs (leaves at index >= count are bogus), or the capacity (count_word)
     uint leaf_count;   // L: count rounded up to a power of two
-    float nu_min;      // seed 004 eq. 3 thresholds
+    float nu_min;      // the SST paper eq. 3 thresholds
     float sigma_max;   // world units (a standard deviation along the normal)
     uint count_word;   // element_count.glsl
 } push;

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // The light trees' leaf array: the VPLs in sorted-key order (the sort moved indices, not whole
-// VPLs; seed 000 ch. 6 "VPL sorting"), padded to a power of two with bogus leaves.
+// VPLs; the thesis ch. 6 "VPL sorting"), padded to a power of two with bogus leaves.
 // A bogus leaf is all zero: zero flux, so zero intensity. Tree builders tell bogus leaves by
 // their index (>= count), never by their data, so they never take part in bounds.
 

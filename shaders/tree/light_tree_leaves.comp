@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// The leaf level of the perfect light tree (seed 003 sec. 3.1): one node per leaf of the sorted,
+// The leaf level of the perfect light tree (the RTSLC paper sec. 3.1): one node per leaf of the sorted,
 // power-of-two padded leaf array. A leaf is bogus by its index (>= count), never by its data, so
 // whatever a bogus slot holds it becomes the empty node.
 

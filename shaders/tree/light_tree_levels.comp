@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// One group of internal levels of the perfect light tree (seed 003 sec. 4): the `levels` levels
+// One group of internal levels of the perfect light tree (the RTSLC paper sec. 4): the `levels` levels
 // above `source_level`, all in this one dispatch. A node `depth` levels above the source level
 // reads its 2^depth descendants there directly, so no node of the group waits for another; the
 // host puts a barrier between groups only.

@@ -8,7 +8,7 @@
 // shading point; a centroid box could lie behind while a corner is in front, and a weight of 0
 // there would lose that light (bias). A point or spot light's box is its position.
 //
-// Orientation (a triangle's normal and sidedness, a spot's cone) is not in the node: seed 003
+// Orientation (a triangle's normal and sidedness, a spot's cone) is not in the node: the RTSLC paper
 // sec. 4 leaves bounding cones out of the perfect tree's 32-byte node ("only subtle loss of
 // sampling quality") and so does the kit; the sample's evaluation applies them. The weights
 // therefore overestimate lights that face away, which costs variance, never bias.

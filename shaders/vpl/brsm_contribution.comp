@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// BRSM, step 1 (seed 000 sec. 4.1.1 and ch. 6): the expected contribution of every pVPL (RSM
+// BRSM, step 1 (the thesis sec. 4.1.1 and ch. 6): the expected contribution of every pVPL (RSM
 // texel) to the camera's image. Around the pVPL, `sample_count` points are drawn (a uniform
 // direction, a radius from the capped 1/r^2 density of vplkit/brsm.glsl), projected into the
 // camera's G-buffer, and the diffuse light the pVPL sends to the surface found there is summed,

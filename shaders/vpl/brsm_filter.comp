@@ -1,9 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// BRSM, step 2 (seed 000 ch. 6, "BRSM Filtering"): the pVPL contributions, estimated from a few
+// BRSM, step 2 (the thesis ch. 6, "BRSM Filtering"): the pVPL contributions, estimated from a few
 // G-buffer samples each, are noisy; an edge-aware Gaussian smooths them within a surface and not
 // across its edges. For texel i, over the texels j of the (2 radius + 1)^2 window that hold a
-// surface and are geometrically similar to i (seed 000 eq. 5.3, vplkit/geometric_similarity.glsl):
+// surface and are geometrically similar to i (the thesis eq. 5.3, vplkit/geometric_similarity.glsl):
 //   filtered_i = sum_j w_ij c_j / sum_j w_ij,   w_ij = exp(-|i - j|^2 / (2 sigma^2))  (texels)
 // A texel without flux stays 0, so a VPL is never placed where there is no light to carry.
 // Writes level 0 of the contribution's mip chain.

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// BRSM, step 5 (seed 000 sec. 4.1.2): every warped sample becomes a VPL at its RSM texel, with
+// BRSM, step 5 (the thesis sec. 4.1.2): every warped sample becomes a VPL at its RSM texel, with
 // the texel's flux over (N x pmf): over the samples' random rotation, the N VPLs together
 // estimate, without bias, the flux of the texels of positive importance. Appended after the VPLs
 // already in the buffer (earlier lights): VPL i of this light goes to vpl_count.count + i;

@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// One level of the importance mip chain (seed 000 sec. 4.1): each texel is the SUM of the 2x2
+// One level of the importance mip chain (the thesis sec. 4.1): each texel is the SUM of the 2x2
 // texels below it, so every texel holds the total importance of its quadrant and the 1x1 top
 // holds the total. All levels live in one flat buffer, finest first (layout in
 // runtime/include/vplkit/stages/importance_warp.hpp); one dispatch per level, so a level is

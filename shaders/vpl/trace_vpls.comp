@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Instant radiosity (Keller 1997, "Instant Radiosity"; seed 004 sec. "VPL Generation"): one
+// Instant radiosity (Keller 1997, "Instant Radiosity"; the SST paper sec. "VPL Generation"): one
 // light path per invocation. Pick an emitter by power, emit, trace through the BVH, and at every
 // surface hit append a VPL; continue with a cosine-weighted bounce and Russian roulette, up to
 // max_bounces hits.

@@ -1,7 +1,7 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Hierarchical warping of a randomized Hammersley point set into texels of the importance map
-// (seed 000 sec. 4.1, ch. 6): one thread per sample walks from the 1x1 top of the mip chain
+// (the thesis sec. 4.1, ch. 6): one thread per sample walks from the 1x1 top of the mip chain
 // down to the finest level, choosing quadrant by quadrant, vertical half then horizontal half,
 // each by the ratio of the halves' sums. The sample lands on a texel with probability
 // importance / total, written beside it so a VPL made from it gets flux / (N x pmf).
@@ -48,7 +48,7 @@ void main() {
         float c10 = mips.values[offset + base.y * size + base.x + 1u];
         float c01 = mips.values[offset + (base.y + 1u) * size + base.x];
         float c11 = mips.values[offset + (base.y + 1u) * size + base.x + 1u];
-        // seed 000 ch. 6: vertical half first, then the horizontal quarter within it.
+        // the thesis ch. 6: vertical half first, then the horizontal quarter within it.
         bool lower = warp_select(u.y, c00 + c10, c01 + c11);
         bool right = lower ? warp_select(u.x, c01, c11) : warp_select(u.x, c00, c10);
         texel = base + uvec2(right ? 1u : 0u, lower ? 1u : 0u);

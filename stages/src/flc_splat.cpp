@@ -25,7 +25,7 @@ struct FlcSplatPipelineDescription {
         s.cull_mode = VK_CULL_MODE_NONE;  // the rectangles' winding is not a side
         s.depth_test = false;
         s.depth_write = false;
-        s.additive_blend = true;  // each VPL adds its share (seed 002 sec. 5)
+        s.additive_blend = true;  // each VPL adds its share (the FLC paper sec. 5)
         return s;
     }
 };

@@ -1,4 +1,4 @@
-// flc_candidates.comp (forward light cuts, seed 002 secs. 3-4) against Alg. 1 in double
+// flc_candidates.comp (forward light cuts, the FLC paper secs. 3-4) against Alg. 1 in double
 // (tests/reference/flc_reference.cpp).
 //
 // Tolerance: a triangle's level is an integer and must match the reference exactly, unless the

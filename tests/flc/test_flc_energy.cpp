@@ -1,4 +1,4 @@
-// Energy of `--method flc` (seed 002) in the closed diffuse sphere of scenes/enclosure_sphere
+// Energy of `--method flc` (the FLC paper) in the closed diffuse sphere of scenes/enclosure_sphere
 // (radius 1, albedo 0.5, a point light at its centre, no occluder inside): there unshadowed
 // one-bounce light is exact, so flc's mean indirect light must match `exact`'s.
 //

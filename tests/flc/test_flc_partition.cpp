@@ -1,4 +1,4 @@
-// The partition of unity of vplkit/flc_partition.glsl (seed 002 eqs. 10-18) through test shaders
+// The partition of unity of vplkit/flc_partition.glsl (the FLC paper eqs. 10-18) through test shaders
 // (shaders/partition_values.comp, shaders/candidate_weights.comp).
 //
 // Values: f~^k(d) against the double reference at distances on and between the D_k, within 1e-5

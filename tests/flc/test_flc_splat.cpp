@@ -1,4 +1,4 @@
-// The splatting raster pipeline (flc_splat_proxy.vert + flc_splat_shade.frag, seed 002 sec. 5)
+// The splatting raster pipeline (flc_splat_proxy.vert + flc_splat_shade.frag, the FLC paper sec. 5)
 // against a CPU reference in double: on a 64 x 64 G-buffer of a floor seen by a perspective camera
 // (each pixel's position is the floor point its centre sees, so the G-buffer agrees with the
 // camera the proxies are projected with), every pixel must be the sum over the VPLs of

@@ -1,4 +1,4 @@
-// flc_stratify.comp (the stratified decimation of forward light cuts) against eq. 3 of seed 002.
+// flc_stratify.comp (the stratified decimation of forward light cuts) against eq. 3 of the FLC paper.
 //
 // Marginal: every candidate must keep P(t in L_k) = A / S_k exactly, as Alg. 1's independent
 // draws do. Over n seeds, the count of frames in which candidate t is in level k is binomial

@@ -1,4 +1,4 @@
-// The divergent triangles' subdivision (flc_subdivide.comp, seed 002 sec. 6): a triangle larger
+// The divergent triangles' subdivision (flc_subdivide.comp, the FLC paper sec. 6): a triangle larger
 // than S~_N becomes m^2 equal sub-triangles on the barycentric grid, each a regular candidate with
 // its own draw of Alg. 1.
 // - Tiling: the sub-triangles' centroids are exactly the grid's m^2 triangle centroids (in the

@@ -1,4 +1,4 @@
-// The glossy branch (shaders/include/vplkit/gi_lobe.glsl, seed 004 sec. 4.2) of sst, hybrid and
+// The glossy branch (shaders/include/vplkit/gi_lobe.glsl, the SST paper sec. 4.2) of sst, hybrid and
 // rtslc, on sampling_setup.hpp's room with glossy floor points (roughness 0.05..1, metallic 0 and
 // 1), against the double exact sum.
 //

@@ -1,4 +1,4 @@
-// The child probabilities of the RTSLC traversal (rtslc_child_probability, seed 003 eqs. 1-2)
+// The child probabilities of the RTSLC traversal (rtslc_child_probability, the RTSLC paper eqs. 1-2)
 // and the cut bound (rtslc_node_bound), run by a test shader (shaders/rtslc_probabilities.comp)
 // on random node pairs and on the hard cases: shading point inside one box, inside both, on a
 // VPL, a child of zero weight (black, bogus, behind the surface), both zero (dead branch), HDR

@@ -1,5 +1,5 @@
 // direct_light_tree.comp through the two-level light tree (kTwoLevel: the cut and a traversal in
-// the top tree, a second traversal in the chosen mesh light's bottom tree; seed 003 sec. 3.1),
+// the top tree, a second traversal in the chosen mesh light's bottom tree; the RTSLC paper sec. 3.1),
 // with the one-level tests' fixture and bound (test_direct_light_tree.cpp's header: the mean over
 // seeds with visibility off against the exact light in double precision, |mean - exact| <= 5
 // sigma / sqrt(seeds) + 2e-3 exact, two seed counts). A pmf that is not the product of both

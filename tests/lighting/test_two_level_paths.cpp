@@ -2,7 +2,7 @@
 // tree, then in the chosen top leaf's bottom tree), through a test shader
 // (shaders/two_level_paths.comp) that runs 2^16 traversals from the top root at a shading point
 // and writes the light reached with the pmf the sampler divides by. Against a double reference
-// (tests/reference/rtslc_reference.cpp's child probabilities, seed 003 eqs. 1-2) descending the
+// (tests/reference/rtslc_reference.cpp's child probabilities, the RTSLC paper eqs. 1-2) descending the
 // host-built two-level tree (build_two_level_light_tree, the tree the GPU holds):
 // - every sample's pmf is the reference probability of the path to its light: relative error at
 //   most 2e-4 x sum over the path's choices of 1 / p_choice + 1e-6 (the per-choice float error

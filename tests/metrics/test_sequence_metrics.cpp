@@ -1,4 +1,4 @@
-// sequence_metrics.hpp (seed 001 sec. 5.2, eq. 10) against values worked out by hand on tiny
+// sequence_metrics.hpp (the SMC paper sec. 5.2, eq. 10) against values worked out by hand on tiny
 // synthetic sequences of 2-pixel frames. Exact arithmetic on small fractions: 1e-12.
 
 #include "vplkit/error.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// Forward light cuts (seed 002) in plain double precision, written from the paper's equations
+// Forward light cuts (the FLC paper) in plain double precision, written from the paper's equations
 // independently of shaders/include/vplkit/flc_partition.glsl: the levels' areas (eq. 17), Alg. 1's
 // level for a uniform u and its pmf (eq. 3), the influence distances (eq. 18), the support
 // distance (eq. 14), the partition of unity f~^k (eq. 16 as its Fig. 6 draws it) and F^k (eq. 10).

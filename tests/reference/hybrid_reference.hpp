@@ -1,6 +1,6 @@
 #pragma once
 // CPU reference for the hybrid method's shallow cut (shaders/gi/hybrid_cut.comp), in double:
-// the expected contribution of seed 000 sec. 5.1.2 (eq. 5.2 corner cosine x material x intensity
+// the expected contribution of the thesis sec. 5.1.2 (eq. 5.2 corner cosine x material x intensity
 // / clamped squared distance to the node's mean) and the greedy split of sec. 5.1.1.
 
 #include "vpl_reference.hpp"
@@ -19,7 +19,7 @@ struct CutNode {
     uint32_t leaf_count = 0;  // real VPLs below; 0: padding
 };
 
-// seed 000 eq. 5.2: the clamped cosine to the box's eight corners, averaged.
+// the thesis eq. 5.2: the clamped cosine to the box's eight corners, averaged.
 double average_corner_cosine(const Vec3& x, const Vec3& n, const Vec3& lo, const Vec3& hi);
 
 // The expected contribution's numerator a (material x cosine x intensity) and its squared

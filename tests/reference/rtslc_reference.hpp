@@ -1,7 +1,7 @@
 #pragma once
 // CPU reference for real-time stochastic lightcuts (shaders/include/vplkit/rtslc.glsl,
 // shaders/gi/rtslc_cut.comp), written plainly in double precision: the child probabilities of
-// seed 003 eqs. 1-2, the cut-selection bound and the cut itself, and the exact unshadowed sum
+// the RTSLC paper eqs. 1-2, the cut-selection bound and the cut itself, and the exact unshadowed sum
 // over every VPL the estimator's mean must equal (vpl_reference's evaluation).
 
 #include "vpl_reference.hpp"
@@ -40,7 +40,7 @@ struct RtslcChildProbability {
     bool dead = false;  // both children weigh 0
 };
 
-// seed 003 eqs. 1-2 with the squared distances clamped below by eps^2: p = (p_min + p_max) / 2,
+// the RTSLC paper eqs. 1-2 with the squared distances clamped below by eps^2: p = (p_min + p_max) / 2,
 // p_min = w_l^min / (w_l^min + w_r^min) with w = F I / max(d^2, eps^2).
 RtslcChildProbability rtslc_child_probability(const RtslcShading& s, const RtslcNode& left, const RtslcNode& right,
                                               double min_distance);

@@ -1,5 +1,5 @@
 #pragma once
-// Plain double-precision references for the SMC stages (shaders/smc/, seed 001 Alg. 1), written
+// Plain double-precision references for the SMC stages (shaders/smc/, the SMC paper Alg. 1), written
 // from the paper and the shaders' headers (what each stage is meant to do), not from their code
 // paths. Random numbers come from the same PCG32 streams as vplkit/rng.glsl (brsm_reference.hpp's
 // Pcg32), so a test can replay a shader's draws and compare ray by ray.
@@ -79,7 +79,7 @@ struct SmcSelection {
 
 // Y has vpl_intensity.size() VPLs (their last intensities), valid[i] != 0 for the valid ones;
 // candidate c has candidate_intensity[c]. Intensities must be distinct (no ties to break).
-// Rules (seed 001 sec. 3.2.5): invalid VPLs leave first, weakest first, at most M_max; then weak
+// Rules (the SMC paper sec. 3.2.5): invalid VPLs leave first, weakest first, at most M_max; then weak
 // valid ones until M_min have left; no more leave than candidates can replace; the strongest
 // candidates fill the freed slots first, then the empty ones up to the budget.
 SmcSelection smc_select(std::span<const double> vpl_intensity, std::span<const uint32_t> valid,

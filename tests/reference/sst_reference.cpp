@@ -41,7 +41,7 @@ Double3 to_double(const std::array<float, 3>& a) {
 }
 
 bool is_suitable(double nu, double sigma_z, const SstThresholds& thresholds) {
-    // seed 004 eq. 3, seed 000 eq. 5.6
+    // the SST paper eq. 3, the thesis eq. 5.6
     return nu >= double(thresholds.nu_min) && sigma_z <= double(thresholds.sigma_max);
 }
 
@@ -128,12 +128,12 @@ SstNodeRef sst_merge(const SstNodeRef& left, const SstNodeRef& right, const SstT
     const double a = w > 0.0 ? left.intensity / w : 0.5;
     const double b = w > 0.0 ? right.intensity / w : 0.5;
 
-    // seed 004 eq. 1 (seed 000 eq. 4.1)
+    // the SST paper eq. 1 (the thesis eq. 4.1)
     const Double3 d = sub(right.mean, left.mean);
     node.mean = add(left.mean, scale(d, b));
     node.intensity = w;
 
-    // seed 000 sec. 4.2.2: normal merged with the same weights, renormalized
+    // the thesis sec. 4.2.2: normal merged with the same weights, renormalized
     const Double3 m = add(scale(left.normal, a), scale(right.normal, b));
     const double length = std::sqrt(dot(m, m));
     node.merged_normal_length = length;
@@ -143,11 +143,11 @@ SstNodeRef sst_merge(const SstNodeRef& left, const SstNodeRef& right, const SstT
         node.normal = right.intensity > left.intensity ? right.normal : left.normal;
         node.normal_fallback = true;
     }
-    // seed 004 sec. 3.2, seed 000 eq. 4.3
+    // the SST paper sec. 3.2, the thesis eq. 4.3
     const double cosine = dot(left.normal, right.normal);
     node.nu = left.nu * right.nu * std::max(cosine, 0.0);
 
-    // seed 004 eq. 2 in pairwise form: a s1' + b s2' + a b d (.) d in the node frame
+    // the SST paper eq. 2 in pairwise form: a s1' + b s2' + a b d (.) d in the node frame
     Double3 t, bt;
     sst_frame(node.normal, t, bt);
     const Double3 vl = variance_in_frame(left, t, bt, node.normal);

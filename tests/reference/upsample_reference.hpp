@@ -1,7 +1,7 @@
 #pragma once
 // Plain double-precision references for GI at half resolution: the G-buffer downsample
 // (shaders/gi/gbuffer_downsample.comp) and the joint bilateral upsampling
-// (shaders/gi/upsample_bilateral.comp), written from the rules in their headers (seed 000
+// (shaders/gi/upsample_bilateral.comp), written from the rules in their headers (the thesis
 // ch. 6 "Upsampling", eq. 5.3), not from their code.
 //
 // Where float and double may decide a comparison differently (a normal dot product or a

@@ -56,7 +56,7 @@ NormalCode normal_code(const std::array<float, 3>& normal) {
     for (int c = 0; c < 3; ++c) {
         bary[c] = l1 > 0.0 ? a[c] / l1 : 1.0 / 3.0;
     }
-    // Corner triangles at Px, Py, Pz carry codes 2, 0, 1; the central triangle 3 (seed 004 Fig. 3).
+    // Corner triangles at Px, Py, Pz carry codes 2, 0, 1; the central triangle 3 (the SST paper Fig. 3).
     const uint32_t corner_code[3] = {2u, 0u, 1u};
     uint32_t code = octant;
     for (int level = 0; level < 3; ++level) {

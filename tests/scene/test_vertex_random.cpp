@@ -1,4 +1,4 @@
-// Scene::vertex_random (forward light cuts' per-vertex random integers, seed 002 sec. 3): one per
+// Scene::vertex_random (forward light cuts' per-vertex random integers, the FLC paper sec. 3): one per
 // vertex, the same whatever transform the node applies (so a triangle's random number follows
 // it when the mesh moves), different between two nodes instancing one mesh, and distinct within a
 // mesh (a 32-bit hash of distinct inputs: a collision among a few vertices would be a bug).

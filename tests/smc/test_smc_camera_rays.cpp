@@ -1,4 +1,4 @@
-// smc_camera_rays.comp (Alg. 1 lines 3, 5 and 6's key; seed 001 sec. 3.2.1) inside a closed box
+// smc_camera_rays.comp (Alg. 1 lines 3, 5 and 6's key; the SMC paper sec. 3.2.1) inside a closed box
 // (every ray hits), camera points given by a hand-made G-buffer (points floating in the box with
 // tilted normals, and uncovered pixels).
 // - Ray by ray against the reference, which replays the shader's random stream (Pcg32): the

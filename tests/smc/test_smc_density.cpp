@@ -1,4 +1,4 @@
-// smc_density.comp (seed 001 eq. 7) against a plain double-precision kNN.
+// smc_density.comp (the SMC paper eq. 7) against a plain double-precision kNN.
 //
 // The shader and the reference find the same neighbours (the same float positions; distances in
 // float vs double differ by a few ulps), so densities agree to 1e-4 relative. On a known

@@ -1,4 +1,4 @@
-// smc_radiosity.comp (Alg. 1 lines 7 and 18, seed 001 sec. 3.2.3): B(y) = rho(y) E(y) by paths
+// smc_radiosity.comp (Alg. 1 lines 7 and 18, the SMC paper sec. 3.2.3): B(y) = rho(y) E(y) by paths
 // with next-event estimation, from each record's own seed.
 // - One bounce, a point light over a floor with an occluding square: the estimate has no
 //   variance (one emitter, pmf 1), so it must equal rho I cos / d^2 (smc_point_light_radiosity)

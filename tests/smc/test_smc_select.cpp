@@ -1,4 +1,4 @@
-// Alg. 1 lines 9-17 (seed 001 sec. 3.2.5), shader by shader, exactly:
+// Alg. 1 lines 9-17 (the SMC paper sec. 3.2.5), shader by shader, exactly:
 // - smc_selection_keys.comp: Y's keys are its intensities' bits (ascending), the candidates' the
 //   bits' complement (strongest first); empty slots, and candidates without light (0, -0, < 0,
 //   NaN, inf), get kSmcNoKey (VPLs without light key 0: the weakest). Fails if a key is off by one bit or a dark

@@ -5,7 +5,7 @@
 // test_smc_select.cpp (smc_selection_keys, smc_select, smc_replace) and test_smc_vpls.cpp.
 // Here they run together, checked by the invariants of their output below.
 //
-// Whole SMC updates (seed 001 Alg. 1) through the Renderer on the in-repo Cornell box (point
+// Whole SMC updates (the SMC paper Alg. 1) through the Renderer on the in-repo Cornell box (point
 // light), small: 32x32 pixels, a budget of 256 VPLs, 8 camera rays per candidate, 4 radiosity
 // paths. What is checked is exact bookkeeping (counts, which slots changed), not statistics:
 // - every VPL finite, with a unit normal (1e-4), on a scene triangle (1e-4 of the scene scale:

@@ -1,4 +1,4 @@
-// The indirect-visibility test of seed 001 sec. 3.2.2 with its mailboxes, shader by shader,
+// The indirect-visibility test of the SMC paper sec. 3.2.2 with its mailboxes, shader by shader,
 // against smc_reference.cpp (double precision, every triangle tested).
 // - smc_validate.comp: a VPL stays valid while the camera sees its anchor (in the frustum, on the
 //   anchor's front side, no triangle between). On a floor with an occluding plate seen from

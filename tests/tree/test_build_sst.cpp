@@ -44,8 +44,8 @@ using vplkit::shaders::Vpl;
 using vplkit::stages::SstOptions;
 
 constexpr double kSafety = 4.0;
-constexpr SstOptions kThesis{0.7f, 0.3f};  // seed 000 sec. 5.2 (the default)
-constexpr SstOptions kPaper{0.5f, 0.1f};   // seed 004 sec. 6
+constexpr SstOptions kThesis{0.7f, 0.3f};  // the thesis sec. 5.2 (the default)
+constexpr SstOptions kPaper{0.5f, 0.1f};   // the SST paper sec. 6
 
 struct Scene {
     std::vector<Vpl> leaves;  // leaf_count(count) entries; the tail is bogus
@@ -624,7 +624,7 @@ TEST_CASE("sst: tree invariants hold on the GPU tree") {
         CHECK(n.box_hi.y == std::max(l.box_hi.y, r.box_hi.y));
         CHECK(n.box_hi.z == std::max(l.box_hi.z, r.box_hi.z));
         // The mean lies in the box (to the rounding of p1 + b (p2 - p1)); nu never grows going
-        // up (seed 004 sec. 3.3).
+        // up (the SST paper sec. 3.3).
         const double slack = 1e-6 * 5.0;
         CHECK(n.mean.x >= n.box_lo.x - slack);
         CHECK(n.mean.x <= n.box_hi.x + slack);

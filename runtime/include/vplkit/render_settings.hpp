@@ -27,10 +27,10 @@ namespace vplkit {
 enum class GiMethod {
     none,    // direct light only
     exact,   // every VPL at every pixel with a shadow ray each: the ground truth
-    sst,     // stochastic substitute tree traversals from the root (seed 004)
-    rtslc,   // real-time stochastic lightcuts: a cut per block, traversals to leaves (seed 003)
-    hybrid,  // the thesis method: shallow SST cuts per block, blended, early-stop traversals (seed 000)
-    flc,     // forward light cuts (seed 002): a VPL per kept triangle, splatted unshadowed, one bounce
+    sst,     // stochastic substitute tree traversals from the root (the SST paper)
+    rtslc,   // real-time stochastic lightcuts: a cut per block, traversals to leaves (the RTSLC paper)
+    hybrid,  // the thesis method: shallow SST cuts per block, blended, early-stop traversals (the thesis)
+    flc,     // forward light cuts (the FLC paper): a VPL per kept triangle, splatted unshadowed, one bounce
 };
 
 // The method's name in the method table (gi_methods.hpp): "direct" for none.
@@ -39,9 +39,9 @@ const char* gi_method_name(GiMethod method);
 // How direct light from emissive triangles, point and spot lights is sampled (directional lights
 // are evaluated one by one either way).
 enum class DirectSampler {
-    flat,       // point and spot lights one by one, emissive triangles from one power CDF
-    tree,       // one light tree over all of them, stochastic lightcuts (seed 003; direct_light_tree.hpp)
-    tree2,      // the same with a two-level tree: a bottom tree per mesh light under a top tree (seed 003 sec. 3.1)
+    flat,   // point and spot lights one by one, emissive triangles from one power CDF
+    tree,   // one light tree over all of them, stochastic lightcuts (the RTSLC paper; direct_light_tree.hpp)
+    tree2,  // the same with a two-level tree: a bottom tree per mesh light under a top tree (the RTSLC paper sec. 3.1)
     automatic,  // the planner's choice: the tree above kDirectTreeMinLights such lights
 };
 
@@ -57,7 +57,7 @@ inline constexpr uint32_t kDirectTreeMinLights = 8;
 enum class VplSource {
     ir,         // instant radiosity: light paths through the BVH, a VPL per diffuse hit (multi-bounce)
     brsm,       // bidirectional reflective shadow maps: one-bounce VPLs where the camera sees their light
-    smc,        // sequential Monte Carlo instant radiosity (seed 001): a VPL set kept across frames,
+    smc,        // sequential Monte Carlo instant radiosity (the SMC paper): a VPL set kept across frames,
                 // at most M_max moved per frame, on the surfaces the camera sees indirectly
     automatic,  // the planner's choice: BRSM for one bounce from punctual lights, else light paths
 };
@@ -72,12 +72,12 @@ enum class DenoiseMode {
 // "off", "temporal", "svgf".
 const char* denoise_mode_name(DenoiseMode mode);
 
-// The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp, seed 004 sec. 4.2): a glossy
+// The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp, the SST paper sec. 4.2): a glossy
 // receiver picks the diffuse or the glossy lobe per sample. automatic: the planner turns it on
 // when a material of the scene can be smoother than stages::kGlossyMaxRoughness.
 enum class GlossyBranch { automatic, on, off };
 
-// The default suitability threshold sigma_max (seed 000 eq. 5.6) as a fraction of the scene scale:
+// The default suitability threshold sigma_max (the thesis eq. 5.6) as a fraction of the scene scale:
 // the thesis' 0.3 in its Sponza, whose scale is ~25 (0.3 / 25.5). Measured (lavapipe, 320x180,
 // 4096 BRSM VPLs, mean indirect against exact): the absolute 0.3 in the Breakfast room (scale ~2.3,
 // so 13% of it) merged clusters thick enough that their substitutes lost 10% of the light (sst
@@ -148,7 +148,7 @@ struct RenderSettings {
     // kSigmaMaxSceneFraction.
     std::optional<float> sigma_max_scene_fraction = kSigmaMaxSceneFraction;
     // Indirect light computed on a half-resolution G-buffer (every second pixel) and brought to
-    // full resolution by joint bilateral upsampling (seed 000 ch. 6); any method but none.
+    // full resolution by joint bilateral upsampling (the thesis ch. 6); any method but none.
     bool half_resolution_gi = false;
     // Indirect light filtered (demodulated, accumulated over frames with reprojection, a-trous)
     // before compose; the history lives in the Renderer from frame to frame.
@@ -157,7 +157,7 @@ struct RenderSettings {
     // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
     // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
     bool vpls_only = false;
-    // flc (seed 002): the partition's levels N + 1 and ratio mu (S_k = S_0 mu^k), and N_avg, about
+    // flc (the FLC paper): the partition's levels N + 1 and ratio mu (S_k = S_0 mu^k), and N_avg, about
     // how many VPLs at least D_near away light each point (eq. 1: S_0 = 4 pi D_near^2 / N_avg, D_near
     // = 0.2 x the scene radius): flc's quality knob, its VPL count grows with it. Emitter samples:
     // area samples of the emissive triangles per VPL for its light.
@@ -165,7 +165,7 @@ struct RenderSettings {
     float flc_mu = 2.0f;
     float flc_vpls_per_point = 64.0f;
     uint32_t flc_emitter_samples = 4;
-    // flc: n x n interleaved sub-tiles (seed 002 sec. 6; 1: off): the splat's cost / n^2, then
+    // flc: n x n interleaved sub-tiles (the FLC paper sec. 6; 1: off): the splat's cost / n^2, then
     // untiling and a geometry-aware n x n blur.
     uint32_t flc_subtiles = 1;
     // Also return what a layered image file holds beside the light: RenderedImage::albedo, normal,

@@ -1,10 +1,10 @@
 #pragma once
-// The temporal error metrics of seed 001 (sec. 5.2, Table 1) for a sequence of frames against a
+// The temporal error metrics of the SMC paper (sec. 5.2, Table 1) for a sequence of frames against a
 // per-frame reference, on Reinhard-tonemapped luminance (the paper measures "after applying the
 // Reinhard tone mapping operator", its [38]: L_d = L / (1 + L), the global operator):
 //   E_p(t)  = T(L_p(t)) - T(R_p(t))                    the signed error of pixel p in frame t
 //   |E|(t)  = mean over p of |E_p(t)|                   the frame's mean absolute error
-//   E'_p(t) = (E_p(t) - E_p(t - 1)) / dt                seed 001 eq. 10, dt = one frame
+//   E'_p(t) = (E_p(t) - E_p(t - 1)) / dt                the SMC paper eq. 10, dt = one frame
 //   |E'|(t) = mean over p of |E'_p(t)|                  (from the second frame on)
 // |E'| shows flicker: an error that stays put from frame to frame does not count, one that
 // changes does. As the paper notes, it can be non-zero with fixed VPLs when the camera moves.

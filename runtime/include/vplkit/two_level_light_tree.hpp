@@ -1,5 +1,5 @@
 #pragma once
-// The two-level light tree over a scene's lights (seed 003 sec. 3.1): one bottom-level perfect
+// The two-level light tree over a scene's lights (the RTSLC paper sec. 3.1): one bottom-level perfect
 // tree per mesh light (the emissive triangles of one primitive instance; a point or spot light is
 // a mesh light of one leaf), and a top-level perfect tree over the mesh lights whose leaf i
 // carries bottom tree i's root (box, intensity) and says where that tree lives.

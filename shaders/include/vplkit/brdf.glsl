@@ -57,7 +57,7 @@ vec3 brdf_evaluate(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float roughness, f
     return mix(dielectric, metal, metallic);
 }
 
-// The BRDF's two lobes, which add up to brdf_evaluate (seed 004 sec. 4.2 samples them apart):
+// The BRDF's two lobes, which add up to brdf_evaluate (the SST paper sec. 4.2 samples them apart):
 //   diffuse = (1 - metallic) (1 - F(0.04)) base_color / pi
 //   glossy  = (1 - metallic) F(0.04) D V + metallic F(base_color) D V
 // kBrdfLobeBoth is brdf_evaluate itself. A Lambertian material (negative roughness) is all diffuse.

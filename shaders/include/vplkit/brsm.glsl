@@ -1,7 +1,7 @@
 #ifndef VPLKIT_BRSM_GLSL
 #define VPLKIT_BRSM_GLSL
 
-// Bidirectional reflective shadow maps (Ritschel et al. 2011; seed 000 sec. 4.1.1 and ch. 6):
+// Bidirectional reflective shadow maps (Ritschel et al. 2011; the thesis sec. 4.1.1 and ch. 6):
 // the expected contribution of a potential VPL (pVPL, one RSM texel) to the camera's image,
 // estimated from G-buffer surfaces found around it. Host side: runtime/include/vplkit/stages/brsm.hpp.
 //
@@ -16,7 +16,7 @@ float luminance(vec3 rgb) {
     return dot(rgb, vec3(0.2126, 0.7152, 0.0722));
 }
 
-// The distance from a pVPL at which a G-buffer surface is looked for (seed 000 ch. 6, "Surface
+// The distance from a pVPL at which a G-buffer surface is looked for (the thesis ch. 6, "Surface
 // Sampling from the G-Buffer": a 1/r^2 distribution, emulating the light's quadratic falloff,
 // capped to avoid the singularity). The density is flat inside the core and falls as 1/r^2
 // beyond it, up to max_radius (> core > 0):
@@ -36,7 +36,7 @@ float capped_inverse_square_radius_pdf(float r, float core, float max_radius) {
 }
 
 // Luminance of the light a pVPL at y (unit normal n_y, the side it emits into; flux luminance
-// `flux`) reflects diffusely at G-buffer surface g, occlusion ignored (seed 000 sec. 4.1.1):
+// `flux`) reflects diffusely at G-buffer surface g, occlusion ignored (the thesis sec. 4.1.1):
 // the diffuse part of the glTF BRDF, rho / pi with rho = base colour x (1 - metallic), times the
 // VPL's intensity flux / pi and the geometry every VPL evaluation uses (vpl_geometry, with the
 // caller's falloff clamp). 0 when either side faces away; non-finite when an input is.

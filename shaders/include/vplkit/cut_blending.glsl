@@ -2,7 +2,7 @@
 #define VPLKIT_CUT_BLENDING_GLSL
 
 // Shallow light cuts shared by k x k pixel blocks, and the stochastic blending of the four cuts
-// around a pixel (seed 000 sec. 5.1.3, Alg. 1: hybrid_gi.comp draws one of them per pixel by
+// around a pixel (the thesis sec. 5.1.3, Alg. 1: hybrid_gi.comp draws one of them per pixel by
 // these weights), with the mock cut as the fallback (sec. 5.1.4).
 // Include vplkit/geometric_similarity.glsl first.
 

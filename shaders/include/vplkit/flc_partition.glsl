@@ -1,7 +1,7 @@
 #ifndef VPLKIT_FLC_PARTITION_GLSL
 #define VPLKIT_FLC_PARTITION_GLSL
 
-// Forward light cuts (seed 002, Laurent et al. 2016): each triangle t of area A becomes at most one
+// Forward light cuts (the FLC paper, Laurent et al. 2016): each triangle t of area A becomes at most one
 // VPL, in one level k of N + 1 levels or discarded, and a VPL of level k stands for area
 // S_k f^k(t, x) at a receiver x. The levels' areas grow geometrically, S_k = S_0 mu^k (eq. 17).
 //

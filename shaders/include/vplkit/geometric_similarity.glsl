@@ -1,7 +1,7 @@
 #ifndef VPLKIT_GEOMETRIC_SIMILARITY_GLSL
 #define VPLKIT_GEOMETRIC_SIMILARITY_GLSL
 
-// Whether two surface points belong to the same smooth piece of surface (seed 000 eq. 5.3):
+// Whether two surface points belong to the same smooth piece of surface (the thesis eq. 5.3):
 //   S(x, y) = 1  if <n_x, n_y> > n_min and |p_x - p_y| < d_max,  0 otherwise.
 // The edge test of every filter that must not blur across creases and depth jumps: the BRSM
 // importance filter, and later cut blending and joint bilateral upsampling.

@@ -13,13 +13,13 @@ const float kGiBigFloat = 3.402823466e+38;
 // kMaxGiSamplesPerPixel on the host (stages/gi_counters.hpp).
 const uint kGiMaxSamplesPerPixel = 64u;  // FLT_MAX: finite, unlike an Inf sentinel (light_tree.glsl)
 
-// Smallest squared distance from x to the box [lo, hi]: 0 inside (seed 003 eq. 1, d_min).
+// Smallest squared distance from x to the box [lo, hi]: 0 inside (the RTSLC paper eq. 1, d_min).
 float gi_box_distance2_min(vec3 x, vec3 lo, vec3 hi) {
     vec3 d = max(max(lo - x, x - hi), vec3(0.0));
     return dot(d, d);
 }
 
-// Largest squared distance from x to the box: to its farthest corner (seed 003 eq. 1, d_max).
+// Largest squared distance from x to the box: to its farthest corner (the RTSLC paper eq. 1, d_max).
 float gi_box_distance2_max(vec3 x, vec3 lo, vec3 hi) {
     vec3 d = max(abs(lo - x), abs(hi - x));
     return dot(d, d);
@@ -50,7 +50,7 @@ float gi_box_cosine_bound(vec3 x, vec3 n, vec3 lo, vec3 hi) {
     return r2 == 0.0 ? 1.0 : a_hi.z * inversesqrt(r2 + a_hi.z * a_hi.z);
 }
 
-// seed 000 eq. 5.2: the clamped cosine between n and the directions from x to the box's eight
+// the thesis eq. 5.2: the clamped cosine between n and the directions from x to the box's eight
 // corners, averaged: the expected-contribution cosine of shallow cuts and hybrid traversal. 0 when
 // every corner lies behind the surface ("children whose box lies fully behind the surface left
 // out"). A corner at x itself (no direction) counts 0.
@@ -67,7 +67,7 @@ float gi_average_corner_cosine(vec3 x, vec3 n, vec3 lo, vec3 hi) {
 }
 
 // The material term of a cluster seen from x in direction wi (unit): the BRDF's luminance
-// there (seed 004 sec. 4.1: the BRDF at the cluster; the cosine is the geometric term's). For
+// there (the SST paper sec. 4.1: the BRDF at the cluster; the cosine is the geometric term's). For
 // the diffuse lobe it is the same for every child and cancels; for a glossy lobe it favours
 // clusters near the reflection direction. A direction at or below the surface (a box centre
 // or mean behind it while part of the box is in front) is lifted just above it first: the BRDF
@@ -105,7 +105,7 @@ float gi_lobe_material_weight(vec3 n, vec3 wo, vec3 wi, vec3 base_color, float r
     return dot(f, vec3(0.2126, 0.7152, 0.0722));
 }
 
-// seed 004 sec. 4.1's heuristic for the glossy lobe's material term: the perfect reflection
+// the SST paper sec. 4.1's heuristic for the glossy lobe's material term: the perfect reflection
 // R of the view vector about n; if the ray x + t R (t >= 0) meets the box, the BRDF is evaluated
 // in direction R, otherwise in the direction of the box's point nearest the ray (the paper's R',
 // "the direction that does intersect the box and differs least from R"). That point is found

@@ -1,7 +1,7 @@
 #ifndef VPLKIT_GI_LOBE_GLSL
 #define VPLKIT_GI_LOBE_GLSL
 
-// The lobe choice of seed 004 sec. 4.2: before each traversal, a sample picks the diffuse or the
+// The lobe choice of the SST paper sec. 4.2: before each traversal, a sample picks the diffuse or the
 // glossy lobe of the BRDF (brdf_evaluate_lobe) with probability from the magnitude of each lobe's
 // material term, traverses with that lobe's child weights (the glossy lobe: the perfect-reflection
 // heuristic, gi_glossy_direction, and no substitutes: it goes to a leaf VPL), evaluates only that
@@ -79,7 +79,7 @@ GiLobe gi_choose_lobe(vec3 n, vec3 wo, vec3 base_color, float roughness, float m
     return rng_next_float(rng) < q ? GiLobe(kBrdfLobeGlossy, q) : GiLobe(kBrdfLobeDiffuse, 1.0 - q);
 }
 
-// The glossy lobe's traversal. seed 004 sec. 4.1's perfect-reflection weights alone
+// The glossy lobe's traversal. the SST paper sec. 4.1's perfect-reflection weights alone
 // (kBrdfLobeGlossy) were measured to leave a heavy tail: in the unbiasedness test
 // (tests/gi/test_glossy_lobe.cpp) a metal of roughness 0.35 whose reflection ray leaves the room
 // read 10x low over 100 seeds (worst z 166) and right over 400 (z 3.7): a box that the ray passes

@@ -1,7 +1,7 @@
 #ifndef VPLKIT_LIGHT_TREE_GLSL
 #define VPLKIT_LIGHT_TREE_GLSL
 
-// The perfect binary light tree of real-time stochastic lightcuts (seed 003 sec. 3.1): every
+// The perfect binary light tree of real-time stochastic lightcuts (the RTSLC paper sec. 3.1): every
 // leaf on the last level, no child pointers, a node is a bounding box and a total intensity.
 //
 // Index convention: heap order, root 0, children of node n at 2n+1 and 2n+2. Level l (root
@@ -20,18 +20,18 @@
 // Real VPLs with zero flux are real leaves: vpl_count 1, their position as box, intensity 0.
 // The box is geometry and does not depend on the flux; such a VPL is never sampled (weight 0),
 // it only keeps its subtree's box honest. A subtree of only zero-flux VPLs is a dead branch
-// (intensity 0, real box), which samplers handle as seed 003 sec. 3.2 says.
+// (intensity 0, real box), which samplers handle as the RTSLC paper sec. 3.2 says.
 
 struct LightTreeNode {
     vec3 box_min;     // smallest corner of the box around the node's real VPLs
     float intensity;  // summed light_tree_intensity() of the node's VPLs
     vec3 box_max;     // largest corner
     uint vpl_count;   // real VPLs below the node (1 or 0 at a leaf); 0 marks a bogus subtree
-};                    // 32 bytes, so two nodes fill a 64-byte cache line (seed 003 sec. 4)
+};                    // 32 bytes, so two nodes fill a 64-byte cache line (the RTSLC paper sec. 4)
 
 const float kLightTreeFloatMax = 3.402823466e+38;  // FLT_MAX: the empty box's corners, negated for box_max
 
-// The scalar a node stores and samplers weigh children by (seed 003 eq. 1: I_j). The sum of the
+// The scalar a node stores and samplers weigh children by (the RTSLC paper eq. 1: I_j). The sum of the
 // RGB flux rather than luminance: errors are measured on the three channels alike (RMSE, relMSE
 // in DESIGN.md), and the sum is within a factor sqrt(3) of the channels' Euclidean norm for
 // every colour, while luminance gives pure blue 7% of its weight and so undersamples it ~14x.

@@ -3,7 +3,7 @@
 
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 
-// VPL sort key (seed 004 eq. 4: C = M (+) N (+) id, bit concatenation):
+// VPL sort key (the SST paper eq. 4: C = M (+) N (+) id, bit concatenation):
 //   bits 63..34  30-bit Morton code of the position, 10 bits per axis
 //   bits 33..25   9-bit normal code: 3 octant bits + 3 x 2 triangle-subdivision bits
 //   bits 24..0   25-bit unique id (the VPL's index), so no two keys are equal
@@ -41,7 +41,7 @@ uvec3 morton_cell(vec3 p, vec3 lo, vec3 hi) {
     return cell;
 }
 
-// Normal code (seed 004 sec. 3.3, Fig. 3): the octant (sign bits of x, y, z), then the point of
+// Normal code (the SST paper sec. 3.3, Fig. 3): the octant (sign bits of x, y, z), then the point of
 // the octant's triangle [Px, Py, Pz] the normal goes through, refined three times. Each refinement
 // splits the triangle at its edge midpoints into three corner triangles and the central one:
 //   00 corner at Py, 01 corner at Pz, 10 corner at Px, 11 the central triangle.

@@ -1,7 +1,7 @@
 #ifndef VPLKIT_RTSLC_GLSL
 #define VPLKIT_RTSLC_GLSL
 
-// Real-time stochastic lightcuts (seed 003 sec. 3.2-3.4) over the perfect light tree
+// Real-time stochastic lightcuts (the RTSLC paper sec. 3.2-3.4) over the perfect light tree
 // (light_tree.glsl): the child weights and probabilities of the traversal, the cut-selection
 // bound, and the interleaved assignment of cut nodes to pixels. Shared by rtslc_cut.comp,
 // rtslc_gi.comp, rtslc_interleave.comp and the test shader that checks the probabilities.
@@ -26,7 +26,7 @@ struct RtslcShading {
     float metallic;
 };
 
-// The material term of F_j (seed 003 eq. 1), towards the centre of the node's box. Two
+// The material term of F_j (the RTSLC paper eq. 1), towards the centre of the node's box. Two
 // guards keep it from excluding a child that can light x, which would bias the estimator:
 // when the centre lies at x or on or below the horizon (a box straddling the tangent plane can
 // still hold VPLs above it), the direction is the normal instead; and the weight is at least
@@ -35,7 +35,7 @@ struct RtslcShading {
 // estimator unbiased; the weight only steers the variance.
 //
 // `lobe` (gi_lobe.glsl): the part of the BRDF the sample stands for; the glossy lobe looks in
-// gi_glossy_direction's direction (seed 004 sec. 4.1's perfect-reflection heuristic), the same
+// gi_glossy_direction's direction (the SST paper sec. 4.1's perfect-reflection heuristic), the same
 // lobe choice as sst's and hybrid's, so that the methods compare fairly.
 float rtslc_material_weight(RtslcShading s, LightTreeNode node, uint lobe) {
     vec3 to_centre = 0.5 * (node.box_min + node.box_max) - s.position;
@@ -49,7 +49,7 @@ float rtslc_material_weight(RtslcShading s, LightTreeNode node, uint lobe) {
     return weight < kRtslcMinMaterialWeight ? kRtslcMinMaterialWeight : weight;
 }
 
-// F_j I_j, the numerator of both weights of seed 003 eq. 1: the lightcuts cosine bound of the
+// F_j I_j, the numerator of both weights of the RTSLC paper eq. 1: the lightcuts cosine bound of the
 // box x the material weight x the node's intensity. 0 exactly when no VPL below the node can
 // light x: a bogus node (its box is the empty sentinel and is never measured), zero intensity
 // (all flux black), or a box wholly behind the shading normal (vpl_geometry gives those VPLs
@@ -84,10 +84,10 @@ float rtslc_node_bound(RtslcShading s, LightTreeNode node, float min_distance2) 
 
 struct RtslcChildProbability {
     float left;  // probability of the left child; the right one's is exactly 1 - left
-    bool dead;   // both children weigh 0: the traversal returns no light (seed 003 sec. 3.2)
+    bool dead;   // both children weigh 0: the traversal returns no light (the RTSLC paper sec. 3.2)
 };
 
-// seed 003 eqs. 1-2: w_j = F_j I_j / d_j^2 at the closest (d_min) and farthest (d_max) points of
+// the RTSLC paper eqs. 1-2: w_j = F_j I_j / d_j^2 at the closest (d_min) and farthest (d_max) points of
 // child j's box, p_j = (p_j^min + p_j^max) / 2 with p_j^min = w_j^min / (w_j^min + w_k^min) and
 // the same for max.
 //
@@ -165,7 +165,7 @@ float rtslc_choice_probability(float p_left, bool left) {
     return left ? p_left : 1.0 - p_left;
 }
 
-// Interleaved sampling (seed 003 sec. 3.4 and eq. 3, with the per-frame rotation of sec. 4): the
+// Interleaved sampling (the RTSLC paper sec. 3.4 and eq. 3, with the per-frame rotation of sec. 4): the
 // pixel with index i in its m x m sub-block takes p = (i + frame) mod m^2 and samples the cut
 // slots [t_p, t_{p+1}), t_p = floor(p c / m^2), where c is the number of nodes the block's cut
 // holds (its nodes come first). The sub-block's pixels together sample every node once. A cut

@@ -1,7 +1,7 @@
 #ifndef VPLKIT_RTSLC_TREE_SAMPLING_GLSL
 #define VPLKIT_RTSLC_TREE_SAMPLING_GLSL
 
-// Real-time stochastic lightcuts over one perfect light tree (seed 003 sec. 3.2-3.3): the cut
+// Real-time stochastic lightcuts over one perfect light tree (the RTSLC paper sec. 3.2-3.3): the cut
 // selection at a block's representative pixel and the traversal from a cut node to a leaf. What
 // the leaves are does not matter here: rtslc GI's trees hold VPLs (gi/rtslc_cut.comp,
 // gi/rtslc_gi.comp), direct light's tree the scene's lights (lighting/direct_light_tree.comp);
@@ -175,7 +175,7 @@ uint rtslc_select_cut_shared_out(RtslcShading s, uint leaf_count, uint cut_size,
 
 // How a traversal ended.
 const uint kRtslcReachedLeaf = 0u;   // `node` is a leaf, reached with `path_probability`
-const uint kRtslcDeadBranch = 1u;    // both children weigh 0: no light (seed 003 sec. 3.2)
+const uint kRtslcDeadBranch = 1u;    // both children weigh 0: no light (the RTSLC paper sec. 3.2)
 const uint kRtslcTraversalShort = 2u;  // the level loop ended early (lavapipe's loop limit)
 
 struct RtslcTraversal {
@@ -185,11 +185,11 @@ struct RtslcTraversal {
     uint status;             // kRtslcReachedLeaf, kRtslcDeadBranch or kRtslcTraversalShort
 };
 
-// The traversal from cut node `node` to a leaf (seed 003 sec. 3.2) for the BRDF lobe `lobe`
+// The traversal from cut node `node` to a leaf (the RTSLC paper sec. 3.2) for the BRDF lobe `lobe`
 // (gi_lobe.glsl; gi_lobe_both() without the glossy branch): one child per level with the eq. 1-2
 // probabilities at s (rtslc_child_probability for the lobe), a fresh random number per level from
 // `rng`. The glossy lobe steers each path by the perfect-reflection weights or by the lobe at the
-// children's means (seed 004 sec. 4.2, gi_glossy_path_*), and its pmf is that mixture's. The pmf
+// children's means (the SST paper sec. 4.2, gi_glossy_path_*), and its pmf is that mixture's. The pmf
 // of the leaf reached is path_probability: the lobe's probability times the path's, exactly the
 // probability of the path taken (each choice's probability is on rng_next_float's grid:
 // rtslc_choose_left).
@@ -219,7 +219,7 @@ RtslcTraversal rtslc_traverse_in(RtslcShading s, uint base, uint node, uint leaf
             at_mean = rtslc_child_probability(s, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
         }
         bool by_reflection = !glossy || glossy_path.by_reflection;
-        // seed 003 sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly 0
+        // the RTSLC paper sec. 3.2: a dead branch (both children weigh 0) returns no light. Exactly 0
         // then: every light below has zero weight, so none of them could light s.
         if (by_reflection ? choice.dead : at_mean.dead) {
             t.status = kRtslcDeadBranch;
@@ -300,7 +300,7 @@ RtslcTraversal rtslc_traverse_lobe_mis(RtslcShading s, uint node, uint leaf_coun
     return t;
 }
 
-// The probability of a power-only step (seed 003's I_j alone, no geometry): the left child's
+// The probability of a power-only step (the RTSLC paper's I_j alone, no geometry): the left child's
 // share of the two children's intensities, on u's grid as rtslc_child_probability's; 0 or 1 when
 // one child holds no light, negative when neither does (a dead branch).
 float rtslc_power_left(LightTreeNode left, LightTreeNode right) {
@@ -316,7 +316,7 @@ float rtslc_power_left(LightTreeNode left, LightTreeNode right) {
 //     (1 - defensive) P_tree(path) + defensive P_power(path),
 // exactly the probability that this traversal reaches the leaf (one-sample MIS, balance
 // heuristic, as rtslc_traverse_lobe_mis does for the lobes). Why: the node holds no orientation
-// (seed 003 sec. 4), so a one-sided lamp 1 cm off a wall or ceiling, facing away from it, gets the
+// (the RTSLC paper sec. 4), so a one-sided lamp 1 cm off a wall or ceiling, facing away from it, gets the
 // largest weight the distance clamp allows at the wall points right behind it (cosine bound 1,
 // d_min 1 cm), where it gives no light at all, and every other light's P_tree there shrinks by
 // that lamp's share; the lights that do shine there are weighed by 1 / that tiny pmf: a heavy

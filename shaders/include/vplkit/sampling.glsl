@@ -1,7 +1,7 @@
 #ifndef VPLKIT_SAMPLING_GLSL
 #define VPLKIT_SAMPLING_GLSL
 
-// Sample generation for importance-driven VPL placement (seed 000 sec. 4.1 and ch. 6): a
+// Sample generation for importance-driven VPL placement (the thesis sec. 4.1 and ch. 6): a
 // randomized Hammersley point set, warped hierarchically down a mip chain of texel importance.
 // Every routine that produces samples has its pdf beside it (STYLE.md).
 
@@ -14,7 +14,7 @@ struct WarpedSample {
 };
 
 // Van der Corput radical inverse in base 2: the bits of i mirrored about the binary point
-// (seed 000 ch. 6, "Hammersley Distribution").
+// (the thesis ch. 6, "Hammersley Distribution").
 float radical_inverse_base2(uint i) {
     return float(bitfieldReverse(i)) * 2.3283064365386963e-10;  // 2^-32
 }
@@ -23,7 +23,7 @@ float radical_inverse_base2(uint i) {
 // never reaches 1, where "u < p" with p == 1 would fail and pick a half of zero importance.
 const float kOneMinusUlp = 0.99999994;
 
-// Point i of the n-point 2D Hammersley set ((i + 0.5) / n, radical inverse of i) (seed 000 ch. 6),
+// Point i of the n-point 2D Hammersley set ((i + 0.5) / n, radical inverse of i) (the thesis ch. 6),
 // Cranley-Patterson rotated by `rotation` (toroidal shift, modulo 1): the rotated set keeps its
 // stratification, and each point is uniform on [0,1)^2 over random rotations, which makes
 // estimates built on it unbiased.
@@ -45,7 +45,7 @@ vec2 hammersley_rotation(uint seed) {
     return vec2(x, y);
 }
 
-// One step of the hierarchical warp (seed 000 ch. 6, "Hierarchical warping"): picks the first of
+// One step of the hierarchical warp (the thesis ch. 6, "Hierarchical warping"): picks the first of
 // two parts, with sums `first` and `second`, with probability first / (first + second), and
 // rescales `u` to [0,1) within the chosen part so the next step gets a fresh uniform coordinate.
 // A part of zero sum is never picked. Returns true for the second part.

@@ -1,7 +1,7 @@
 #ifndef VPLKIT_SST_GLSL
 #define VPLKIT_SST_GLSL
 
-// Stochastic Substitute Tree (seed 004 sec. 3; seed 000 sec. 4.2): a perfect binary tree over the
+// Stochastic Substitute Tree (the SST paper sec. 3; the thesis sec. 4.2): a perfect binary tree over the
 // sorted, power-of-two padded leaf array (tree/gather_leaves.comp) whose inner nodes hold a
 // substitute distribution of their VPLs: a normal distribution on the plane through the node's
 // intensity-weighted mean with the node's merged normal, with a variance per axis of the node's
@@ -10,7 +10,7 @@
 // Indexing (heap order): with L leaves (a power of two) there are L - 1 inner nodes, the root is
 // node 0 and the children of node i are 2i + 1 and 2i + 2. A child index c >= L - 1 is leaf
 // c - (L - 1): leaves are not stored as nodes (they are the leaf buffer's Vpls; sst_leaf_node()
-// turns one into a node when needed), which halves the tree's memory (seed 000 sec. 4.2.2 on
+// turns one into a node when needed), which halves the tree's memory (the thesis sec. 4.2.2 on
 // the perfect tree's smaller footprint) and keeps 2^20 VPLs' nodes (~96 MiB) inside a 128 MiB
 // storage-buffer range. For one VPL (L = 1) node 0 is leaf 0; the builder then
 // still writes nodes[0] = sst_leaf_node(leaf 0), so nodes[0] always describes the whole tree.
@@ -21,12 +21,12 @@
 
 #include "vplkit/vpl.glsl"
 
-// 96 bytes, six 16-byte rows, like seed 004 sec. 3.3's node; no ids or child links (implicit).
+// 96 bytes, six 16-byte rows, like the SST paper sec. 3.3's node; no ids or child links (implicit).
 struct SstNode {
-    vec3 mean;         // intensity-weighted mean position (seed 004 eq. 1), world space
-    float intensity;   // summed luminance of the VPLs' flux: the merge weight c (seed 004 eq. 1)
-    vec3 normal;       // unit; intensity-weighted, renormalized (seed 000 sec. 4.2.2)
-    float nu;          // normal similarity (seed 004 sec. 3.2; seed 000 eq. 4.3); 1 at leaves
+    vec3 mean;         // intensity-weighted mean position (the SST paper eq. 1), world space
+    float intensity;   // summed luminance of the VPLs' flux: the merge weight c (the SST paper eq. 1)
+    vec3 normal;       // unit; intensity-weighted, renormalized (the thesis sec. 4.2.2)
+    float nu;          // normal similarity (the SST paper sec. 3.2; the thesis eq. 4.3); 1 at leaves
     vec3 variance;     // in the frame sst_frame(normal): x tangent, y bitangent, z normal (>= 0)
     uint flags;        // kSstFlag* bits
     vec3 box_lo;       // bounding box of the real VPLs below (a point at a leaf)
@@ -35,7 +35,7 @@ struct SstNode {
     vec3 colour;       // summed RGB flux
 };
 
-// seed 004 eq. 3 / seed 000 eq. 5.6: nu >= nu_min and sigma_z <= sigma_max, decided at build time.
+// the SST paper eq. 3 / the thesis eq. 5.6: nu >= nu_min and sigma_z <= sigma_max, decided at build time.
 const uint kSstFlagSuitable = 1u;
 // The merged normal was too short to normalize (children facing opposite ways with about equal
 // weights) and is the brighter child's normal instead; nu is 0 there, so never suitable.
@@ -73,7 +73,7 @@ void sst_frame(vec3 n, out vec3 t, out vec3 b) {
 }
 
 // Relative luminance of linear RGB (Rec. 709 weights): the "grayscale intensity" that weights
-// merges (seed 000 eq. 4.1, seed 004 sec. 3.2). Negative or NaN luminance counts as 0, so a
+// merges (the thesis eq. 4.1, the SST paper sec. 3.2). Negative or NaN luminance counts as 0, so a
 // weight is never negative (the comparison is false for NaN).
 float sst_intensity(vec3 flux) {
     float y = dot(flux, vec3(0.2126, 0.7152, 0.0722));
@@ -84,7 +84,7 @@ float sst_sigma_z(SstNode node) {
     return sqrt(node.variance.z);
 }
 
-// seed 004 eq. 3 (seed 000 eq. 5.6). sigma_max is in world units: sigma_z is the standard
+// the SST paper eq. 3 (the thesis eq. 5.6). sigma_max is in world units: sigma_z is the standard
 // deviation along the normal, a length (both papers compare it with an absolute threshold).
 bool sst_is_suitable(float nu, float sigma_z, float nu_min, float sigma_max) {
     return nu >= nu_min && sigma_z <= sigma_max;
@@ -94,7 +94,7 @@ SstNode sst_empty_node() {
     return SstNode(vec3(0.0), 0.0, vec3(0.0), 0.0, vec3(0.0), 0u, vec3(0.0), 0u, vec3(0.0), vec3(0.0));
 }
 
-// A leaf as a node: variance 0 and the mean at the VPL (seed 004 sec. 3.2), nu = 1 (sec. 3.3).
+// A leaf as a node: variance 0 and the mean at the VPL (the SST paper sec. 3.2), nu = 1 (sec. 3.3).
 // A zero normal (invalid input) becomes +z so that frames and dot products stay finite.
 SstNode sst_leaf_node(Vpl vpl, float nu_min, float sigma_max) {
     float n2 = dot(vpl.normal, vpl.normal);
@@ -105,7 +105,7 @@ SstNode sst_leaf_node(Vpl vpl, float nu_min, float sigma_max) {
 }
 
 // A child's axis variances re-expressed in the parent frame (t, b, n): the diagonal of R S R^T
-// for the child's diagonal covariance S rotated from its own frame. Seed 004 eq. 2 adds the
+// for the child's diagonal covariance S rotated from its own frame. The SST paper eq. 2 adds the
 // child's variance unrotated, which the paper notes is invalid when normals diverge; the
 // rotation keeps each variance >= 0 and the trace (total variance) unchanged.
 vec3 sst_variance_in_frame(SstNode child, vec3 t, vec3 b, vec3 n) {
@@ -137,13 +137,13 @@ SstNode sst_merge(SstNode left, SstNode right, float nu_min, float sigma_max) {
     float b = w > 0.0 ? right.intensity / w : 0.5;
 
     SstNode node;
-    // seed 004 eq. 1 as p1 + b (p2 - p1): stays between the children far from the origin, and
+    // the SST paper eq. 1 as p1 + b (p2 - p1): stays between the children far from the origin, and
     // coincident children give exactly their position and d = 0.
     vec3 d = right.mean - left.mean;
     node.mean = left.mean + b * d;
     node.intensity = w;
 
-    // seed 000 sec. 4.2.2: the normal merged like the position, then renormalized.
+    // the thesis sec. 4.2.2: the normal merged like the position, then renormalized.
     vec3 m = a * left.normal + b * right.normal;
     float m2 = dot(m, m);
     node.flags = 0u;
@@ -153,10 +153,10 @@ SstNode sst_merge(SstNode left, SstNode right, float nu_min, float sigma_max) {
         node.normal = right.intensity > left.intensity ? right.normal : left.normal;
         node.flags |= kSstFlagNormalFallback;
     }
-    // seed 004 sec. 3.2, seed 000 eq. 4.3.
+    // the SST paper sec. 3.2, the thesis eq. 4.3.
     node.nu = left.nu * right.nu * max(dot(left.normal, right.normal), 0.0);
 
-    // seed 004 eq. 2 (seed 000 eq. 4.2) in Chan et al.'s pairwise form: with p = a p1 + b p2,
+    // the SST paper eq. 2 (the thesis eq. 4.2) in Chan et al.'s pairwise form: with p = a p1 + b p2,
     // a (s1 + D1 (.) D1) + b (s2 + D2 (.) D2) = a s1 + b s2 + a b d (.) d, D_i = p_i - p, d = p2 - p1.
     // Every term is >= 0 (no E[x^2] - E[x]^2 cancellation) and d is a difference of nearby means.
     vec3 t, bt;

@@ -1,8 +1,8 @@
 #ifndef VPLKIT_SST_LIGHTCUTS_TRAVERSAL_GLSL
 #define VPLKIT_SST_LIGHTCUTS_TRAVERSAL_GLSL
 
-// The stochastic-lightcuts traversal (seed 003 eqs. 1-2: min/max-distance child probabilities,
-// rtslc.glsl) run over the SST's nodes, to a leaf: the thesis' comparison protocol (seed 000
+// The stochastic-lightcuts traversal (the RTSLC paper eqs. 1-2: min/max-distance child probabilities,
+// rtslc.glsl) run over the SST's nodes, to a leaf: the thesis' comparison protocol (the thesis
 // sec. 7.1) compares rtslc and hybrid over the *same* cuts and blending, differing only in the
 // traversal below the cut node. The SST's inner nodes carry what a light-tree node does (the box,
 // the summed intensity, the count of real VPLs), so the same probability function serves both;

@@ -1,10 +1,10 @@
 #ifndef VPLKIT_SST_SAMPLING_GLSL
 #define VPLKIT_SST_SAMPLING_GLSL
 
-// Sampling the stochastic substitute tree at a shading point: the traversal of seed 004 sec. 4.1
-// (`sst`, from the root) and of seed 000 sec. 5.2 (`hybrid`, from a cut node), both stopping at
+// Sampling the stochastic substitute tree at a shading point: the traversal of the SST paper sec. 4.1
+// (`sst`, from the root) and of the thesis sec. 5.2 (`hybrid`, from a cut node), both stopping at
 // the first node suitable for sampling (eq. 5.6, flagged at build time) or at a leaf, and the
-// cluster evaluation of seed 000 sec. 5.3 / seed 004 sec. 4.2.
+// cluster evaluation of the thesis sec. 5.3 / the SST paper sec. 4.2.
 //
 // Define VPLKIT_SST_NODES_BINDING and VPLKIT_SST_LEAVES_BINDING, and include vplkit/brdf.glsl,
 // vplkit/vpl.glsl, vplkit/vpl_eval.glsl, vplkit/gi_bounds.glsl, vplkit/sst.glsl and
@@ -25,8 +25,8 @@ struct GiPoint {
 };
 
 // Which weight the traversal uses.
-const uint kSstWeightUpperBound = 0u;  // sst: cosine upper bound over the box (seed 004 sec. 4.1)
-const uint kSstWeightExpected = 1u;    // hybrid: average clamped corner cosine (seed 000 eq. 5.2)
+const uint kSstWeightUpperBound = 0u;  // sst: cosine upper bound over the box (the SST paper sec. 4.1)
+const uint kSstWeightExpected = 1u;    // hybrid: average clamped corner cosine (the thesis eq. 5.2)
 
 // Node `node` of a tree with `leaf_count` leaves over `count` real VPLs. A leaf index past the
 // real VPLs is bogus padding, told apart by index: an empty node (leaf_count 0, weight 0).
@@ -53,10 +53,10 @@ SstNode sst_fetch(uint node, uint leaf_count, uint count) {
     return sst_leaf_node(vpl, 0.0, 0.0);
 }
 
-// A child's weight w = a / d2 (seed 004 eq. 5 with V = 1): a = material x cosine x intensity,
+// A child's weight w = a / d2 (the SST paper eq. 5 with V = 1): a = material x cosine x intensity,
 // d2 = the squared distance to the node's mean, clamped below by the evaluation's own d_min^2
 // (vpl_eval.glsl): "distance to a VPL -> 0" is clamped with the same scene-relative epsilon in
-// every method, and the shading point inside the node's box needs no special case (seed 004
+// every method, and the shading point inside the node's box needs no special case (the SST paper
 // sec. 4.1 bounds the distance from below by an epsilon rather than dropping it as stochastic
 // lightcuts do, which loses colour bleeding). An empty node weighs 0 and is never measured.
 // Why the mean and not the box: the lightcuts bound 1/d_min^2 to the box was tried and is far
@@ -98,7 +98,7 @@ float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_
 // expected-contribution weights (kSstWeightExpected: distance to the node's mean, eq. 5.2's
 // average corner cosine; neither bounds the light) it is the mean of that probability and the
 // one with the distance to the node's box instead, as rtslc averages its min- and max-distance
-// probabilities (seed 003 sec. 3.1): a child whose mean lies far but whose box reaches close to
+// probabilities (the RTSLC paper sec. 3.1): a child whose mean lies far but whose box reaches close to
 // x (a wall's cluster seen from the floor beside it) is no longer drawn with a probability far
 // below its share of the light, so it is never weighed hugely (issue 26: in the Cornell box one
 // such sample lifted a pixel's mean over 256 frames to 2.2x exact's brightest pixel; Sponza
@@ -124,7 +124,7 @@ struct SstSample {
     SstNode data;
     float probability;  // the lobe's probability x the child probabilities from the start node
     uint levels;        // levels descended from the start node
-    bool dead;          // ended where both children weigh 0: no light (seed 004 sec. 4.1)
+    bool dead;          // ended where both children weigh 0: no light (the SST paper sec. 4.1)
 };
 
 // Kept below 32 so that a tree of up to 2^31 leaves always reaches a leaf.
@@ -154,7 +154,7 @@ SstSample sst_sample_at(uint start, uint leaf_count, uint count) {
 // substitute's drawn positions, clamped to the box, can land nearer x than any of its VPLs or
 // behind x's surface, and its merged normal can hide VPLs that face x. There the
 // traversal descends further, to a node that is far compared with its own extent, or a leaf: the
-// papers' blur at the depth where it is a blur (seed 004 eq. 3 / seed 000 eq. 5.6 judge a
+// papers' blur at the depth where it is a blur (the SST paper eq. 3 / the thesis eq. 5.6 judge a
 // cluster's shape alone, not where it is seen from). The distance is to the node's box, 0 inside
 // it; the extent is the box's diagonal.
 const float kSstSubstituteFarRatio = 1.0;
@@ -165,10 +165,10 @@ bool sst_substitute_far_enough(vec3 x, SstNode node) {
 }
 
 // Descends from `start` until a leaf or a suitable node (eq. 5.6) far enough from x, picking a
-// child with probability w / (w_left + w_right) (seed 000 eq. 5.4; for hybrid's weights
+// child with probability w / (w_left + w_right) (the thesis eq. 5.4; for hybrid's weights
 // sst_defensive_probability's mixture) and a fresh random number per level, with the weights of
 // the sample's lobe. The glossy lobe ignores the substitutes and descends to
-// a leaf VPL (seed 004 sec. 4.2: a substitute would blur a sharp reflection).
+// a leaf VPL (the SST paper sec. 4.2: a substitute would blur a sharp reflection).
 // The glossy lobe steers by the mixture of gi_lobe.glsl (GiGlossyPath), and its probability is
 // the mixture's.
 SstSample sst_traverse(GiPoint p, uint start, uint leaf_count, uint count, uint weight_kind, GiLobe lobe,
@@ -236,9 +236,9 @@ vec2 sst_normal_pair(inout Rng rng) {
     return radius * vec2(cos(angle), sin(angle));
 }
 
-// The point light a traversal's end stands for (seed 000 sec. 5.3): a leaf is its VPL; a
+// The point light a traversal's end stands for (the thesis sec. 5.3): a leaf is its VPL; a
 // suitable inner node draws a position from its substitute distribution (normal in its plane
-// frame, seed 004 sec. 4.2), clamped to its box, with the node's normal and summed colour.
+// frame, the SST paper sec. 4.2), clamped to its box, with the node's normal and summed colour.
 // The flux is divided by the path probability, so the estimate of the start node's subtree is
 // unbiased over the choice of child (the substitute position itself is the method's bias).
 Vpl sst_sample_light(SstSample s, uint leaf_count, inout Rng rng) {
@@ -273,14 +273,14 @@ float sst_node_intensity(uint node, uint leaf_count, uint count) {
 // probability intensity / node intensity (a descent by the stored intensities alone, no
 // shading-point weights, so it is cheap), or the leaf's own VPL.
 //
-// Why not the substitute position itself (seed 000 sec. 5.3, seed 004 sec. 4.2 shoot the ray
+// Why not the substitute position itself (the thesis sec. 5.3, the SST paper sec. 4.2 shoot the ray
 // there): that point lies on the cluster's plane, spread by its variances and clamped to its
 // box, not on the scene's surfaces. Where the cluster is curved or spans parallel surfaces at
 // different heights (a floor and the top of a block on it, the inside of a sphere), the point
 // falls inside or behind the geometry, and the ray to it is blocked although every VPL it stands
 // for is visible: measured, a point light inside a closed diffuse sphere lost 38% of sst's and
 // hybrid's one-bounce light, the Cornell box 16-19% (see the note of tests/render/
-// test_gi_energy.cpp). Seed 004 names the cause ("drawn light positions may also be slightly
+// test_gi_energy.cpp). The SST paper names the cause ("drawn light positions may also be slightly
 // inside geometry") and offsets the ray by an epsilon, which helps only when "slightly" holds.
 // A real VPL lies on a surface its light reached, so the ray to it is blocked only by what
 // really blocks that VPL: the visibility of a VPL drawn by intensity is an unbiased estimate of

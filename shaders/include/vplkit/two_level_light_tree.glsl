@@ -1,7 +1,7 @@
 #ifndef VPLKIT_TWO_LEVEL_LIGHT_TREE_GLSL
 #define VPLKIT_TWO_LEVEL_LIGHT_TREE_GLSL
 
-// The two-level light tree (seed 003 sec. 3.1; built by vplkit/two_level_light_tree.hpp): one
+// The two-level light tree (the RTSLC paper sec. 3.1; built by vplkit/two_level_light_tree.hpp): one
 // LightTreeNode array holding a top perfect tree first (root at 0, light_tree.glsl's heap order)
 // and after it one bottom perfect tree per mesh light. Top leaf i is a copy of bottom tree i's root
 // and LightTreeBottom i says where that tree lives. A sample descends the top tree to leaf i

@@ -5,7 +5,7 @@
 // one formula every indirect-light method (exact, sst, rtslc, hybrid) evaluates, so that their
 // results differ only in which VPLs they sample, never in how a VPL lights a point.
 //
-// A VPL is a cosine-weighted (Lambertian) emitter (seed 000 ch. 5; Keller 1997, "Instant
+// A VPL is a cosine-weighted (Lambertian) emitter (the thesis ch. 5; Keller 1997, "Instant
 // Radiosity"): its radiant intensity towards w is I(w) = flux * max(<n_y, w>, 0) / pi, so at x
 //   L(x, wo) += f(x, wo, wi) * flux * max(<n_y, -wi>, 0) / pi * max(<n_x, wi>, 0) / d^2 * V(x, y)
 // with wi = (y - x) / d, d = |y - x|. V, the visibility, is the caller's (bvh_segment_occluded).

@@ -10,7 +10,7 @@
 //   "warp samples"       hierarchical warping of a randomized Hammersley set (importance_warp.hpp)
 //   "brsm vpls"          a VPL per sample: texel position and normal, flux / (N x pmf)
 //   "brsm vpl count"     the running count moves past this light's VPLs
-// Several lights: each gets a share of the VPLs proportional to its power (seed 000 ch. 6,
+// Several lights: each gets a share of the VPLs proportional to its power (the thesis ch. 6,
 // "Multiple Lights"; brsm_vpl_shares), its VPLs after the previous light's.
 //
 // What the VPL set means: for each light, the mean over seeds of its VPLs' total flux is the
@@ -71,7 +71,7 @@ struct BrsmOptions {
     // The edge-aware Gaussian: sigma in texels (> 0) over a (2 filter_radius + 1)^2 window
     // (filter_radius 0..8); neighbours count when their normals' dot product is above
     // similarity_min_cos (in [-1, 1)) and they lie within similarity_max_distance (fraction of
-    // the scene scale, > 0): seed 000 eq. 5.3. The thesis gives no values; these keep a
+    // the scene scale, > 0): the thesis eq. 5.3. The thesis gives no values; these keep a
     // 512^2 map's texels on one wall together and split walls at creases of ~25 degrees.
     float filter_sigma = 1.5f;
     uint32_t filter_radius = 4;

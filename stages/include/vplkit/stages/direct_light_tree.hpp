@@ -1,6 +1,6 @@
 #pragma once
 // Direct light through the light tree over the scene's lights (scene_light_tree.hpp), by real-time
-// stochastic lightcuts (seed 003 sec. 3.2-3.3) with rtslc GI's own cut and traversal code:
+// stochastic lightcuts (the RTSLC paper sec. 3.2-3.3) with rtslc GI's own cut and traversal code:
 //
 //   "gi counters clear"   zeroes `counters` (GiCounters, gi_counters.hpp)
 //   "rtslc cuts"          shaders/gi/rtslc_cut.comp, the pass rtslc GI runs, over this tree: a cut
@@ -17,14 +17,14 @@
 // emission, background and the directional lights). Unbiased for the direct light of every
 // light in the tree.
 //
-// Interleaved (RtslcOptions::interleave m > 1, seed 003 sec. 3.4, as rtslc GI): each pixel of an
+// Interleaved (RtslcOptions::interleave m > 1, the RTSLC paper sec. 3.4, as rtslc GI): each pixel of an
 // m x m sub-block samples its share of the cut into scratch.estimates, then "rtslc interleave"
 // (shaders/gi/rtslc_interleave.comp, rtslc GI's pass) writes every pixel the rescaled sum of its
 // similar neighbours' shares: an approximation, biased at edges (that shader says why). That
 // variant writes the tree's light alone into its own target (add_direct_light_tree_interleaved_passes);
 // the caller adds it to the rest (the renderer composes the two).
 //
-// Two-level (seed 003 sec. 3.1; a DirectLightTree holding TwoLevelLightTreeBuffers): the same passes
+// Two-level (the RTSLC paper sec. 3.1; a DirectLightTree holding TwoLevelLightTreeBuffers): the same passes
 // with the cut in the top tree and a second traversal into the chosen mesh light's bottom tree
 // (vplkit/two_level_light_tree.glsl; direct_light_tree.comp's kTwoLevel). The lights and the
 // estimator are the same: only the tree the pmf comes from differs.

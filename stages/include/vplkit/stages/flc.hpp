@@ -1,5 +1,5 @@
 #pragma once
-// Forward light cuts (seed 002, Laurent et al. 2016), the foundations: the multiscale partition's
+// Forward light cuts (the FLC paper, Laurent et al. 2016), the foundations: the multiscale partition's
 // parameters, the VPL candidate pass (shaders/flc/flc_candidates.comp), one candidate per
 // scene triangle with the level Alg. 1 draws for it, and its compaction (flc_compact.comp). The math (levels, pmf, the
 // partition of unity f~^k and the area a VPL stands for) is shaders/include/vplkit/flc_partition.glsl; the light at
@@ -123,7 +123,7 @@ inline constexpr uint64_t kFlcMaxCandidates = 1ull << 31;
 // a candidate, bound whole) would pass maxStorageBufferRange (4,194,304 on lavapipe's 2^27 bytes).
 uint64_t flc_max_candidates(const Device& device);
 
-// The divergent triangles' subdivision (seed 002 sec. 6): which triangles are cut, into how many.
+// The divergent triangles' subdivision (the FLC paper sec. 6): which triangles are cut, into how many.
 struct FlcSubdivision {
     std::vector<shaders::FlcSubdivisionEntry> entries;  // by `first`, ascending
     uint32_t sub_count = 0;                             // sub-triangles in all
@@ -195,7 +195,7 @@ inline constexpr uint64_t kFlcDrawArgsBytes = 4 * sizeof(uint32_t);
 // The indirect image's format: float, so that blending adds without clamping.
 inline constexpr VkFormat kFlcIndirectFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-// Interleaved sub-tiles (seed 002 sec. 6): n x n sub-images of ceil(size / n) pixels each, VPL i
+// Interleaved sub-tiles (the FLC paper sec. 6): n x n sub-images of ceil(size / n) pixels each, VPL i
 // splatted into sub-tile i mod n^2 only (its light x n^2), then untiled and blurred over n x n
 // windows on the same surface. Cost of the splat's fragments / n^2; the blur's price is detail.
 inline constexpr uint32_t kFlcMaxSubtiles = 8;
@@ -211,7 +211,7 @@ inline uint32_t flc_subtile_side(uint32_t size, uint32_t subtiles) {
 }
 
 // Adds "flc splat args" (a compute pass: the kept count as an indirect draw) and "flc splat" (the
-// raster pipeline, seed 002 sec. 5): `indirect` (kFlcIndirectFormat, colour attachment usage) is
+// raster pipeline, the FLC paper sec. 5): `indirect` (kFlcIndirectFormat, colour attachment usage) is
 // cleared to 0, then every kept VPL i < min(kept, vpl_capacity) is drawn as a screen-space
 // rectangle bounding its support and adds, at every G-buffer pixel x inside, its unshadowed light
 // (vpl_eval.glsl) times f~^k(d(x)) with additive blending. rgb: the one-bounce indirect radiance,

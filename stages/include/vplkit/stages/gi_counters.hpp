@@ -29,7 +29,7 @@ struct GiCounts {
     uint32_t mock_cut_pixels = 0;  // hybrid: pixels with no similar block (the mock cut, or root traversals)
     uint32_t cut_short = 0;        // invocations the driver ended early: the image is wrong if > 0
 
-    // Levels per traversal (seed 000 Fig. 7.2); 0 without traversals.
+    // Levels per traversal (the thesis Fig. 7.2); 0 without traversals.
     double levels_per_traversal() const { return traversals == 0 ? 0.0 : double(levels) / traversals; }
 };
 

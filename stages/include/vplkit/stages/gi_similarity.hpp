@@ -1,6 +1,6 @@
 #pragma once
 // Geometric similarity's distance for cut blending (hybrid) and interleaved reconstruction
-// (rtslc): seed 000 eq. 5.3 gives no value. The options' similarity_max_distance is in world
+// (rtslc): the thesis eq. 5.3 gives no value. The options' similarity_max_distance is in world
 // units; 0 (the default) takes this share of the scene scale (BvhBuffers::scene_scale): blending
 // compares a pixel with block representatives up to ~1.5 blocks away, 10-20 pixels at 8 x 8
 // blocks, which on a wall seen at a 320-pixel width in Sponza is ~1 unit of its ~30; the normal

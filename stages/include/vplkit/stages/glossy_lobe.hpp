@@ -1,5 +1,5 @@
 #pragma once
-// The glossy branch of the tree samplers (shaders/include/vplkit/gi_lobe.glsl, seed 004 sec. 4.2):
+// The glossy branch of the tree samplers (shaders/include/vplkit/gi_lobe.glsl, the SST paper sec. 4.2):
 // with it, a receiver smoother than kGlossyMaxRoughness picks the diffuse or the glossy lobe of
 // its BRDF per sample (glossy: perfect-reflection child weights, no substitutes, a leaf VPL).
 // A specialization constant of sst gi, hybrid gi and rtslc gi: without it (the default) the

@@ -1,5 +1,5 @@
 #pragma once
-// Indirect light by the `hybrid` method, the thesis' (seed 000 ch. 5): shallow cuts of the SST
+// Indirect light by the `hybrid` method, the thesis' (the thesis ch. 5): shallow cuts of the SST
 // per k x k block (shaders/gi/hybrid_cut.comp), stochastic cut blending with mock cuts and
 // early-stop SST traversal per pixel (shaders/gi/hybrid_gi.comp; headers cut_blending.glsl and
 // sst_sampling.glsl). Biased by design (substitute positions, blended cuts that need not
@@ -32,14 +32,14 @@ inline constexpr uint32_t kMaxHybridBlockSize = 32;
 // The traversal below each node of a pixel's blended cut.
 enum class HybridTraversal {
     substitute,  // the thesis': expected-contribution weights, early stop at a suitable node (default)
-    lightcuts,   // stochastic lightcuts' min/max-distance weights to a leaf: seed 000 sec. 7.1's
+    lightcuts,   // stochastic lightcuts' min/max-distance weights to a leaf: the thesis sec. 7.1's
                  // protocol, rtslc's traversal over hybrid's own cuts and blending
 };
 
 struct HybridOptions {
     // The per-pixel sample budget: the cut size n, and so the traversals per pixel (1..64).
     uint32_t samples_per_pixel = 8;
-    uint32_t block_size = 8;  // k, 1..kMaxHybridBlockSize (seed 000 ch. 7 uses 8)
+    uint32_t block_size = 8;  // k, 1..kMaxHybridBlockSize (the thesis ch. 7 uses 8)
     uint32_t seed = 0;
     uint32_t frame = 0;      // the frame counter: each frame draws other random numbers
     bool visibility = true;  // false: no shadow rays (tests)

@@ -1,5 +1,5 @@
 #pragma once
-// Sampling core of BRSM VPL generation (seed 000 sec. 4.1, ch. 6): a mip chain of a square
+// Sampling core of BRSM VPL generation (the thesis sec. 4.1, ch. 6): a mip chain of a square
 // power-of-two importance map (importance_mips.comp) and the hierarchical warp of a randomized
 // Hammersley point set into its texels (warp_samples.comp, shaders/include/vplkit/sampling.glsl).
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The perfect binary light tree of real-time stochastic lightcuts (seed 003 sec. 3.1 and 4) over
+// The perfect binary light tree of real-time stochastic lightcuts (the RTSLC paper sec. 3.1 and 4) over
 // the sorted leaf array (gather_leaves.comp): light_tree_leaves.comp writes the leaf level, then
 // light_tree_levels.comp builds the internal levels in groups of `group_levels` levels, each
 // group in one dispatch straight from the level below it.
@@ -39,7 +39,7 @@ struct LightTreeOptions {
 // 1M leaves take 16 ms level by level, 21 / 28 / 39 ms in groups of 2 / 3 / 4; only at 4096
 // leaves do groups of 2-3 win (0.33 vs 0.45 ms).
 // Other devices: 4, not measured yet: on a GPU each barrier drains the whole device while
-// the re-reads of a source level mostly hit the cache; seed 003 sec. 4 builds in groups.
+// the re-reads of a source level mostly hit the cache; the RTSLC paper sec. 4 builds in groups.
 uint32_t light_tree_default_group_levels(const Limits& limits);
 
 // Leaves of the tree over `count` VPLs: stages::leaf_count (leaves.hpp), the gather's padding.

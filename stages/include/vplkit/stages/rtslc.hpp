@@ -1,5 +1,5 @@
 #pragma once
-// Real-time stochastic lightcuts (seed 003 sec. 3.2-3.4, 4): indirect light from the VPLs of a
+// Real-time stochastic lightcuts (the RTSLC paper sec. 3.2-3.4, 4): indirect light from the VPLs of a
 // perfect light tree (VplTreeBuffers::light_tree), a few light samples per pixel.
 //
 //   "gi counters clear"  zeroes `counters` (GiCounters, gi_counters.hpp)
@@ -43,12 +43,12 @@ inline constexpr uint32_t kRtslcNoNode = 0xFFFFFFFFu;
 
 struct RtslcOptions {
     uint32_t samples_per_pixel = 8;  // n: nodes per cut, one traversal each; 1..64
-    uint32_t block_size = 8;         // k: pixels share a cut per k x k block (seed 003 sec. 4: 8); 1..32
+    uint32_t block_size = 8;         // k: pixels share a cut per k x k block (the RTSLC paper sec. 4: 8); 1..32
     uint32_t interleave = 1;         // m: sub-block side for interleaved sampling; 1 = off; divides k, m^2 <= n
     uint32_t frame = 0;              // rotates the interleaved shares and reseeds every draw
     uint32_t seed = 0;               // the same seed and frame give the same image
     bool visibility = true;          // false: no shadow rays (every VPL visible), for tests and comparisons
-    // Reconstruction after interleaving (seed 000 eq. 5.3): a neighbour's estimate is used when
+    // Reconstruction after interleaving (the thesis eq. 5.3): a neighbour's estimate is used when
     // the normals' cosine exceeds min_cos and the positions lie closer than max_distance (world
     // units; 0: gi_similarity_distance's share of the scene scale).
     float similarity_min_cos = 0.9f;

@@ -1,5 +1,5 @@
 #pragma once
-// The perfect light tree over a scene's own lights (seed 003 sec. 3.1: one tree over emissive
+// The perfect light tree over a scene's own lights (the RTSLC paper sec. 3.1: one tree over emissive
 // triangles and point and spot lights), built by the VPL tree's passes: the keys (vpl_keys.hpp:
 // Morton code of each light's proxy position, normal code, id), the key sort (sort.hpp), then
 // tree/light_tree_scene_leaves.comp for the leaf level and light_tree_levels.comp for the rest
@@ -8,7 +8,7 @@
 //
 // A light's leaf: box = its extent (a triangle's three corners, a point or spot light's
 // position), intensity = light_tree_intensity(RGB power). Orientation is not in the node
-// (seed 003 sec. 4: 32-byte nodes without bounding cones); light_tree_scene_leaves.comp says why
+// (the RTSLC paper sec. 4: 32-byte nodes without bounding cones); light_tree_scene_leaves.comp says why
 // that costs variance and not bias. Leaf i holds light leaf_lights[i] (the sort's values).
 
 #include "vplkit/stages/device.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 // Shadow maps and reflective shadow maps (RSMs), one per light, rendered in one raster pass per
 // light (shaders/raster/rsm_raster.vert + rsm_shade.frag). An RSM texel is the surface patch the
-// light reaches through that texel (seed 000 section 4.1, chapter 6: the VPL generators sample
+// light reaches through that texel (the thesis section 4.1, chapter 6: the VPL generators sample
 // these texels):
 //   position  RGBA32F  xyz world position; w = 1 where a surface was drawn, 0 elsewhere
 //   normal    RGBA32F  xyz unit shading normal (normal map applied) on the light's side; w = 0

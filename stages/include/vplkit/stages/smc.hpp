@@ -1,5 +1,5 @@
 #pragma once
-// Sequential Monte Carlo instant radiosity (seed 001, Alg. 1): a VPL set Y that persists across
+// Sequential Monte Carlo instant radiosity (the SMC paper, Alg. 1): a VPL set Y that persists across
 // frames and moves at most M_max VPLs per update towards equal intensities on the surfaces the
 // camera sees indirectly. One update (add_smc_update_passes), shaders in shaders/smc/:
 //
@@ -42,11 +42,11 @@
 namespace vplkit::stages {
 
 struct SmcOptions {
-    uint32_t budget = 2048;           // I: VPLs in Y (seed 001's default), 1..kSmcMaxBudget
-    uint32_t max_moves = 16;          // M_max: VPLs that may leave Y per update (seed 001's default)
+    uint32_t budget = 2048;           // I: VPLs in Y (the SMC paper's default), 1..kSmcMaxBudget
+    uint32_t max_moves = 16;          // M_max: VPLs that may leave Y per update (the SMC paper's default)
     uint32_t resample_ratio = 16;     // camera rays per candidate (the paper's 16:1), >= 1
     uint32_t radiosity_samples = 16;  // paths per radiosity estimate (the paper's 16)
-    // Vertices of those paths that gather direct light (1: direct only). Seed 001 simulates three
+    // Vertices of those paths that gather direct light (1: direct only). The SMC paper simulates three
     // bounces in all its results (sec. 5); 2 here, as instant radiosity's default (--bounces 3
     // for the paper's set-up).
     uint32_t bounces = 2;
@@ -64,7 +64,7 @@ inline constexpr uint32_t kSmcMaxNeighbours = 32;
 // Throws vplkit::Error naming the bad option.
 void validate(const SmcOptions& options);
 
-// k for the densities Y is rendered with: max(1, floor(sqrt(I / 32))) (seed 001 eq. 8; the text
+// k for the densities Y is rendered with: max(1, floor(sqrt(I / 32))) (the SMC paper eq. 8; the text
 // lost the layout of the fraction: sqrt(I) / 32 would give k = 1 at the paper's I = 2048, the k
 // it uses for candidates, while the paper says the two differ; sqrt(I / 32) gives 8).
 uint32_t smc_render_neighbours(uint32_t budget);

@@ -19,8 +19,8 @@
 namespace vplkit::stages {
 
 struct SstOptions {
-    // Suitability thresholds (seed 004 eq. 3: nu >= nu_min and sigma_z <= sigma_max). Defaults are
-    // the thesis' (seed 000 sec. 5.2: 0.7 / 0.3); the SST paper used 0.5 / 0.1 (seed 004 sec. 6).
+    // Suitability thresholds (the SST paper eq. 3: nu >= nu_min and sigma_z <= sigma_max). Defaults are
+    // the thesis' (the thesis sec. 5.2: 0.7 / 0.3); the SST paper used 0.5 / 0.1 (the SST paper sec. 6).
     // sigma_max is an absolute length in world units, as in both papers: sigma_z is the
     // standard deviation of the node's VPLs along its normal. A scene in other units (or far
     // larger or smaller than a room) needs it scaled accordingly: vplkit::Renderer does so by

@@ -26,7 +26,7 @@
 namespace vplkit::stages {
 
 struct SstGiOptions {
-    uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (seed 004 uses 1)
+    uint32_t samples_per_pixel = 1;  // traversals per pixel, 1..kMaxGiSamplesPerPixel (the SST paper uses 1)
     uint32_t seed = 0;
     uint32_t frame = 0;        // the frame counter: each frame draws other random numbers
     bool visibility = true;    // false: no shadow rays (tests)

@@ -1,5 +1,5 @@
 #pragma once
-// GI at half resolution (seed 000 ch. 6, "Upsampling", and 7.4): the G-buffer is downsampled to
+// GI at half resolution (the thesis ch. 6, "Upsampling", and 7.4): the G-buffer is downsampled to
 // half size (shaders/gi/gbuffer_downsample.comp), indirect light is shaded on that half
 // G-buffer by any GI stage, and joint bilateral upsampling (shaders/gi/upsample_bilateral.comp)
 // brings it back to full size: bilinear weights times the geometric similarity of eq. 5.3, so
