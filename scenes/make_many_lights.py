@@ -5,7 +5,7 @@
                                  camera), lit by 256 small emissive panels of varied colour and
                                  power on the ceiling and the back wall, and 3 bright ones
 
-It is the scene where direct light needs a light tree (issue 15): the flat sampler draws every
+It is the scene where direct light needs a light tree: the flat sampler draws every
 panel by its power alone, wherever the shading point is, while the tree's cut and traversal
 prefer the panels near it. Run from anywhere: python3 scenes/make_many_lights.py (the committed
 .gltf is what vplkit loads). Deterministic: a fixed random seed. With --emitters N OUT.gltf it

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The converged residue of hybrid, hybrid-lightcuts and rtslc against exact over the same VPLs
-# (issue 26 item 4): each method's raw frames (new samples per frame, the same VPLs, a static
+# The converged residue of hybrid, hybrid-lightcuts and rtslc against exact over the same VPLs:
+# each method's raw frames (new samples per frame, the same VPLs, a static
 # camera, no filter) averaged by scripts/pfm_residue.py; block error and the brightest pixel at
 # each frame count. rtslc is unbiased: its block error is the noise left at that many samples,
 # the yardstick for the others.

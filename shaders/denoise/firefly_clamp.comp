@@ -4,7 +4,7 @@
 // gives the light back). A pixel whose luminance is above the mean + k sigma of its covered
 // neighbours (5 x 5 without itself) is scaled down to that limit. A firefly is a rare sample of a
 // real path: dropping its excess biases every frame dark, and an accumulation of such frames
-// converges to a dark image (issue 26: 5% of Sponza's indirect light). So the excess is not
+// converges to a dark image (5% of Sponza's indirect light). So the excess is not
 // dropped but handed, in equal shares, to the same covered neighbours the statistics came from:
 // their set is symmetric (q is p's neighbour iff p is q's), so what p hands out is exactly what
 // its neighbours gather. The shares travel as radiance (the excess irradiance times p's albedo

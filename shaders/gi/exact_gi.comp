@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// Exact indirect light (the ground truth of issue 6): every VPL of the chunk [vpl_first,
+// Exact indirect light (the ground truth): every VPL of the chunk [vpl_first,
 // vpl_first + vpl_count) at every G-buffer pixel, each with its own shadow ray. Accumulates into
 // `indirect` (read-modify-write of the thread's own pixel), so dispatches over consecutive
 // chunks add up to the sum over all VPLs; the host clears `indirect` and `counters` first.

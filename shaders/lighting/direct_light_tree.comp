@@ -132,7 +132,7 @@ LightSample punctual_sample(GbufferSample g, vec3 wo, PunctualLight light, float
     return r;
 }
 
-// The share of traversals that descend by intensity alone (rtslc_traverse_defensive_in, issue 15):
+// The share of traversals that descend by intensity alone (rtslc_traverse_defensive_in):
 // every light's pmf is then at least 1/4 of its power share within its cut node, so no sample
 // weighs more than 4x what the flat power CDF would give it (lamps facing away right next to a
 // shading point cannot starve the others), at a variance cost of at most 4/3 where the tree's
@@ -254,7 +254,7 @@ void main() {
             sample_ = punctual_sample(g, s.wo, lights.items[light - push.triangle_count], scale);
         }
         // The division first: a pmf that is NaN or underflowed to 0 drops the sample even where
-        // the light gives 0 (issue 6: a pixel is finite or its dropped samples are counted).
+        // the light gives 0 (a pixel is finite or its dropped samples are counted).
         vec3 estimate = sample_.value / (light_probability * node_samples);
         vec3 next = total + estimate;
         if (!vpl_finite(estimate) || !vpl_finite(next)) {

@@ -7,7 +7,7 @@
 // up to the BRDF, so with no early stop (nu_min > 1) and no shadows each method must stay
 // unbiased. max_roughness 2 makes every receiver choose a lobe (roughness 1 included). The mean
 // over seeds is checked within 4.5 sigma / sqrt(n) per pixel and channel at two seed counts, 4x
-// apart: a bias shows as a z that doubles (the trap of issue 16: hybrid 7% low at one pixel, z
+// apart: a bias shows as a z that doubles (a trap met before: hybrid 7% low at one pixel, z
 // 13.6 at 1000 seeds and 25.4 at 4000, when a cut node's share was not weighed by its lobe's
 // probability). Checked that it fails so: with hybrid's glossy samples not divided by their lobe's
 // probability, the worst z was 5.6 at 100 seeds and 9.7 at 400.

@@ -1,4 +1,4 @@
-// hybrid's converged residue (issue 26 item 4): many frames of new samples over the same VPLs,
+// hybrid's converged residue: many frames of new samples over the same VPLs,
 // averaged, against the exact sum over those VPLs (DESIGN.md, Tests, Convergence). What remains
 // after many frames is bias; rtslc (unbiased) at the same samples per pixel and frames is the
 // yardstick: its block error is the noise left, and hybrid's may exceed it only by what its blur

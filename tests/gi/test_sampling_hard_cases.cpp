@@ -1,4 +1,4 @@
-// The sst and hybrid samplers' hard cases (issue 6's numerical rules): dead branches, a single
+// The sst and hybrid samplers' hard cases (numerical rules): dead branches, a single
 // VPL, 2^k and 2^k + 1 VPLs, shading points on a VPL and inside cluster boxes, HDR fluxes,
 // scenes at 1e-3 and 1e4 scale, the mock cut, cut blending's weights, and bad options.
 

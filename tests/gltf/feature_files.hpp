@@ -1,5 +1,5 @@
 #pragma once
-// One small glTF per feature of issue 19 (vertex colours, texture transforms, morph targets,
+// One small glTF per feature a user's file may use (vertex colours, texture transforms, morph targets,
 // skins, orthographic cameras, alpha masks, quantized attributes, an animated scene from
 // animation_files.hpp, and a file with features vplkit skips), each with a point light so
 // `vplkit render` takes it as it is. Written by write_gltf_features (a ctest fixture, for the

@@ -133,7 +133,7 @@ TEST_CASE("direct light tree: a small lamp facing away 1 cm from the floor does 
     MESSAGE("largest tree variance / the defensive bound 4 M2 - E^2: " << worst);
 }
 
-// The second half of issue 15's tail: a big emissive triangle close to the shading points is soon
+// The second half of the light tree's tail: a big emissive triangle close to the shading points is soon
 // a leaf of the cut, and a cut that gives every node one slot (rtslc GI's) kept it at one area
 // sample per pixel however many the pixel takes, while the flat power CDF gives it spp x its power
 // share. Here: a 0.18 m^2 triangle 20 cm above the floor holding half the power, 15 small ones

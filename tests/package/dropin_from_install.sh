@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The integration check of issue 18: install the kit from this build tree into a fresh prefix,
+# The integration check: install the kit from this build tree into a fresh prefix,
 # build samples/dropin as a separate project against that prefix (find_package(vplkit)), and run
 # it. Usage: dropin_from_install.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail

@@ -6,7 +6,7 @@
 //   0.145 against 0.503) and keeps the raw frame's light within 3% (measured 0.981: the a-trous
 //   weights are normalized per pixel, not mass-preserving, and the frames differ in their samples);
 // - temporal accumulation with the firefly clamp on converges to exact (rtslc, 256 frames,
-//   32 x 32): the clamp keeps the light and a static camera's history has no cap (issue 26).
+//   32 x 32): the clamp keeps the light and a static camera's history has no cap.
 
 #include "vplkit/context.hpp"
 #include "vplkit/renderer.hpp"

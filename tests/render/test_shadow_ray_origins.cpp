@@ -1,4 +1,4 @@
-// Shadow rays that start at a box's concave edges (issue 26: holes in direct light). Direct
+// Shadow rays that start at a box's concave edges (holes in direct light). Direct
 // light at 512 x 512 must show no hole: a pixel darker than a tenth of the dimmest of its eight
 // neighbours while all eight are lit. A real shadow edge never makes one (a shadow covers more
 // than a pixel); a shadow ray that starts on or behind the neighbouring wall does.

@@ -49,7 +49,7 @@ enum class DirectSampler {
 const char* direct_sampler_name(DirectSampler sampler);
 
 // The planner samples direct light through the tree when the scene has more emissive triangles,
-// point and spot lights together than this ("more than a handful", issue 15): with a few, the
+// point and spot lights together than this ("more than a handful"): with a few, the
 // flat sampler evaluates each punctual light exactly and has few emitters to choose from.
 inline constexpr uint32_t kDirectTreeMinLights = 8;
 

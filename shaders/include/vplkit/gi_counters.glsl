@@ -2,7 +2,7 @@
 #define VPLKIT_GI_COUNTERS_GLSL
 
 // What a sampling method (rtslc, sst, hybrid) counts while it renders indirect light: the
-// host reads these back and reports them (issue 6: a dropped sample is counted, never silently
+// host reads these back and reports them (a dropped sample is counted, never silently
 // zeroed; levels per traversal as in the thesis Fig. 7.2). Define VPLKIT_GI_COUNTERS_BINDING
 // before including. Each invocation adds its pixel's totals once (one atomic per counter per
 // pixel), so 32 bits last for 2^32 traversals: 1280 x 720 x 64 samples is 2^25.8.

@@ -114,13 +114,13 @@ uint rtslc_select_cut(RtslcShading s, uint leaf_count, uint cut_size, float min_
 }
 
 // The cut of rtslc_select_cut with its samples shared out by bound (direct light through the
-// tree, issue 15): every slot of the cut holds a node, and a node gets as many of the
+// tree): every slot of the cut holds a node, and a node gets as many of the
 // min(cut_size, kRtslcMaxCutSize) slots as its bound earns. Starting from the root with one
 // sample, the entry with the largest bound per sample (bound / samples) is refined: an inner node
 // is split as rtslc_select_cut splits it, a leaf gets one more sample. Why: rtslc_select_cut gives
 // every cut node one sample, so once a large emissive triangle close to the representative pixel
 // is a leaf of the cut it keeps one area sample per pixel however many the pixel takes, while the
-// flat power CDF gives it spp x its power share (issue 15: the tree's error stopped falling as
+// flat power CDF gives it spp x its power share (the tree's error stopped falling as
 // 1 / sqrt(spp) on irregular mesh lights, its variance in the pixels next to big lamps). VPL
 // leaves (rtslc GI) gain nothing from a second sample of a point, so GI keeps rtslc_select_cut.
 //
@@ -309,7 +309,7 @@ float rtslc_power_left(LightTreeNode left, LightTreeNode right) {
     return gi_child_probability(i_left, 1.0, i_right, 1.0);
 }
 
-// The defensive traversal (direct light through the tree, issue 15): with probability
+// The defensive traversal (direct light through the tree): with probability
 // `defensive` (a multiple of 2^-24, so that u < defensive picks it exactly) the path descends by
 // intensity alone (rtslc_power_left), otherwise by the eq. 1-2 weights; both paths' probabilities
 // are tracked at every step, and the pmf returned is the mixture's,
@@ -320,7 +320,7 @@ float rtslc_power_left(LightTreeNode left, LightTreeNode right) {
 // largest weight the distance clamp allows at the wall points right behind it (cosine bound 1,
 // d_min 1 cm), where it gives no light at all, and every other light's P_tree there shrinks by
 // that lamp's share; the lights that do shine there are weighed by 1 / that tiny pmf: a heavy
-// tail (tests/lighting's two-lamp case; on issue 15's irregular mesh lights, which hang 1 cm off
+// tail (tests/lighting's two-lamp case; on the many-lights scene's irregular mesh lights, which hang 1 cm off
 // the ceiling and back wall, the mixture halves the variance, README). The power path's
 // probability telescopes to I_leaf / I_node, so every light's pmf is at least `defensive` times
 // its power share within the cut node, which is what the flat power CDF gives it over the whole

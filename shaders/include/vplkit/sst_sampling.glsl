@@ -100,7 +100,7 @@ float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_
 // one with the distance to the node's box instead, as rtslc averages its min- and max-distance
 // probabilities (the RTSLC paper sec. 3.1): a child whose mean lies far but whose box reaches close to
 // x (a wall's cluster seen from the floor beside it) is no longer drawn with a probability far
-// below its share of the light, so it is never weighed hugely (issue 26: in the Cornell box one
+// below its share of the light, so it is never weighed hugely (in the Cornell box one
 // such sample lifted a pixel's mean over 256 frames to 2.2x exact's brightest pixel; Sponza
 // read 2052x in another measurement). Alone, the box distance is far worse (see
 // sst_weight_numerator); mixed half and half, each probability is at least half of either
