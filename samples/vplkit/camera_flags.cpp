@@ -2,6 +2,11 @@
 
 #include "camera_flags.hpp"
 
+#include "cli_app.hpp"
+#include "cli_checks.hpp"
+
+#include <algorithm>
+
 #include "vplkit/error.hpp"
 #include "vplkit/scene_setups.hpp"
 
@@ -9,22 +14,16 @@
 #include <glm/trigonometric.hpp>
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <string>
 
 namespace vplkit::cli {
 
-const char* const kCameraFlagsUsage =
-    "  --position X,Y,Z --target X,Y,Z   a camera at X,Y,Z looking at the target (both needed;\n"
-    "                   they replace the set-up's or the file's camera)\n"
-    "  --up X,Y,Z       with them: the camera's up direction (default 0,1,0; not along the view)\n"
-    "  --fov DEG        the vertical field of view in degrees, in (0, 180) (default: the scene\n"
-    "                   camera's; alone, it turns only the scene camera's field of view)\n";
-
 namespace {
 
-// "X,Y,Z": three finite numbers, or a UsageError naming the option.
-glm::vec3 parse_point(const std::string& option, const std::string& text) {
+// "X,Y,Z": three finite numbers, or nothing.
+std::optional<glm::vec3> parse_point(const std::string& text) {
     glm::vec3 p(0.0f);
     std::string rest = text;
     for (int i = 0; i < 3; ++i) {
@@ -37,12 +36,26 @@ glm::vec3 parse_point(const std::string& option, const std::string& text) {
         } catch (const std::exception&) {
             ok = false;
         }
-        if (!ok || used != part.size() || !std::isfinite(p[i])) {
-            throw UsageError(option + " expects X,Y,Z (three finite numbers), got '" + text + "'");
-        }
+        if (!ok || used != part.size() || !std::isfinite(p[i])) return std::nullopt;
         if (i < 2) rest = rest.substr(comma + 1);
     }
     return p;
+}
+
+const CLI::Validator kPointCheck(
+    [](std::string& text) {
+        return parse_point(text) ? std::string() : "expects X,Y,Z (three finite numbers), got '" + text + "'";
+    },
+    "", "point");
+
+// --NAME X,Y,Z into `into`.
+void add_point_option(CLI::App& command, const std::string& name, std::optional<glm::vec3>& into,
+                      const std::string& help) {
+    command
+        .add_option_function<std::string>(
+            name, [&into](const std::string& text) { into = parse_point(text); }, help)
+        ->check(kPointCheck)
+        ->option_text("X,Y,Z");
 }
 
 std::string point_text(glm::vec3 p) {
@@ -53,24 +66,21 @@ std::string point_text(glm::vec3 p) {
 
 }  // namespace
 
-CameraFlags parse_camera_flags(Args& args) {
-    CameraFlags flags;
-    if (auto text = args.value("--position")) flags.position = parse_point("--position", *text);
-    if (auto text = args.value("--target")) flags.target = parse_point("--target", *text);
-    if (auto text = args.value("--up")) flags.up = parse_point("--up", *text);
-    if (auto text = args.value("--fov")) {
-        size_t used = 0;
-        float degrees = NAN;
-        try {
-            degrees = std::stof(*text, &used);
-        } catch (const std::exception&) {
-        }
-        if (used != text->size() || !(degrees > 0.0f && degrees < 180.0f)) {
-            throw UsageError("--fov expects a vertical field of view in degrees, above 0 and below 180, got '" + *text +
-                             "'");
-        }
-        flags.fov_degrees = degrees;
-    }
+void add_camera_options(CLI::App& command, CameraFlags& flags) {
+    add_point_option(command, "--position", flags.position,
+                     "a camera at X,Y,Z looking at --target (both needed; they replace the set-up's or the file's "
+                     "camera)");
+    add_point_option(command, "--target", flags.target, "the point the --position camera looks at");
+    add_point_option(command, "--up", flags.up,
+                     "with --position and --target: the camera's up direction (default 0,1,0; not along the view)");
+    number(command.add_option_function<float>(
+               "--fov", [&flags](float degrees) { flags.fov_degrees = degrees; },
+               "the vertical field of view in degrees (default: the scene camera's; alone, it turns only the scene "
+               "camera's field of view)"),
+           "DEG", NumberRange{0.0, 180.0, true, true, "a vertical field of view in degrees, above 0 and below 180"});
+}
+
+void check_camera_flags(const CameraFlags& flags) {
     if (flags.position.has_value() != flags.target.has_value()) {
         throw UsageError(
             "--position and --target go together: give both (the camera's place and the point it "
@@ -93,7 +103,6 @@ CameraFlags parse_camera_flags(Args& args) {
                 (flags.up ? "another --up" : "an --up"));
         }
     }
-    return flags;
 }
 
 glm::vec3 apply_camera_flags(const CameraFlags& flags, scene::Scene& scene, glm::vec3 target) {
@@ -128,6 +137,28 @@ glm::vec3 apply_camera_flags(const CameraFlags& flags, scene::Scene& scene, glm:
     moved.name = camera.name.empty() ? "command line" : camera.name + " (moved on the command line)";
     camera = moved;
     return *flags.target;
+}
+
+}  // namespace vplkit::cli
+
+namespace vplkit::cli {
+
+CameraFlags parse_camera_flags(Args& args) {
+    CLI::App command("", args.command());
+    configure_app(command);
+    command.allow_extras();
+    CameraFlags flags;
+    add_camera_options(command, flags);
+    std::vector<std::string> rest = args.take_rest();
+    std::reverse(rest.begin(), rest.end());
+    try {
+        command.parse(rest);
+    } catch (const CLI::ParseError& e) {
+        throw UsageError(parse_error_text(e));
+    }
+    args = Args(args.command(), command.remaining());
+    check_camera_flags(flags);
+    return flags;
 }
 
 }  // namespace vplkit::cli

@@ -5,6 +5,8 @@
 
 #include "cli.hpp"
 
+#include <CLI/CLI.hpp>
+
 #include "vplkit/scene.hpp"
 
 #include <glm/vec3.hpp>
@@ -20,9 +22,14 @@ struct CameraFlags {
     bool given() const { return position || target || up || fov_degrees; }
 };
 
-// Reads the four options. A UsageError for a value that is not three finite numbers, a field of
-// view outside (0, 180) degrees, --position without --target (or the reverse), --up without them,
-// the same point as position and target, or an up parallel to the view direction.
+// Declares the four options on `command`, read into `flags`; each value is checked as it is parsed
+// (three finite numbers; a field of view in (0, 180) degrees).
+void add_camera_options(CLI::App& command, CameraFlags& flags);
+// After parsing, what the options say together: a UsageError for --position without --target (or
+// the reverse), --up without them, the same point as position and target, or an up parallel to the
+// view direction.
+void check_camera_flags(const CameraFlags& flags);
+// Bridge for the commands still reading an Args: the four options taken out of it.
 CameraFlags parse_camera_flags(Args& args);
 
 // Makes the flags' camera the scene's active one (the set-up's or file's is the default of what
@@ -30,8 +37,5 @@ CameraFlags parse_camera_flags(Args& args);
 // point it looks at (`target` when the flags name none). The near and far planes are fitted to
 // the scene's bounds from the new position. A UsageError for --fov alone on an orthographic camera.
 glm::vec3 apply_camera_flags(const CameraFlags& flags, scene::Scene& scene, glm::vec3 target);
-
-// The usage lines, for each command's help text.
-extern const char* const kCameraFlagsUsage;
 
 }  // namespace vplkit::cli

@@ -1,11 +1,13 @@
 #pragma once
-// The small command-line toolkit the subcommands share: an argument cursor that rejects what it
-// does not understand, and the usage error that makes the program print usage and exit 2.
+// The small command-line toolkit the subcommands share: the usage error that makes the program
+// exit 2, the text helpers, and an argument cursor for a command that reads its arguments itself
+// (view; the others declare theirs through CLI11, cli_app.hpp).
 
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace vplkit::cli {
@@ -32,6 +34,8 @@ public:
     void finish() const;
 
     const std::string& command() const { return command_; }
+    // Every argument not read yet, taken (for a parser of the rest, e.g. parse_render_request).
+    std::vector<std::string> take_rest() { return std::exchange(args_, {}); }
 
 private:
     std::string command_;
@@ -49,13 +53,5 @@ std::vector<uint32_t> parse_whole_number_list(const std::string& option, const s
 // `text` (words and single spaces) in lines of at most `width` characters, the first starting at
 // `first_column`, the others indented by `indent` (usage texts).
 std::string wrapped(const std::string& text, size_t first_column, size_t indent, size_t width = 100);
-
-// One subcommand: `run` returns the exit code (0 ok, 1 failure); a UsageError means exit 2.
-struct Command {
-    const char* name;
-    const char* summary;     // one line for `vplkit --help`
-    std::string (*usage)();  // `vplkit <name> --help` (render's and bench's list the method table's names)
-    int (*run)(Args& args);
-};
 
 }  // namespace vplkit::cli

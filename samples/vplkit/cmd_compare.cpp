@@ -4,6 +4,7 @@
 // which is what the GI sampling papers score with RMSE and SSIM).
 
 #include "cli.hpp"
+#include "cli_checks.hpp"
 #include "commands.hpp"
 
 #include "vplkit/error.hpp"
@@ -22,42 +23,13 @@
 
 namespace vplkit::cli {
 
-const char* const kCompareUsage =
-    "usage: vplkit compare TEST.pfm REFERENCE.pfm [--diff OUT.png] [--scale S]\n"
-    "       vplkit compare TEST.png REFERENCE.png [--diff OUT.png] [--scale S]\n"
-    "\n"
-    "Prints the error of TEST against REFERENCE, two images of one size, over all pixels and\n"
-    "channels. Both are PFM or both are PNG (by the .png extension; a mix is refused):\n"
-    "  PFM            linear RGB values as stored (HDR radiance)\n"
-    "  PNG            the 8-bit sRGB codes / 255, in [0, 1]: the tonemapped frame as a viewer sees\n"
-    "                 it, not linearized; alpha is ignored (what the GI papers' RMSE and SSIM use)\n"
-    "  rmse           sqrt(mean (t - r)^2)\n"
-    "  relative rmse  rmse / the reference's mean (as scripts/pfm_error.py)\n"
-    "  relmse         mean (t - r)^2 / (r^2 + eps), eps = 0.01\n"
-    "  ssim           SSIM (Wang et al. 2004: 11x11 Gaussian windows, sigma 1.5, K1 0.01, K2 0.03)\n"
-    "                 per channel, averaged; dynamic range L = 1 for PNG (the standard setting for\n"
-    "                 [0, 1] images), L = the reference's largest value for PFM (not comparable\n"
-    "                 with SSIM of tonemapped images)\n"
-    "  --diff FILE    also write |t - r| x S per channel of the values above, clamped to 1 and\n"
-    "                 sRGB-encoded for display, as a PNG (for PNG input: the difference of the\n"
-    "                 sRGB values, encoded once more, so small differences show brighter)\n"
-    "  --scale S      the difference picture's gain (default 10)\n";
-
 namespace {
 
-float parse_scale(const std::string& text) {
-    size_t used = 0;
-    float value = NAN;
-    try {
-        value = std::stof(text, &used);
-    } catch (const std::exception&) {
-        used = 0;
-    }
-    if (text.empty() || used != text.size() || !std::isfinite(value) || !(value > 0.0f)) {
-        throw UsageError("--scale expects a positive number, got '" + text + "'");
-    }
-    return value;
-}
+struct CompareOptions {
+    std::string test_path, reference_path;
+    std::string diff_path;  // "" = none
+    float scale = 10.0f;
+};
 
 // An image as the metrics take it: 3 floats per pixel, rows top to bottom.
 struct Values {
@@ -94,16 +66,13 @@ Values read_values(const std::string& path, bool png) {
     return values;
 }
 
-}  // namespace
-
-int run_compare(Args& args) {
-    std::optional<std::string> diff_path = args.value("--diff");
-    float scale = 10.0f;
-    if (auto text = args.value("--scale")) scale = parse_scale(*text);
-    const std::optional<std::string> test_path = args.positional();
-    const std::optional<std::string> reference_path = args.positional();
-    args.finish();
-    if (!test_path || !reference_path) throw UsageError("compare needs a test image and a reference image");
+int run_compare(const CompareOptions& options) {
+    const std::optional<std::string> diff_path =
+        options.diff_path.empty() ? std::nullopt : std::optional<std::string>(options.diff_path);
+    const float scale = options.scale;
+    if (options.reference_path.empty()) throw UsageError("compare needs a test image and a reference image");
+    const std::string* test_path = &options.test_path;
+    const std::string* reference_path = &options.reference_path;
     if (diff_path && std::filesystem::path(*diff_path).extension() != ".png") {
         throw UsageError("--diff expects a .png file name, got '" + *diff_path + "'");
     }
@@ -173,6 +142,36 @@ int run_compare(Args& args) {
                     png ? "sRGB / 255" : "linear");
     }
     return 0;
+}
+
+}  // namespace
+
+void add_compare(CLI::App& vplkit, Runners& runners) {
+    CLI::App* compare = add_command(
+        vplkit, "compare",
+        "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
+        "Prints the error of TEST against REFERENCE, two images of one size, over all pixels and channels. Both are "
+        "PFM or both are PNG (by the .png extension; a mix is refused).\n"
+        "  PFM: linear RGB values as stored (HDR radiance).\n"
+        "  PNG: the 8-bit sRGB codes / 255, in [0, 1]: the tonemapped frame as a viewer sees it, not linearized; "
+        "alpha is ignored (what the GI papers' RMSE and SSIM use).\n"
+        "  rmse: sqrt(mean (t - r)^2); relative rmse: rmse / the reference's mean (as scripts/pfm_error.py); "
+        "relmse: mean (t - r)^2 / (r^2 + eps), eps = 0.01.\n"
+        "  ssim: SSIM (Wang et al. 2004: 11x11 Gaussian windows, sigma 1.5, K1 0.01, K2 0.03) per channel, "
+        "averaged; dynamic range L = 1 for PNG (the standard setting for [0, 1] images), L = the reference's "
+        "largest value for PFM (not comparable with SSIM of tonemapped images).");
+    auto options = std::make_shared<CompareOptions>();
+    compare->add_option("TEST", options->test_path, "the image to score (.pfm or .png)");
+    compare->add_option("REFERENCE", options->reference_path, "the reference, of the same kind and size");
+    compare
+        ->add_option("--diff", options->diff_path,
+                     "also write |t - r| x S per channel of the values above, clamped to 1 and sRGB-encoded for "
+                     "display, as a PNG (for PNG input: the difference of the sRGB values, encoded once more, so "
+                     "small differences show brighter)")
+        ->option_text("FILE.png");
+    number(compare->add_option("--scale", options->scale, "the difference picture's gain")->capture_default_str(), "S",
+           NumberRange::above(0.0));
+    runners.push_back({compare, [options] { return run_compare(*options); }});
 }
 
 }  // namespace vplkit::cli

@@ -3,6 +3,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "device_options.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/device_info.hpp"
@@ -12,15 +13,6 @@
 #include <string>
 
 namespace vplkit::cli {
-
-const char* const kInfoUsage =
-    "usage: vplkit info [--device auto|gpu|cpu|<index>|<name part>] [--validation]\n"
-    "\n"
-    "Lists every Vulkan device, creates a context on the one vplkit picks (or --device;\n"
-    "default: the environment variable VPLKIT_DEVICE, else automatic) and prints why it was\n"
-    "picked, its limits and which of the features vplkit uses it has.\n"
-    "  --device SEL    device to pick: auto, gpu, cpu (lavapipe), an index, or part of a name\n"
-    "  --validation    create the context with the Vulkan validation layer on\n";
 
 namespace {
 
@@ -38,17 +30,7 @@ std::string gib(uint64_t bytes) {
     return text;
 }
 
-}  // namespace
-
-int run_info(Args& args) {
-    ContextOptions options;
-    if (auto device = args.value("--device")) {
-        if (device->empty()) throw UsageError("--device needs a non-empty value");
-        options.device = *device;
-    }
-    options.validation = args.flag("--validation");
-    args.finish();
-
+int run_info(const ContextOptions& options) {
     const auto devices = Context::enumerate_devices();
     std::printf("Vulkan devices: %zu\n", devices.size());
     for (const DeviceInfo& d : devices) {
@@ -110,6 +92,18 @@ int run_info(Args& args) {
         return context->validation_message_count() == 0 ? 0 : 1;
     }
     return 0;
+}
+
+}  // namespace
+
+void add_info(CLI::App& vplkit, Runners& runners) {
+    CLI::App* info = add_command(
+        vplkit, "info", "list the Vulkan devices, the one vplkit picks and why, and its features",
+        "Lists every Vulkan device, creates a context on the one vplkit picks (or --device) and prints why it was "
+        "picked, its limits and which of the features vplkit uses it has.");
+    auto options = std::make_shared<ContextOptions>();
+    add_device_options(*info, *options);
+    runners.push_back({info, [options] { return run_info(*options); }});
 }
 
 }  // namespace vplkit::cli

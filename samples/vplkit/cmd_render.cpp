@@ -2,6 +2,7 @@
 // light, written as PNG (and linear PFM on request), with the device and per-stage GPU times.
 
 #include "cli.hpp"
+#include "cli_checks.hpp"
 #include "commands.hpp"
 #include "frame_exr.hpp"
 #include "render_request.hpp"
@@ -59,65 +60,6 @@ void check_output(const std::string& option, const std::filesystem::path& path,
     }
 }
 
-// The whole text as a finite number, or nothing.
-std::optional<float> finite_number(const std::string& text) {
-    size_t used = 0;
-    float value = NAN;
-    try {
-        value = std::stof(text, &used);
-    } catch (const std::exception&) {
-        return std::nullopt;
-    }
-    if (used != text.size() || !std::isfinite(value)) return std::nullopt;
-    return value;
-}
-
-float parse_exposure(const std::string& text) {
-    const auto value = finite_number(text);
-    if (!value || *value <= 0.0f) {
-        throw UsageError("--exposure expects auto or a positive number (a linear scale), got '" + text + "'");
-    }
-    return *value;
-}
-
-float parse_fraction(const std::string& option, const std::string& text) {
-    const auto value = finite_number(text);
-    if (!value || *value < 0.0f || *value > 1.0f) {
-        throw UsageError(option + " expects a number from 0 to 1, got '" + text + "'");
-    }
-    return *value;
-}
-
-// Throws "OPTION is for --method <the methods with trait>" unless the chosen method has it.
-void require_method_with(const RenderSettings& settings, bool GiMethodInfo::*trait, const std::string& option) {
-    if (!(gi_method(settings.method).*trait)) {
-        throw UsageError(option + " is for --method " + gi_method_names(trait));
-    }
-}
-
-// --flc-levels, --flc-mu, --flc-navg: only with --method flc.
-void parse_flc_options(Args& args, RenderSettings& settings) {
-    const auto levels = args.value("--flc-levels");
-    const auto mu = args.value("--flc-mu");
-    const auto navg = args.value("--flc-navg");
-    const auto subtiles = args.value("--flc-subtiles");
-    if ((levels || mu || navg || subtiles) && settings.method != GiMethod::flc) {
-        throw UsageError("--flc-levels, --flc-mu, --flc-navg and --flc-subtiles are for --method flc");
-    }
-    if (subtiles) settings.flc_subtiles = parse_whole_number("--flc-subtiles", *subtiles, stages::kFlcMaxSubtiles);
-    if (levels) settings.flc_levels = parse_whole_number("--flc-levels", *levels, stages::kFlcMaxLevels);
-    if (mu) {
-        const auto value = finite_number(*mu);
-        if (!value || !(*value > 1.0f)) throw UsageError("--flc-mu expects a number above 1, got '" + *mu + "'");
-        settings.flc_mu = *value;
-    }
-    if (navg) {
-        const auto value = finite_number(*navg);
-        if (!value || !(*value > 0.0f)) throw UsageError("--flc-navg expects a positive number, got '" + *navg + "'");
-        settings.flc_vpls_per_point = *value;
-    }
-}
-
 // Passes of one name (e.g. the importance mip levels) summed into one line, in first-seen order.
 std::vector<std::pair<std::string, double>> by_stage(const std::vector<PassTiming>& timings) {
     std::vector<std::pair<std::string, double>> stages;
@@ -153,300 +95,79 @@ std::vector<std::pair<std::string, double>> median_stages(
     return out;
 }
 
-// --smc-* options (need --vpl-source smc).
-void parse_smc_options(Args& args, RenderSettings& settings, bool& given) {
-    const bool smc = settings.vpl_source == VplSource::smc;
-    auto take = [&](const char* option, uint64_t max, uint32_t& into, bool zero_ok = false) {
-        if (auto text = args.value(option)) {
-            if (!smc) throw UsageError(std::string(option) + " needs --vpl-source smc");
-            into = zero_ok ? parse_index(option, *text, max) : parse_whole_number(option, *text, max);
-            given = true;
-        }
-    };
-    take("--smc-max-moves", 1u << 20, settings.smc.max_moves);
-    take("--smc-resample", 1024, settings.smc.resample_ratio);
-    take("--smc-radiosity-samples", 4096, settings.smc.radiosity_samples);
-    take("--smc-warmup", 100000, settings.smc_warmup, true);
-}
-
 }  // namespace
-
-RenderRequest parse_render_request(Args& args) {
-    ContextOptions context_options;
-    if (auto device = args.value("--device")) context_options.device = *device;
-    context_options.validation = args.flag("--validation");
-    const bool strict = args.flag("--strict");
-    const std::string scene_arg = args.value("--scene").value_or("");
-    std::optional<uint32_t> width, height, camera;
-    if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
-    if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
-    if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
-    std::optional<double> time;
-    if (auto text = args.value("--time")) {
-        const auto value = finite_number(*text);
-        if (!value) throw UsageError("--time expects a finite number of seconds, got '" + *text + "'");
-        time = *value;
-    }
-    const std::optional<std::string> animation = args.value("--animation");
-    if (animation && !time) throw UsageError("--animation needs --time T (the moment to pose it at)");
-    const CameraFlags camera_flags = parse_camera_flags(args);
-    std::vector<scene::Light> extra_lights;
-    // A malformed light is a command-line mistake: usage, exit 2.
-    try {
-        while (auto spec = args.value("--sun")) extra_lights.push_back(scene::parse_sun(*spec));
-        while (auto spec = args.value("--point")) extra_lights.push_back(scene::parse_point(*spec));
-    } catch (const Error& e) {
-        throw UsageError(e.what());
-    }
-    RenderSettings settings;
-    // The tonemapped image's exposure: automatic (auto_exposure.hpp) unless a scale is given.
-    settings.auto_exposure = true;
-    if (auto text = args.value("--exposure"); text && *text != "auto") {
-        settings.auto_exposure = false;
-        settings.exposure = parse_exposure(*text);
-    }
-    if (auto text = args.value("--seed")) settings.seed = parse_index("--seed", *text, UINT32_MAX);
-    if (auto text = args.value("--direct-spp"))
-        settings.direct_samples = parse_whole_number("--direct-spp", *text, 65536);
-    if (auto text = args.value("--direct")) {
-        bool known = false;
-        for (DirectSampler d :
-             {DirectSampler::automatic, DirectSampler::tree, DirectSampler::tree2, DirectSampler::flat}) {
-            if (*text == direct_sampler_name(d)) {
-                settings.direct_sampler = d;
-                known = true;
-            }
-        }
-        if (!known) throw UsageError("--direct expects auto, tree, tree2 or flat, got '" + *text + "'");
-    }
-    if (auto text = args.value("--direct-interleave"))
-        settings.direct_interleave = parse_whole_number("--direct-interleave", *text, 8);
-    if ((settings.direct_sampler == DirectSampler::tree || settings.direct_sampler == DirectSampler::tree2) &&
-        settings.direct_samples > 64) {
-        throw UsageError("--direct-spp " + std::to_string(settings.direct_samples) +
-                         ": the tree samples at most 64 cut nodes per pixel");
-    }
-    if (auto text = args.value("--method")) {
-        const GiMethodInfo* method = find_gi_method(*text);
-        if (!method) throw UsageError("--method expects " + gi_method_names() + ", got '" + *text + "'");
-        settings.method = method->method;
-    }
-    parse_flc_options(args, settings);
-    if (auto text = args.value("--spp")) {
-        require_method_with(settings, &GiMethodInfo::samples, "--spp");
-        settings.samples_per_pixel = parse_whole_number("--spp", *text, 64);
-    }
-    if (auto text = args.value("--block")) {
-        require_method_with(settings, &GiMethodInfo::blocks, "--block");
-        settings.block_size = parse_whole_number("--block", *text, 32);
-    }
-    if (auto text = args.value("--interleave")) {
-        require_method_with(settings, &GiMethodInfo::interleaves, "--interleave");
-        settings.interleave = parse_whole_number("--interleave", *text, 32);
-    }
-    if (auto text = args.value("--traversal")) {
-        require_method_with(settings, &GiMethodInfo::chooses_traversal, "--traversal");
-        if (*text == "lightcuts") {
-            settings.hybrid_traversal = stages::HybridTraversal::lightcuts;
-        } else if (*text != "substitute") {
-            throw UsageError("--traversal expects substitute or lightcuts, got '" + *text + "'");
-        }
-    }
-    if (auto text = args.value("--glossy-lobe")) {
-        require_method_with(settings, &GiMethodInfo::samples, "--glossy-lobe");
-        if (*text == "on")
-            settings.glossy_branch = GlossyBranch::on;
-        else if (*text == "off")
-            settings.glossy_branch = GlossyBranch::off;
-        else if (*text != "auto")
-            throw UsageError("--glossy-lobe expects auto, on or off, got '" + *text + "'");
-    }
-    if (auto text = args.value("--nu-min")) {
-        require_method_with(settings, &GiMethodInfo::reads_sst, "--nu-min");
-        const auto value = finite_number(*text);
-        if (!value) throw UsageError("--nu-min expects a number, got '" + *text + "'");
-        settings.sst.nu_min = *value;
-    }
-    if (auto text = args.value("--sigma-max")) {
-        require_method_with(settings, &GiMethodInfo::reads_sst, "--sigma-max");
-        const auto value = finite_number(*text);
-        if (!value || *value < 0.0f) throw UsageError("--sigma-max expects a number >= 0, got '" + *text + "'");
-        settings.sst.sigma_max = *value;
-        settings.sigma_max_scene_fraction.reset();  // absolute, as given
-    }
-    if (auto text = args.value("--gi-resolution")) {
-        if (settings.method == GiMethod::none) throw UsageError("--gi-resolution needs an indirect-light --method");
-        if (*text == "half")
-            settings.half_resolution_gi = true;
-        else if (*text != "full")
-            throw UsageError("--gi-resolution expects full or half, got '" + *text + "'");
-    }
-    bool denoise_given = false;
-    if (auto text = args.value("--denoise")) {
-        denoise_given = true;
-        if (*text == "temporal")
-            settings.denoise = DenoiseMode::temporal;
-        else if (*text == "svgf")
-            settings.denoise = DenoiseMode::svgf;
-        else if (*text != "off")
-            throw UsageError("--denoise expects off, temporal or svgf, got '" + *text + "'");
-        if (settings.denoise != DenoiseMode::off && settings.method == GiMethod::none) {
-            throw UsageError("--denoise filters indirect light: give an indirect-light --method");
-        }
-    }
-    if (auto text = args.value("--firefly-sigma")) {
-        if (settings.denoise == DenoiseMode::off) throw UsageError("--firefly-sigma needs --denoise temporal or svgf");
-        const auto value = finite_number(*text);
-        if (!value || *value < 0.0f) throw UsageError("--firefly-sigma expects a number >= 0, got '" + *text + "'");
-        settings.denoise_options.firefly_k_sigma = *value;
-    }
-    bool vpl_options_given = false;
-    if (auto text = args.value("--vpl-source")) {
-        vpl_options_given = true;
-        if (*text == "ir")
-            settings.vpl_source = VplSource::ir;
-        else if (*text == "brsm")
-            settings.vpl_source = VplSource::brsm;
-        else if (*text == "smc")
-            settings.vpl_source = VplSource::smc;
-        else if (*text == "auto")
-            settings.vpl_source = VplSource::automatic;
-        else
-            throw UsageError("--vpl-source expects ir, brsm, smc or auto, got '" + *text + "'");
-    }
-    const bool brsm = settings.vpl_source == VplSource::brsm;
-    const bool smc = settings.vpl_source == VplSource::smc;
-    if (auto text = args.value("--vpls")) {
-        vpl_options_given = true;
-        settings.vpl_paths = parse_whole_number("--vpls", *text, 1u << 24);
-        settings.brsm.vpl_count = settings.vpl_paths;
-        if (smc) settings.smc.budget = parse_whole_number("--vpls", *text, stages::kSmcMaxBudget);
-    }
-    if (auto text = args.value("--bounces")) {
-        vpl_options_given = true;
-        if (brsm) throw UsageError("--bounces is for --vpl-source ir: BRSM VPLs are the first bounce only");
-        settings.vpl_bounces = parse_whole_number("--bounces", *text, 16);
-        settings.smc.bounces = settings.vpl_bounces;
-    }
-    parse_smc_options(args, settings, vpl_options_given);
-    const auto rsm_resolution = args.value("--rsm-resolution");
-    const auto brsm_samples = args.value("--brsm-samples");
-    const auto brsm_defensive = args.value("--brsm-defensive");
-    vpl_options_given = vpl_options_given || rsm_resolution || brsm_samples || brsm_defensive;
-    if ((rsm_resolution || brsm_samples || brsm_defensive) && !brsm) {
-        throw UsageError("--rsm-resolution, --brsm-samples and --brsm-defensive need --vpl-source brsm");
-    }
-    if (rsm_resolution) settings.rsm_resolution = parse_whole_number("--rsm-resolution", *rsm_resolution, 2048);
-    if (brsm_samples) settings.brsm.samples_per_texel = parse_whole_number("--brsm-samples", *brsm_samples, 1024);
-    if (brsm_defensive) settings.brsm.defensive_fraction = parse_fraction("--brsm-defensive", *brsm_defensive);
-    settings.vpls_only = args.flag("--vpls-only");
-    bool lambertian = false;
-    if (auto text = args.value("--brdf")) {
-        if (*text != "gltf" && *text != "lambert")
-            throw UsageError("--brdf expects gltf or lambert, got '" + *text + "'");
-        lambertian = *text == "lambert";
-    }
-    if (auto text = args.value("--exact-clamp")) {
-        if (!gi_method(settings.method).ground_truth) {
-            throw UsageError("--exact-clamp needs --method " + gi_method_names(&GiMethodInfo::ground_truth));
-        }
-        settings.exact_min_distance_fraction = parse_fraction("--exact-clamp", *text);
-    }
-    settings.force_all_stages = args.flag("--all-stages");
-    settings.reuse_static_work = !args.flag("--no-reuse");
-    if (vpl_options_given && settings.method == GiMethod::none && !settings.vpls_only) {
-        throw UsageError(
-            "--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
-            "or --vpls-only (direct light uses no VPLs)");
-    }
-    RenderRequest r;
-    r.context = context_options;
-    r.strict = strict;
-    r.scene_arg = scene_arg;
-    r.width = width;
-    r.height = height;
-    r.camera = camera;
-    r.time = time;
-    r.animation = animation;
-    r.camera_flags = camera_flags;
-    r.extra_lights = std::move(extra_lights);
-    r.settings = settings;
-    r.lambertian = lambertian;
-    r.denoise_given = denoise_given;
-    return r;
-}
-
-void validate_render_request(const RenderRequest& request) {
-    // A sampling option the method refuses (e.g. an interleave that does not divide the block)
-    // is a command-line mistake, found before any work.
-    try {
-        validate_gi_settings(request.settings);
-    } catch (const Error& e) {
-        throw UsageError(e.what());
-    }
-}
-
-LoadedScene load_request_scene(RenderRequest& request) {
-    const std::optional<uint32_t>& camera = request.camera;
-    const std::string& scene_arg = request.scene_arg;
-    const std::optional<uint32_t>& width = request.width;
-    const std::optional<uint32_t>& height = request.height;
-    RenderSettings& settings = request.settings;
-    LoadedScene loaded;
-    scene::Scene& scene = loaded.scene;
-    std::string& described = loaded.described;
-    // The scene: a set-up name, or a file.
-    const auto load_start = std::chrono::steady_clock::now();
-    scene::LoadOptions load_options;
-    load_options.camera = camera;
-    load_options.time = request.time;
-    load_options.animation = request.animation;
-    const bool is_file =
-        scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
-    if (is_file) {
-        scene = scene::load_gltf(scene_arg, load_options);
-        described = scene_arg;
-        loaded.target = scene.bounds.center();
-        settings.width = width.value_or(640);
-        settings.height = height.value_or(360);
-    } else {
-        const scene::Setups setups = scene::load_setups(VPLKIT_SETUPS_FILE);
-        const scene::Setup& setup = scene_arg.empty() ? setups.default_setup() : setups.find(scene_arg);
-        scene = scene::load_setup_scene(setup, load_options);
-        described = setup.name + " (" + setup.scene.string() + ")";
-        loaded.target = setup.camera.target;
-        settings.width = width.value_or(setup.width ? setup.width : 640);
-        settings.height = height.value_or(setup.height ? setup.height : 360);
-    }
-    scene.lights.insert(scene.lights.end(), request.extra_lights.begin(), request.extra_lights.end());
-    loaded.target = apply_camera_flags(request.camera_flags, scene, loaded.target);
-    report_scene_warnings(scene, request.strict);
-    if (request.lambertian) scene::use_lambertian_materials(scene);
-    loaded.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
-    return loaded;
-}
 
 namespace {
 
-int render_or_plan(Args& args, bool plan_only) {
-    RenderRequest request = parse_render_request(args);
+// Render's own options: the outputs and the frames.
+struct RenderOutputs {
+    std::string out = "vplkit.png";
+    std::optional<std::string> out_hdr, out_direct, out_indirect, stats;
+    uint32_t frames = 1;
+    bool no_antialias = false;
+};
+
+// --NAME FILE into `into` (unset when not given).
+void add_file_option(CLI::App& command, const std::string& name, std::optional<std::string>& into,
+                     const std::string& placeholder, const std::string& help) {
+    command
+        .add_option_function<std::string>(
+            name, [&into](const std::string& v) { into = v; }, help)
+        ->option_text(placeholder)
+        ->group("outputs");
+}
+
+void add_render_outputs(CLI::App& command, RenderOutputs& o) {
+    command
+        .add_option("--out", o.out,
+                    "the tonemapped image, PNG; a .exr name writes the layered EXR of --out-hdr instead")
+        ->capture_default_str()
+        ->option_text("FILE.png|.exr")
+        ->group("outputs");
+    add_file_option(command, "--out-hdr", o.out_hdr, "FILE.pfm|.exr",
+                    "also the linear radiance, PFM; or a layered OpenEXR file (.exr) of every layer the frame "
+                    "has: beauty, direct, indirect (with an indirect-light method), albedo, normal (world space), "
+                    "depth (along the camera's axis, in scene units, inf where no surface was drawn) and variance "
+                    "(with --denoise: the indirect light's luminance variance); channels beauty.R ... depth.Z, "
+                    "normal.X, variance.Y; radiance, depth, variance 32-bit floats (a sun-lit pixel can pass "
+                    "half's 65504), albedo and normal 16-bit");
+    add_file_option(command, "--out-direct", o.out_direct, "FILE.pfm", "also the linear direct light, PFM");
+    add_file_option(command, "--out-indirect", o.out_indirect, "FILE.pfm", "also the linear indirect light, PFM");
+    add_file_option(command, "--stats", o.stats, "FILE.json",
+                    "also a JSON file: the device (lavapipe or not), the plans (each stage kept or left out and "
+                    "why), GPU times (frame_ms: the median frame's sum over every pass; per stage and per pass), "
+                    "the counters printed, the firefly share; a number that is not finite is written as null");
+    whole_number(command
+                     .add_option("--frames", o.frames,
+                                 "render the frame F times and print each stage's median time over frames 2..F "
+                                 "(the first pays for shader compiles); the image is the mean of the F frames on "
+                                 "the static camera, each with new samples and its G-buffer at a sub-pixel "
+                                 "offset (anti-aliasing; with --denoise the filter accumulates the indirect "
+                                 "light itself)")
+                     ->capture_default_str(),
+                 "F", 1, 1000)
+        ->group("outputs");
+    command.add_flag("--no-antialias", o.no_antialias, "with --frames: every frame at the pixel centres")
+        ->group("outputs");
+}
+
+int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, bool plan_only) {
+    RenderRequest request = options.request();
     RenderSettings& settings = request.settings;
     const ContextOptions& context_options = request.context;
     const GiMethodInfo& method = gi_method(settings.method);
-    const std::filesystem::path out = args.value("--out").value_or("vplkit.png");
-    const auto out_hdr = args.value("--out-hdr");
-    const auto out_direct = args.value("--out-direct");
-    const auto out_indirect = args.value("--out-indirect");
-    uint32_t frames = 1;
-    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 1000);
+    const std::filesystem::path out = outputs.out;
+    const auto& out_hdr = outputs.out_hdr;
+    const auto& out_direct = outputs.out_direct;
+    const auto& out_indirect = outputs.out_indirect;
+    const uint32_t frames = outputs.frames;
     // Several frames on the static camera: jittered and averaged (antialias.hpp) unless asked not to.
-    settings.antialias = !args.flag("--no-antialias") && frames > 1 && !settings.vpls_only;
-    const auto stats_path = plan_only ? std::nullopt : args.value("--stats");
+    settings.antialias = !outputs.no_antialias && frames > 1 && !settings.vpls_only;
+    const auto& stats_path = outputs.stats;
     if (settings.vpls_only && (out_hdr || out_direct || out_indirect)) {
         throw UsageError(
             "--vpls-only writes only --out (the VPL view); drop --out-hdr, --out-direct and --out-indirect");
     }
-    args.finish();
     validate_render_request(request);
     check_output("--out", out, {".png", ".exr"});
     if (out_hdr) check_output("--out-hdr", *out_hdr, {".pfm", ".exr"});
@@ -674,11 +395,27 @@ int render_or_plan(Args& args, bool plan_only) {
 
 }  // namespace
 
-int run_render(Args& args) {
-    return render_or_plan(args, false);
+void add_render(CLI::App& vplkit, Runners& runners) {
+    CLI::App* render = add_command(
+        vplkit, "render", "render a scene (set-up name or glTF file) to a PNG, with per-stage GPU times",
+        "Renders one frame (G-buffer; direct light from punctual lights and emissive triangles with BVH shadow "
+        "rays; indirect light by the chosen method; tone mapping) and prints the device used, the plan (the stages "
+        "run and why) and the GPU time of every stage.");
+    auto options = std::make_shared<RenderOptions>(*render);
+    auto outputs = std::make_shared<RenderOutputs>();
+    add_render_outputs(*render, *outputs);
+    runners.push_back({render, [options, outputs] { return render_or_plan(*options, *outputs, false); }});
 }
-int run_plan(Args& args) {
-    return render_or_plan(args, true);
+
+void add_plan(CLI::App& vplkit, Runners& runners) {
+    CLI::App* plan = add_command(
+        vplkit, "plan", "the stages a frame of a scene would run and why (render's options; no device work)",
+        "Prints the stages a frame with these options would run, and for every stage kept or left out the reason "
+        "(the effects planner, runtime/include/vplkit/planner.hpp). Reads the scene; no device work. `vplkit "
+        "render` prints the plan's one-line summary. The scene's warnings (what the file states that vplkit skips "
+        "or approximates) are printed first; --strict fails on them.");
+    auto options = std::make_shared<RenderOptions>(*plan);
+    runners.push_back({plan, [options] { return render_or_plan(*options, RenderOutputs{}, true); }});
 }
 
 }  // namespace vplkit::cli

@@ -1,44 +1,40 @@
 #pragma once
-// Every subcommand's entry point and usage text; main.cpp lists them in its command table.
+// Every subcommand's declaration: add_<name> declares it on the vplkit app (its options, each
+// with its help and its check) and appends what runs it; main.cpp lists them.
 
 #include "cli.hpp"
+#include "cli_app.hpp"
+
+#include <CLI/CLI.hpp>
 
 #include <optional>
 #include <string>
 
 namespace vplkit::cli {
 
-int run_info(Args& args);
-extern const char* const kInfoUsage;
+void add_info(CLI::App& vplkit, Runners& runners);
+// render, and plan (render's options, the frame's plan printed instead of rendered).
+void add_render(CLI::App& vplkit, Runners& runners);
+void add_plan(CLI::App& vplkit, Runners& runners);
+// bench and its benchmarks: sort, tree, bvh, gi, direct (bench without a name: gi).
+void add_bench(CLI::App& vplkit, Runners& runners);
+void add_compare(CLI::App& vplkit, Runners& runners);
+// sequence: frames along a camera path, optionally with the temporal error metrics.
+void add_sequence(CLI::App& vplkit, Runners& runners);
 
-int run_render(Args& args);
-std::string render_usage();
-
-// `vplkit plan`: render's options, the frame's plan printed instead of rendered.
-int run_plan(Args& args);
-extern const char* const kPlanUsage;
-
-int run_bench(Args& args);
-std::string bench_usage();
-
-int run_compare(Args& args);
-extern const char* const kCompareUsage;
-
-// `vplkit sequence`: frames along a camera path, optionally with seed 001's temporal metrics.
-int run_sequence(Args& args);
-extern const char* const kSequenceUsage;
-
-// `vplkit view`: the renderer in a window with a settings panel; --screenshot for scripts.
+// `vplkit view`: the renderer in a window with a settings panel; --screenshot for scripts. It reads
+// its arguments through an Args (cmd_view.cpp) and prints kViewUsage for --help.
 int run_view(Args& args);
 extern const char* const kViewUsage;
 
-// `vplkit bench tree` and `vplkit bench gi --scene NAME` (reached through run_bench; their
-// usage is part of bench_usage()).
+// Not yet declared through CLI11: they read an Args and print a fixed usage.
+int run_bench(Args& args);
+std::string bench_usage();
+int run_sequence(Args& args);
+extern const char* const kSequenceUsage;
 int run_bench_tree(Args& args);
 int run_bench_gi(Args& args, const std::string& scene);
-// `vplkit bench direct --scene NAME`: the flat and the tree direct-light samplers, RMSE vs time.
 int run_bench_direct(Args& args, const std::string& scene);
-// `vplkit bench bvh [--scene NAME]`: the host and the GPU BVH builds, refit, rays per second.
 int run_bench_bvh(Args& args, const std::optional<std::string>& scene);
 
 }  // namespace vplkit::cli

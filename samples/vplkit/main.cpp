@@ -1,12 +1,15 @@
 // vplkit: the command-line program. main() only dispatches: each subcommand is a file of its own
-// (cmd_<name>.cpp) and one line in kCommands.
+// (cmd_<name>.cpp) that declares its options through CLI11 (commands.hpp); the help pages are
+// generated from those declarations.
 
 #include "cli.hpp"
+#include "cli_app.hpp"
 #include "commands.hpp"
 #include "setting_flags.hpp"
 
-#include "vplkit/error.hpp"
+#include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -15,78 +18,121 @@
 namespace {
 
 using vplkit::cli::Args;
-using vplkit::cli::Command;
+using vplkit::cli::Runner;
+using vplkit::cli::Runners;
 using vplkit::cli::UsageError;
 
-// A command's usage that is a fixed text.
+// A command that reads its own arguments (an Args) and prints a fixed usage for --help.
+void add_args_command(CLI::App& vplkit, Runners& runners, const std::string& name, const std::string& summary,
+                      std::string (*usage)(), int (*run)(Args&)) {
+    CLI::App* command = vplkit::cli::add_command(vplkit, name, summary);
+    command->prefix_command();  // everything after the name is left for the command
+    command->set_help_flag();
+    runners.push_back({command,
+                       [command, name, usage, run] {
+                           Args args(name, command->remaining());
+                           if (args.flag("--help", "-h")) {
+                               std::fputs(usage().c_str(), stdout);
+                               return 0;
+                           }
+                           return run(args);
+                       },
+                       true});
+}
+
 template <const char* const* text>
 std::string fixed_usage() {
     return *text;
 }
 
-const Command kCommands[] = {
-    {"info", "list the Vulkan devices, the one vplkit picks and why, and its features",
-     fixed_usage<&vplkit::cli::kInfoUsage>, vplkit::cli::run_info},
-    {"render", "render a scene (set-up name or glTF file) to a PNG, with per-stage GPU times",
-     vplkit::cli::render_usage, vplkit::cli::run_render},
-    {"plan", "the stages a frame of a scene would run and why (render's options; no device work)",
-     fixed_usage<&vplkit::cli::kPlanUsage>, vplkit::cli::run_plan},
-    {"bench", "GPU timings of the kit's stages (sort, tree, bvh; gi --scene NAME: accuracy vs time of every method)",
-     vplkit::cli::bench_usage, vplkit::cli::run_bench},
-    {"compare", "error of a PFM or PNG image against a reference: RMSE, relative RMSE, relMSE, SSIM; difference PNG",
-     fixed_usage<&vplkit::cli::kCompareUsage>, vplkit::cli::run_compare},
-    {"sequence", "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
-     fixed_usage<&vplkit::cli::kSequenceUsage>, vplkit::cli::run_sequence},
-    {"view", "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
-     fixed_usage<&vplkit::cli::kViewUsage>, vplkit::cli::run_view},
-};
-
-void print_usage(std::FILE* out) {
-    std::fprintf(out, "usage: vplkit <command> [options]\n\ncommands:\n");
-    for (const Command& c : kCommands) std::fprintf(out, "  %-8s %s\n", c.name, c.summary);
-    std::fprintf(
-        out,
-        "\n'vplkit <command> --help' shows a command's options.\n"
-        "environment: VPLKIT_DEVICE=auto|gpu|cpu|<index>|<name part> picks the device when no --device is given\n");
+// The subcommand chosen: the deepest one parsed (e.g. bench, then gi).
+const CLI::App* chosen_command(const CLI::App& app) {
+    const CLI::App* at = &app;
+    while (!at->get_subcommands().empty()) at = at->get_subcommands().front();
+    return at;
 }
 
-const Command* find_command(const std::string& name) {
-    for (const Command& c : kCommands) {
-        if (name == c.name) return &c;
+void print_usage_hint(const CLI::App& app, const CLI::App* command) {
+    if (command == &app) {
+        std::fprintf(stderr, "usage: vplkit <command> [options]; 'vplkit --help' lists the commands\n");
+    } else {
+        const std::string path = vplkit::cli::command_path(*command);
+        std::fprintf(stderr, "usage: vplkit %s [options]; 'vplkit %s --help' lists them\n", path.c_str(), path.c_str());
     }
-    return nullptr;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
     std::vector<std::string> args(argv + 1, argv + argc);
+    CLI::App app("vplkit: virtual point lights on Vulkan: render, plan, measure and compare global illumination.",
+                 "vplkit");
+    vplkit::cli::configure_app(app);
+    app.allow_extras();  // an unknown option is reported as vplkit words it
+    Runners runners;
+    vplkit::cli::add_info(app, runners);
+    vplkit::cli::add_render(app, runners);
+    vplkit::cli::add_plan(app, runners);
+    add_args_command(
+        app, runners, "bench",
+        "GPU timings of the kit's stages (sort, tree, bvh; gi --scene NAME: accuracy vs time of every method)",
+        vplkit::cli::bench_usage, vplkit::cli::run_bench);
+    vplkit::cli::add_compare(app, runners);
+    add_args_command(app, runners, "sequence",
+                     "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
+                     fixed_usage<&vplkit::cli::kSequenceUsage>, vplkit::cli::run_sequence);
+    add_args_command(
+        app, runners, "view",
+        "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
+        fixed_usage<&vplkit::cli::kViewUsage>, vplkit::cli::run_view);
+    // Set after the commands, which would inherit it.
+    app.footer(
+        "'vplkit <command> --help' shows a command's options.\n"
+        "environment: VPLKIT_DEVICE=auto|gpu|cpu|<index>|<name part> picks the device when no --device is given");
+
     if (args.empty()) {
-        std::fprintf(stderr, "vplkit: no command given\n");
-        print_usage(stderr);
+        std::fprintf(stderr, "vplkit: no command given\n%s", app.help().c_str());
         return 2;
     }
-    const std::string name = args.front();
-    if (name == "--help" || name == "-h" || name == "help") {
-        print_usage(stdout);
-        return 0;
-    }
-    const Command* command = find_command(name);
-    if (!command) {
-        std::fprintf(stderr, "vplkit: unknown %s '%s'\n", name.rfind('-', 0) == 0 ? "option" : "command", name.c_str());
-        print_usage(stderr);
+    if (args.front() == "help") args.front() = "--help";
+    const auto& commands = app.get_subcommands({});
+    const bool known =
+        std::any_of(commands.begin(), commands.end(), [&](const CLI::App* c) { return c->get_name() == args.front(); });
+    if (!known && args.front().rfind('-', 0) != 0) {
+        std::fprintf(stderr, "vplkit: unknown command '%s'\n", args.front().c_str());
+        print_usage_hint(app, &app);
         return 2;
     }
-    Args command_args(name, std::vector<std::string>(args.begin() + 1, args.end()));
+    // A bench without a benchmark name, options first, is the GI bench (`vplkit bench --scene NAME`).
+    if (args.size() > 1 && args.front() == "bench" && args[1].rfind('-', 0) == 0 && args[1] != "--help" &&
+        args[1] != "-h") {
+        args.insert(args.begin() + 1, "gi");
+    }
+
+    const CLI::App* command = &app;
     try {
-        if (command_args.flag("--help", "-h")) {
-            std::fputs(command->usage().c_str(), stdout);
-            return 0;
+        std::vector<std::string> reversed(args.rbegin(), args.rend());  // CLI11 takes them last first
+        try {
+            app.parse(reversed);
+        } catch (const CLI::CallForHelp& e) {
+            return app.exit(e);
+        } catch (const CLI::ParseError& e) {
+            throw UsageError(vplkit::cli::parse_error_text(e));
         }
-        return command->run(command_args);
+        command = chosen_command(app);
+        if (command == &app) {
+            vplkit::cli::check_parsed(app);
+            throw UsageError("no command given");
+        }
+        const auto runner =
+            std::find_if(runners.begin(), runners.end(), [&](const Runner& r) { return r.app == command; });
+        if (runner == runners.end()) throw UsageError("no command given");
+        if (!runner->reads_leftovers) vplkit::cli::check_parsed(*command);
+        return runner->run();
     } catch (const UsageError& e) {
+        if (command == &app) command = chosen_command(app);
         std::fprintf(stderr, "vplkit: %s\n", vplkit::cli::with_flags(e.what()).c_str());
-        std::fputs(command->usage().c_str(), stderr);
+        print_usage_hint(app, command);
         return 2;
     } catch (const std::exception& e) {
         // Runtime errors already start with "vplkit: "; the settings they name become flags.

@@ -1,10 +1,12 @@
 #pragma once
-// What `vplkit render` and `vplkit sequence` read alike: the device, the scene (a standard set-up
+// What `vplkit render`, `plan`, `sequence` and `view` read alike: the device, the scene (a standard set-up
 // or a file, extra lights, the BRDF), the size and every indirect-light option, parsed into
 // RenderSettings; then the scene loaded for them. The outputs are each command's own.
 
 #include "camera_flags.hpp"
 #include "cli.hpp"
+
+#include <CLI/CLI.hpp>
 
 #include "vplkit/context.hpp"
 #include "vplkit/render_settings.hpp"
@@ -33,7 +35,31 @@ struct RenderRequest {
     bool denoise_given = false;  // --denoise was on the command line (sequence's default differs)
 };
 
-// Reads render's options except the outputs and --frames (UsageError for a mistake).
+// Render's options except the outputs and --frames, declared on a command (each with its help and
+// its check: render_options.cpp); after parsing, request() reads them and checks what they say
+// together (UsageError for a combination refused, e.g. --spp with a method that takes none).
+class RenderOptions {
+public:
+    explicit RenderOptions(CLI::App& command);
+    RenderOptions(const RenderOptions&) = delete;
+    RenderOptions& operator=(const RenderOptions&) = delete;
+
+    RenderRequest request() const;
+
+private:
+    bool given(const std::string& option) const;
+
+    const CLI::App& command_;
+    RenderRequest request_;  // the options bound to a field of their own
+    std::string method_ = "direct", direct_ = "auto", traversal_ = "substitute", glossy_lobe_ = "auto";
+    std::string gi_resolution_ = "full", denoise_ = "off", vpl_source_ = "auto", brdf_ = "gltf";
+    std::string exposure_ = "auto";
+    std::vector<std::string> suns_, points_;
+    bool no_reuse_ = false;
+};
+
+// For a command that reads its arguments through an Args (view): render's options, declared as
+// above, parsed from what is left of `args` (UsageError for a mistake or an unknown option).
 RenderRequest parse_render_request(Args& args);
 // The sampling options checked before any work (a refused one is a UsageError).
 void validate_render_request(const RenderRequest& request);
