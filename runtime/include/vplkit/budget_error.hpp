@@ -1,0 +1,55 @@
+#pragma once
+// The budget's error model: a configuration's predicted RMSE of the tonemapped frame (sRGB / 255,
+// the bench's metric) against the exact frame, without rendering the exact frame. Its squared
+// error is the sum of
+//   sampling noise:  sigma_s^2(method, resolution, block) x spp0 / spp, measured from two frames
+//                    of this scene with other random numbers (budget_noise.hpp) at spp0;
+//   the VPL set's noise: sigma_v^2 x V0 / V, measured from two frames with other VPL seeds less
+//                    the sampling noise (the error a VPL set of V has against the light itself);
+//   bias:            the method's floor (sst, hybrid: their substitutes) and half resolution's
+//                    (the upsampling), squared, from the bench's tables (docs/budget.md);
+// and svgf replaces sampling noise n^2 by F^2 + r n^2 (the filter's blur floor F and the share r
+// of the noise it keeps, fitted to the bench's denoised curves). docs/budget.md says where it is wrong.
+
+#include "vplkit/budget_config.hpp"
+
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+namespace vplkit {
+
+// Bias floors, RMSE of tonemapped frames beyond rtslc's (which is unbiased), the median over the
+// bench's three scenes at 320x180 (docs/measurements.md, "the four methods against exact":
+// e^2 = b^2 + c / spp fitted to 8 and 32 spp; docs/budget.md has the per-scene values).
+inline constexpr double kSstBiasFloor = 0.025;
+inline constexpr double kHybridBiasFloor = 0.016;
+inline constexpr double kHalfResolutionBiasFloor = 0.017;
+// svgf (docs/denoise.md's table, Cornell 128x72, 12 points fitted within 0.001 RMSE).
+inline constexpr double kSvgfBlurFloor = 0.037;
+inline constexpr double kSvgfNoiseShare = 0.062;
+
+// The method's bias floor: 0 for rtslc, the constants above for sst and hybrid.
+double method_bias_floor(GiMethod method);
+
+// Sampling noise measured for one method, resolution and block size.
+struct NoiseMeasurement {
+    GiMethod method = GiMethod::hybrid;
+    bool half_resolution = false;
+    uint32_t block_size = 8;
+    uint32_t spp = 4;       // spp0
+    double variance = 0.0;  // sigma_s^2 per value at spp0
+};
+
+struct ErrorModel {
+    std::vector<NoiseMeasurement> sampling;
+    uint32_t vpl_measured = 0;  // V0 (vpl_count_knob)
+    double vpl_variance = 0.0;  // sigma_v^2 at V0
+
+    const NoiseMeasurement* find(GiMethod method, bool half_resolution, uint32_t block_size) const;
+    // The predicted RMSE; nothing when its sampling noise was not measured, or for the temporal
+    // filter alone (not modelled).
+    std::optional<double> predict_rmse(const BudgetConfig& config) const;
+};
+
+}  // namespace vplkit

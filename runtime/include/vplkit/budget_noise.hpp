@@ -1,0 +1,25 @@
+#pragma once
+// The noise of a Monte Carlo frame estimated from the frames themselves, without a reference:
+// two estimates a and b of the same image with independent random numbers (two frames of a
+// static camera with other sampling numbers, or two halves of one frame's samples) differ by
+// noise alone, so E[(a - b)^2] = 2 sigma^2 per value, and sigma^2 = E[(a - b)^2] / 2. The mean of
+// that over every value is the frame's noise as a mean squared error: what its RMSE against the
+// converged image would be from noise alone (the bias is not in it).
+
+#include <cstdint>
+#include <span>
+
+namespace vplkit {
+
+// mean over all values of (a - b)^2 / 2: the variance of one of the two estimates, per value.
+// Throws vplkit::Error when the sizes differ, are empty, or a value is not finite.
+double half_difference_variance(std::span<const float> a, std::span<const float> b);
+// The same over 8-bit values (RenderedImage::rgba8, alpha left out) on the scale 0..1 (/ 255),
+// the scale of the bench's RMSE of tonemapped frames.
+double half_difference_variance_rgba8(std::span<const uint8_t> a, std::span<const uint8_t> b);
+
+// A variance measured with `measured_samples` samples per pixel, for `samples` instead: an
+// average of independent samples has variance proportional to 1 / samples.
+double variance_at_samples(double variance, uint32_t measured_samples, uint32_t samples);
+
+}  // namespace vplkit

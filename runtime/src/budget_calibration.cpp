@@ -1,0 +1,242 @@
+// The budget's calibration frames (budget_calibration.hpp). Per method, resolution and block
+// size: two frames at spp0 with other random numbers (the noise, and two cost samples) and one at
+// a second spp (the cost per sample). Once: a frame with another VPL seed (the VPL set's noise),
+// one with the space's smallest VPL budget, and frames at half the size, with and without svgf
+// (the cost per pixel). An untimed frame first compiles the shaders and fixes the exposure.
+
+#include "vplkit/budget_calibration.hpp"
+
+#include "budget_cache.hpp"
+#include "vplkit/budget_noise.hpp"
+#include "vplkit/error.hpp"
+#include "vplkit/planner.hpp"
+#include "vplkit/renderer.hpp"
+#include "vplkit/scene.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace vplkit {
+namespace {
+
+// One frame to render: a configuration, its size, seed and frame counter.
+struct CalibrationFrame {
+    BudgetConfig config;
+    uint32_t width = 0;
+    uint32_t height = 0;
+    uint32_t seed = 0;
+    uint32_t frame = 0;
+};
+
+// The settings every calibration frame shares: nothing reused, a fixed exposure, no
+// anti-aliasing (it would average frames), nothing read back but the image.
+RenderSettings calibration_base(RenderSettings base) {
+    base.reuse_static_work = false;
+    base.antialias = false;
+    base.vpls_only = false;
+    base.read_back_aovs = false;
+    base.force_all_stages = false;
+    base.progress = nullptr;
+    base.smc_warmup_progress = nullptr;
+    return base;
+}
+
+RenderSettings frame_settings(const RenderSettings& base, const CalibrationFrame& f, VplSource source) {
+    RenderSettings s = apply_budget_config(base, f.config, source);
+    s.width = f.width;
+    s.height = f.height;
+    s.seed = f.seed;
+    s.frame = f.frame;
+    return s;
+}
+
+std::vector<uint32_t> blocks_of(GiMethod method, const BudgetSpace& space) {
+    // sst builds no cuts: one block size stands for all.
+    if (method == GiMethod::sst) return {space.block_sizes.front()};
+    return space.block_sizes;
+}
+
+// The entries of `list` without repeats, in the order given (so the first is the space's first).
+template <typename T>
+std::vector<T> unique_in_order(const std::vector<T>& list) {
+    std::vector<T> out;
+    for (const T& v : list) {
+        if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
+    }
+    return out;
+}
+
+}  // namespace
+
+BudgetSpace default_budget_space(const RenderSettings& base, VplSource source) {
+    BudgetSpace space;
+    const uint32_t v = vpl_count_knob(base, source);
+    space.vpls = v >= 4 ? std::vector<uint32_t>{v / 4, v} : std::vector<uint32_t>{v};
+    space.block_sizes = {base.block_size};
+    return space;
+}
+
+void validate_budget_space(const BudgetSpace& space) {
+    if (space.methods.empty() || space.spp.empty() || space.half_resolution.empty() || space.denoise.empty() ||
+        space.vpls.empty() || space.block_sizes.empty()) {
+        throw Error(
+            "budget: every list of the space (methods, spp, resolutions, denoisers, VPL budgets, "
+            "block sizes) needs an entry");
+    }
+    for (GiMethod m : space.methods) {
+        if (m != GiMethod::sst && m != GiMethod::rtslc && m != GiMethod::hybrid) {
+            throw Error(std::string("budget: `method` ") + gi_method_name(m) +
+                        " cannot be chosen by the budget (only sst, rtslc and hybrid trade samples for time "
+                        "with a noise the frame shows)");
+        }
+    }
+    for (uint32_t n : space.spp) {
+        if (n < 1 || n > 64) throw Error("budget: `samples_per_pixel` " + std::to_string(n) + " is not in 1..64");
+    }
+    for (uint32_t b : space.block_sizes) {
+        if (b < 1 || b > 32) throw Error("budget: `block_size` " + std::to_string(b) + " is not in 1..32");
+    }
+    for (uint32_t v : space.vpls) {
+        if (v == 0) throw Error("budget: a VPL budget of 0");
+    }
+    for (DenoiseMode d : space.denoise) {
+        if (d == DenoiseMode::temporal) {
+            throw Error(
+                "budget: `denoise` temporal is not modelled (its effect depends on how long the camera "
+                "stays still); off and svgf are");
+        }
+    }
+}
+
+BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device, const scene::Scene& scene,
+                                   const scene::Camera& camera, const RenderSettings& base_settings,
+                                   const BudgetSpace& space, const BudgetCalibrationOptions& options) {
+    validate_budget_space(space);
+    for (uint32_t n : {options.calibration_spp, options.second_spp}) {
+        if (n < 1 || n > 64) throw Error("budget: a calibration spp of " + std::to_string(n) + " is not in 1..64");
+    }
+    const auto start = std::chrono::steady_clock::now();
+    RenderSettings base = calibration_base(base_settings);
+    const VplSource source = plan_frame(scene, base, "budget").vpl_source;
+    const uint32_t w = base.width, h = base.height;
+    const uint32_t spp0 = options.calibration_spp, spp1 = options.second_spp;
+    const uint32_t v0 = vpl_count_knob(base, source);
+    const uint32_t v_small = *std::min_element(space.vpls.begin(), space.vpls.end());
+    const GiMethod m0 = space.methods.front();
+    const bool half0 = space.half_resolution.front();
+    const uint32_t b0 = space.block_sizes.front();
+    auto config = [&](GiMethod m, uint32_t spp, bool half, DenoiseMode d, uint32_t vpls, uint32_t block) {
+        return BudgetConfig{m, spp, half, d, vpls, block};
+    };
+
+    // The frames, and which pairs of them measure noise.
+    std::vector<CalibrationFrame> frames;
+    std::vector<std::pair<size_t, size_t>> noise_pairs;  // the first is (m0, half0, b0)'s
+    for (GiMethod m : unique_in_order(space.methods)) {
+        for (bool half : unique_in_order(space.half_resolution)) {
+            for (uint32_t b : blocks_of(m, space)) {
+                noise_pairs.emplace_back(frames.size(), frames.size() + 1);
+                frames.push_back({config(m, spp0, half, DenoiseMode::off, v0, b), w, h, base.seed, 1});
+                frames.push_back({config(m, spp0, half, DenoiseMode::off, v0, b), w, h, base.seed, 2});
+                frames.push_back({config(m, spp1, half, DenoiseMode::off, v0, b), w, h, base.seed, 3});
+            }
+        }
+    }
+    const size_t vpl_frame = frames.size();  // compared with the first noise pair's first frame
+    frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v0, b0), w, h, base.seed + 1, 4});
+    if (v_small != v0) frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v_small, b0), w, h, base.seed, 1});
+    const uint32_t w2 = std::max(w / 2, 1u), h2 = std::max(h / 2, 1u);
+    frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v0, b0), w2, h2, base.seed, 1});
+    if (std::find(space.denoise.begin(), space.denoise.end(), DenoiseMode::svgf) != space.denoise.end()) {
+        frames.push_back({config(m0, spp0, half0, DenoiseMode::svgf, v0, b0), w, h, base.seed, 0});
+        frames.push_back({config(m0, spp0, half0, DenoiseMode::svgf, v0, b0), w2, h2, base.seed, 0});
+    }
+
+    // The key: what the measurements depend on, the plans of every frame among them.
+    std::string plans;
+    for (const CalibrationFrame& f : frames) {
+        const RenderSettings s = frame_settings(base, f, source);
+        plans += describe_budget_config(f.config) + " " + std::to_string(f.width) + "x" + std::to_string(f.height) +
+                 ": " + plan_frame(scene, s, "budget").summary() + "\n";
+    }
+    plans += "direct " + std::to_string(base.direct_samples) + " " + direct_sampler_name(base.direct_sampler) +
+             " bounces " + std::to_string(base.vpl_bounces) + " rsm " + std::to_string(base.rsm_resolution) +
+             " interleave " + std::to_string(base.interleave) + " seed " + std::to_string(base.seed) + " exposure " +
+             (base.auto_exposure ? std::string("auto") : std::to_string(base.exposure));
+    std::string scene_id = options.scene_id;
+    std::replace(scene_id.begin(), scene_id.end(), '\n', ' ');
+    BudgetCalibration result;
+    result.key = "device " + device.name + "; driver " + device.driver_name + " " + device.driver_info + "; scene " +
+                 scene_id + "; size " + std::to_string(w) + "x" + std::to_string(h) + "; plans " +
+                 detail::fnv1a_hex(plans);
+    if (!options.cache_dir.empty()) {
+        result.cache_file = detail::budget_cache_file(options.cache_dir, result.key);
+        if (auto cached = detail::read_budget_cache(result.cache_file, result.key)) {
+            result.model = std::move(*cached);
+            result.from_cache = true;
+            return result;
+        }
+    }
+
+    // The untimed first frame: shader compiles, and the exposure every timed frame then keeps
+    // (so the noise is on the tonemap's scale the user sees, not a per-frame automatic one).
+    const uint32_t total = uint32_t(frames.size()) + 1;
+    {
+        const RenderedImage first = renderer.render(camera, frame_settings(base, frames.front(), source));
+        base.exposure = first.exposure;
+        base.auto_exposure = false;
+    }
+    if (options.progress) options.progress(1, total);
+
+    std::vector<RenderedImage> images(frames.size());
+    for (size_t i = 0; i < frames.size(); ++i) {
+        const RenderSettings s = frame_settings(base, frames[i], source);
+        RenderedImage image = renderer.render(camera, s);
+        const CostPoint point = cost_point(s, source);
+        result.model.cost.add_frame(image.timings, point);
+        // A stage that ran but recorded no timed pass took no GPU time.
+        for (const PlannedStage& stage : image.plan.stages) {
+            const uint32_t tag = stage_tag(stage.stage);
+            const bool timed = std::any_of(image.timings.begin(), image.timings.end(),
+                                           [&](const PassTiming& t) { return t.tag == tag; });
+            if (stage.runs && !timed) result.model.cost.add_sample(tag, point, 0.0);
+        }
+        // Keep only what the noise needs (the images of the pairs and the VPL frame).
+        image.timings.clear();
+        images[i] = std::move(image);
+        if (options.progress) options.progress(uint32_t(i) + 2, total);
+    }
+    result.model.cost.fit();
+
+    // Noise on the linear indirect light (the direct light's own sampling noise left out), put on
+    // the tonemapped frame's scale by the ratio of the two frames' tonemapped to linear noise.
+    auto tonemap_scale = [&](const RenderedImage& a, const RenderedImage& b) {
+        const double linear = half_difference_variance(a.radiance, b.radiance);
+        return linear > 0.0 ? half_difference_variance_rgba8(a.rgba8, b.rgba8) / linear : 0.0;
+    };
+    for (const auto& [first, second] : noise_pairs) {
+        const RenderedImage& a = images[first];
+        const RenderedImage& b = images[second];
+        NoiseMeasurement m;
+        m.method = frames[first].config.method;
+        m.half_resolution = frames[first].config.half_resolution;
+        m.block_size = frames[first].config.block_size;
+        m.spp = spp0;
+        m.variance = half_difference_variance(a.indirect, b.indirect) * tonemap_scale(a, b);
+        result.model.error.sampling.push_back(m);
+    }
+    {
+        // The same frame with other VPLs: sampling noise and the VPL set's, sigma_s^2 + sigma_v^2.
+        const RenderedImage& a = images[noise_pairs.front().first];
+        const RenderedImage& e = images[vpl_frame];
+        const double both = half_difference_variance(a.indirect, e.indirect) * tonemap_scale(a, e);
+        result.model.error.vpl_measured = v0;
+        result.model.error.vpl_variance = std::max(0.0, both - result.model.error.sampling.front().variance);
+    }
+    result.frames = uint32_t(frames.size()) + 1;
+    result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (!result.cache_file.empty()) detail::write_budget_cache(result.cache_file, result.key, result.model);
+    return result;
+}
+
+}  // namespace vplkit

@@ -1,0 +1,125 @@
+// A calibration on the test device (lavapipe) at 32x32 in the point-lit Cornell box: every
+// configuration of its space gets a prediction, the noise it measured is there, the cache gives
+// the same model back without rendering, and a changed plan calibrates again.
+
+#include "vplkit/budget_calibration.hpp"
+
+#include "vplkit/context.hpp"
+#include "vplkit/renderer.hpp"
+#include "vplkit/scene.hpp"
+#include "vplkit_test/context.hpp"
+
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <unistd.h>
+
+#ifndef VPLKIT_SOURCE_DIR
+#error "VPLKIT_SOURCE_DIR must be defined by the build"
+#endif
+
+namespace {
+
+using vplkit::DenoiseMode;
+using vplkit::GiMethod;
+
+constexpr const char* kCornellPoint = VPLKIT_SOURCE_DIR "/scenes/cornell_point/cornell_point.gltf";
+
+vplkit::RenderSettings small() {
+    vplkit::RenderSettings s;
+    s.width = 32;
+    s.height = 32;
+    s.vpl_source = vplkit::VplSource::ir;
+    s.vpl_paths = 256;
+    s.direct_samples = 2;
+    return s;
+}
+
+// A directory of this process's own, removed before and after.
+struct TemporaryDirectory {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("vplkit-budget-test-" + std::to_string(::getpid()));
+    TemporaryDirectory() { std::filesystem::remove_all(path); }
+    ~TemporaryDirectory() { std::filesystem::remove_all(path); }
+};
+
+}  // namespace
+
+TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is cached") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    vplkit::Renderer renderer(ctx, scene);
+    const TemporaryDirectory cache;
+    const vplkit::RenderSettings base = small();
+    vplkit::BudgetSpace space = vplkit::default_budget_space(base, vplkit::VplSource::ir);
+    space.methods = {GiMethod::rtslc, GiMethod::hybrid};
+    space.spp = {1, 4, 16};
+    CHECK(space.vpls == std::vector<uint32_t>{64, 256});
+    vplkit::BudgetCalibrationOptions options;
+    options.cache_dir = cache.path;
+    options.scene_id = "cornell_point";
+
+    const auto first = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), base, space, options);
+    CHECK(!first.from_cache);
+    // 2 methods x 2 resolutions x 3 frames, the VPL seed, the smaller VPL budget, half size with
+    // and without svgf, and the untimed first frame.
+    CHECK(first.frames == 18);
+    CHECK(std::filesystem::exists(first.cache_file));
+    REQUIRE(first.model.error.sampling.size() == 4);
+    for (const auto& m : first.model.error.sampling) {
+        CAPTURE(int(m.method));
+        CHECK(m.variance > 0.0);
+        CHECK(m.variance < 1.0);  // tonemapped values lie in 0..1
+    }
+    CHECK(first.model.error.vpl_measured == 256);
+    CHECK(first.model.error.vpl_variance >= 0.0);
+
+    const auto candidates = vplkit::budget_candidates(first.model, space, scene, base);
+    CHECK(candidates.size() == 2 * 3 * 2 * 2 * 2);
+    for (const auto& c : candidates) {
+        CHECK(c.predicted_ms > 0.0);
+        CHECK(c.predicted_rmse > 0.0);
+    }
+    const auto generous = vplkit::choose_for_budget(candidates, 1e9);
+    CHECK(!generous.over_budget);
+    CHECK(generous.chosen.config.spp == 16);  // with all the time there is, the most samples
+    CHECK(vplkit::choose_for_budget(candidates, 1e-6).over_budget);
+
+    // The same key again: read back, the same predictions, nothing rendered.
+    const auto second = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), base, space, options);
+    CHECK(second.from_cache);
+    CHECK(second.frames == 0);
+    CHECK(second.key == first.key);
+    const auto again = vplkit::budget_candidates(second.model, space, scene, base);
+    REQUIRE(again.size() == candidates.size());
+    for (size_t i = 0; i < again.size(); ++i) {
+        CHECK(again[i].predicted_ms == candidates[i].predicted_ms);
+        CHECK(again[i].predicted_rmse == candidates[i].predicted_rmse);
+    }
+
+    // Another plan (direct light sampled otherwise, a smaller space): another key, calibrated anew.
+    vplkit::RenderSettings other = base;
+    other.direct_samples = 4;
+    vplkit::BudgetSpace narrow = space;
+    narrow.methods = {GiMethod::rtslc};
+    narrow.half_resolution = {false};
+    narrow.denoise = {DenoiseMode::off};
+    const auto third = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), other, narrow, options);
+    CHECK(!third.from_cache);
+    CHECK(third.key != first.key);
+}
+
+TEST_CASE("budget: the space refuses methods without a noise to trade, and bad knobs") {
+    vplkit::BudgetSpace space = vplkit::default_budget_space(small(), vplkit::VplSource::ir);
+    space.methods = {GiMethod::flc};
+    CHECK_THROWS_WITH_AS(vplkit::validate_budget_space(space), doctest::Contains("`method` flc"), vplkit::Error);
+    space = vplkit::default_budget_space(small(), vplkit::VplSource::ir);
+    space.spp = {0};
+    CHECK_THROWS_AS(vplkit::validate_budget_space(space), vplkit::Error);
+    space = vplkit::default_budget_space(small(), vplkit::VplSource::ir);
+    space.denoise = {DenoiseMode::temporal};
+    CHECK_THROWS_WITH_AS(vplkit::validate_budget_space(space), doctest::Contains("temporal"), vplkit::Error);
+    space = vplkit::default_budget_space(small(), vplkit::VplSource::ir);
+    space.block_sizes.clear();
+    CHECK_THROWS_AS(vplkit::validate_budget_space(space), vplkit::Error);
+}
