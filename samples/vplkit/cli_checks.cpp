@@ -1,5 +1,6 @@
 #include "cli_checks.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -125,6 +126,38 @@ CLI::Option* one_of(CLI::Option* option, const std::vector<std::string>& names) 
     std::string shape;
     for (const std::string& n : names) shape += (shape.empty() ? "" : "|") + n;
     return option->check(one_of_check(names))->option_text(shape);
+}
+
+std::vector<std::string> split_names(const std::string& text) {
+    std::vector<std::string> names;
+    size_t start = 0;
+    while (start <= text.size()) {
+        const size_t comma = std::min(text.find(',', start), text.size());
+        names.push_back(text.substr(start, comma - start));
+        start = comma + 1;
+    }
+    return names;
+}
+
+CLI::Validator name_list_check(const std::vector<std::string>& names) {
+    return CLI::Validator(
+        [names](std::string& text) -> std::string {
+            for (const std::string& name : split_names(text)) {
+                if (std::find(names.begin(), names.end(), name) == names.end()) {
+                    std::string all;
+                    for (const std::string& n : names) all += (all.empty() ? "" : ", ") + n;
+                    return "expects a comma-separated list of " + all + ", got '" + name + "' in '" + text + "'";
+                }
+            }
+            return "";
+        },
+        "", "names");
+}
+
+CLI::Option* name_list(CLI::Option* option, const std::vector<std::string>& names) {
+    std::string shape;
+    for (const std::string& n : names) shape += (shape.empty() ? "" : ",") + n;
+    return option->check(name_list_check(names))->option_text("LIST of " + shape);
 }
 
 }  // namespace vplkit::cli

@@ -44,6 +44,13 @@ CLI::Validator one_of_check(const std::vector<std::string>& names);
 // The option takes one of `names`; its placeholder lists them ("auto|on|off").
 CLI::Option* one_of(CLI::Option* option, const std::vector<std::string>& names);
 
+// Comma-separated names, each one of `names`: "expects a comma-separated list of a, b, c, got 'x'
+// in 'a,x'"; the help lists them.
+CLI::Validator name_list_check(const std::vector<std::string>& names);
+CLI::Option* name_list(CLI::Option* option, const std::vector<std::string>& names);
+// The names of a list `text` (split at commas; checked by name_list_check).
+std::vector<std::string> split_names(const std::string& text);
+
 // "a, b or c".
 std::string spoken_list(const std::vector<std::string>& names);
 

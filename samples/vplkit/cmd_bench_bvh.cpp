@@ -6,6 +6,8 @@
 
 #include "bench_timing.hpp"
 #include "cli.hpp"
+#include "cli_checks.hpp"
+#include "device_options.hpp"
 #include "commands.hpp"
 
 #include "vplkit/buffer.hpp"
@@ -148,23 +150,28 @@ std::vector<std::pair<std::string, double>> stage_medians(const std::vector<Stag
 
 }  // namespace
 
-int run_bench_bvh(Args& args, const std::optional<std::string>& scene) {
-    ContextOptions options;
-    if (auto device = args.value("--device")) options.device = *device;
+namespace {
+
+struct BenchBvhOptions {
+    ContextOptions context;
+    std::optional<std::string> scene, counts, csv;
+    uint32_t runs = 5;
+    uint32_t rays = 1u << 18;
+};
+
+int run_bench_bvh(const BenchBvhOptions& o) {
+    const ContextOptions& options = o.context;
+    const std::optional<std::string>& scene = o.scene;
     // Soups by default; with --scene only the scene unless --counts asks for soups too.
     std::vector<uint32_t> counts;
-    if (auto text = args.value("--counts")) {
-        counts = parse_whole_number_list("--counts", *text, kBvhCountMask - 1);
+    if (o.counts) {
+        counts = parse_whole_number_list("--counts", *o.counts, kBvhCountMask - 1);
     } else if (!scene) {
         counts = {50000, 200000, 1000000};
     }
-    uint32_t runs = 5;
-    if (auto text = args.value("--runs")) runs = parse_whole_number("--runs", *text, 100000);
-    uint32_t ray_count = 1u << 18;
-    if (auto text = args.value("--rays")) ray_count = parse_whole_number("--rays", *text, 1u << 22);
-    const auto csv_path = args.value("--csv");
-    args.finish();
-    if (runs == 0 || ray_count == 0) throw UsageError("--runs and --rays must be at least 1");
+    const uint32_t runs = o.runs;
+    const uint32_t ray_count = o.rays;
+    const std::optional<std::string>& csv_path = o.csv;
 
     std::vector<Case> cases;
     if (scene) cases.push_back(scene_case(*scene));  // first: a bad name fails before any device work
@@ -259,6 +266,36 @@ int run_bench_bvh(Args& args, const std::optional<std::string>& scene) {
         std::printf("wrote %s\n", csv_path->c_str());
     }
     return 0;
+}
+
+}  // namespace
+
+void add_bench_bvh(CLI::App& bench, Runners& runners) {
+    CLI::App* bvh = add_command(
+        bench, "bvh", "the host and the GPU BVH builds: build and refit times, rays per second",
+        "The host's binned SAH BVH against the GPU LBVH (Morton codes, radix sort, Karras 2012), on random "
+        "triangle soups and a scene: build time (host: wall clock, one core; GPU: timestamps, median of R runs "
+        "after a warm-up, per stage), GPU refit time, nodes, depth, SAH cost, and millions of rays per second "
+        "through each tree (closest hit and occlusion, the same rays). Checks that both trees give the same "
+        "nearest hits.");
+    auto o = std::make_shared<BenchBvhOptions>();
+    add_device_options(*bvh, o->context, false);
+    whole_number_list(bvh->add_option_function<std::string>(
+                          "--counts", [o](const std::string& v) { o->counts = v; },
+                          "soup sizes in triangles (default 50000,200000,1000000; none with --scene unless given)"),
+                      "N", kBvhCountMask - 1);
+    bvh->add_option_function<std::string>(
+           "--scene", [o](const std::string& v) { o->scene = v; },
+           "also a standard set-up (scenes/setups.txt) or a .gltf/.glb file")
+        ->option_text("NAME|FILE");
+    whole_number(
+        bvh->add_option("--runs", o->runs, "timed runs of each GPU build, refit and trace")->capture_default_str(), "R",
+        1, 100000);
+    whole_number(bvh->add_option("--rays", o->rays, "rays traced per tree")->capture_default_str(), "N", 1, 1u << 22);
+    bvh->add_option_function<std::string>(
+           "--csv", [o](const std::string& v) { o->csv = v; }, "also write the figures as CSV")
+        ->option_text("FILE");
+    runners.push_back({bvh, [o] { return run_bench_bvh(*o); }});
 }
 
 }  // namespace vplkit::cli

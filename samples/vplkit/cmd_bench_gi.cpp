@@ -5,6 +5,9 @@
 #include "bench_gi.hpp"
 #include "camera_flags.hpp"
 #include "cli.hpp"
+#include "cli_checks.hpp"
+#include "device_options.hpp"
+#include "render_request.hpp"
 #include "commands.hpp"
 #include "scene_warnings.hpp"
 
@@ -216,27 +219,38 @@ GiBenchCurveOf curve_of(const std::string& name) {
     return *curve;
 }
 
-// --methods LIST: those curves, in the table's order; every curve when not given. An unknown
-// name is a command-line mistake.
-std::vector<GiBenchCurveOf> parse_curves(const std::optional<std::string>& text) {
-    if (!text) return gi_bench_curves();
+// The sweeps a run can be limited to (--sweeps), by plan_points' names.
+const std::vector<std::string> kSweeps = {"spp",  "block", "resolution", "interleave",
+                                          "mock", "vpls",  "denoise",    "navg"};
+
+std::vector<std::string> curve_names() {
     std::vector<std::string> names;
-    size_t start = 0;
-    while (start <= text->size()) {
-        const size_t comma = std::min(text->find(',', start), text->size());
-        names.push_back(text->substr(start, comma - start));
-        if (!find_gi_bench_curve(names.back())) {
-            throw UsageError("--methods expects a comma-separated list of " + gi_bench_curve_names() + ", got '" +
-                             names.back() + "' in '" + *text + "'");
-        }
-        start = comma + 1;
-    }
+    for (const GiBenchCurveOf& c : gi_bench_curves()) names.emplace_back(c.curve->name);
+    return names;
+}
+
+// --methods LIST: those curves, in the table's order; every curve when not given.
+std::vector<GiBenchCurveOf> chosen_curves(const std::optional<std::string>& text) {
+    if (!text) return gi_bench_curves();
+    const std::vector<std::string> names = split_names(*text);
     std::vector<GiBenchCurveOf> out;
     for (const GiBenchCurveOf& c : gi_bench_curves()) {
         if (std::find(names.begin(), names.end(), c.curve->name) != names.end()) out.push_back(c);
     }
     return out;
 }
+
+struct BenchGiOptions {
+    ContextOptions context;
+    std::string scene;
+    bool quick = false, strict = false;
+    std::optional<uint32_t> width, height, frames, vpls, camera, target_ms;
+    std::optional<std::string> vpl_source, out, sweeps, methods;
+    uint32_t seed = 0;
+    std::string cache = "out/bench-cache";
+    CameraFlags camera_flags;
+    std::vector<std::string> suns, points;
+};
 
 }  // namespace
 
@@ -265,59 +279,37 @@ std::string BenchPoint::label() const {
     return s;
 }
 
-int run_bench_gi(Args& args, const std::string& scene_name) {
-    ContextOptions context_options;
-    if (auto device = args.value("--device")) context_options.device = *device;
-    const bool quick = args.flag("--quick");
-    const bool strict = args.flag("--strict");
-    std::optional<uint32_t> width, height;
-    if (auto text = args.value("--width")) width = parse_whole_number("--width", *text, 16384);
-    if (auto text = args.value("--height")) height = parse_whole_number("--height", *text, 16384);
-    uint32_t frames = quick ? 2 : 3;
-    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 100);
-    std::optional<std::string> source = args.value("--vpl-source");
-    if (source && *source != "ir" && *source != "brsm")
-        throw UsageError("--vpl-source expects ir or brsm, got '" + *source + "'");
-    uint32_t vpl_budget = quick ? 256 : 4096;
-    if (auto text = args.value("--vpls")) vpl_budget = parse_whole_number("--vpls", *text, 1u << 20);
-    uint32_t seed = 0;
-    if (auto text = args.value("--seed")) seed = parse_index("--seed", *text, UINT32_MAX);
-    double target_ms = 0.0;
-    if (auto text = args.value("--target-ms")) target_ms = parse_whole_number("--target-ms", *text, 1u << 30);
+namespace {
+
+int run_bench_gi(const BenchGiOptions& o) {
+    if (o.scene.empty()) throw UsageError("bench gi needs --scene NAME");
+    check_camera_flags(o.camera_flags);
+    const std::string& scene_name = o.scene;
+    const ContextOptions& context_options = o.context;
+    const bool quick = o.quick;
+    const bool strict = o.strict;
+    const std::optional<uint32_t>& width = o.width;
+    const std::optional<uint32_t>& height = o.height;
+    const uint32_t frames = o.frames.value_or(quick ? 2 : 3);
+    const std::optional<std::string>& source = o.vpl_source;
+    const uint32_t vpl_budget = o.vpls.value_or(quick ? 256 : 4096);
+    const uint32_t seed = o.seed;
+    const double target_ms = o.target_ms.value_or(0);
     // --scene takes a set-up name or a .gltf/.glb file, as render does; a file brings its own
     // camera (--camera N) and lights, plus --sun and --point.
     const bool is_file =
         scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") || scene_name.ends_with(".glb");
-    std::optional<uint32_t> camera;
-    if (auto text = args.value("--camera")) camera = parse_index("--camera", *text, 1u << 20);
-    const CameraFlags camera_flags = parse_camera_flags(args);
+    const std::optional<uint32_t>& camera = o.camera;
+    const CameraFlags& camera_flags = o.camera_flags;
     std::vector<scene::Light> extra_lights;
-    while (auto spec = args.value("--sun")) extra_lights.push_back(scene::parse_sun(*spec));
-    while (auto spec = args.value("--point")) extra_lights.push_back(scene::parse_point(*spec));
+    for (const std::string& spec : o.suns) extra_lights.push_back(scene::parse_sun(spec));
+    for (const std::string& spec : o.points) extra_lights.push_back(scene::parse_point(spec));
     const std::string out_name = is_file ? std::filesystem::path(scene_name).stem().string() : scene_name;
-    const std::filesystem::path out = args.value("--out").value_or("out/bench/" + out_name);
-    const std::filesystem::path cache = args.value("--cache").value_or("out/bench-cache");
+    const std::filesystem::path out = o.out.value_or("out/bench/" + out_name);
+    const std::filesystem::path cache = o.cache;
     // --sweeps spp,resolution,...: only those sweeps (a shorter run, e.g. scripts/gpu_report.sh).
-    std::vector<std::string> sweeps;
-    if (auto text = args.value("--sweeps")) {
-        const std::vector<std::string> known = {"spp",  "block", "resolution", "interleave",
-                                                "mock", "vpls",  "denoise",    "navg"};
-        size_t start = 0;
-        while (start <= text->size()) {
-            const size_t comma = std::min(text->find(',', start), text->size());
-            const std::string name = text->substr(start, comma - start);
-            if (std::find(known.begin(), known.end(), name) == known.end()) {
-                throw UsageError(
-                    "--sweeps expects a comma-separated list of spp, block, resolution, interleave, mock, "
-                    "vpls, denoise, navg, got '" +
-                    *text + "'");
-            }
-            sweeps.push_back(name);
-            start = comma + 1;
-        }
-    }
-    const std::vector<GiBenchCurveOf> curves = parse_curves(args.value("--methods"));
-    args.finish();
+    const std::vector<std::string> sweeps = o.sweeps ? split_names(*o.sweeps) : std::vector<std::string>{};
+    const std::vector<GiBenchCurveOf> curves = chosen_curves(o.methods);
 
     scene::Setup setup;
     scene::Scene scene;
@@ -531,6 +523,76 @@ int run_bench_gi(Args& args, const std::string& scene_name) {
     }
     std::printf("wrote %s (points.csv, points.json, plots, images)\n", (out / "report.md").string().c_str());
     return 0;
+}
+
+}  // namespace
+
+void add_bench_gi(CLI::App& bench, Runners& runners) {
+    CLI::App* gi = add_command(
+        bench, "gi", "accuracy against time of every indirect-light method on a scene (--scene NAME)",
+        "What every indirect-light method's accuracy costs on a standard set-up. Renders the exact ground truth "
+        "once (cached in --cache, keyed by scene, camera, lights, size, VPL set and seed), then sweeps each "
+        "method's knob. spp: samples per pixel 1..64 (sst, rtslc, hybrid, and hybrid-lightcuts: hybrid's cuts with "
+        "rtslc's traversal, the thesis' sec. 7.1 protocol); block: cut block size 1..32 (rtslc, hybrid); "
+        "resolution: GI at half resolution; interleave: interleaved sampling (rtslc); mock: mock cuts on/off "
+        "(hybrid); vpls: the VPL count 1k..1M (build times); denoise: the methods with svgf; navg: flc's VPLs per "
+        "point. Every point: F frames, per-stage GPU times (median and spread of frames 2..F), RMSE and SSIM of "
+        "the tonemapped frame against the ground truth, relMSE of the linear radiance. Writes DIR/points.csv, "
+        "points.json, plots, equal-time images with x10 difference pictures, and DIR/report.md.");
+    auto o = std::make_shared<BenchGiOptions>();
+    add_device_options(*gi, o->context, false);
+    gi->add_option("--scene", o->scene,
+                   "required: a standard set-up (scenes/setups.txt) or a .gltf/.glb file, with its own camera "
+                   "(--camera N) and lights plus --sun and --point, as render takes them")
+        ->option_text("NAME|FILE");
+    whole_number(gi->add_option_function<uint32_t>(
+                     "--camera", [o](uint32_t v) { o->camera = v; }, "the file's camera N"),
+                 "N", 0, 1u << 20);
+    add_camera_options(*gi, o->camera_flags);
+    add_light_options(*gi, o->suns, o->points);
+    gi->add_option_function<std::string>(
+          "--out", [o](const std::string& v) { o->out = v; },
+          "output folder (default out/bench/NAME, NAME the set-up or the file's stem)")
+        ->option_text("DIR");
+    whole_number(gi->add_option_function<uint32_t>(
+                     "--width", [o](uint32_t v) { o->width = v; },
+                     "image width (default 320 on a CPU device, 1280 on a GPU, 48 with --quick)"),
+                 "W", 1, 16384);
+    whole_number(gi->add_option_function<uint32_t>(
+                     "--height", [o](uint32_t v) { o->height = v; },
+                     "image height (default 180 on a CPU device, 720 on a GPU, 27 with --quick)"),
+                 "H", 1, 16384);
+    whole_number(gi->add_option_function<uint32_t>(
+                     "--frames", [o](uint32_t v) { o->frames = v; },
+                     "frames per point (default 3, 2 with --quick; the first is not timed when F > 1)"),
+                 "F", 1, 100);
+    gi->add_flag("--quick", o->quick,
+                 "a smoke test: 48x27 (unless sized), 256 VPLs, 128^2 shadow maps, a few points, 2 frames");
+    one_of(gi->add_option_function<std::string>(
+               "--vpl-source", [o](const std::string& v) { o->vpl_source = v; },
+               "default brsm when the scene has punctual lights, else ir"),
+           {"ir", "brsm"});
+    whole_number(gi->add_option_function<uint32_t>(
+                     "--vpls", [o](uint32_t v) { o->vpls = v; }, "the VPL budget (default 4096, 256 with --quick)"),
+                 "N", 1, 1u << 20);
+    whole_number(gi->add_option("--seed", o->seed, "seed of the stochastic stages")->capture_default_str(), "S", 0,
+                 UINT32_MAX);
+    whole_number(gi->add_option_function<uint32_t>(
+                     "--target-ms", [o](uint32_t v) { o->target_ms = v; },
+                     "the equal-time target frame time (default: hybrid's at 8 spp, 4 with --quick)"),
+                 "T", 1, 1u << 30);
+    gi->add_option("--cache", o->cache, "where ground truths are kept")->capture_default_str()->option_text("DIR");
+    name_list(gi->add_option_function<std::string>(
+                  "--sweeps", [o](const std::string& v) { o->sweeps = v; },
+                  "only these sweeps, comma-separated (default: all)"),
+              kSweeps);
+    name_list(gi->add_option_function<std::string>(
+                  "--methods", [o](const std::string& v) { o->methods = v; },
+                  "only these methods' curves, comma-separated (default: all)"),
+              curve_names());
+    gi->add_flag("--strict", o->strict,
+                 "fail when the scene has a warning (a feature of the file vplkit skips or approximates)");
+    runners.push_back({gi, [o] { return run_bench_gi(*o); }});
 }
 
 }  // namespace vplkit::cli

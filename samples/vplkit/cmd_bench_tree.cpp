@@ -3,6 +3,8 @@
 // VPLs are random or sampled on the surfaces of a standard set-up's scene.
 
 #include "cli.hpp"
+#include "cli_checks.hpp"
+#include "device_options.hpp"
 #include "commands.hpp"
 #include "bench_timing.hpp"
 #include "vpl_sources.hpp"
@@ -55,26 +57,30 @@ void check_roots(const std::vector<shaders::Vpl>& vpls, const Buffer& light_tree
 
 }  // namespace
 
-int run_bench_tree(Args& args) {
-    ContextOptions options;
-    if (auto device = args.value("--device")) options.device = *device;
-    std::vector<uint32_t> counts = {4096, 65536, 1048576};
-    if (auto text = args.value("--counts")) counts = parse_whole_number_list("--counts", *text, stages::kMaxKeyedVpls);
+namespace {
+
+struct BenchTreeOptions {
+    ContextOptions context;
+    std::optional<std::string> counts, csv, group_levels;
     uint32_t runs = 10;
-    if (auto text = args.value("--runs")) runs = parse_whole_number("--runs", *text, 100000);
-    const std::string source = args.value("--source").value_or("random");
+    std::string source = "random";
+    std::string sort = "radix";
+};
+
+int run_bench_tree(const BenchTreeOptions& o) {
+    const ContextOptions& options = o.context;
+    std::vector<uint32_t> counts = {4096, 65536, 1048576};
+    if (o.counts) counts = parse_whole_number_list("--counts", *o.counts, stages::kMaxKeyedVpls);
+    const uint32_t runs = o.runs;
+    const std::string& source = o.source;
     stages::SortOptions sort_options;
-    if (auto text = args.value("--sort")) {
-        auto algorithm = stages::parse_sort_algorithm(*text);
-        if (!algorithm) throw UsageError("--sort expects radix or bitonic, got '" + *text + "'");
-        sort_options.algorithm = *algorithm;
-    }
+    sort_options.algorithm = *stages::parse_sort_algorithm(o.sort);
     stages::LightTreeOptions tree_options;
-    if (auto text = args.value("--group-levels")) {
-        tree_options.group_levels = parse_whole_number("--group-levels", *text, stages::kLightTreeMaxGroupLevels);
+    if (o.group_levels) {
+        tree_options.group_levels =
+            parse_whole_number("--group-levels", *o.group_levels, stages::kLightTreeMaxGroupLevels);
     }
-    const auto csv_path = args.value("--csv");
-    args.finish();
+    const std::optional<std::string>& csv_path = o.csv;
 
     // The scene first: a bad set-up name fails before any device work.
     std::optional<scene::Scene> surfaces;
@@ -134,6 +140,37 @@ int run_bench_tree(Args& args) {
         std::printf("wrote %s\n", csv_path->c_str());
     }
     return 0;
+}
+
+}  // namespace
+
+void add_bench_tree(CLI::App& bench, Runners& runners) {
+    CLI::App* tree = add_command(
+        bench, "tree", "GPU time of every stage from VPLs to both light trees",
+        "Times, per VPL count, every stage from a VPL buffer to both light trees: bounds and keys, the key sort, "
+        "gathering the leaves, the RTSLC light tree and the SST. One warm-up run, then R timed runs; prints "
+        "median, min and max per stage, and checks the last run's trees.");
+    auto o = std::make_shared<BenchTreeOptions>();
+    add_device_options(*tree, o->context, false);
+    whole_number_list(
+        tree->add_option_function<std::string>(
+            "--counts", [o](const std::string& v) { o->counts = v; }, "VPL counts (default 4096,65536,1048576)"),
+        "N", stages::kMaxKeyedVpls);
+    whole_number(tree->add_option("--runs", o->runs, "timed runs per count")->capture_default_str(), "R", 1, 100000);
+    tree->add_option("--source", o->source,
+                     "random, or a standard set-up (scenes/setups.txt) whose scene surfaces the VPLs are sampled "
+                     "on, e.g. sponza-sun")
+        ->capture_default_str()
+        ->option_text("random|SETUP");
+    one_of(tree->add_option("--sort", o->sort, "the key sort")->capture_default_str(), {"radix", "bitonic"});
+    whole_number(tree->add_option_function<std::string>(
+                     "--group-levels", [o](const std::string& v) { o->group_levels = v; },
+                     "light-tree levels built per dispatch (default: the device's)"),
+                 "G", 1, stages::kLightTreeMaxGroupLevels);
+    tree->add_option_function<std::string>(
+            "--csv", [o](const std::string& v) { o->csv = v; }, "also write every statistic as CSV")
+        ->option_text("FILE");
+    runners.push_back({tree, [o] { return run_bench_tree(*o); }});
 }
 
 }  // namespace vplkit::cli

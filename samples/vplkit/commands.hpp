@@ -27,14 +27,14 @@ void add_sequence(CLI::App& vplkit, Runners& runners);
 int run_view(Args& args);
 extern const char* const kViewUsage;
 
-// Not yet declared through CLI11: they read an Args and print a fixed usage.
-int run_bench(Args& args);
-std::string bench_usage();
+// Not yet declared through CLI11: it reads an Args and prints a fixed usage.
 int run_sequence(Args& args);
 extern const char* const kSequenceUsage;
-int run_bench_tree(Args& args);
-int run_bench_gi(Args& args, const std::string& scene);
-int run_bench_direct(Args& args, const std::string& scene);
-int run_bench_bvh(Args& args, const std::optional<std::string>& scene);
+
+// bench's benchmarks (cmd_bench_<name>.cpp), declared on the bench command by add_bench.
+void add_bench_tree(CLI::App& bench, Runners& runners);
+void add_bench_bvh(CLI::App& bench, Runners& runners);
+void add_bench_gi(CLI::App& bench, Runners& runners);
+void add_bench_direct(CLI::App& bench, Runners& runners);
 
 }  // namespace vplkit::cli

@@ -73,10 +73,7 @@ int main(int argc, char** argv) {
     vplkit::cli::add_info(app, runners);
     vplkit::cli::add_render(app, runners);
     vplkit::cli::add_plan(app, runners);
-    add_args_command(
-        app, runners, "bench",
-        "GPU timings of the kit's stages (sort, tree, bvh; gi --scene NAME: accuracy vs time of every method)",
-        vplkit::cli::bench_usage, vplkit::cli::run_bench);
+    vplkit::cli::add_bench(app, runners);
     vplkit::cli::add_compare(app, runners);
     add_args_command(app, runners, "sequence",
                      "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",

@@ -70,6 +70,19 @@ CLI::Validator light_check(scene::Light (*parse)(std::string_view)) {
 
 }  // namespace
 
+void add_light_options(CLI::App& command, std::vector<std::string>& suns, std::vector<std::string>& points) {
+    command.add_option("--sun", suns, "add a directional light travelling along (DX,DY,DZ), colour RGB, I lux")
+        ->option_text("DX,DY,DZ,R,G,B,I (repeatable)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->check(light_check(scene::parse_sun));
+    command.add_option("--point", points, "add a point light at (X,Y,Z), colour RGB, I candela")
+        ->option_text("X,Y,Z,R,G,B,I (repeatable)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+        ->check(light_check(scene::parse_point));
+}
+
 RenderOptions::RenderOptions(CLI::App& command) : command_(command) {
     RenderSettings& s = request_.settings;
     add_device_options(command, request_.context);
@@ -112,18 +125,9 @@ RenderOptions::RenderOptions(CLI::App& command) : command_(command) {
         ->group(kSceneGroup);
     add_camera_options(command, request_.camera_flags);
     for (const char* name : {"--position", "--target", "--up", "--fov"}) command.get_option(name)->group(kSceneGroup);
-    command.add_option("--sun", suns_, "add a directional light travelling along (DX,DY,DZ), colour RGB, I lux")
-        ->option_text("DX,DY,DZ,R,G,B,I (repeatable)")
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-        ->check(light_check(scene::parse_sun))
-        ->group(kSceneGroup);
-    command.add_option("--point", points_, "add a point light at (X,Y,Z), colour RGB, I candela")
-        ->option_text("X,Y,Z,R,G,B,I (repeatable)")
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-        ->check(light_check(scene::parse_point))
-        ->group(kSceneGroup);
+    add_light_options(command, suns_, points_);
+    command.get_option("--sun")->group(kSceneGroup);
+    command.get_option("--point")->group(kSceneGroup);
     one_of(command
                .add_option("--brdf", brdf_,
                            "gltf: the file's metallic-roughness materials; lambert: every material a pure "
