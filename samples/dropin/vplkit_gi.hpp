@@ -1,25 +1,20 @@
 #pragma once
 // Everything that stands between the sample's renderer (renderer.hpp) and vplkit: one-bounce
-// indirect light recorded into the renderer's command buffer each frame, with nothing read back:
+// indirect light recorded into the renderer's command buffer each frame, with nothing read back.
+// The kit's GI chain (vplkit/stages/gi_chain.hpp) does the stages:
 //
 //   VPLs traced from the renderer's light and triangles (count kept on the GPU) -> Morton keys
 //   -> radix sort -> leaves -> SST -> G-buffer from the renderer's depth, normal and albedo
-//   -> hybrid GI -> SVGF -> compose colour + indirect into the renderer's RGBA16F output
+//   -> hybrid GI -> SVGF; then compose colour + indirect into the renderer's RGBA16F output.
+//
+// What is left here: the scene in the kit's terms, memory for what the chain lists, and the
+// barriers between the renderer's work and the kit's steps (from their entry() and exit()).
 
 #include "plain_vulkan.hpp"
 #include "renderer.hpp"
 
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/device.hpp"
-#include "vplkit/stages/gbuffer_views.hpp"
-#include "vplkit/stages/hybrid_gi.hpp"
-#include "vplkit/stages/radix_sort.hpp"
-#include "vplkit/stages/sst.hpp"
-#include "vplkit/stages/svgf.hpp"
-#include "vplkit/stages/vpl_keys.hpp"
-#include "vplkit/stages/vpl_tracing.hpp"
-
-#include <glm/mat4x4.hpp>
+#include "vplkit/stages/gi_chain.hpp"
 
 #include <memory>
 #include <vector>
@@ -38,33 +33,20 @@ public:
     // For the sample's check: the VPLs the last frame traced (after its submission), the GI
     // before the denoiser (RGBA32F, GENERAL) and the scene scale the kit's lengths are shares of.
     std::vector<vplkit::shaders::Vpl> traced_vpls() const;
-    const GpuImage& indirect() const { return images_[indirect_image_]; }
+    const GpuImage& indirect() const;
     float scene_scale() const { return bvh_.scene_scale; }
 
 private:
-    void record(VkCommandBuffer cmd, const vplkit::StepList& steps);
+    void record(VkCommandBuffer cmd, const vplkit::StepList& steps) const;
 
     const Gpu* gpu_;
     const Rasterizer* targets_;
     std::unique_ptr<vplkit::stages::Device> kit_;
     std::vector<HostBuffer> buffers_;
     std::vector<GpuImage> images_;
-    size_t indirect_image_ = 0;
-    std::unique_ptr<vplkit::stages::RadixSorter> sorter_;
     vplkit::stages::VplSourceBuffers sources_;
     vplkit::stages::BvhBuffers bvh_;
-    vplkit::stages::VplTracingBuffers tracing_;
-    vplkit::stages::VplKeyBuffers keys_;
-    vplkit::stages::VplTreeBuffers trees_;
-    vplkit::BufferView sst_counters_, gi_counters_;
-    vplkit::stages::HybridCutBuffers cuts_;
-    vplkit::stages::GbufferViews gbuffer_;
-    vplkit::ImageView indirect_;
-    std::vector<vplkit::ImageView> svgf_{vplkit::stages::kSvgfImageCount};
-    glm::mat4 previous_{1.0f};
-    vplkit::stages::SstOptions sst_;
-    vplkit::stages::HybridOptions hybrid_;
-    vplkit::stages::DenoiseOptions denoise_;  // the defaults, lengths as shares of the scene scale
+    std::unique_ptr<vplkit::stages::GiChain> chain_;
 };
 
 }  // namespace dropin
