@@ -90,7 +90,8 @@ struct BufferRequirement {
 };
 
 // One image: this format and size exactly, with `usage`, in GENERAL layout before its first use
-// (transition it once after creating it: the chain keeps it in GENERAL from then on).
+// (transition it once after creating it: the chain keeps it in GENERAL from then on; or return a
+// view with a layout pointer, and step recording transitions it).
 struct ImageRequirement {
     std::string name;
     VkFormat format = VK_FORMAT_UNDEFINED;
