@@ -71,9 +71,13 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
         stages::add_variance_estimate_pass(context, passes, result, next.moments, gbuffer.position, gbuffer.normal,
                                            estimated_, options);
         ImageView source = estimated_;
+        // irradiance_ and accumulated_ are read by nothing after the variance estimate (the clamp's
+        // images are: firefly_moved_fraction), so the a-trous iterations work in them.
+        const stages::AtrousScratch scratch{irradiance_, accumulated_};
         for (uint32_t i = 0; i < options.atrous_iterations; ++i) {
             ImageView target = i == 0 ? ImageView(next.color) : (i % 2 == 1 ? ImageView(ping_) : ImageView(pong_));
-            stages::add_atrous_pass(context, passes, source, gbuffer.position, gbuffer.normal, target, 1 << i, options);
+            stages::add_atrous_pass(context, passes, source, gbuffer.position, gbuffer.normal, scratch, target, 1 << i,
+                                    options);
             source = target;
         }
         result = source;

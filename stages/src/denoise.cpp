@@ -2,6 +2,8 @@
 
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/atrous.hpp"
+#include "vplkit/shaders/atrous_variance.hpp"
+#include "vplkit/shaders/atrous_weights.hpp"
 #include "vplkit/shaders/demodulate.hpp"
 #include "vplkit/shaders/firefly_clamp.hpp"
 #include "vplkit/shaders/firefly_spread.hpp"
@@ -211,24 +213,64 @@ void add_variance_estimate_pass(Device& device, StepList& passes, const ImageVie
 }
 
 void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
-                     const ImageView& normal, const ImageView& filtered, int step, const DenoiseOptions& options) {
+                     const ImageView& normal, const AtrousScratch& scratch, const ImageView& filtered, int step,
+                     const DenoiseOptions& options) {
     validate(options);
     check(step >= 1, "a-trous step " + std::to_string(step) + " must be at least 1");
-    validate_images("denoise a-trous",
-                    {{&filtered, kFloat4}, {&source, kFloat4}, {&position, kFloat4}, {&normal, kFloat4}});
+    validate_images("denoise a-trous", {{&filtered, kFloat4},
+                                        {&source, kFloat4},
+                                        {&position, kFloat4},
+                                        {&normal, kFloat4},
+                                        {&scratch.variance, kFloat4},
+                                        {&scratch.weights, kFloat4}});
+    for (const ImageView* s : {&scratch.variance, &scratch.weights}) {
+        check(s->image != source.image && s->image != filtered.image,
+              "a-trous scratch image '" + s->name + "' is also its source or output");
+    }
+    check(scratch.variance.image != scratch.weights.image, "the a-trous scratch images must be two images");
+    const std::string suffix = std::to_string(step);
+    {
+        const auto& pipeline = device.pipeline<shaders::atrous_variance::Pipeline>();
+        shaders::atrous_variance::Bindings b;
+        b.source = source.descriptor();
+        b.position = position.descriptor();
+        b.blurred_variance = scratch.variance.descriptor();
+        add_dispatch<shaders::atrous_variance::Module>(passes, "denoise a-trous variance " + suffix, pipeline, b,
+                                                       {filtered.width, filtered.height},
+                                                       {source, position, scratch.variance});
+    }
+    {
+        const auto& pipeline = device.pipeline<shaders::atrous_weights::Pipeline>();
+        shaders::atrous_weights::Bindings b;
+        b.source = source.descriptor();
+        b.position = position.descriptor();
+        b.normal = normal.descriptor();
+        b.blurred_variance = scratch.variance.descriptor();
+        b.weights = scratch.weights.descriptor();
+        shaders::atrous_weights::Push push{};
+        push.step = step;
+        push.sigma_plane = options.sigma_plane_fraction * options.scene_scale;
+        push.sigma_normal = options.sigma_normal;
+        push.sigma_luminance = options.sigma_luminance;
+        add_dispatch<shaders::atrous_weights::Module>(passes, "denoise a-trous weights " + suffix, pipeline, b, push,
+                                                      {filtered.width, filtered.height},
+                                                      {source, position, normal, scratch.variance, scratch.weights});
+    }
     const auto& pipeline = device.pipeline<shaders::atrous::Pipeline>();
     shaders::atrous::Bindings b;
     b.source = source.descriptor();
     b.position = position.descriptor();
     b.normal = normal.descriptor();
+    b.weights = scratch.weights.descriptor();
     b.filtered = filtered.descriptor();
     shaders::atrous::Push push{};
     push.step = step;
     push.sigma_plane = options.sigma_plane_fraction * options.scene_scale;
     push.sigma_normal = options.sigma_normal;
     push.sigma_luminance = options.sigma_luminance;
-    add_dispatch<shaders::atrous::Module>(passes, "denoise a-trous " + std::to_string(step), pipeline, b, push,
-                                          {filtered.width, filtered.height}, {source, position, normal, filtered});
+    add_dispatch<shaders::atrous::Module>(passes, "denoise a-trous " + suffix, pipeline, b, push,
+                                          {filtered.width, filtered.height},
+                                          {source, position, normal, scratch.weights, filtered});
 }
 
 }  // namespace vplkit::stages

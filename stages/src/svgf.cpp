@@ -42,9 +42,12 @@ void add_svgf_passes(Device& device, StepList& passes, const GbufferViews& gbuff
         add_variance_estimate_pass(device, passes, result, next.moments, gbuffer.position, gbuffer.normal, estimated,
                                    options);
         result = estimated;
+        // The demodulated frame and the accumulated image are read by nothing after the variance
+        // estimate: the a-trous iterations work in them.
+        const AtrousScratch scratch{irradiance, accumulated_image};
         for (uint32_t i = 0; i < options.atrous_iterations; ++i) {
             const ImageView& target = i == 0 ? next.color : (i % 2 == 1 ? ping : pong);
-            add_atrous_pass(device, passes, result, gbuffer.position, gbuffer.normal, target, 1 << i, options);
+            add_atrous_pass(device, passes, result, gbuffer.position, gbuffer.normal, scratch, target, 1 << i, options);
             result = target;
         }
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace vplkit::reference {
 
@@ -214,16 +215,16 @@ DenoiseImage variance_estimate(const DenoiseImage& accumulated, const DenoiseIma
     return out;
 }
 
+// atrous_variance.comp, atrous_weights.comp and atrous.comp: symmetric edge weights w(p, q),
+// a(p, q) = h w / max(W_p, W_q) off the centre and a(p, p) = 1 - their sum.
 DenoiseImage atrous(const DenoiseImage& source, const DenoiseGeometry& geometry, int step,
                     const FilterParameters& parameters) {
-    DenoiseImage out(source.width, source.height);
+    const int width = int(source.width), height = int(source.height);
     const double h[3] = {3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0};
-    for (int y = 0; y < int(out.height); ++y) {
-        for (int x = 0; x < int(out.width); ++x) {
+    std::vector<double> blurred(source.texels.size(), 0.0), sums(source.texels.size(), 0.0);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
             if (!geometry.covered(x, y)) continue;
-            const Vec3d p = xyz(geometry.position.at(x, y));
-            const Vec3d n = xyz(geometry.normal.at(x, y));
-            const double l_p = luminance(source.at(x, y));
             double g_sum = 0.0, g_weights = 0.0;
             for (int dy = -1; dy <= 1; ++dy) {
                 for (int dx = -1; dx <= 1; ++dx) {
@@ -233,25 +234,54 @@ DenoiseImage atrous(const DenoiseImage& source, const DenoiseGeometry& geometry,
                     g_weights += g;
                 }
             }
-            const double scale = parameters.sigma_luminance * std::sqrt(std::max(g_sum / g_weights, 0.0)) + 1e-10;
-            double color[3] = {0, 0, 0}, variance = 0.0, weights = 0.0;
+            blurred[size_t(y) * width + x] = g_sum / g_weights;
+        }
+    }
+    // w(p, q) h(q) for the tap (dx, dy) of (x, y), or 0 where it is not covered or is the centre.
+    auto tap_weight = [&](int x, int y, int dx, int dy) {
+        const int qx = x + step * dx, qy = y + step * dy;
+        if ((dx == 0 && dy == 0) || !geometry.covered(qx, qy)) return 0.0;
+        const Vec3d p = xyz(geometry.position.at(x, y)), q = xyz(geometry.position.at(qx, qy));
+        const Vec3d n_p = xyz(geometry.normal.at(x, y)), n_q = xyz(geometry.normal.at(qx, qy));
+        const double plane = std::exp(-std::max(std::abs(dot3(n_p, sub(q, p))), std::abs(dot3(n_q, sub(p, q)))) /
+                                      parameters.sigma_plane);
+        const double variance =
+            std::max(std::max(blurred[size_t(y) * width + x], blurred[size_t(qy) * width + qx]), 0.0);
+        const double scale = parameters.sigma_luminance * std::sqrt(variance) + 1e-10;
+        const double dl = std::abs(luminance(source.at(x, y)) - luminance(source.at(qx, qy)));
+        return h[std::abs(dx)] * h[std::abs(dy)] * plane * normal_weight(n_p, n_q, parameters.sigma_normal) *
+               std::exp(-dl / scale);
+    };
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            if (!geometry.covered(x, y)) continue;
+            double sum = h[0] * h[0];
+            for (int dy = -2; dy <= 2; ++dy)
+                for (int dx = -2; dx <= 2; ++dx) sum += tap_weight(x, y, dx, dy);
+            sums[size_t(y) * width + x] = sum;
+        }
+    }
+    DenoiseImage out(source.width, source.height);
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            if (!geometry.covered(x, y)) continue;
+            double color[3] = {0, 0, 0}, variance = 0.0, given = 0.0;
             for (int dy = -2; dy <= 2; ++dy) {
                 for (int dx = -2; dx <= 2; ++dx) {
+                    const double w = tap_weight(x, y, dx, dy);
+                    if (w == 0.0) continue;
                     const int qx = x + step * dx, qy = y + step * dy;
-                    if (!geometry.covered(qx, qy)) continue;
+                    const double a = w / std::max(sums[size_t(y) * width + x], sums[size_t(qy) * width + qx]);
                     const Texel4& s = source.at(qx, qy);
-                    double wq = h[std::abs(dx)] * h[std::abs(dy)];
-                    if (dx != 0 || dy != 0) {
-                        wq *= plane_weight(p, n, xyz(geometry.position.at(qx, qy)), parameters.sigma_plane) *
-                              normal_weight(n, xyz(geometry.normal.at(qx, qy)), parameters.sigma_normal) *
-                              std::exp(-std::abs(l_p - luminance(s)) / scale);
-                    }
-                    for (int k = 0; k < 3; ++k) color[k] += wq * s[k];
-                    variance += wq * wq * s[3];
-                    weights += wq;
+                    for (int k = 0; k < 3; ++k) color[k] += a * s[k];
+                    variance += a * a * s[3];
+                    given += a;
                 }
             }
-            out.at(x, y) = {color[0] / weights, color[1] / weights, color[2] / weights, variance / (weights * weights)};
+            const double kept = std::max(1.0 - given, 0.0);
+            const Texel4& c = source.at(x, y);
+            out.at(x, y) = {color[0] + kept * c[0], color[1] + kept * c[1], color[2] + kept * c[2],
+                            variance + kept * kept * c[3]};
         }
     }
     return out;

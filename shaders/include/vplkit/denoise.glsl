@@ -39,4 +39,19 @@ float denoise_normal_weight(vec3 n_p, vec3 n_q, float sigma_normal) {
     return pow(max(dot(n_p, n_q), 0.0), sigma_normal);
 }
 
+// The a-trous filter's edge-stopping weight of the pair (p, q), the kernel's h left out. It is
+// symmetric, w(p, q) = w(q, p), which the mass-preserving normalization of atrous.comp needs: the
+// plane test takes the larger of the two points' distances from the other's tangent plane, and
+// the luminance test scales |l_p - l_q| by the larger of the two (3 x 3 blurred) variances. With
+// p's variance alone (SVGF eq. 5) a bright outlier (large variance) takes in its dark neighbours
+// while they (small variance) shut it out, and heavy-tailed noise loses light.
+float denoise_atrous_edge_weight(vec3 p, vec3 n_p, float l_p, float variance_p, vec3 q, vec3 n_q, float l_q,
+                                 float variance_q, float sigma_plane, float sigma_normal, float sigma_luminance) {
+    // Avoids 0 / 0 where the variance is 0 (a noiseless or constant image): only equal luminances pass.
+    const float kLuminanceEpsilon = 1e-10;
+    float plane = exp(-max(abs(dot(n_p, q - p)), abs(dot(n_q, p - q))) / sigma_plane);
+    float luminance_scale = sigma_luminance * sqrt(max(max(variance_p, variance_q), 0.0)) + kLuminanceEpsilon;
+    return plane * denoise_normal_weight(n_p, n_q, sigma_normal) * exp(-abs(l_p - l_q) / luminance_scale);
+}
+
 #endif

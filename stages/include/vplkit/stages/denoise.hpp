@@ -113,8 +113,19 @@ void add_variance_estimate_pass(Device& device, StepList& passes, const ImageVie
                                 const ImageView& moments, const ImageView& position, const ImageView& normal,
                                 const ImageView& estimated, const DenoiseOptions& options);
 
-// "denoise a-trous <step>": one a-trous iteration with taps `step` pixels apart (step >= 1).
+// Two images an a-trous iteration works in besides its source and output (RGBA32F, their size):
+// the blurred variance, then it with each pixel's weight sum. Nothing is kept in them after it.
+struct AtrousScratch {
+    ImageView variance;
+    ImageView weights;
+};
+
+// One a-trous iteration with taps `step` pixels apart (step >= 1), three passes: "denoise a-trous
+// variance <step>", "denoise a-trous weights <step>", "denoise a-trous <step>". Its weights are
+// symmetric and normalized so that the filter keeps both a constant image and the image's sum
+// (atrous.comp). `scratch`'s images must differ from `source` and `filtered`.
 void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
-                     const ImageView& normal, const ImageView& filtered, int step, const DenoiseOptions& options);
+                     const ImageView& normal, const AtrousScratch& scratch, const ImageView& filtered, int step,
+                     const DenoiseOptions& options);
 
 }  // namespace vplkit::stages
