@@ -13,6 +13,7 @@
 #include "scene/gltf_file.hpp"
 #include "scene/gltf_geometry.hpp"
 #include "scene/gltf_images.hpp"
+#include "scene/gltf_instances.hpp"
 #include "scene/gltf_lights_cameras.hpp"
 #include "scene/gltf_materials.hpp"
 #include "scene/gltf_nodes.hpp"
@@ -28,30 +29,11 @@
 #include <string>
 #include <vector>
 
-namespace vplkit::scene {
-namespace {
+namespace vplkit::scene::detail {
 
-using detail::check_index;
-using detail::convert_camera;
-using detail::convert_light;
-using detail::decode_primitive;
-using detail::GltfSource;
-using detail::joint_matrices;
-using detail::kLightsExtension;
-using detail::missing_tex_coords;
-using detail::morph_weights;
-using detail::NodeInstance;
-using detail::NodeWorlds;
-using detail::PrimitiveData;
-using detail::quoted_name;
-
-}  // namespace
-
-Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
+Scene scene_from_model(const std::filesystem::path& path, tinygltf::Model& model, const CapturedImages& captured,
+                       const std::string& warn, const LoadOptions& options, DecodedMeshes& decoded) {
     const std::string file = path.string();
-    detail::CapturedImages captured;
-    std::string warn;
-    tinygltf::Model model = detail::read_gltf_file(path, captured, warn);
     const GltfSource source{model, file};
 
     Scene scene;
@@ -72,86 +54,8 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
         scene.materials.push_back(detail::convert_material(source, int(m), textures, scene.warnings));
     }
     const uint32_t default_material = uint32_t(model.materials.size());
-    bool default_material_used = false;
-
-    std::vector<std::optional<std::vector<std::optional<PrimitiveData>>>> decoded(model.meshes.size());
-    const std::vector<NodeInstance> instances = detail::traverse(source, scene.warnings);
-    NodeWorlds worlds(source, instances);
-    for (const NodeInstance& instance : instances) {
-        const tinygltf::Node& node = model.nodes[size_t(instance.node)];
-        const std::string node_label = "node " + std::to_string(instance.node) + quoted_name(node.name);
-        if (node.camera >= 0) {
-            check_index(source, node.camera, model.cameras, "camera", node_label);
-            scene.cameras.push_back(convert_camera(source, node.camera, instance.world, node_label));
-        }
-        if (auto it = node.extensions.find(kLightsExtension); it != node.extensions.end()) {
-            const tinygltf::Value& ext = it->second;
-            if (!ext.IsObject() || !ext.Has("light") || !ext.Get("light").IsNumber()) {
-                source.fail(node_label + ": " + kLightsExtension + " has no light index");
-            }
-            const int light = ext.Get("light").GetNumberAsInt();
-            check_index(source, light, model.lights, "light", node_label);
-            scene.lights.push_back(convert_light(source, light, instance.world, node_label));
-        }
-        if (node.mesh < 0) continue;
-        check_index(source, node.mesh, model.meshes, "mesh", node_label);
-        auto& primitives = decoded[size_t(node.mesh)];
-        const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];
-        if (!primitives) {
-            primitives.emplace();
-            for (size_t p = 0; p < mesh.primitives.size(); ++p) {
-                primitives->push_back(decode_primitive(source, node.mesh, int(p), default_material, scene.warnings));
-            }
-        }
-        const std::vector<double> weights = morph_weights(source, node, mesh, node_label);
-        std::vector<glm::dmat4> joints;
-        if (node.skin >= 0 && node.mesh >= 0) joints = joint_matrices(source, node.skin, worlds, node_label);
-        for (size_t p = 0; p < primitives->size(); ++p) {
-            if (!(*primitives)[p]) continue;
-            const std::string where = node_label + " mesh " + std::to_string(node.mesh) + quoted_name(mesh.name) +
-                                      " primitive " + std::to_string(p);
-            // The still frame's pose: morphed, then skinned (world space; the node's own transform
-            // is then ignored, glTF 2.0 3.7.3).
-            const PrimitiveData* data = &*(*primitives)[p];
-            std::optional<PrimitiveData> posed;
-            glm::dmat4 world = instance.world;
-            if (!data->targets.empty() &&
-                std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0; })) {
-                if (weights.size() != data->targets.size()) {
-                    source.fail(where + " has " + std::to_string(data->targets.size()) + " morph targets, but " +
-                                std::to_string(weights.size()) + " weights are given");
-                }
-                posed = detail::morphed(*data, weights);
-                data = &*posed;
-            }
-            if (node.skin >= 0) {
-                if (data->joint_sets.empty()) {
-                    scene.warnings.messages.push_back(where +
-                                                      " has a skin but no JOINTS_0: drawn with the node's transform");
-                } else {
-                    posed = detail::skinned(source, *data, joints, where);
-                    data = &*posed;
-                    world = glm::dmat4(1.0);
-                }
-            }
-            default_material_used |= data->material == default_material;
-            if (data->material != default_material) {
-                const std::string missing =
-                    missing_tex_coords(scene.materials[data->material], !data->uvs.empty(), !data->uvs1.empty());
-                if (!missing.empty()) {
-                    scene.warnings.messages.push_back(where + ": its material's textures read " + missing +
-                                                      ", which the primitive lacks (read as (0, 0))");
-                }
-            }
-            const bool wants_tangents =
-                data->material != default_material && scene.materials[data->material].normal_texture != kNoTexture;
-            PrimitiveInstance info;
-            info.node = uint32_t(instance.node);
-            info.mesh = uint32_t(node.mesh);
-            info.primitive = uint32_t(p);
-            detail::append_instance(source, scene, *data, world, wants_tangents, info, where);
-        }
-    }
+    const bool default_material_used =
+        detail::append_node_instances(source, scene.materials, default_material, decoded, scene);
     if (scene.indices.empty()) {
         std::string why = "no triangles to render";
         if (scene.warnings.skipped_primitives) {
@@ -191,6 +95,18 @@ Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
     if (scene.cameras.empty()) scene.cameras.push_back(framing_camera(scene.bounds));
     scene.active_camera = options.camera.value_or(0);
     return scene;
+}
+
+}  // namespace vplkit::scene::detail
+
+namespace vplkit::scene {
+
+Scene load_gltf(const std::filesystem::path& path, const LoadOptions& options) {
+    detail::CapturedImages captured;
+    std::string warn;
+    tinygltf::Model model = detail::read_gltf_file(path, captured, warn);
+    detail::DecodedMeshes decoded;
+    return detail::scene_from_model(path, model, captured, warn, options, decoded);
 }
 
 }  // namespace vplkit::scene

@@ -1,0 +1,166 @@
+// PosableScene: the loaded model kept, posed again by the loader's own flattening
+// (gltf_instances), the triangles checked to be the same, and only the moving parts copied.
+
+#include "vplkit/scene_pose.hpp"
+
+#include "scene/gltf_animation.hpp"
+#include "scene/gltf_file.hpp"
+#include "scene/gltf_instances.hpp"
+#include "vplkit/error.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace vplkit::scene {
+
+namespace {
+
+// The node properties an animation writes (gltf_animation's pose_node), as the file gives them.
+struct RestNode {
+    std::vector<double> translation, rotation, scale, weights;
+};
+
+bool same_light(const Light& a, const Light& b) {
+    return a.position == b.position && a.direction == b.direction && a.color == b.color && a.intensity == b.intensity &&
+           a.range == b.range && a.inner_cone_angle == b.inner_cone_angle && a.outer_cone_angle == b.outer_cone_angle;
+}
+
+bool same_camera(const Camera& a, const Camera& b) {
+    return a.position == b.position && a.forward == b.forward && a.up == b.up && a.yfov == b.yfov && a.xmag == b.xmag &&
+           a.ymag == b.ymag;
+}
+
+bool same_vertex_pose(const Vertex& a, const Vertex& b) {
+    return a.position == b.position && a.normal == b.normal && a.tangent == b.tangent;
+}
+
+}  // namespace
+
+struct PosableScene::State {
+    std::filesystem::path path;
+    LoadOptions options;
+    tinygltf::Model model;
+    std::vector<RestNode> rest;
+    detail::DecodedMeshes decoded;
+    std::vector<Material> file_materials;  // as loaded (the caller may change the scene's)
+    uint32_t default_material = 0;
+    size_t file_lights = 0;
+    size_t file_cameras = 0;
+    Scene scene;
+};
+
+PosableScene::PosableScene(const std::filesystem::path& path, const LoadOptions& options)
+    : state_(std::make_unique<State>()) {
+    State& s = *state_;
+    s.path = path;
+    s.options = options;
+    detail::CapturedImages captured;
+    std::string warn;
+    s.model = detail::read_gltf_file(path, captured, warn);
+    for (const tinygltf::Node& node : s.model.nodes) {
+        s.rest.push_back({node.translation, node.rotation, node.scale, node.weights});
+    }
+    s.scene = detail::scene_from_model(path, s.model, captured, warn, options, s.decoded);
+    s.file_materials = s.scene.materials;
+    s.default_material = uint32_t(s.model.materials.size());
+    for (const Light& light : s.scene.lights) s.file_lights += light.origin == LightOrigin::file ? 1 : 0;
+    for (const Camera& camera : s.scene.cameras) s.file_cameras += camera.origin == CameraOrigin::file ? 1 : 0;
+}
+
+PosableScene::~PosableScene() = default;
+PosableScene::PosableScene(PosableScene&&) noexcept = default;
+PosableScene& PosableScene::operator=(PosableScene&&) noexcept = default;
+
+Scene& PosableScene::scene() {
+    return state_->scene;
+}
+const Scene& PosableScene::scene() const {
+    return state_->scene;
+}
+
+PoseChange PosableScene::pose(double time) {
+    State& s = *state_;
+    const std::string file = s.path.string();
+    const detail::GltfSource source{s.model, file};
+    if (!std::isfinite(time)) source.fail("the time to pose the scene at is not finite");
+    for (size_t n = 0; n < s.rest.size(); ++n) {
+        tinygltf::Node& node = s.model.nodes[n];
+        node.translation = s.rest[n].translation;
+        node.rotation = s.rest[n].rotation;
+        node.scale = s.rest[n].scale;
+        node.weights = s.rest[n].weights;
+    }
+    LoadOptions options = s.options;
+    options.time = time;
+    Scene posed;  // the flattened nodes only: what a pose can change
+    posed.animations = detail::pose_animations(source, s.model, options, posed.time, posed.warnings);
+    detail::append_node_instances(source, std::span<const Material>(s.file_materials).first(s.default_material),
+                                  s.default_material, s.decoded, posed);
+
+    Scene& scene = s.scene;
+    if (posed.indices != scene.indices || posed.triangle_materials != scene.triangle_materials ||
+        posed.vertices.size() != scene.vertices.size()) {
+        source.fail("posed at t = " + std::to_string(time) + ", the scene has " +
+                    std::to_string(posed.triangle_count()) + " triangles over " +
+                    std::to_string(posed.vertices.size()) + " vertices, where it had " +
+                    std::to_string(scene.triangle_count()) + " over " + std::to_string(scene.vertices.size()) +
+                    (posed.triangle_count() == scene.triangle_count() ? " (some wound the other way)" : "") +
+                    ": a pose moves vertices, it does not change triangles; load the file at that time instead");
+    }
+
+    PoseChange change;
+    for (size_t v = 0; v < scene.vertices.size() && !change.vertices; ++v) {
+        change.vertices = !same_vertex_pose(scene.vertices[v], posed.vertices[v]);
+    }
+    if (change.vertices) {
+        for (size_t v = 0; v < scene.vertices.size(); ++v) {
+            scene.vertices[v].position = posed.vertices[v].position;
+            scene.vertices[v].normal = posed.vertices[v].normal;
+            scene.vertices[v].tangent = posed.vertices[v].tangent;
+        }
+        scene.bounds.min = glm::vec3(std::numeric_limits<float>::max());
+        scene.bounds.max = glm::vec3(std::numeric_limits<float>::lowest());
+        for (uint32_t i : scene.indices) {
+            scene.bounds.min = glm::min(scene.bounds.min, scene.vertices[i].position);
+            scene.bounds.max = glm::max(scene.bounds.max, scene.vertices[i].position);
+        }
+    }
+    // The file's lights, in the order load_gltf put them (first, before any the caller added).
+    size_t kept_file_lights = 0;
+    for (const Light& light : scene.lights) kept_file_lights += light.origin == LightOrigin::file ? 1 : 0;
+    if (kept_file_lights == s.file_lights && posed.lights.size() == s.file_lights) {
+        size_t next = 0;
+        for (Light& light : scene.lights) {
+            if (light.origin != LightOrigin::file) continue;
+            const Light& moved = posed.lights[next++];
+            if (same_light(light, moved)) continue;
+            change.lights = true;
+            light.position = moved.position;
+            light.direction = moved.direction;
+            light.color = moved.color;
+            light.intensity = moved.intensity;
+            light.range = moved.range;
+            light.inner_cone_angle = moved.inner_cone_angle;
+            light.outer_cone_angle = moved.outer_cone_angle;
+        }
+    }
+    if (posed.cameras.size() == s.file_cameras) {
+        size_t next = 0;
+        for (Camera& camera : scene.cameras) {
+            if (camera.origin != CameraOrigin::file || next >= posed.cameras.size()) continue;
+            const Camera& moved = posed.cameras[next++];
+            change.cameras |= !same_camera(camera, moved);
+            camera = moved;
+        }
+    }
+    scene.time = posed.time;
+    for (size_t a = 0; a < scene.animations.size() && a < posed.animations.size(); ++a) {
+        scene.animations[a].applied = posed.animations[a].applied;
+    }
+    return change;
+}
+
+}  // namespace vplkit::scene
