@@ -271,4 +271,18 @@ void GpuScene::release() {
     context_ = nullptr;
 }
 
+void GpuScene::update_vertices(const scene::Scene& scene) {
+    if (scene.vertices.size() != vertex_count_ || scene.indices.size() != size_t(triangle_count_) * 3) {
+        throw Error("GPU scene: a pose gave " + std::to_string(scene.vertices.size()) + " vertices and " +
+                    std::to_string(scene.triangle_count()) + " triangles, the scene has " +
+                    std::to_string(vertex_count_) + " and " + std::to_string(triangle_count_));
+    }
+    bounds_.min = bounds_.max = scene.vertices[scene.indices[0]].position;
+    for (uint32_t index : scene.indices) {
+        bounds_.min = glm::min(bounds_.min, scene.vertices[index].position);
+        bounds_.max = glm::max(bounds_.max, scene.vertices[index].position);
+    }
+    vertices_.upload(scene.vertices);
+}
+
 }  // namespace vplkit

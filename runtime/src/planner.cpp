@@ -180,8 +180,21 @@ std::string tree_settings_key(const RenderSettings& settings) {
     return key.str();
 }
 
+namespace {
+
+// "geometry moved", "lights moved", "geometry and lights moved" between two poses ("" when none).
+std::string moved_between(const SceneVersion& before, const SceneVersion& now) {
+    const bool geometry = before.geometry != now.geometry, lights = before.lights != now.lights;
+    return geometry && lights ? "geometry and lights moved"
+           : geometry         ? "geometry moved"
+           : lights           ? "lights moved"
+                              : "";
+}
+
+}  // namespace
+
 FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, const std::string& view_key,
-                     const ReusableWork& previous) {
+                     const ReusableWork& previous, const SceneVersion& now) {
     FramePlan plan;
     const bool punctual = !scene.lights.empty();
     const bool emissive = !scene.emissive_triangles.empty();
@@ -229,8 +242,12 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     const bool force = settings.force_all_stages;
     // An SMC set changes every frame by design (its update is the frame's VPL stage), so neither
     // it nor the trees over it are ever reused.
+    // A pose that moved geometry or lights since the cached VPLs were made (same settings).
+    const std::string vpls_moved = !previous.vpl_key.empty() && previous.vpl_key == plan.vpl_key
+                                       ? moved_between(previous.vpl_scene, now)
+                                       : std::string();
     plan.reuse_vpls = !force && settings.reuse_static_work && indirect && !own_vpls && lit &&
-                      !previous.vpl_key.empty() && previous.vpl_key == plan.vpl_key &&
+                      !previous.vpl_key.empty() && previous.vpl_key == plan.vpl_key && vpls_moved.empty() &&
                       plan.vpl_source != VplSource::smc;
     // Which tree the method reads, and which ones this frame builds (all of them when forced).
     const bool reads_light_tree = method.reads_light_tree;
@@ -290,7 +307,21 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         : emissive ? std::to_string(scene.emissive_triangles.size()) + " emissive triangles, flat: " + sampler_reason
         : force    ? "forced on (`force_all_stages`); no emissive triangle"
                    : "no emissive triangle");
-    add(FrameStage::direct_tree, tree, tree ? sampler_reason : "flat sampler: " + sampler_reason);
+    std::string tree_state;
+    if (tree) {
+        // The tree is over point and spot lights and emissive triangles: kept while they stay.
+        const SceneVersion& built = previous.direct_tree_scene.value_or(now);
+        const bool lights_moved = built.lights != now.lights && positioned > 0;
+        const bool emitters_moved = built.geometry != now.geometry && emissive;
+        plan.build_direct_tree = !previous.direct_tree_scene || lights_moved || emitters_moved;
+        tree_state = !previous.direct_tree_scene      ? "; its tree built this frame (first use)"
+                     : lights_moved && emitters_moved ? "; its tree rebuilt: lights and emissive geometry moved"
+                     : lights_moved                   ? "; its tree rebuilt: lights moved"
+                     : emitters_moved                 ? "; its tree rebuilt: emissive geometry moved"
+                     : force                          ? "; its tree rebuilt (`force_all_stages`)"
+                                                      : "; its tree reused: lights unchanged";
+    }
+    add(FrameStage::direct_tree, tree, tree ? sampler_reason + tree_state : "flat sampler: " + sampler_reason);
 
     const std::string reused = "reused: lights, geometry and VPL settings unchanged since the previous frame";
     const bool make_vpls = indirect && lit && !plan.reuse_vpls && !own_vpls;
@@ -304,6 +335,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
                                                        : "light paths place this frame's VPLs";
         }
         if (plan.reuse_vpls) return reused;
+        if (!vpls_moved.empty()) return source_reason + "; made again: " + vpls_moved + " since the cached VPLs";
         return source_reason;
     };
     add(FrameStage::vpl_paths, make_vpls && plan.vpl_source == VplSource::ir, vpl_reason(VplSource::ir));
@@ -328,6 +360,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
         if (plan.vpl_source == VplSource::smc) {
             return "read by " + std::string(method.name) + "; rebuilt every frame: the SMC set moves";
         }
+        if (!vpls_moved.empty()) return "read by " + std::string(method.name) + "; rebuilt: " + vpls_moved;
         return "read by " + std::string(method.name);
     };
     add(FrameStage::vpl_sort, build_trees, tree_reason(true, true, "sorted leaves"));
@@ -359,15 +392,19 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     // The filter only where it can help: exact is the ground truth, and a temporal-only filter
     // without history has nothing to average (it still runs then, to start the history).
     const bool denoise = gi && settings.denoise != DenoiseMode::off && !method.ground_truth;
+    // The filter reprojects its history with the camera alone: after geometry moved, the history
+    // would drag moved objects' light along, so it is dropped (moved lights only lag, kept).
+    plan.drop_denoise_history = denoise && previous.denoise_history && previous.history_scene.geometry != now.geometry;
+    const bool history = previous.denoise_history && !plan.drop_denoise_history;
+    const std::string no_history = plan.drop_denoise_history ? "history dropped: geometry moved" : "no history yet";
     add(FrameStage::denoise, denoise,
-        !gi                                    ? no_gi + ": nothing to filter"
-        : settings.denoise == DenoiseMode::off ? "`denoise` off"
-        : method.ground_truth                  ? std::string(method.name) + " is the ground truth: nothing to filter"
-        : settings.denoise == DenoiseMode::svgf
-            ? std::string("svgf: temporal accumulation and the a-trous filter") +
-                  (previous.denoise_history ? "" : " (no history yet: spatial only)")
-        : previous.denoise_history ? "temporal: accumulation with the previous frames"
-                                   : "temporal: no history yet, this frame starts it (image unchanged)");
+        !gi                                     ? no_gi + ": nothing to filter"
+        : settings.denoise == DenoiseMode::off  ? "`denoise` off"
+        : method.ground_truth                   ? std::string(method.name) + " is the ground truth: nothing to filter"
+        : settings.denoise == DenoiseMode::svgf ? std::string("svgf: temporal accumulation and the a-trous filter") +
+                                                      (history ? "" : " (" + no_history + ": spatial only)")
+        : history ? "temporal: accumulation with the previous frames"
+                  : "temporal: " + no_history + ", this frame starts it (image unchanged)");
     plan.glossy_reason = glossy_branch_reason(scene, settings, gi && sampled, plan.glossy_branch);
     add(FrameStage::compose, true, "every frame: direct + indirect");
     add(FrameStage::tonemap, true, "every frame: the picture");

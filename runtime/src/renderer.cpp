@@ -32,6 +32,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace vplkit {
 
@@ -112,7 +113,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
             smc_ = stages::SmcState::create(context_, options);
             smc_key_ = key;
         }
-        const stages::SmcScene smc_scene{gpu_bvh_, vpl_sources()};
+        const stages::SmcScene smc_scene{gpu_bvh(), vpl_sources()};
         const uint32_t updates = smc_->empty() ? settings.smc_warmup + 1 : 1;
         if (updates > 1) {
             // The warm-up (a new set's first frame only) reads this frame's G-buffer and reports
@@ -162,7 +163,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
         auto& output = frame.hold(stages::VplTracingOutput::create(context_, tracing));
         passes.set_tag(stage_tag(FrameStage::vpl_paths));
-        stages::add_trace_vpls_pass(context_, passes, gpu_bvh_, sources, tracing, output);
+        stages::add_trace_vpls_pass(context_, passes, gpu_bvh(), sources, tracing, output);
         generated.capacity = output.capacity;
         generated.count_word = offsetof(shaders::VplCountBuffer, count) / sizeof(uint32_t);
         generated.vpls = std::move(output.vpls);  // the frame's scratch stays held until it ran
@@ -210,7 +211,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         stages::ShadowMap& held_map = frame.hold(std::move(map));
         passes.set_tag(stage_tag(FrameStage::brsm_vpls));
         stages::add_shadow_map_pass(context_, passes, scene_, held_map, uint32_t(i));
-        stages::add_brsm_light_passes(context_, passes, gbuffer, view, held_map, i, gpu_bvh_.scene_scale, options,
+        stages::add_brsm_light_passes(context_, passes, gbuffer, view, held_map, i, gpu_bvh().scene_scale, options,
                                       *output);
         frame.after_run([output, i, &out, name = light.name] {
             if (stages::download_brsm_light_vpl_count(*output, i) == 0) {
@@ -248,6 +249,7 @@ const Renderer::GeneratedVpls& Renderer::frame_vpls(const FramePlan& plan, const
     GeneratedVpls generated = generate_vpls(plan.vpl_source, view, gbuffer, settings, frame, out);
     cache_ = FrameCache{};
     cache_.vpl_key = plan.vpl_key;
+    cache_.scene = version_;
     cache_.vpls = std::move(generated);
     frame.after_run([this, &out, first_note] {
         GeneratedVpls& vpls = cache_.vpls;
@@ -283,7 +285,7 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
     }
     if (settings.frame == 0) denoiser_->reset();
     stages::DenoiseOptions options = settings.denoise_options;
-    options.scene_scale = gpu_bvh_.scene_scale;
+    options.scene_scale = gpu_bvh().scene_scale;
     PassList& passes = frame.passes();
     passes.set_tag(stage_tag(FrameStage::denoise));
     denoiser_->add_passes(context_, passes, settings.denoise, gbuffer, indirect, options, demodulated);
@@ -296,7 +298,7 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
 
 RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings& requested) {
     validate_gi_settings(requested);
-    const RenderSettings settings = with_scene_relative_thresholds(requested, gpu_bvh_.scene_scale);
+    const RenderSettings settings = with_scene_relative_thresholds(requested, gpu_bvh().scene_scale);
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const uint32_t w = settings.width, h = settings.height;
     auto gbuffer = stages::GbufferImages::create(context_, w, h);
@@ -317,9 +319,13 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     // Frame 0 starts a new sequence: the denoiser's history is dropped.
     const bool denoise_history = settings.frame > 0 && denoiser_ && denoiser_->width() == w &&
                                  denoiser_->height() == h && denoiser_->has_history();
-    const FramePlan plan =
-        plan_frame(scene_source_, settings, view_key_of(view, w, h),
-                   {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key, denoise_history});
+    FramePlan plan = plan_frame(scene_source_, settings, view_key_of(view, w, h),
+                                {cache_.vpl_key, cache_.light_tree, cache_.sst, cache_.tree_key, denoise_history,
+                                 cache_.scene, denoise_scene_, direct_tree_scene_},
+                                version_);
+    if (!pose_note_.empty()) plan.notes.push_back(std::exchange(pose_note_, {}));  // what update_pose did
+    if (plan.drop_denoise_history) denoiser_->reset();
+    if (plan.runs(FrameStage::denoise)) denoise_scene_ = version_;
     out.plan_summary = plan.summary();
     out.plan = plan;
     out.vpl_source = plan.vpl_source;
@@ -352,12 +358,12 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     stages::add_gbuffer_pass(context_, direct_passes, scene_, raster_view, gbuffer);
     direct_passes.set_tag(stage_tag(FrameStage::direct_light));
     // With the tree, the direct-light pass adds only the directional lights (they have no position).
-    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh_,
+    stages::add_direct_light_pass(context_, direct_passes, gbuffer, gpu_bvh(),
                                   tree_direct ? directional_lights_ : lights_, {view.position, settings.background},
                                   direct);
     if (plan.runs(FrameStage::direct_emissive)) {
         direct_passes.set_tag(stage_tag(FrameStage::direct_emissive));
-        stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh_, emitters_,
+        stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh(), emitters_,
                                          {view.position, settings.direct_samples, settings.seed}, direct);
     }
     std::optional<stages::RtslcScratch> tree_scratch;
@@ -366,12 +372,18 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     if (tree_direct) {
         direct_passes.set_tag(stage_tag(FrameStage::direct_tree));
         const bool two_level = plan.direct_sampler == DirectSampler::tree2;
+        if (plan.build_direct_tree) {
+            // First use, or the lights or emitters moved (update_pose): both trees made anew.
+            light_tree_.reset();
+            two_level_light_tree_.reset();
+            direct_tree_scene_ = version_;
+        }
         if (two_level && !two_level_light_tree_) {
             // Built on the host and uploaded once, both levels (gpu_two_level_light_tree.hpp).
             two_level_light_tree_ = stages::GpuTwoLevelLightTree::create(context_, scene_source_, emitters_);
         }
         if (!two_level && !light_tree_) {
-            // The lights never change within a renderer: the tree is built once, in its first frame.
+            // Built in the first frame that samples through it, and again after lights moved.
             light_tree_ = stages::GpuLightTree::create(context_, scene_source_, emitters_);
             light_tree_->add_build_passes(context_, direct_passes);
         }
@@ -384,12 +396,12 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
             tree_light.emplace(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "tree light"));
             direct_total.emplace(
                 Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance total"));
-            stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh_, tree,
+            stages::add_direct_light_tree_interleaved_passes(context_, direct_passes, gbuffer, gpu_bvh(), tree,
                                                              view.position, *tree_light, *tree_counters, tree_options,
                                                              *tree_scratch);
             stages::add_compose_pass(context_, direct_passes, direct, *tree_light, *direct_total);
         } else {
-            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh_, tree, view.position,
+            stages::add_direct_light_tree_passes(context_, direct_passes, gbuffer, gpu_bvh(), tree, view.position,
                                                  direct, *tree_counters, tree_options, *tree_scratch);
         }
     }

@@ -157,12 +157,12 @@ void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages&
                                     settings.seed);
     stages::add_flc_compact_passes(context_, passes, {candidates, counts, kept, divergent}, partition.level_count,
                                    candidate_count);
-    stages::add_flc_vpl_light_pass(context_, passes, gpu_bvh_, lights_, emitters_,
+    stages::add_flc_vpl_light_pass(context_, passes, gpu_bvh(), lights_, emitters_,
                                    {candidates, counts, kept, albedo, vpls}, partition, candidate_count,
                                    {settings.flc_emitter_samples, settings.seed});
     passes.set_tag(stage_tag(FrameStage::gi_flc));
     stages::add_flc_splat_passes(context_, passes, {candidates, counts, kept, vpls, draw_args}, gbuffer, indirect, view,
-                                 partition, candidate_count, gpu_bvh_.scene_scale, splat_options,
+                                 partition, candidate_count, gpu_bvh().scene_scale, splat_options,
                                  tiled ? ImageView(*tiled) : ImageView{});
     out.gi_width = gbuffer.width();
     out.gi_height = gbuffer.height();

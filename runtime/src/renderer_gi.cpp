@@ -77,7 +77,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
             out.notes.push_back("no VPLs were placed (no light reaches a reflecting surface): no indirect light");
         }
     });
-    GiStageOptions options = gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh_.scene_scale);
+    GiStageOptions options = gi_stage_options(settings, stages::kGiSimilarityDistanceFraction * gpu_bvh().scene_scale);
     options.sst.glossy.enabled = options.rtslc.glossy.enabled = options.hybrid.glossy.enabled = plan.glossy_branch;
     const stages::SstGiOptions& sst_options = options.sst;
     const stages::RtslcOptions& rtslc_options = options.rtslc;
@@ -104,7 +104,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         stages::ExactGiOptions options;
         options.progress = settings.progress;
         options.min_distance_fraction = settings.exact_min_distance_fraction;
-        const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh_, vpls.vpls, vpls.count,
+        const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh(), vpls.vpls, vpls.count,
                                                     view.position, gi_target, options);
         out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms,
                                stage_tag(FrameStage::gi_exact)});
@@ -133,18 +133,18 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         }
         switch (settings.method) {
             case GiMethod::sst:
-                stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
+                stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
                                           counters, sst_options);
                 break;
             case GiMethod::rtslc: {
                 auto& scratch = frame.hold(stages::RtslcScratch::create(context_, w, h, rtslc_options));
-                stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
+                stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
                                          counters, rtslc_options, scratch);
                 break;
             }
             case GiMethod::hybrid: {
                 auto& cuts = frame.hold(stages::HybridCuts::create(context_, w, h, hybrid_options));
-                stages::add_hybrid_gi_passes(context_, passes, gi_gbuffer, gpu_bvh_, trees, view.position, gi_target,
+                stages::add_hybrid_gi_passes(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
                                              counters, cuts, hybrid_options);
                 break;
             }
@@ -173,7 +173,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     // G-buffer), and multiply the full-resolution albedo back after it (or after the denoiser).
     const bool denoised = plan.runs(FrameStage::denoise);
     stages::DenoiseOptions modulation = settings.denoise_options;
-    modulation.scene_scale = gpu_bvh_.scene_scale;
+    modulation.scene_scale = gpu_bvh().scene_scale;
     Image& half_irradiance = frame.hold(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
                                                       VK_IMAGE_USAGE_STORAGE_BIT, "half indirect irradiance"));
     Image* full_irradiance = nullptr;
@@ -188,7 +188,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
                                 half_irradiance, modulation);
     Image& upsampled = denoised ? indirect : *full_irradiance;
     stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, half_irradiance, upsampled, counters,
-                              stages::upsample_options_for_scene(gpu_bvh_.scene_scale));
+                              stages::upsample_options_for_scene(gpu_bvh().scene_scale));
     if (!denoised) stages::add_remodulate_pass(context_, passes, upsampled, gbuffer.albedo, indirect, modulation);
     frame.after_run([&out, &counters] { out.upsample_counts = stages::read_upsample_counters(counters); });
     return denoised;

@@ -96,6 +96,10 @@ public:
     GpuScene& operator=(const GpuScene&) = delete;
     ~GpuScene();
 
+    // A pose's new vertices (vplkit/scene_pose.hpp: the same triangles, moved): uploaded over the
+    // old ones, bounds() recomputed. Throws Error for a scene of another vertex count.
+    void update_vertices(const scene::Scene& scene);
+
     // scene::Vertex[] (48 bytes each; storage and vertex-buffer usage).
     const Buffer& vertices() const { return vertices_; }
     // uint32 x 3 per triangle, global vertex indices (storage and index-buffer usage).

@@ -8,6 +8,7 @@
 #include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,15 @@ struct PlannedStage {
     std::string reason;  // why it runs, or why it is left out
 };
 
+// Which pose of a scene's geometry and lights a frame sees: each count grows when a renderer's
+// update_pose moves vertices (geometry) or lights (renderer.hpp). Work made at another version
+// is not reused.
+struct SceneVersion {
+    uint32_t geometry = 0;
+    uint32_t lights = 0;
+    bool operator==(const SceneVersion&) const = default;
+};
+
 // What the previous frame left that this one may reuse.
 struct ReusableWork {
     std::string vpl_key;      // the VPL set the cached VPLs are (empty: none cached)
@@ -67,6 +77,11 @@ struct ReusableWork {
     bool sst = false;
     std::string tree_key;
     bool denoise_history = false;  // the denoiser holds a previous frame of this size
+    SceneVersion vpl_scene;        // the pose the cached VPLs and trees were made at
+    SceneVersion history_scene;    // the pose of the denoiser's history
+    // The direct light tree's pose (none: not built yet); the tree is over lights and emissive
+    // triangles, so it is rebuilt when lights move, or geometry with emissive triangles does.
+    std::optional<SceneVersion> direct_tree_scene;
 };
 
 struct FramePlan {
@@ -75,9 +90,14 @@ struct FramePlan {
     DirectSampler direct_sampler = DirectSampler::flat;  // the sampler chosen (automatic resolved)
     bool reuse_vpls = false;                             // the previous frame's VPLs serve this frame
     bool reuse_trees = false;                            // and its trees
-    std::string vpl_key;                                 // this frame's VPL set
-    std::string tree_key;                                // this frame's tree settings
-    std::vector<std::string> notes;                      // e.g. "the scene has no light: the image would be black"
+    // The direct light tree is built this frame (first use, or the lights or emitters moved).
+    bool build_direct_tree = false;
+    // The denoiser's history is dropped: the geometry moved, and its reprojection follows only
+    // the camera (a moved object would leave a trail). Lights moving keep it.
+    bool drop_denoise_history = false;
+    std::string vpl_key;             // this frame's VPL set
+    std::string tree_key;            // this frame's tree settings
+    std::vector<std::string> notes;  // e.g. "the scene has no light: the image would be black"
     // The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp): compiled in or out,
     // and why (the materials that turned it on).
     bool glossy_branch = false;
@@ -109,7 +129,8 @@ std::string tree_settings_key(const RenderSettings& settings);
 
 // The plan of one frame. `view_key` names the camera and size (the Renderer's), `previous` what
 // the last frame left. Pure: no device work.
+// `now` is the pose the frame sees (a renderer's scene version).
 FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, const std::string& view_key,
-                     const ReusableWork& previous = {});
+                     const ReusableWork& previous = {}, const SceneVersion& now = {});
 
 }  // namespace vplkit

@@ -2,10 +2,12 @@
 // A whole frame: the G-buffer raster pass, direct light from punctual lights and from emissive
 // triangles (area-light sampling) with BVH shadow rays, VPLs and indirect light by the chosen
 // method (optionally at half resolution), the tonemap; what `vplkit render` runs. Scene data is uploaded and the BVH
-// built once, at construction; render() can then be called for any camera and size.
+// built once, at construction; render() can then be called for any camera and size. A scene that
+// moves (scene::PosableScene) is followed with update_pose(), which uploads only what moved.
 
 #include "vplkit/antialias.hpp"
 #include "vplkit/bvh_gpu.hpp"
+#include "vplkit/bvh_gpu_build.hpp"
 #include "vplkit/denoiser.hpp"
 #include "vplkit/gpu_light_tree.hpp"
 #include "vplkit/gpu_lights.hpp"
@@ -15,6 +17,7 @@
 #include "vplkit/planner.hpp"
 #include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/scene_pose.hpp"
 #include "vplkit/stages/brsm.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/stages/sst.hpp"
@@ -28,6 +31,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -87,6 +91,36 @@ struct RenderedImage {
     std::vector<float> albedo, normal, depth, indirect_variance;
 };
 
+// How update_pose brought the BVH to the new pose.
+enum class BvhUpdate {
+    none,     // no vertex moved
+    refit,    // the GPU tree's boxes refitted, its topology kept
+    rebuild,  // a new GPU build (the first move, or the refitted tree's cost passed the limit)
+};
+
+// What Renderer::update_pose did.
+struct PoseUpdate {
+    bool geometry = false;  // vertices (and emissive triangles) uploaded, the BVH refitted or rebuilt
+    bool lights = false;    // lights uploaded
+    BvhUpdate bvh = BvhUpdate::none;
+    // The BVH's SAH cost (bvh_sah_cost) over its cost right after it was last built: 1 after a
+    // rebuild; a refit that moves triangles apart in the tree makes it grow.
+    double bvh_cost_ratio = 1.0;
+    double refit_cost_ratio = 0.0;  // with BvhUpdate::rebuild after a refit: the refitted tree's ratio
+    double upload_ms = 0.0;         // vertices, emitters and lights to the GPU (host wall clock)
+    double bvh_ms = 0.0;            // refit and/or build, the triangles' upload included (host wall clock)
+    double bvh_gpu_ms = 0.0;        // the GPU's time of the last refit or build
+    std::string summary;            // one line; the next frame's plan carries it as a note
+};
+
+// A refitted BVH is rebuilt when its SAH cost passes this multiple of its cost when built (the
+// cost tracks the rays' traversal work; see tests/animation for the measurement behind it).
+inline constexpr double kBvhRebuildCostRatio = 1.5;
+
+// The SAH cost of a BVH's nodes (traversal 1, triangle 1, relative to the root box's area): the
+// expected node visits and triangle tests of a ray that meets the root box.
+double bvh_sah_cost(std::span<const shaders::BvhNode> nodes);
+
 class Renderer {
 public:
     // `scene` must outlive the renderer (the VPL tracer reads its lights and materials).
@@ -98,7 +132,19 @@ public:
     // asked of a scene without a punctual light, or a sampling dispatch the driver cut short.
     RenderedImage render(const scene::Camera& camera, const RenderSettings& settings);
 
+    // After the scene given at construction was posed again (scene::PosableScene::pose returned
+    // `change`): uploads the moved vertices, refits the BVH on the GPU (built there on the first
+    // move; rebuilt when the refit's cost passes kBvhRebuildCostRatio) and uploads moved lights.
+    // The next frames' plans make again what depended on what moved (VPLs and their trees, the
+    // direct light tree, the denoiser's history after geometry moved) and reuse the rest.
+    // Throws Error when the scene's vertex or triangle count changed (a renderer keeps its
+    // triangles) or a moved vertex is not finite.
+    PoseUpdate update_pose(const scene::PoseChange& change);
+    // The pose this renderer's data is at (counts of update_pose's geometry and light moves).
+    SceneVersion scene_version() const { return version_; }
+
     double bvh_build_ms() const { return bvh_build_ms_; }
+    // The host's BVH of the scene as constructed (update_pose moves only the GPU's).
     const Bvh& bvh() const { return bvh_; }
     uint32_t light_count() const { return lights_.count; }
     uint32_t emitter_count() const { return emitters_.count; }
@@ -151,10 +197,11 @@ private:
     std::vector<uint32_t> flc_triangle_order_;
 
     // What a frame leaves for the next: its VPLs and the trees over them, while the plan's keys
-    // (VPL settings, view for BRSM, tree settings) stay the same. Scene geometry and lights are
-    // fixed for a renderer's life.
+    // (VPL settings, view for BRSM, tree settings) stay the same. The cache is kept only
+    // at the pose it was made at (scene, update_pose).
     struct FrameCache {
         std::string vpl_key;  // empty: nothing cached
+        SceneVersion scene;   // the pose they were made at
         GeneratedVpls vpls;
         std::vector<std::string> vpl_notes;
         std::string tree_key;
@@ -177,6 +224,17 @@ private:
     GpuScene scene_;
     Bvh bvh_;
     GpuBvh gpu_bvh_;
+    // Once geometry moved (update_pose): the BVH built and refitted on the GPU, and its SAH cost
+    // when built. Until then the host's build above.
+    std::optional<GpuBvhBuild> moving_bvh_;
+    double moving_bvh_built_cost_ = 0.0;
+    const GpuBvh& gpu_bvh() const { return moving_bvh_ ? moving_bvh_->bvh() : gpu_bvh_; }
+    // Builds moving_bvh_ over the scene's current positions (its alpha records from bvh_).
+    void build_moving_bvh(std::span<const glm::vec3> positions);
+    SceneVersion version_;                           // update_pose's moves
+    SceneVersion denoise_scene_;                     // the pose of the denoiser's history
+    std::optional<SceneVersion> direct_tree_scene_;  // the pose the direct light tree was built at
+    std::string pose_note_;                          // the last update_pose's summary, for the next plan
     stages::GpuLights lights_;
     stages::GpuEmitters emitters_;
     stages::GpuLights directional_lights_;            // the direct-light pass's lights when the tree samples the rest
