@@ -2,10 +2,7 @@
 
 #include "camera_flags.hpp"
 
-#include "cli_app.hpp"
 #include "cli_checks.hpp"
-
-#include <algorithm>
 
 #include "vplkit/error.hpp"
 #include "vplkit/scene_setups.hpp"
@@ -137,28 +134,6 @@ glm::vec3 apply_camera_flags(const CameraFlags& flags, scene::Scene& scene, glm:
     moved.name = camera.name.empty() ? "command line" : camera.name + " (moved on the command line)";
     camera = moved;
     return *flags.target;
-}
-
-}  // namespace vplkit::cli
-
-namespace vplkit::cli {
-
-CameraFlags parse_camera_flags(Args& args) {
-    CLI::App command("", args.command());
-    configure_app(command);
-    command.allow_extras();
-    CameraFlags flags;
-    add_camera_options(command, flags);
-    std::vector<std::string> rest = args.take_rest();
-    std::reverse(rest.begin(), rest.end());
-    try {
-        command.parse(rest);
-    } catch (const CLI::ParseError& e) {
-        throw UsageError(parse_error_text(e));
-    }
-    args = Args(args.command(), command.remaining());
-    check_camera_flags(flags);
-    return flags;
 }
 
 }  // namespace vplkit::cli

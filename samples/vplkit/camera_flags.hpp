@@ -29,8 +29,6 @@ void add_camera_options(CLI::App& command, CameraFlags& flags);
 // the reverse), --up without them, the same point as position and target, or an up parallel to the
 // view direction.
 void check_camera_flags(const CameraFlags& flags);
-// Bridge for the commands still reading an Args: the four options taken out of it.
-CameraFlags parse_camera_flags(Args& args);
 
 // Makes the flags' camera the scene's active one (the set-up's or file's is the default of what
 // is not given: --fov alone keeps its place and turns only the field of view) and returns the

@@ -4,6 +4,7 @@
 // plot and a report.
 
 #include "camera_path.hpp"
+#include "cli_checks.hpp"
 #include "commands.hpp"
 #include "plot_script.hpp"
 #include "render_request.hpp"
@@ -32,37 +33,6 @@
 #include <unistd.h>
 
 namespace vplkit::cli {
-
-const char* const kSequenceUsage =
-    "usage: vplkit sequence --out DIR [--scene NAME|FILE] [--path orbit|FILE] [--frames N]\n"
-    "                       [--orbit-degrees D] [--pfm] [--fresh-vpls] [--reference] [--reference-paths P]\n"
-    "                       [--cache DIR] [--stats FILE.json] [render's options: --method, --vpl-source, ...]\n"
-    "\n"
-    "Renders N frames along a camera path and writes DIR/frame_NNNN.png (and .pfm with --pfm,\n"
-    "linear radiance) and DIR/stage_times.csv (each frame's GPU time per stage). A renderer lives\n"
-    "for the whole sequence, so --vpl-source smc carries its VPLs from frame to frame.\n"
-    "  --path P          orbit (default): about the set-up's target (a file's: its bounds' centre),\n"
-    "                    turning --orbit-degrees (default 30) over the sequence; or a keyframe file,\n"
-    "                    one key per line: TIME PX PY PZ TX TY TZ (position, target), interpolated\n"
-    "  --frames N        frames (default 16)\n"
-    "  --position X,Y,Z --target X,Y,Z   orbit: the first frame's place and the orbit's centre\n"
-    "                    (default: the set-up's camera and target); --fov DEG: every frame's\n"
-    "                    vertical field of view (keyframes too); the paths keep +Y up (no --up)\n"
-    "  --stats FILE      also a JSON file: the device, the plans (each stage kept or left out and\n"
-    "                    why, per run of frames alike), GPU times (frame_ms: the median frame's sum\n"
-    "                    over every pass; per stage and pass), each frame's counters (and metrics\n"
-    "                    with --reference); a number that is not finite is written as null\n"
-    "  --denoise D       svgf (default for sampled methods), temporal or off: the indirect-light\n"
-    "                    filter, its history carried along the path (exact is never filtered)\n"
-    "  --fresh-vpls      ir, brsm: new VPLs every frame (seed + frame), as seed 001's comparison draws\n"
-    "                    them; without it they follow --seed, the same light paths every frame\n"
-    "  --reference       also the per-frame reference: the exact gather (--method exact) over\n"
-    "                    instant-radiosity VPLs from --reference-paths light paths (default 16384)\n"
-    "                    with the same bounces, cached in --cache (default out/sequence-cache) by\n"
-    "                    scene, camera, size and VPL set; and seed 001's metrics on the Reinhard-\n"
-    "                    tonemapped luminance of the indirect light: |E| (mean absolute error) and\n"
-    "                    |E'| (mean absolute change of the per-pixel error between frames, eq. 10)\n"
-    "                    in DIR/metrics.csv, DIR/metrics.png and DIR/report.md\n";
 
 namespace {
 
@@ -114,34 +84,35 @@ std::string frame_name(uint32_t frame, const char* extension) {
 
 }  // namespace
 
-int run_sequence(Args& args) {
-    const auto out_text = args.value("--out");
-    const std::string path_arg = args.value("--path").value_or("orbit");
+namespace {
+
+// Sequence's own options (render's are a RenderOptions beside them).
+struct SequenceOptions {
+    std::optional<std::string> out, stats;
+    std::string path = "orbit";
     uint32_t frames = 16;
-    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 100000);
     float orbit_degrees = 30.0f;
-    if (auto text = args.value("--orbit-degrees")) {
-        if (path_arg != "orbit") throw UsageError("--orbit-degrees is for --path orbit");
-        try {
-            size_t used = 0;
-            orbit_degrees = std::stof(*text, &used);
-            if (used != text->size() || !std::isfinite(orbit_degrees)) throw std::invalid_argument("");
-        } catch (const std::exception&) {
-            throw UsageError("--orbit-degrees expects a number, got '" + *text + "'");
-        }
-    }
-    const bool pfm = args.flag("--pfm");
-    const bool fresh_vpls = args.flag("--fresh-vpls");
-    const bool reference = args.flag("--reference");
+    bool pfm = false, fresh_vpls = false, reference = false;
     uint32_t reference_paths = 16384;
-    if (auto text = args.value("--reference-paths")) {
-        if (!reference) throw UsageError("--reference-paths needs --reference");
-        reference_paths = parse_whole_number("--reference-paths", *text, 1u << 22);
+    std::string cache = "out/sequence-cache";
+};
+
+int run_sequence(const CLI::App& command, const SequenceOptions& o, const RenderOptions& render_options) {
+    const std::optional<std::string>& out_text = o.out;
+    const std::string& path_arg = o.path;
+    const uint32_t frames = o.frames;
+    if (command.count("--orbit-degrees") && path_arg != "orbit") {
+        throw UsageError("--orbit-degrees is for --path orbit");
     }
-    const std::filesystem::path cache = args.value("--cache").value_or("out/sequence-cache");
-    const auto stats_path = args.value("--stats");
-    RenderRequest request = parse_render_request(args);
-    args.finish();
+    const float orbit_degrees = o.orbit_degrees;
+    const bool pfm = o.pfm;
+    const bool fresh_vpls = o.fresh_vpls;
+    const bool reference = o.reference;
+    if (command.count("--reference-paths") && !reference) throw UsageError("--reference-paths needs --reference");
+    const uint32_t reference_paths = o.reference_paths;
+    const std::filesystem::path cache = o.cache;
+    const std::optional<std::string>& stats_path = o.stats;
+    RenderRequest request = render_options.request();
     if (!out_text) throw UsageError("--out DIR is required");
     if (stats_path) {
         const std::filesystem::path stats_file = *stats_path;
@@ -367,6 +338,74 @@ int run_sequence(Args& args) {
                                                              : std::filesystem::path(request.scene_arg).stem().string();
     draw_plots("sequence", out_dir, {"--scene", scene_name});
     return 0;
+}
+
+}  // namespace
+
+void add_sequence(CLI::App& vplkit, Runners& runners) {
+    CLI::App* sequence = add_command(
+        vplkit, "sequence",
+        "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
+        "Renders N frames along a camera path and writes DIR/frame_NNNN.png (and .pfm with --pfm, linear "
+        "radiance) and DIR/stage_times.csv (each frame's GPU time per stage). A renderer lives for the whole "
+        "sequence, so --vpl-source smc carries its VPLs from frame to frame. Takes render's options; --position "
+        "X,Y,Z --target X,Y,Z place an orbit's first frame and its centre, --fov is every frame's (keyframes "
+        "too), and the paths keep +Y up (no --up).");
+    auto o = std::make_shared<SequenceOptions>();
+    sequence
+        ->add_option_function<std::string>(
+            "--out", [o](const std::string& v) { o->out = v; }, "required: the folder the frames are written to")
+        ->option_text("DIR")
+        ->group("sequence");
+    sequence
+        ->add_option("--path", o->path,
+                     "orbit: about the set-up's target (a file's: its bounds' centre), turning --orbit-degrees over "
+                     "the sequence; or a keyframe file, one key per line: TIME PX PY PZ TX TY TZ (position, "
+                     "target), interpolated")
+        ->capture_default_str()
+        ->option_text("orbit|FILE")
+        ->group("sequence");
+    whole_number(sequence->add_option("--frames", o->frames, "frames")->capture_default_str(), "N", 1, 100000)
+        ->group("sequence");
+    number(sequence->add_option("--orbit-degrees", o->orbit_degrees, "--path orbit: the turn over the sequence")
+               ->capture_default_str(),
+           "D", NumberRange::any())
+        ->group("sequence");
+    sequence->add_flag("--pfm", o->pfm, "also each frame's linear radiance, DIR/frame_NNNN.pfm")->group("sequence");
+    sequence
+        ->add_flag("--fresh-vpls", o->fresh_vpls,
+                   "ir, brsm: new VPLs every frame (seed + frame), as the SMC paper's comparison draws them; without "
+                   "it they follow --seed, the same light paths every frame")
+        ->group("sequence");
+    sequence
+        ->add_flag("--reference", o->reference,
+                   "also the per-frame reference: the exact gather (--method exact) over instant-radiosity VPLs from "
+                   "--reference-paths light paths with the same bounces, cached in --cache by scene, camera, size "
+                   "and VPL set; and the SMC paper's metrics on the Reinhard-tonemapped luminance of the indirect "
+                   "light: |E| (mean absolute error) and |E'| (mean absolute change of the per-pixel error between "
+                   "frames, eq. 10) in DIR/metrics.csv, DIR/metrics.png and DIR/report.md")
+        ->group("sequence");
+    whole_number(sequence->add_option("--reference-paths", o->reference_paths, "with --reference: its light paths")
+                     ->capture_default_str(),
+                 "P", 1, 1u << 22)
+        ->group("sequence");
+    sequence->add_option("--cache", o->cache, "where the references are kept")
+        ->capture_default_str()
+        ->option_text("DIR")
+        ->group("sequence");
+    sequence
+        ->add_option_function<std::string>(
+            "--stats", [o](const std::string& v) { o->stats = v; },
+            "also a JSON file: the device, the plans (each stage kept or left out and why, per run of frames "
+            "alike), GPU times (frame_ms: the median frame's sum over every pass; per stage and pass), each "
+            "frame's counters (and metrics with --reference); a number that is not finite is written as null")
+        ->option_text("FILE.json")
+        ->group("sequence");
+    auto render_options = std::make_shared<RenderOptions>(*sequence);
+    // Sequences are what the filter is for.
+    sequence->get_option("--denoise")->default_str("svgf for a sampled method, off for direct and exact");
+    runners.push_back(
+        {sequence, [sequence, o, render_options] { return run_sequence(*sequence, *o, *render_options); }});
 }
 
 }  // namespace vplkit::cli

@@ -27,10 +27,6 @@ void add_sequence(CLI::App& vplkit, Runners& runners);
 int run_view(Args& args);
 extern const char* const kViewUsage;
 
-// Not yet declared through CLI11: it reads an Args and prints a fixed usage.
-int run_sequence(Args& args);
-extern const char* const kSequenceUsage;
-
 // bench's benchmarks (cmd_bench_<name>.cpp), declared on the bench command by add_bench.
 void add_bench_tree(CLI::App& bench, Runners& runners);
 void add_bench_bvh(CLI::App& bench, Runners& runners);

@@ -75,9 +75,7 @@ int main(int argc, char** argv) {
     vplkit::cli::add_plan(app, runners);
     vplkit::cli::add_bench(app, runners);
     vplkit::cli::add_compare(app, runners);
-    add_args_command(app, runners, "sequence",
-                     "frames along a camera path (orbit or keyframes); --reference: temporal error |E|, |E'| vs exact",
-                     fixed_usage<&vplkit::cli::kSequenceUsage>, vplkit::cli::run_sequence);
+    vplkit::cli::add_sequence(app, runners);
     add_args_command(
         app, runners, "view",
         "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
