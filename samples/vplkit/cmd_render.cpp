@@ -5,6 +5,7 @@
 #include "cli_checks.hpp"
 #include "commands.hpp"
 #include "frame_exr.hpp"
+#include "render_report.hpp"
 #include "render_request.hpp"
 #include "render_stats.hpp"
 #include "scene_warnings.hpp"
@@ -58,41 +59,6 @@ void check_output(const std::string& option, const std::filesystem::path& path,
     if (::access(folder.c_str(), W_OK) != 0) {
         throw UsageError(option + ": the folder " + folder.string() + " is not writable");
     }
-}
-
-// Passes of one name (e.g. the importance mip levels) summed into one line, in first-seen order.
-std::vector<std::pair<std::string, double>> by_stage(const std::vector<PassTiming>& timings) {
-    std::vector<std::pair<std::string, double>> stages;
-    std::map<std::string, size_t> index;
-    std::map<std::string, int> passes;
-    for (const PassTiming& t : timings) {
-        auto [it, added] = index.try_emplace(t.name, stages.size());
-        if (added) stages.push_back({t.name, 0.0});
-        stages[it->second].second += t.gpu_ms;
-        ++passes[t.name];
-    }
-    for (auto& [name, ms] : stages) {
-        if (passes[name] > 1) name += " (" + std::to_string(passes[name]) + " passes)";
-    }
-    return stages;
-}
-
-// Each stage's median over frames (the stages of the first frame, in its order).
-std::vector<std::pair<std::string, double>> median_stages(
-    const std::vector<std::vector<std::pair<std::string, double>>>& frames) {
-    std::vector<std::pair<std::string, double>> out;
-    for (const auto& [name, ms] : frames.front()) {
-        std::vector<double> values;
-        for (const auto& frame : frames) {
-            for (const auto& [n, v] : frame) {
-                if (n == name) values.push_back(v);
-            }
-        }
-        std::sort(values.begin(), values.end());
-        const size_t n = values.size();
-        out.push_back({name, n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2])});
-    }
-    return out;
 }
 
 }  // namespace
@@ -225,7 +191,7 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
     };
     // Several frames: the first pays for lavapipe's shader compiles at first dispatch (and a
     // GPU's warm-up); the times printed are each stage's median over the frames after it.
-    std::vector<std::vector<std::pair<std::string, double>>> frame_stages;
+    std::vector<FramePlan> frame_plans;
     std::vector<std::vector<PassTiming>> frame_timings;  // for --stats
     PlanLog plans;
     RenderedImage image;
@@ -235,11 +201,11 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
         // with anti-aliasing its G-buffer moves by its sub-pixel offset.
         if (settings.denoise != DenoiseMode::off || settings.antialias) settings.frame = frame;
         image = renderer.render(scene.camera(), settings);
-        if (frame > 0 || frames == 1) frame_stages.push_back(by_stage(image.timings));
+        frame_plans.push_back(image.plan);
         frame_timings.push_back(image.timings);
         plans.add(frame, image.plan);
     }
-    std::printf("%s\n", image.plan_summary.c_str());
+    for (const std::string& line : plan_lines(frame_plans)) std::printf("%s\n", line.c_str());
     for (const std::string& note : image.notes) std::printf("note: %s\n", with_flags(note).c_str());
     const bool made_vpls = settings.method != GiMethod::none || settings.vpls_only;
     if (settings.method == GiMethod::flc && !settings.vpls_only) {
@@ -293,17 +259,7 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
                     " pixels came out NaN or infinite; no image written (this is a bug: please report it)");
     }
 
-    if (frames > 1) {
-        std::printf("%ux%u, GPU time per stage (median of frames 2..%u):\n", image.width, image.height, frames);
-    } else {
-        std::printf("%ux%u, GPU time per stage:\n", image.width, image.height);
-    }
-    double total = 0.0;
-    for (const auto& [name, ms] : median_stages(frame_stages)) {
-        std::printf("  %-30s %9.3f ms\n", name.c_str(), ms);
-        total += ms;
-    }
-    std::printf("  %-30s %9.3f ms\n", "total", total);
+    std::fputs(stage_table(frame_timings, image.width, image.height).c_str(), stdout);
     if (method.ground_truth && !settings.vpls_only) {
         std::printf("exact gi by the host's wall clock: %.3f ms\n", image.exact_gi_wall_ms);
     }
