@@ -13,7 +13,7 @@
 namespace vplkit::detail {
 namespace {
 
-constexpr const char* kFormat = "vplkit-budget-cache 1";
+constexpr const char* kFormat = "vplkit-budget-cache 2";  // 2: slopes fitted >= 0
 
 }  // namespace
 

@@ -74,7 +74,7 @@ void CostModel::add_sample(uint32_t tag, const CostPoint& point, double ms) {
 void CostModel::fit() {
     for (const auto& [tag, s] : samples_) {
         const size_t n = cost_feature_values(cost_features(tag), CostPoint{}).size();
-        coefficients_[tag] = fit_linear(s.features, n, s.ms);
+        coefficients_[tag] = fit_linear_nonnegative_slopes(s.features, n, s.ms);
     }
 }
 

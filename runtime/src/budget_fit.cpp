@@ -6,6 +6,7 @@
 
 #include "vplkit/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -60,6 +61,30 @@ std::vector<double> fit_linear(std::span<const double> features, size_t feature_
         if (!dropped[i]) c[i] = a[i][n] / a[i][i] / scale[i];
     }
     return c;
+}
+
+std::vector<double> fit_linear_nonnegative_slopes(std::span<const double> features, size_t feature_count,
+                                                  std::span<const double> times) {
+    std::vector<double> active(features.begin(), features.end());
+    for (;;) {
+        const std::vector<double> c = fit_linear(active, feature_count, times);
+        // The most negative slope, weighed by its feature's largest value (its effect on a time).
+        size_t worst = 0;
+        double worst_effect = 0.0;
+        for (size_t j = 1; j < feature_count; ++j) {
+            double largest = 0.0;
+            for (size_t s = 0; s < times.size(); ++s)
+                largest = std::max(largest, std::abs(active[s * feature_count + j]));
+            const double effect = c[j] * largest;
+            if (effect < worst_effect) {
+                worst_effect = effect;
+                worst = j;
+            }
+        }
+        if (worst == 0) return c;
+        // A column of zeros is dropped by fit_linear (coefficient 0).
+        for (size_t s = 0; s < times.size(); ++s) active[s * feature_count + worst] = 0.0;
+    }
 }
 
 }  // namespace vplkit

@@ -124,3 +124,22 @@ TEST_CASE("budget: a frame's predicted time sums the stages its plan runs, and n
     CHECK(missing == vplkit::stage_name(FrameStage::gi_hybrid));
     CHECK_THROWS_AS(model.set_coefficients(kGiHybrid, {1.0}), vplkit::Error);
 }
+
+TEST_CASE("budget: a slope that noisy timings make negative is left out and the rest refitted") {
+    // Time falls with the VPLs in the samples (noise), rises with the pixels: the VPL slope is
+    // set to 0 and the pixel slope fitted without it.
+    std::vector<double> features;
+    std::vector<double> times;
+    for (double px : {1000.0, 4000.0}) {
+        for (double vpls : {1024.0, 4096.0}) {
+            features.insert(features.end(), {1.0, px, vpls});
+            times.push_back(10.0 + 0.01 * px - 0.001 * vpls);
+        }
+    }
+    const std::vector<double> free = vplkit::fit_linear(features, 3, times);
+    CHECK(free[2] == doctest::Approx(-0.001));
+    const std::vector<double> c = vplkit::fit_linear_nonnegative_slopes(features, 3, times);
+    CHECK(c[2] == 0.0);
+    CHECK(c[1] == doctest::Approx(0.01));
+    CHECK(c[0] == doctest::Approx(10.0 - 0.001 * (1024.0 + 4096.0) / 2.0));
+}

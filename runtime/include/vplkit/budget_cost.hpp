@@ -1,6 +1,6 @@
 #pragma once
 // The budget's cost model: each stage's GPU time as a linear function of what the frame asks,
-// fitted (budget_fit.hpp) to frames timed on this device (budget_calibration.hpp). The model of
+// fitted with slopes >= 0 (budget_fit.hpp) to frames timed on this device (budget_calibration.hpp). The model of
 // a stage, by the stage (planner.hpp's FrameStage, by the passes' tags):
 //   VPL stages (vpl paths, brsm, smc, flc VPLs, sort, light tree, sst):  c0 + c1 * vpls
 //   the sampling stages (gi sst, gi rtslc, gi hybrid, gi exact, gi flc):

@@ -15,4 +15,11 @@ namespace vplkit {
 // `feature_count` values each. Throws vplkit::Error when the sizes disagree or a value is not finite.
 std::vector<double> fit_linear(std::span<const double> features, size_t feature_count, std::span<const double> times);
 
+// The same with every coefficient but the first (the constant term) kept >= 0: more pixels,
+// samples or VPLs never take less time, though noisy timings can fit a negative slope (lavapipe
+// under load). A feature whose slope comes out negative is left out (0) and the rest refitted,
+// the most negative first, until none is.
+std::vector<double> fit_linear_nonnegative_slopes(std::span<const double> features, size_t feature_count,
+                                                  std::span<const double> times);
+
 }  // namespace vplkit
