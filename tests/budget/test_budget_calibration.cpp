@@ -4,6 +4,7 @@
 
 #include "vplkit/budget_calibration.hpp"
 
+#include "vplkit/budget.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
@@ -107,6 +108,39 @@ TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is ca
     const auto third = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), other, narrow, options);
     CHECK(!third.from_cache);
     CHECK(third.key != first.key);
+}
+
+TEST_CASE("budget: plan_for_budget chooses, applies the choice, and re-plans when the times drift") {
+    vplkit::Context& ctx = vplkit::test::context();
+    const auto scene = vplkit::scene::load_gltf(kCornellPoint);
+    vplkit::Renderer renderer(ctx, scene);
+    const TemporaryDirectory cache;
+    vplkit::BudgetCalibrationOptions options;
+    options.cache_dir = cache.path;
+    options.scene_id = "cornell_point";
+    vplkit::BudgetSpace space = vplkit::default_budget_space(small(), vplkit::VplSource::ir);
+    space.methods = {GiMethod::rtslc};
+    space.spp = {1, 2, 4, 8, 16, 32, 64};
+    space.half_resolution = {false};
+    space.denoise = {DenoiseMode::off};
+    // Bad budgets are refused before any frame.
+    CHECK_THROWS_AS(vplkit::plan_for_budget(renderer, ctx.info(), scene, scene.camera(), small(), 0.0, options, space),
+                    vplkit::Error);
+    CHECK(!std::filesystem::exists(cache.path));
+
+    auto plan = vplkit::plan_for_budget(renderer, ctx.info(), scene, scene.camera(), small(), 1e9, options, space);
+    CHECK(plan.choice.chosen.config.spp == 64);
+    CHECK(plan.settings.method == GiMethod::rtslc);
+    CHECK(plan.settings.samples_per_pixel == 64);
+    CHECK(plan.settings.vpl_paths == plan.choice.chosen.config.vpls);
+    // The frames run 100x slower than calibrated: the budget, at the 64 spp frame's predicted
+    // time, now fits a cheaper one.
+    plan.choice.budget_ms = plan.choice.chosen.predicted_ms;
+    for (int i = 0; i < 5; ++i) plan.drift.record(plan.choice.chosen.predicted_ms * 100.0);
+    CHECK(plan.drift.scale() == doctest::Approx(100.0));
+    vplkit::replan_for_budget(plan);
+    CHECK((plan.choice.over_budget || plan.choice.chosen.config.spp < 64));
+    CHECK(plan.settings.samples_per_pixel == plan.choice.chosen.config.spp);
 }
 
 TEST_CASE("budget: the space refuses methods without a noise to trade, and bad knobs") {
