@@ -10,7 +10,8 @@
 //                                       mean): luminance above the neighbours' mean + k sigma
 //                                       spread over them
 //   add_variance_estimate_pass(...)     spatial variance where the history is short
-//   add_atrous_pass(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history
+//   add_atrous_pass(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history;
+//                                       symmetric, mass-preserving weights: the light is kept
 //   add_remodulate_pass(...)            irradiance x albedo -> radiance, then compose as before
 //
 // Every image is RGBA32F except the albedo (the G-buffer's RGBA16F), all of one size, storage
