@@ -58,6 +58,19 @@ public:
         CLI::detail::format_help(out, command->get_name(), about.substr(0, about.find('\n')), 12);
         return out.str();
     }
+    // One blank line between the usage line, the arguments and each group of options (CLI11
+    // separates groups twice: make_groups adds one and its make_group another).
+    std::string make_group(std::string group, bool is_positional,
+                           std::vector<const CLI::Option*> options) const override {
+        return CLI::Formatter::make_group(group, is_positional, options).substr(1);
+    }
+    std::string make_usage(const CLI::App* command, std::string name) const override {
+        return CLI::Formatter::make_usage(command, name) + "\n";
+    }
+    std::string make_positionals(const CLI::App* command) const override {
+        const std::string text = CLI::Formatter::make_positionals(command);
+        return text.empty() ? text : text + "\n";
+    }
     std::string make_description(const CLI::App* command) const override {
         const std::string& about = command->get_description();
         return about.empty() ? "" : wrap_lines(about, kHelpWidth) + "\n\n";

@@ -83,7 +83,7 @@ int main(int argc, char** argv) {
     // Set after the commands, which would inherit it.
     app.footer(
         "'vplkit <command> --help' shows a command's options.\n"
-        "environment: VPLKIT_DEVICE=auto|gpu|cpu|<index>|<name part> picks the device when no --device is given");
+        "environment: VPLKIT_DEVICE=auto|gpu|cpu|<index>|<name part> picks the device (unless --device)");
 
     if (args.empty()) {
         std::fprintf(stderr, "vplkit: no command given\n%s", app.help().c_str());
@@ -98,10 +98,20 @@ int main(int argc, char** argv) {
         print_usage_hint(app, &app);
         return 2;
     }
-    // A bench without a benchmark name, options first, is the GI bench (`vplkit bench --scene NAME`).
+    // Options before the benchmark's name are the benchmark's (`vplkit bench --scene S bvh`); with no
+    // name, they are the GI bench's (`vplkit bench --scene cornell --quick`: README's short form).
     if (args.size() > 1 && args.front() == "bench" && args[1].rfind('-', 0) == 0 && args[1] != "--help" &&
         args[1] != "-h") {
-        args.insert(args.begin() + 1, "gi");
+        const auto benchmarks = static_cast<const CLI::App*>(app.get_subcommand("bench"))->get_subcommands({});
+        const auto name = std::find_if(args.begin() + 2, args.end(), [&](const std::string& a) {
+            return std::any_of(benchmarks.begin(), benchmarks.end(),
+                               [&](const CLI::App* b) { return b->get_name() == a; });
+        });
+        if (name == args.end()) {
+            args.insert(args.begin() + 1, "gi");
+        } else {
+            std::rotate(args.begin() + 1, name, name + 1);
+        }
     }
 
     const CLI::App* command = &app;
@@ -123,6 +133,10 @@ int main(int argc, char** argv) {
             std::find_if(runners.begin(), runners.end(), [&](const Runner& r) { return r.app == command; });
         if (runner == runners.end()) throw UsageError("no command given");
         if (!runner->reads_leftovers) vplkit::cli::check_parsed(*command);
+        // What was left before the command's name (`vplkit --x render`) is no one's.
+        for (const CLI::App* above = command->get_parent(); above; above = above->get_parent()) {
+            vplkit::cli::check_parsed(*above);
+        }
         return runner->run();
     } catch (const UsageError& e) {
         if (command == &app) command = chosen_command(app);
