@@ -59,15 +59,6 @@ void Args::finish() const {
     throw UsageError("unexpected argument '" + first + "' for '" + command_ + "'");
 }
 
-uint32_t parse_index(const std::string& option, const std::string& text, uint64_t max) {
-    if (text == "0") return 0;
-    try {
-        return parse_whole_number(option, text, max);
-    } catch (const UsageError&) {
-        throw UsageError(option + " expects a whole number from 0 to " + std::to_string(max) + ", got '" + text + "'");
-    }
-}
-
 uint32_t parse_whole_number(const std::string& option, const std::string& text, uint64_t max) {
     size_t used = 0;
     unsigned long long value = 0;

@@ -45,8 +45,6 @@ private:
 
 // A whole number from 1 to max, or a UsageError naming the option and the text.
 uint32_t parse_whole_number(const std::string& option, const std::string& text, uint64_t max);
-// A whole number from 0 to max (an index), or a UsageError.
-uint32_t parse_index(const std::string& option, const std::string& text, uint64_t max);
 // Comma-separated whole numbers, each from 1 to max (at least one).
 std::vector<uint32_t> parse_whole_number_list(const std::string& option, const std::string& text, uint64_t max);
 

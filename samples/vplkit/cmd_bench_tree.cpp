@@ -61,7 +61,8 @@ namespace {
 
 struct BenchTreeOptions {
     ContextOptions context;
-    std::optional<std::string> counts, csv, group_levels;
+    std::optional<std::string> counts, csv;
+    std::optional<uint32_t> group_levels;
     uint32_t runs = 10;
     std::string source = "random";
     std::string sort = "radix";
@@ -76,10 +77,7 @@ int run_bench_tree(const BenchTreeOptions& o) {
     stages::SortOptions sort_options;
     sort_options.algorithm = *stages::parse_sort_algorithm(o.sort);
     stages::LightTreeOptions tree_options;
-    if (o.group_levels) {
-        tree_options.group_levels =
-            parse_whole_number("--group-levels", *o.group_levels, stages::kLightTreeMaxGroupLevels);
-    }
+    if (o.group_levels) tree_options.group_levels = *o.group_levels;
     const std::optional<std::string>& csv_path = o.csv;
 
     // The scene first: a bad set-up name fails before any device work.
@@ -163,8 +161,8 @@ void add_bench_tree(CLI::App& bench, Runners& runners) {
         ->capture_default_str()
         ->option_text("random|SETUP");
     one_of(tree->add_option("--sort", o->sort, "the key sort")->capture_default_str(), {"radix", "bitonic"});
-    whole_number(tree->add_option_function<std::string>(
-                     "--group-levels", [o](const std::string& v) { o->group_levels = v; },
+    whole_number(tree->add_option_function<uint32_t>(
+                     "--group-levels", [o](uint32_t v) { o->group_levels = v; },
                      "light-tree levels built per dispatch (default: the device's)"),
                  "G", 1, stages::kLightTreeMaxGroupLevels);
     tree->add_option_function<std::string>(

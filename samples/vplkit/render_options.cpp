@@ -1,5 +1,5 @@
-// Render's options, declared once: the name, the help, the check; then what they say together
-// (an option for another method, a VPL option without VPLs) checked after parsing.
+// Render's options, declared once: the name, the help, the check (what they say together is
+// checked after parsing: RenderOptions::request, render_request.cpp).
 
 #include "cli_app.hpp"
 #include "cli_checks.hpp"
@@ -45,13 +45,6 @@ std::vector<std::string> method_names() {
     std::vector<std::string> names;
     for (const GiMethodInfo& m : gi_methods()) names.emplace_back(m.name);
     return names;
-}
-
-// Throws "OPTION is for --method <the methods with trait>" unless the chosen method has it.
-void require_method_with(const RenderSettings& settings, bool GiMethodInfo::*trait, const std::string& option) {
-    if (!(gi_method(settings.method).*trait)) {
-        throw UsageError(option + " is for --method " + gi_method_names(trait));
-    }
 }
 
 // --sun and --point: the scene loader's own parse, as a check (its message names the light).
@@ -353,102 +346,6 @@ RenderOptions::RenderOptions(CLI::App& command) : command_(command) {
     command
         .add_flag("--no-reuse", no_reuse_, "place the VPLs and build the trees every frame, even when nothing changed")
         ->group(kFilterGroup);
-}
-
-bool RenderOptions::given(const std::string& option) const {
-    return command_.count(option) > 0;
-}
-
-RenderRequest RenderOptions::request() const {
-    RenderRequest r = request_;
-    RenderSettings& settings = r.settings;
-    if (r.animation && !r.time) throw UsageError("--animation needs --time T (the moment to pose it at)");
-    check_camera_flags(r.camera_flags);
-    for (const std::string& spec : suns_) r.extra_lights.push_back(scene::parse_sun(spec));
-    for (const std::string& spec : points_) r.extra_lights.push_back(scene::parse_point(spec));
-    // The tonemapped image's exposure: automatic (auto_exposure.hpp) unless a scale is given.
-    settings.auto_exposure = exposure_ == "auto";
-    if (!settings.auto_exposure) settings.exposure = std::strtof(exposure_.c_str(), nullptr);
-    for (DirectSampler d : {DirectSampler::automatic, DirectSampler::tree, DirectSampler::tree2, DirectSampler::flat}) {
-        if (direct_ == direct_sampler_name(d)) settings.direct_sampler = d;
-    }
-    if ((settings.direct_sampler == DirectSampler::tree || settings.direct_sampler == DirectSampler::tree2) &&
-        settings.direct_samples > 64) {
-        throw UsageError("--direct-spp " + std::to_string(settings.direct_samples) +
-                         ": the tree samples at most 64 cut nodes per pixel");
-    }
-    settings.method = find_gi_method(method_)->method;
-    if ((given("--flc-levels") || given("--flc-mu") || given("--flc-navg") || given("--flc-subtiles")) &&
-        settings.method != GiMethod::flc) {
-        throw UsageError("--flc-levels, --flc-mu, --flc-navg and --flc-subtiles are for --method flc");
-    }
-    if (given("--spp")) require_method_with(settings, &GiMethodInfo::samples, "--spp");
-    if (given("--block")) require_method_with(settings, &GiMethodInfo::blocks, "--block");
-    if (given("--interleave")) require_method_with(settings, &GiMethodInfo::interleaves, "--interleave");
-    if (given("--traversal")) require_method_with(settings, &GiMethodInfo::chooses_traversal, "--traversal");
-    if (traversal_ == "lightcuts") settings.hybrid_traversal = stages::HybridTraversal::lightcuts;
-    if (given("--glossy-lobe")) require_method_with(settings, &GiMethodInfo::samples, "--glossy-lobe");
-    settings.glossy_branch = glossy_lobe_ == "on"    ? GlossyBranch::on
-                             : glossy_lobe_ == "off" ? GlossyBranch::off
-                                                     : GlossyBranch::automatic;
-    if (given("--nu-min")) require_method_with(settings, &GiMethodInfo::reads_sst, "--nu-min");
-    if (given("--sigma-max")) {
-        require_method_with(settings, &GiMethodInfo::reads_sst, "--sigma-max");
-        settings.sigma_max_scene_fraction.reset();  // absolute, as given
-    }
-    if (given("--gi-resolution") && settings.method == GiMethod::none) {
-        throw UsageError("--gi-resolution needs an indirect-light --method");
-    }
-    settings.half_resolution_gi = gi_resolution_ == "half";
-    r.denoise_given = given("--denoise");
-    settings.denoise = denoise_ == "temporal" ? DenoiseMode::temporal
-                       : denoise_ == "svgf"   ? DenoiseMode::svgf
-                                              : DenoiseMode::off;
-    if (settings.denoise != DenoiseMode::off && settings.method == GiMethod::none) {
-        throw UsageError("--denoise filters indirect light: give an indirect-light --method");
-    }
-    if (given("--firefly-sigma") && settings.denoise == DenoiseMode::off) {
-        throw UsageError("--firefly-sigma needs --denoise temporal or svgf");
-    }
-    settings.vpl_source = vpl_source_ == "ir"     ? VplSource::ir
-                          : vpl_source_ == "brsm" ? VplSource::brsm
-                          : vpl_source_ == "smc"  ? VplSource::smc
-                                                  : VplSource::automatic;
-    const bool brsm = settings.vpl_source == VplSource::brsm;
-    const bool smc = settings.vpl_source == VplSource::smc;
-    settings.brsm.vpl_count = settings.vpl_paths;
-    if (smc && given("--vpls")) {
-        if (settings.vpl_paths > stages::kSmcMaxBudget) {
-            throw UsageError("--vpls expects a whole number from 1 to " + std::to_string(stages::kSmcMaxBudget) +
-                             " with --vpl-source smc, got '" + std::to_string(settings.vpl_paths) + "'");
-        }
-        settings.smc.budget = settings.vpl_paths;
-    }
-    if (given("--bounces")) {
-        if (brsm) throw UsageError("--bounces is for --vpl-source ir: BRSM VPLs are the first bounce only");
-        settings.smc.bounces = settings.vpl_bounces;
-    }
-    for (const char* option : {"--smc-max-moves", "--smc-resample", "--smc-radiosity-samples", "--smc-warmup"}) {
-        if (given(option) && !smc) throw UsageError(std::string(option) + " needs --vpl-source smc");
-    }
-    const bool brsm_options = given("--rsm-resolution") || given("--brsm-samples") || given("--brsm-defensive");
-    if (brsm_options && !brsm) {
-        throw UsageError("--rsm-resolution, --brsm-samples and --brsm-defensive need --vpl-source brsm");
-    }
-    r.lambertian = brdf_ == "lambert";
-    if (given("--exact-clamp") && !gi_method(settings.method).ground_truth) {
-        throw UsageError("--exact-clamp needs --method " + gi_method_names(&GiMethodInfo::ground_truth));
-    }
-    settings.reuse_static_work = !no_reuse_;
-    const bool vpl_options = given("--vpl-source") || given("--vpls") || given("--bounces") || brsm_options ||
-                             given("--smc-max-moves") || given("--smc-resample") || given("--smc-radiosity-samples") ||
-                             given("--smc-warmup");
-    if (vpl_options && settings.method == GiMethod::none && !settings.vpls_only) {
-        throw UsageError(
-            "--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
-            "or --vpls-only (direct light uses no VPLs)");
-    }
-    return r;
 }
 
 RenderRequest parse_render_request(Args& args) {
