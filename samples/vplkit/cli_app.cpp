@@ -1,6 +1,7 @@
 #include "cli_app.hpp"
 
 #include <algorithm>
+#include <regex>
 #include <sstream>
 
 namespace vplkit::cli {
@@ -124,6 +125,14 @@ void check_parsed(const CLI::App& command) {
 
 std::string parse_error_text(const CLI::ParseError& error) {
     std::string text = error.what();
+    // CLI11's own wording for a missing or unreadable value, said as vplkit says it.
+    std::smatch match;
+    if (std::regex_match(text, match, std::regex(R"((\S+): \d+ required \S+ missing)"))) {
+        return match[1].str() + " needs a value";
+    }
+    if (std::regex_match(text, match, std::regex(R"(Could not convert: (\S+) = (.*))"))) {
+        return match[1].str() + " does not take '" + match[2].str() + "' (a switch: give it alone, or =true/=false)";
+    }
     // A check's "expects ..." reads after the option's name: "--spp expects a whole number ...".
     const size_t colon = text.find(": expects ");
     if (colon != std::string::npos && text.rfind(' ', colon) == std::string::npos) text.erase(colon, 1);
