@@ -13,7 +13,7 @@
 namespace vplkit::detail {
 namespace {
 
-constexpr const char* kFormat = "vplkit-budget-cache 2";  // 2: slopes fitted >= 0
+constexpr const char* kFormat = "vplkit-budget-cache 3";  // 2: slopes >= 0; 3: noise exponents
 
 }  // namespace
 
@@ -60,7 +60,7 @@ std::optional<BudgetModel> read_budget_cache(const std::filesystem::path& file, 
         } else if (kind == "noise") {
             NoiseMeasurement m;
             int method = 0, half = 0;
-            fields >> method >> half >> m.block_size >> m.spp >> m.variance;
+            fields >> method >> half >> m.block_size >> m.spp >> m.variance >> m.exponent;
             if (!fields) return std::nullopt;
             m.method = GiMethod(method);
             m.half_resolution = half != 0;
@@ -94,7 +94,7 @@ void write_budget_cache(const std::filesystem::path& file, const std::string& ke
         }
         for (const NoiseMeasurement& m : model.error.sampling) {
             out << "noise " << int(m.method) << " " << (m.half_resolution ? 1 : 0) << " " << m.block_size << " "
-                << m.spp << " " << m.variance << "\n";
+                << m.spp << " " << m.variance << " " << m.exponent << "\n";
         }
         out << "vpl_noise " << model.error.vpl_measured << " " << model.error.vpl_variance << "\nend\n";
         out.close();

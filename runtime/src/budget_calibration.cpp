@@ -1,8 +1,8 @@
 // The budget's calibration frames (budget_calibration.hpp). Per method, resolution and block
-// size: two frames at spp0 with other random numbers (the noise, and two cost samples) and one at
-// a second spp (the cost per sample). Once: a frame with another VPL seed (the VPL set's noise),
-// one with the space's smallest VPL budget, and frames at half the size, with and without svgf
-// (the cost per pixel). An untimed frame first compiles the shaders and fixes the exposure.
+// size: two frames at spp0 with other random numbers and two at a second spp1 (the noise and how
+// it falls with spp, and four cost samples). Once: a frame at the second spp with another VPL seed (the VPL set's
+// noise), one with the space's smallest VPL budget, and frames at half the size, with and without svgf (the cost per
+// pixel). An untimed frame first compiles the shaders and fixes the exposure.
 
 #include "vplkit/budget_calibration.hpp"
 
@@ -139,11 +139,16 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
                 frames.push_back({config(m, spp0, half, DenoiseMode::off, v0, b), w, h, base.seed, 1});
                 frames.push_back({config(m, spp0, half, DenoiseMode::off, v0, b), w, h, base.seed, 2});
                 frames.push_back({config(m, spp1, half, DenoiseMode::off, v0, b), w, h, base.seed, 3});
+                frames.push_back({config(m, spp1, half, DenoiseMode::off, v0, b), w, h, base.seed, 5});
             }
         }
     }
-    const size_t vpl_frame = frames.size();  // compared with the first noise pair's first frame
-    frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v0, b0), w, h, base.seed + 1, 4});
+    // Another VPL seed at spp1, compared with the first group's spp1 frame: at the higher spp the
+    // sampling noise, subtracted from the pair's, is a quarter as large, so the VPL set's own
+    // (often far smaller) stands out of the estimate's spread.
+    const size_t vpl_pair_first = noise_pairs.front().first + 2;
+    const size_t vpl_frame = frames.size();
+    frames.push_back({config(m0, spp1, half0, DenoiseMode::off, v0, b0), w, h, base.seed + 1, 4});
     if (v_small != v0) frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v_small, b0), w, h, base.seed, 1});
     const uint32_t w2 = std::max(w / 2, 1u), h2 = std::max(h / 2, 1u);
     frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v0, b0), w2, h2, base.seed, 1});
@@ -217,21 +222,27 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
     for (const auto& [first, second] : noise_pairs) {
         const RenderedImage& a = images[first];
         const RenderedImage& b = images[second];
+        const RenderedImage& c = images[second + 1];
+        const RenderedImage& d = images[second + 2];
         NoiseMeasurement m;
         m.method = frames[first].config.method;
         m.half_resolution = frames[first].config.half_resolution;
         m.block_size = frames[first].config.block_size;
         m.spp = spp0;
         m.variance = half_difference_variance(a.indirect, b.indirect) * tonemap_scale(a, b);
+        const double at_spp1 = half_difference_variance(c.indirect, d.indirect) * tonemap_scale(c, d);
+        m.exponent = spp_exponent(m.variance, spp0, at_spp1, spp1);
         result.model.error.sampling.push_back(m);
     }
     {
         // The same frame with other VPLs: sampling noise and the VPL set's, sigma_s^2 + sigma_v^2.
-        const RenderedImage& a = images[noise_pairs.front().first];
+        const RenderedImage& a = images[vpl_pair_first];
         const RenderedImage& e = images[vpl_frame];
         const double both = half_difference_variance(a.indirect, e.indirect) * tonemap_scale(a, e);
+        const NoiseMeasurement& first = result.model.error.sampling.front();
+        const double sampling = variance_at_samples(first.variance, spp0, spp1, first.exponent);
         result.model.error.vpl_measured = v0;
-        result.model.error.vpl_variance = std::max(0.0, both - result.model.error.sampling.front().variance);
+        result.model.error.vpl_variance = std::max(0.0, both - sampling);
     }
     result.frames = uint32_t(frames.size()) + 1;
     result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -4,6 +4,7 @@
 
 #include "vplkit/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -39,9 +40,15 @@ double half_difference_variance_rgba8(std::span<const uint8_t> a, std::span<cons
     return sum / double(a.size() / 4 * 3) / 2.0;
 }
 
-double variance_at_samples(double variance, uint32_t measured_samples, uint32_t samples) {
+double variance_at_samples(double variance, uint32_t measured_samples, uint32_t samples, double exponent) {
     if (measured_samples == 0 || samples == 0) throw Error("noise estimate: zero samples per pixel");
-    return variance * double(measured_samples) / double(samples);
+    return variance * std::pow(double(measured_samples) / double(samples), exponent);
+}
+
+double spp_exponent(double variance_a, uint32_t spp_a, double variance_b, uint32_t spp_b) {
+    if (!(variance_a > 0.0) || !(variance_b > 0.0) || spp_a == spp_b || spp_a == 0 || spp_b == 0) return 1.0;
+    const double exponent = std::log(variance_a / variance_b) / std::log(double(spp_b) / double(spp_a));
+    return std::clamp(exponent, 0.5, 1.0);
 }
 
 }  // namespace vplkit

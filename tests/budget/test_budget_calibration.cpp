@@ -62,15 +62,17 @@ TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is ca
 
     const auto first = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), base, space, options);
     CHECK(!first.from_cache);
-    // 2 methods x 2 resolutions x 3 frames, the VPL seed, the smaller VPL budget, half size with
+    // 2 methods x 2 resolutions x 4 frames, the VPL seed, the smaller VPL budget, half size with
     // and without svgf, and the untimed first frame.
-    CHECK(first.frames == 18);
+    CHECK(first.frames == 22);
     CHECK(std::filesystem::exists(first.cache_file));
     REQUIRE(first.model.error.sampling.size() == 4);
     for (const auto& m : first.model.error.sampling) {
         CAPTURE(int(m.method));
         CHECK(m.variance > 0.0);
         CHECK(m.variance < 1.0);  // tonemapped values lie in 0..1
+        CHECK(m.exponent >= 0.5);
+        CHECK(m.exponent <= 1.0);
     }
     CHECK(first.model.error.vpl_measured == 256);
     CHECK(first.model.error.vpl_variance >= 0.0);

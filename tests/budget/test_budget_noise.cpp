@@ -8,6 +8,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <limits>
 #include <random>
 #include <vector>
@@ -83,4 +84,18 @@ TEST_CASE("budget: the noise estimate refuses frames of other sizes and non-fini
     const std::vector<float> c{1.0f, std::numeric_limits<float>::quiet_NaN(), 3.0f};
     CHECK_THROWS_WITH_AS(vplkit::half_difference_variance(a, c), doctest::Contains("not finite"), vplkit::Error);
     CHECK_THROWS_AS(vplkit::variance_at_samples(1.0, 0, 4), vplkit::Error);
+}
+
+TEST_CASE("budget: the spp exponent through two measurements, clamped to [0.5, 1]") {
+    CHECK(vplkit::spp_exponent(1.0, 4, 0.25, 16) == doctest::Approx(1.0));
+    CHECK(vplkit::spp_exponent(1.0, 4, 0.5, 16) == doctest::Approx(0.5));
+    CHECK(vplkit::spp_exponent(1.0, 4, std::pow(0.25, 0.7), 16) == doctest::Approx(0.7));
+    CHECK(vplkit::spp_exponent(1.0, 4, 0.9, 16) == 0.5);   // flatter than any sampler: clamped
+    CHECK(vplkit::spp_exponent(1.0, 4, 0.01, 16) == 1.0);  // steeper than independent samples
+    CHECK(vplkit::spp_exponent(0.0, 4, 0.25, 16) == 1.0);  // no noise measured: 1/spp
+    // The synthetic estimator's independent samples read about 1.
+    const double at_4 = vplkit::half_difference_variance(estimate(4, 11), estimate(4, 12));
+    const double at_16 = vplkit::half_difference_variance(estimate(16, 13), estimate(16, 14));
+    CHECK(vplkit::spp_exponent(at_4, 4, at_16, 16) == doctest::Approx(1.0).epsilon(0.06));
+    CHECK(vplkit::variance_at_samples(1.0, 4, 64, 0.5) == doctest::Approx(0.25));
 }

@@ -18,8 +18,13 @@ double half_difference_variance(std::span<const float> a, std::span<const float>
 // the scale of the bench's RMSE of tonemapped frames.
 double half_difference_variance_rgba8(std::span<const uint8_t> a, std::span<const uint8_t> b);
 
-// A variance measured with `measured_samples` samples per pixel, for `samples` instead: an
-// average of independent samples has variance proportional to 1 / samples.
-double variance_at_samples(double variance, uint32_t measured_samples, uint32_t samples);
+// A variance measured with `measured_samples` samples per pixel, for `samples` instead:
+// variance x (measured_samples / samples)^exponent. An average of independent samples has
+// exponent 1; the samplers' measured noise falls slower (budget_error.hpp).
+double variance_at_samples(double variance, uint32_t measured_samples, uint32_t samples, double exponent = 1.0);
+
+// The exponent of variance = k / spp^exponent through two measurements, clamped to [0.5, 1]
+// (1 when a variance is not positive): what two pairs of frames at two spp say.
+double spp_exponent(double variance_a, uint32_t spp_a, double variance_b, uint32_t spp_b);
 
 }  // namespace vplkit
