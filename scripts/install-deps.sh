@@ -13,6 +13,7 @@ packages=(
   clang-format                       # the C++ style (.clang-format), checked by ctest format/cpp
   libasan8 libubsan1                 # the asan preset's sanitizer runtimes (CI runs the CLI and scene tests under it)
   libopenexr-dev nlohmann-json3-dev  # layered EXR output, --stats JSON
+  libcli11-dev                       # the vplkit command line's parser
   libglfw3-dev libimgui-dev          # `vplkit view`: window and panel
   xvfb xauth                         # the viewer's test runs under xvfb-run
   python3-matplotlib                 # the benches' plots (CSV and JSON are written without it)
