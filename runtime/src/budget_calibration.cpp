@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 
 namespace vplkit {
 namespace {
@@ -167,7 +168,14 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
     plans += "direct " + std::to_string(base.direct_samples) + " " + direct_sampler_name(base.direct_sampler) +
              " bounces " + std::to_string(base.vpl_bounces) + " rsm " + std::to_string(base.rsm_resolution) +
              " interleave " + std::to_string(base.interleave) + " seed " + std::to_string(base.seed) + " exposure " +
-             (base.auto_exposure ? std::string("auto") : std::to_string(base.exposure));
+             (base.auto_exposure ? std::string("auto") : std::to_string(base.exposure)) + " spp " +
+             std::to_string(spp0) + " " + std::to_string(spp1);
+    // The view: what the camera sees decides the noise, and BRSM places its VPLs for it.
+    char view[256];
+    std::snprintf(view, sizeof(view), " camera %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g %.6g", camera.position.x,
+                  camera.position.y, camera.position.z, camera.forward.x, camera.forward.y, camera.forward.z,
+                  camera.up.x, camera.up.y, camera.up.z, camera.yfov);
+    plans += view;
     std::string scene_id = options.scene_id;
     std::replace(scene_id.begin(), scene_id.end(), '\n', ' ');
     BudgetCalibration result;

@@ -110,6 +110,13 @@ TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is ca
     const auto third = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), other, narrow, options);
     CHECK(!third.from_cache);
     CHECK(third.key != first.key);
+
+    // Another view of the same scene: another key too.
+    vplkit::scene::Camera moved = scene.camera();
+    moved.position += glm::vec3(0.1f, 0.0f, 0.0f);
+    const auto fourth = vplkit::calibrate_budget(renderer, ctx.info(), scene, moved, other, narrow, options);
+    CHECK(!fourth.from_cache);
+    CHECK(fourth.key != third.key);
 }
 
 TEST_CASE("budget: plan_for_budget chooses, applies the choice, and re-plans when the times drift") {

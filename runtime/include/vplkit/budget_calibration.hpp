@@ -1,8 +1,8 @@
 #pragma once
 // The budget's measurements on this device and scene: a calibration renders a few frames per
 // method and setting (budget_cost.hpp's samples, budget_error.hpp's noise), fits the cost model,
-// and caches both on disk by device, driver, scene, size and the calibration frames' plans, so a
-// changed plan (other stages, other settings) calibrates again. budget_candidates() then predicts
+// and caches both on disk by device, driver, scene, size, camera and the calibration frames'
+// plans, so a changed plan (other stages, other settings) or view calibrates again. budget_candidates() then predicts
 // every configuration of a space for choose_for_budget (budget_chooser.hpp).
 
 #include "vplkit/budget_chooser.hpp"
@@ -57,7 +57,7 @@ struct BudgetCalibrationOptions {
 
 struct BudgetCalibration {
     BudgetModel model;
-    std::string key;                   // device, driver, scene, size and a hash of the calibration frames' plans
+    std::string key;  // device, driver, scene, size; a hash of the camera and the calibration frames' plans
     std::filesystem::path cache_file;  // empty without a cache
     bool from_cache = false;
     uint32_t frames = 0;  // frames rendered (0 when read from the cache)
