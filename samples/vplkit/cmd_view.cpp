@@ -4,6 +4,7 @@
 // it: the mode tests and scripts use.
 
 #include "cli.hpp"
+#include "cli_checks.hpp"
 #include "commands.hpp"
 #include "render_request.hpp"
 #include "setting_flags.hpp"
@@ -26,6 +27,7 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -33,45 +35,48 @@
 
 namespace vplkit::cli {
 
-const char* const kViewUsage =
-    "usage: vplkit view [render's scene and method options] [--screenshot FILE.png [--frames N]]\n"
-    "                   [--window WxH] [--no-panel] [--compare-exact]\n"
-    "\n"
-    "A window showing the renderer's frames, with a panel to change the method and its settings\n"
-    "while it runs (the planner's reasons and per-stage GPU times alongside).\n"
-    "  mouse: left-drag orbits the target, right-drag looks around, wheel zooms\n"
-    "  keys:  W A S D move, Q E down and up, Shift faster; F1 shows or hides the panel;\n"
-    "         F12 writes the window to vplkit-view-<time>.png in the working folder; Esc quits\n"
-    "\n"
-    "options (besides render's --scene, --method, --width, --height, ...; see 'vplkit render --help'):\n"
-    "  --screenshot FILE.png  render --frames frames, write the window's image to FILE.png, exit\n"
-    "  --frames N             frames before the screenshot (default 1), or before closing without one\n"
-    "  --window WxH           the window's size (default: the frame's size); the frame is scaled to fit\n"
-    "  --no-panel             start with the panel hidden\n"
-    "  --compare-exact        render the exact frame (every VPL at every pixel) once at start and show\n"
-    "                         each frame's relative RMSE against it (the panel's button does the same)\n";
-
 namespace {
 
 struct WindowSize {
     uint32_t width = 0, height = 0;
 };
 
-WindowSize parse_window_size(const std::string& text) {
+constexpr uint64_t kMaxWindowSide = 16384;
+
+// "WxH" read into `size`; otherwise the problem, in the words of the checks ("expects ...").
+std::string read_window_size(const std::string& text, WindowSize& size) {
     const size_t x = text.find('x');
-    if (x == std::string::npos) throw UsageError("--window expects WIDTHxHEIGHT, got '" + text + "'");
-    return {parse_whole_number("--window", text.substr(0, x), 16384),
-            parse_whole_number("--window", text.substr(x + 1), 16384)};
+    if (x == std::string::npos) return "expects WIDTHxHEIGHT, got '" + text + "'";
+    const CLI::Validator side = whole_number_check(1, kMaxWindowSide);
+    std::string width = text.substr(0, x), height = text.substr(x + 1);
+    for (std::string* part : {&width, &height}) {
+        const std::string problem = side(*part);
+        if (!problem.empty()) return problem;
+    }
+    size = {uint32_t(std::stoul(width)), uint32_t(std::stoul(height))};
+    return "";
 }
 
-void check_png_path(const std::filesystem::path& path) {
-    if (path.extension() != ".png") {
-        throw UsageError("--screenshot expects a .png file name, got '" + path.string() + "'");
-    }
-    const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
-    if (!std::filesystem::is_directory(folder)) {
-        throw UsageError("--screenshot: the folder " + folder.string() + " does not exist");
-    }
+CLI::Validator window_size_check() {
+    return CLI::Validator(
+        [](std::string& text) {
+            WindowSize unused;
+            return read_window_size(text, unused);
+        },
+        "", "window size");
+}
+
+// A .png in a folder that exists: checked before a window opens, not after the frames.
+CLI::Validator png_path_check() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            const std::filesystem::path path = text;
+            if (path.extension() != ".png") return "expects a .png file name, got '" + text + "'";
+            const std::filesystem::path folder = path.parent_path().empty() ? "." : path.parent_path();
+            if (!std::filesystem::is_directory(folder)) return "the folder " + folder.string() + " does not exist";
+            return "";
+        },
+        "", "png path");
 }
 
 std::string timestamped_name() {
@@ -116,21 +121,24 @@ std::vector<float> exact_radiance(Renderer& renderer, const scene::Camera& camer
     return renderer.render(camera, exact).radiance;
 }
 
-}  // namespace
-
-int run_view(Args& args) {
-    const std::optional<std::string> screenshot = args.value("--screenshot");
+// The viewer's own options (render's are a RenderOptions beside them).
+struct ViewOptions {
+    std::optional<std::string> screenshot;
     std::optional<uint32_t> frames;
-    if (auto text = args.value("--frames")) frames = parse_whole_number("--frames", *text, 100000);
-    std::optional<WindowSize> window_size;
-    if (auto text = args.value("--window")) window_size = parse_window_size(*text);
-    bool show_panel = !args.flag("--no-panel");
-    bool compare_exact = args.flag("--compare-exact");
-    RenderRequest request = parse_render_request(args);
-    args.finish();
-    validate_render_request(request);
-    if (screenshot) check_png_path(*screenshot);
+    std::optional<std::string> window;
+    bool no_panel = false, compare_exact = false;
+};
+
+int run_view(const ViewOptions& o, const RenderOptions& render_options) {
+    const std::optional<std::string>& screenshot = o.screenshot;
+    std::optional<uint32_t> frames = o.frames;
     if (screenshot && !frames) frames = 1;
+    std::optional<WindowSize> window_size;
+    if (o.window) read_window_size(*o.window, window_size.emplace());  // checked when parsed
+    bool show_panel = !o.no_panel;
+    bool compare_exact = o.compare_exact;
+    RenderRequest request = render_options.request();
+    validate_render_request(request);
 
     LoadedScene loaded = load_request_scene(request);
     RenderSettings& settings = request.settings;
@@ -239,6 +247,45 @@ int run_view(Args& args) {
         return 1;
     }
     return 0;
+}
+
+}  // namespace
+
+void add_view(CLI::App& vplkit, Runners& runners) {
+    CLI::App* view = add_command(
+        vplkit, "view",
+        "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
+        "A window showing the renderer's frames, with a panel to change the method and its settings while it "
+        "runs (the planner's reasons and per-stage GPU times alongside). Takes render's options: they set the "
+        "first frame's scene, size, method and settings.\n"
+        "  mouse: left-drag orbits the target, right-drag looks around, wheel zooms\n"
+        "  keys: W A S D move, Q E down and up, Shift faster; F1 shows or hides the panel; F12 writes the "
+        "window to vplkit-view-<time>.png in the working folder; Esc quits");
+    auto o = std::make_shared<ViewOptions>();
+    view->add_option_function<std::string>(
+            "--screenshot", [o](const std::string& v) { o->screenshot = v; },
+            "render --frames frames, write the window's image (the panel too, unless hidden) to FILE.png, exit")
+        ->check(png_path_check())
+        ->option_text("FILE.png")
+        ->group("view");
+    whole_number(view->add_option_function<uint32_t>(
+                     "--frames", [o](uint32_t v) { o->frames = v; },
+                     "frames before the screenshot (default 1), or before closing without one"),
+                 "N", 1, 100000)
+        ->group("view");
+    view->add_option_function<std::string>(
+            "--window", [o](const std::string& v) { o->window = v; },
+            "the window's size (default: the frame's size); the frame is scaled to fit")
+        ->check(window_size_check())
+        ->option_text("WxH")
+        ->group("view");
+    view->add_flag("--no-panel", o->no_panel, "start with the panel hidden (F1 shows it)")->group("view");
+    view->add_flag("--compare-exact", o->compare_exact,
+                   "render the exact frame (every VPL at every pixel) once at start and show each frame's "
+                   "relative RMSE against it (the panel's button does the same)")
+        ->group("view");
+    auto render_options = std::make_shared<RenderOptions>(*view);
+    runners.push_back({view, [o, render_options] { return run_view(*o, *render_options); }});
 }
 
 }  // namespace vplkit::cli

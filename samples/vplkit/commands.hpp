@@ -22,10 +22,8 @@ void add_compare(CLI::App& vplkit, Runners& runners);
 // sequence: frames along a camera path, optionally with the temporal error metrics.
 void add_sequence(CLI::App& vplkit, Runners& runners);
 
-// `vplkit view`: the renderer in a window with a settings panel; --screenshot for scripts. It reads
-// its arguments through an Args (cmd_view.cpp) and prints kViewUsage for --help.
-int run_view(Args& args);
-extern const char* const kViewUsage;
+// view: the renderer in a window with a settings panel (render's options); --screenshot for scripts.
+void add_view(CLI::App& vplkit, Runners& runners);
 
 // bench's benchmarks (cmd_bench_<name>.cpp), declared on the bench command by add_bench.
 void add_bench_tree(CLI::App& bench, Runners& runners);

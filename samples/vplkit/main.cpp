@@ -17,33 +17,9 @@
 
 namespace {
 
-using vplkit::cli::Args;
 using vplkit::cli::Runner;
 using vplkit::cli::Runners;
 using vplkit::cli::UsageError;
-
-// A command that reads its own arguments (an Args) and prints a fixed usage for --help.
-void add_args_command(CLI::App& vplkit, Runners& runners, const std::string& name, const std::string& summary,
-                      std::string (*usage)(), int (*run)(Args&)) {
-    CLI::App* command = vplkit::cli::add_command(vplkit, name, summary);
-    command->prefix_command();  // everything after the name is left for the command
-    command->set_help_flag();
-    runners.push_back({command,
-                       [command, name, usage, run] {
-                           Args args(name, command->remaining());
-                           if (args.flag("--help", "-h")) {
-                               std::fputs(usage().c_str(), stdout);
-                               return 0;
-                           }
-                           return run(args);
-                       },
-                       true});
-}
-
-template <const char* const* text>
-std::string fixed_usage() {
-    return *text;
-}
 
 // The subcommand chosen: the deepest one parsed (e.g. bench, then gi).
 const CLI::App* chosen_command(const CLI::App& app) {
@@ -76,10 +52,7 @@ int main(int argc, char** argv) {
     vplkit::cli::add_bench(app, runners);
     vplkit::cli::add_compare(app, runners);
     vplkit::cli::add_sequence(app, runners);
-    add_args_command(
-        app, runners, "view",
-        "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
-        fixed_usage<&vplkit::cli::kViewUsage>, vplkit::cli::run_view);
+    vplkit::cli::add_view(app, runners);
     // Set after the commands, which would inherit it.
     app.footer(
         "'vplkit <command> --help' shows a command's options.\n"
