@@ -5,60 +5,9 @@
 
 namespace vplkit::cli {
 
-bool Args::flag(std::string_view name, std::string_view short_name) {
-    for (auto it = args_.begin(); it != args_.end(); ++it) {
-        if (*it == name || (!short_name.empty() && *it == short_name)) {
-            args_.erase(it);
-            read_.emplace_back(name);
-            if (!short_name.empty()) read_.emplace_back(short_name);
-            return true;
-        }
-    }
-    return false;
-}
+namespace {
 
-std::optional<std::string> Args::value(std::string_view name) {
-    const std::string prefix = std::string(name) + "=";
-    for (auto it = args_.begin(); it != args_.end(); ++it) {
-        if (it->rfind(prefix, 0) == 0) {
-            std::string v = it->substr(prefix.size());
-            args_.erase(it);
-            read_.emplace_back(name);
-            return v;
-        }
-        if (*it == name) {
-            if (it + 1 == args_.end()) throw UsageError("option " + std::string(name) + " needs a value");
-            std::string v = *(it + 1);
-            args_.erase(it, it + 2);
-            read_.emplace_back(name);
-            return v;
-        }
-    }
-    return std::nullopt;
-}
-
-std::optional<std::string> Args::positional() {
-    for (auto it = args_.begin(); it != args_.end(); ++it) {
-        if (it->empty() || (*it)[0] != '-' || *it == "-") {
-            std::string v = *it;
-            args_.erase(it);
-            return v;
-        }
-    }
-    return std::nullopt;
-}
-
-void Args::finish() const {
-    if (args_.empty()) return;
-    const std::string& first = args_.front();
-    const std::string name = first.substr(0, first.find('='));
-    if (std::find(read_.begin(), read_.end(), name) != read_.end()) {
-        throw UsageError("option '" + name + "' given more than once for '" + command_ + "'");
-    }
-    if (!first.empty() && first[0] == '-') throw UsageError("unknown option '" + first + "' for '" + command_ + "'");
-    throw UsageError("unexpected argument '" + first + "' for '" + command_ + "'");
-}
-
+// A whole number from 1 to max, or a UsageError naming the option and the text.
 uint32_t parse_whole_number(const std::string& option, const std::string& text, uint64_t max) {
     size_t used = 0;
     unsigned long long value = 0;
@@ -72,6 +21,8 @@ uint32_t parse_whole_number(const std::string& option, const std::string& text, 
     }
     return uint32_t(value);
 }
+
+}  // namespace
 
 std::vector<uint32_t> parse_whole_number_list(const std::string& option, const std::string& text, uint64_t max) {
     std::vector<uint32_t> values;

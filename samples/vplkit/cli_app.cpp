@@ -139,14 +139,4 @@ std::string parse_error_text(const CLI::ParseError& error) {
     return text;
 }
 
-void parse_into(CLI::App& app, std::vector<std::string> args) {
-    std::reverse(args.begin(), args.end());  // CLI11 takes them last first
-    try {
-        app.parse(args);
-    } catch (const CLI::ParseError& e) {
-        throw UsageError(parse_error_text(e));
-    }
-    check_parsed(app);
-}
-
 }  // namespace vplkit::cli

@@ -19,7 +19,7 @@ namespace vplkit::cli {
 struct Runner {
     const CLI::App* app;
     std::function<int()> run;
-    bool reads_leftovers = false;  // looks at app->remaining() itself (bench's name, view's options)
+    bool reads_leftovers = false;  // looks at app->remaining() itself (bench's name)
 };
 using Runners = std::vector<Runner>;
 
@@ -40,9 +40,5 @@ void check_parsed(const CLI::App& command);
 
 // A CLI11 parse error as the one line vplkit prints ("--spp expects ..., got '0'").
 std::string parse_error_text(const CLI::ParseError& error);
-
-// Parses `args` (in order) into `app`, then check_parsed; CLI11's errors become UsageErrors.
-// For commands that still read an Args (view): their render options through the same declarations.
-void parse_into(CLI::App& app, std::vector<std::string> args);
 
 }  // namespace vplkit::cli

@@ -348,13 +348,4 @@ RenderOptions::RenderOptions(CLI::App& command) : command_(command) {
         ->group(kFilterGroup);
 }
 
-RenderRequest parse_render_request(Args& args) {
-    CLI::App command("", args.command());
-    configure_app(command);
-    command.allow_extras();
-    const RenderOptions options(command);
-    parse_into(command, args.take_rest());
-    return options.request();
-}
-
 }  // namespace vplkit::cli

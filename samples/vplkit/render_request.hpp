@@ -61,9 +61,6 @@ private:
 // --sun and --point (repeatable), each value checked by the scene loader's parse as it is read.
 void add_light_options(CLI::App& command, std::vector<std::string>& suns, std::vector<std::string>& points);
 
-// For a command that reads its arguments through an Args (view): render's options, declared as
-// above, parsed from what is left of `args` (UsageError for a mistake or an unknown option).
-RenderRequest parse_render_request(Args& args);
 // The sampling options checked before any work (a refused one is a UsageError).
 void validate_render_request(const RenderRequest& request);
 
