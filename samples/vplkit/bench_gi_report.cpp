@@ -250,7 +250,8 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
        << "its own cuts per block, traversals to leaves), `hybrid` (the thesis' blended shallow cuts and early-stop "
        << "substitute traversals), `hybrid-lightcuts` (hybrid's cuts and blending with rtslc's traversal to a "
        << "leaf: the thesis' sec. 7.1 protocol, where rtslc and hybrid differ only in the traversal), `flc` "
-       << "(forward light cuts, seed 002: its own VPLs, one per kept triangle, splatted unshadowed; its points sweep "
+       << "(forward light cuts, the FLC paper: its own VPLs, one per kept triangle, splatted unshadowed; its points "
+          "sweep "
        << "N_avg, the VPLs per point).\n\n";
 
     md << "## Equal time (thesis Fig. 7.1)\n\nEach method at the point whose frame time is closest to "

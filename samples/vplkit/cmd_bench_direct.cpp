@@ -1,7 +1,7 @@
 // `vplkit bench direct --scene NAME`: what direct light's accuracy costs with the flat sampler
 // (point and spot lights one by one, emitters from one power CDF) and with the light tree over
 // all of them (stochastic lightcuts, direct_light_tree.hpp), one-level and two-level (a bottom tree
-// per mesh light under a top tree, seed 003 sec. 3.1), at 1..64 samples per pixel, against
+// per mesh light under a top tree, the RTSLC paper sec. 3.1), at 1..64 samples per pixel, against
 // a converged reference (the flat sampler's mean over many frames: it is unbiased, as the tree
 // is). Writes DIR/points.csv, a frame of each (PNG), DIR/report.md with the equal-time comparison
 // and two plots (PNG, scripts/plot.py).

@@ -154,7 +154,7 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget, const std::
             if (n != vpl_budget) add(m, "vpls", 8, 8, 1, false, true, n);
         }
     }
-    // flc (seed 002) places its own VPLs: its curve sweeps N_avg (eq. 1), the paper's 64..1024.
+    // flc (the FLC paper) places its own VPLs: its curve sweeps N_avg (eq. 1), the paper's 64..1024.
     const std::vector<float> navgs =
         quick ? std::vector<float>{32, 128} : std::vector<float>{32, 64, 128, 256, 512, 1024};
     for (const std::string& m : taking("navg")) {

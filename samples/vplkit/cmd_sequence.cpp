@@ -1,6 +1,6 @@
 // `vplkit sequence`: N frames along a camera path with render's options, written as PNG (PFM on
 // request) with each frame's stage times; with --reference also the per-frame ground truth and
-// seed 001's temporal metrics (|E|, |E'| on Reinhard-tonemapped indirect luminance) as CSV, a
+// the SMC paper's temporal metrics (|E|, |E'| on Reinhard-tonemapped indirect luminance) as CSV, a
 // plot and a report.
 
 #include "camera_path.hpp"
@@ -325,7 +325,7 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
            << "; method " << gi_method_name(settings.method) << ", VPL source " << source << ", device "
            << context->info().name << ".\n\n"
            << "Reference per frame: exact gather over instant-radiosity VPLs from " << reference_paths
-           << " light paths (" << settings.vpl_bounces << " bounces). Metrics (seed 001 sec. 5.2) on the "
+           << " light paths (" << settings.vpl_bounces << " bounces). Metrics (the SMC paper sec. 5.2) on the "
            << "Reinhard-tonemapped luminance L / (1 + L) of the indirect light:\n\n"
            << "| average \\|E\\| | average \\|E'\\| |\n| --- | --- |\n"
            << "| " << m.average_error() << " | " << m.average_error_change() << " |\n\n"

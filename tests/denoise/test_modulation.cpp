@@ -142,7 +142,7 @@ TEST_CASE(
 TEST_CASE("denoise firefly clamp: keeps the frame's light and still limits an isolated spike") {
     // The clamp must not bias an accumulation: what it takes off an outlier goes to the outlier's
     // neighbours, so the remodulated image's sum (irradiance x albedo divisor: what is displayed)
-    // is the input's, per channel (issue 26: the old clamp dropped it, 5% of Sponza's indirect
+    // is the input's, per channel (the old clamp dropped it, 5% of Sponza's indirect
     // light). Noise in [0, 1] per channel, albedos 1/4..1, a spike of 200 (a tenth of the image's
     // light), a coloured one, one at the image edge and one beside the background corner (fewer
     // neighbours). Sums of 4096 floats of O(1): relative 1e-6.
