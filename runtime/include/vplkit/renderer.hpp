@@ -113,8 +113,11 @@ struct PoseUpdate {
     std::string summary;            // one line; the next frame's plan carries it as a note
 };
 
-// A refitted BVH is rebuilt when its SAH cost passes this multiple of its cost when built (the
-// cost tracks the rays' traversal work; see tests/animation for the measurement behind it).
+// A refitted BVH is rebuilt when its SAH cost passes this multiple of its cost when built.
+// Measured (tests/render/measure_pose, 131k triangles, lavapipe): tracing 262k closest-hit rays
+// takes 81 ms through a fresh build, 213 ms through a refit at 1.68x the SAH cost, 1756 ms at
+// 7.3x; a GPU rebuild costs 35-45 ms more than a refit, so a frame of that many rays gains from
+// rebuilding once the ratio passes about 1.5.
 inline constexpr double kBvhRebuildCostRatio = 1.5;
 
 // The SAH cost of a BVH's nodes (traversal 1, triangle 1, relative to the root box's area): the
