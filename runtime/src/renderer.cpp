@@ -208,7 +208,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
             held_bytes = 0;
         }
         held_bytes += bytes;
-        stages::ShadowMap& held_map = frame.hold(std::move(map));
+        stages::ShadowMap& held_map = frame.hold_until_submit(std::move(map));
         passes.set_tag(stage_tag(FrameStage::brsm_vpls));
         stages::add_shadow_map_pass(context_, passes, scene_, held_map, uint32_t(i));
         stages::add_brsm_light_passes(context_, passes, gbuffer, view, held_map, i, gpu_bvh().scene_scale, options,
