@@ -18,6 +18,7 @@
 #include "vplkit/renderer.hpp"
 #include "vplkit/sequence_metrics.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cinttypes>
 #include <cmath>
@@ -93,6 +94,8 @@ struct SequenceOptions {
     uint32_t frames = 16;
     float orbit_degrees = 30.0f;
     bool pfm = false, fresh_vpls = false, reference = false;
+    bool animate = false, loop = false;
+    float fps = 24.0f;
     uint32_t reference_paths = 16384;
     std::string cache = "out/sequence-cache";
 };
@@ -104,7 +107,9 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
     if (command.count("--orbit-degrees") && path_arg != "orbit") {
         throw UsageError("--orbit-degrees is for --path orbit");
     }
-    const float orbit_degrees = o.orbit_degrees;
+    if ((command.count("--fps") || o.loop) && !o.animate) throw UsageError("--fps and --loop need --animate");
+    // An animated scene is watched from a still camera unless a turn is asked for.
+    const float orbit_degrees = o.animate && !command.count("--orbit-degrees") ? 0.0f : o.orbit_degrees;
     const bool pfm = o.pfm;
     const bool fresh_vpls = o.fresh_vpls;
     const bool reference = o.reference;
@@ -157,15 +162,34 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
     std::filesystem::create_directories(out_dir);
     if (reference) std::filesystem::create_directories(cache);
 
-    LoadedScene loaded = load_request_scene(request);
-    const scene::Scene& scene = loaded.scene;
+    LoadedScene loaded = o.animate ? load_request_posable(request) : load_request_scene(request);
+    const scene::Scene& scene = loaded.active();
+    // --animate: frame f at start + f / fps; past the animations' end the pose holds (each channel
+    // clamps to its keys), or with --loop it starts again from the start.
+    const double start_time = request.time.value_or(0.0);
+    double animation_end = start_time;
+    for (const scene::Animation& a : scene.animations) {
+        if (a.applied) animation_end = std::max(animation_end, a.end);
+    }
+    auto frame_time = [&](uint32_t f) {
+        const double t = start_time + double(f) / o.fps;
+        const double span = animation_end - start_time;
+        return o.loop && span > 0.0 ? start_time + std::fmod(t - start_time, span) : t;
+    };
+    if (o.animate) {
+        std::printf("animation: %.3f s to %.3f s at %g frames per second, %s\n", start_time, animation_end, o.fps,
+                    o.loop ? "looping" : "holding the last pose after the end");
+    }
     const std::vector<scene::Camera> path = keys ? keyframe_path(*keys, scene.camera(), frames)
                                                  : orbit_path(scene.camera(), loaded.target, orbit_degrees, frames);
 
     auto context = Context::create(request.context);
     std::printf("device: %s (%s)\n", context->info().name.c_str(), context->info().type_name.c_str());
     std::printf("scene: %s, %ux%u, %u frames along %s\n", loaded.described.c_str(), settings.width, settings.height,
-                frames, keys ? path_arg.c_str() : "an orbit");
+                frames,
+                keys                    ? path_arg.c_str()
+                : orbit_degrees == 0.0f ? "a still camera"
+                                        : "an orbit");
     Renderer renderer(*context, scene);
     std::optional<Renderer> reference_renderer;
     RenderSettings reference_settings = settings;
@@ -199,6 +223,13 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
     const auto start = std::chrono::steady_clock::now();
     for (uint32_t f = 0; f < frames; ++f) {
         settings.frame = f;
+        if (o.animate && f > 0) {
+            // Only what moved is uploaded; the plan says what was made again and why.
+            const scene::PoseChange change = loaded.posable->pose(frame_time(f));
+            const PoseUpdate update = renderer.update_pose(change);
+            if (reference_renderer) reference_renderer->update_pose(change);
+            std::printf("frame %u: t = %.3f s: %s\n", f + 1, frame_time(f), update.summary.c_str());
+        }
         if (fresh_vpls) settings.seed = base_seed + f;
         const RenderedImage image = renderer.render(path[f], settings);
         if (f == 0 && settings.auto_exposure) {
@@ -236,6 +267,7 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
             key << "sequence reference v1\n"
                 << loaded.described << "\n"
                 << camera_key(path[f]) << "\n"
+                << "time " << (o.animate ? frame_time(f) : start_time) << "\n"
                 << lights_key(scene) << "\n"
                 << settings.width << 'x' << settings.height << " paths " << reference_paths << " bounces "
                 << settings.vpl_bounces << " seed " << reference_settings.seed << " brdf "
@@ -370,6 +402,20 @@ void add_sequence(CLI::App& vplkit, Runners& runners) {
     number(sequence->add_option("--orbit-degrees", o->orbit_degrees, "--path orbit: the turn over the sequence")
                ->capture_default_str(),
            "D", NumberRange::any())
+        ->group("sequence");
+    sequence
+        ->add_flag("--animate", o->animate,
+                   "play the glTF file's animations (--scene FILE.gltf): frame f posed at --time (default 0) + f / "
+                   "--fps without reading the file again, only what moved uploaded (the BVH refitted on the GPU); "
+                   "the camera stays still unless --orbit-degrees turns it")
+        ->group("sequence");
+    number(
+        sequence->add_option("--fps", o->fps, "--animate: frames per second of animation time")->capture_default_str(),
+        "F", NumberRange::above(0.0))
+        ->group("sequence");
+    sequence
+        ->add_flag("--loop", o->loop,
+                   "--animate: start the animations again after their end (default: hold the last pose)")
         ->group("sequence");
     sequence->add_flag("--pfm", o->pfm, "also each frame's linear radiance, DIR/frame_NNNN.pfm")->group("sequence");
     sequence

@@ -134,6 +134,23 @@ void validate_render_request(const RenderRequest& request) {
     }
 }
 
+namespace {
+
+bool is_scene_file(const std::string& scene_arg) {
+    return scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
+}
+
+// What every loaded scene gets: the extra lights, the camera flags, the warnings, the BRDF.
+void finish_loaded_scene(const RenderRequest& request, LoadedScene& loaded) {
+    scene::Scene& scene = loaded.active();
+    scene.lights.insert(scene.lights.end(), request.extra_lights.begin(), request.extra_lights.end());
+    loaded.target = apply_camera_flags(request.camera_flags, scene, loaded.target);
+    report_scene_warnings(scene, request.strict);
+    if (request.lambertian) scene::use_lambertian_materials(scene);
+}
+
+}  // namespace
+
 LoadedScene load_request_scene(RenderRequest& request) {
     const std::optional<uint32_t>& camera = request.camera;
     const std::string& scene_arg = request.scene_arg;
@@ -149,9 +166,7 @@ LoadedScene load_request_scene(RenderRequest& request) {
     load_options.camera = camera;
     load_options.time = request.time;
     load_options.animation = request.animation;
-    const bool is_file =
-        scene_arg.find('/') != std::string::npos || scene_arg.ends_with(".gltf") || scene_arg.ends_with(".glb");
-    if (is_file) {
+    if (is_scene_file(scene_arg)) {
         scene = scene::load_gltf(scene_arg, load_options);
         described = scene_arg;
         loaded.target = scene.bounds.center();
@@ -166,10 +181,30 @@ LoadedScene load_request_scene(RenderRequest& request) {
         settings.width = width.value_or(setup.width ? setup.width : 640);
         settings.height = height.value_or(setup.height ? setup.height : 360);
     }
-    scene.lights.insert(scene.lights.end(), request.extra_lights.begin(), request.extra_lights.end());
-    loaded.target = apply_camera_flags(request.camera_flags, scene, loaded.target);
-    report_scene_warnings(scene, request.strict);
-    if (request.lambertian) scene::use_lambertian_materials(scene);
+    finish_loaded_scene(request, loaded);
+    loaded.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
+    return loaded;
+}
+
+LoadedScene load_request_posable(RenderRequest& request) {
+    const std::string& scene_arg = request.scene_arg;
+    if (!is_scene_file(scene_arg)) {
+        throw UsageError(
+            "--animate poses a glTF file's animations: give --scene FILE.gltf|.glb (a set-up is not "
+            "posed)");
+    }
+    const auto load_start = std::chrono::steady_clock::now();
+    LoadedScene loaded;
+    scene::LoadOptions load_options;
+    load_options.camera = request.camera;
+    load_options.time = request.time.value_or(0.0);
+    load_options.animation = request.animation;
+    loaded.posable = std::make_unique<scene::PosableScene>(scene_arg, load_options);
+    loaded.described = scene_arg;
+    loaded.target = loaded.active().bounds.center();
+    request.settings.width = request.width.value_or(640);
+    request.settings.height = request.height.value_or(360);
+    finish_loaded_scene(request, loaded);
     loaded.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
     return loaded;
 }

@@ -11,6 +11,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/render_settings.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/scene_pose.hpp"
 
 #include <glm/vec3.hpp>
 
@@ -66,6 +67,10 @@ void validate_render_request(const RenderRequest& request);
 
 struct LoadedScene {
     scene::Scene scene;  // with the set-up's and the extra lights, its camera active
+    // Instead of `scene` when loaded posable (load_request_posable): a glTF file posed again
+    // per frame without reading it (its scene() is the one to render).
+    std::unique_ptr<scene::PosableScene> posable;
+    scene::Scene& active() { return posable ? posable->scene() : scene; }
     std::string described;
     // The point the camera looks at: --target, the set-up's target, or the centre of a file's bounds.
     glm::vec3 target{0.0f};
@@ -73,5 +78,8 @@ struct LoadedScene {
 };
 // Loads the request's scene and sets its default size into request.settings (unless given).
 LoadedScene load_request_scene(RenderRequest& request);
+// The same for a glTF file kept posable (scene::PosableScene), posed at request.time or 0.
+// UsageError for a set-up name: a set-up's scene is not posed.
+LoadedScene load_request_posable(RenderRequest& request);
 
 }  // namespace vplkit::cli
