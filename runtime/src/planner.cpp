@@ -343,7 +343,7 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     add(FrameStage::smc_vpls, make_vpls && plan.vpl_source == VplSource::smc, vpl_reason(VplSource::smc));
     const bool flc = own_vpls && settings.method == GiMethod::flc;  // flc's own VPL stage
     add(FrameStage::flc_vpls, flc && lit,
-        flc ? (lit ? "read by flc: a VPL per kept triangle, lit by the direct light (seed 002 sec. 4)"
+        flc ? (lit ? "read by flc: a VPL per kept triangle, lit by the direct light (the FLC paper sec. 4)"
                    : "no light to light VPLs with")
         : method.vpls == GiVpls::none ? "direct light only (`method` " + std::string(method.name) + "): no VPLs"
                                       : "`method` " + std::string(method.name));

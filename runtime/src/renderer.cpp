@@ -194,7 +194,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     stages::add_brsm_count_clear_pass(passes, *output);
     // Every light's shadow map and working buffers live until the frame has run, so that the frame
     // is one command buffer; a scene with many lights runs the frame so far whenever they would
-    // pass kBrsmFrameBytes, which frees them (seed 000 ch. 6, "Multiple Lights", places one light
+    // pass kBrsmFrameBytes, which frees them (the thesis ch. 6, "Multiple Lights", places one light
     // at a time to need the memory of one).
     uint64_t held_bytes = 0;
     for (size_t i = 0; i < scene_source_.lights.size(); ++i) {
@@ -333,7 +333,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         if (s.runs) out.stages_run.push_back(stage_name(s.stage));
     }
 
-    // Direct light through the tree: rtslc's cut options, the block size seed 003 sec. 4 uses.
+    // Direct light through the tree: rtslc's cut options, the block size the RTSLC paper sec. 4 uses.
     const bool tree_direct = plan.runs(FrameStage::direct_tree);
     stages::RtslcOptions tree_options;
     tree_options.samples_per_pixel = settings.direct_samples;
@@ -341,9 +341,9 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     tree_options.seed = settings.seed;
     tree_options.interleave = settings.direct_interleave;
     // Without interleaving the cut's slots are shared out by bound (rtslc_cut.comp's kShareOutSlots)
-    // at one representative pixel per block: 4 x 4 blocks, not seed 003's 8 x 8, since on irregular
+    // at one representative pixel per block: 4 x 4 blocks, not the RTSLC paper's 8 x 8, since on irregular
     // mesh lights 8 x 8 blocks spanning the ceiling and the wall gave the slots to the wrong lamps
-    // (issue 15, README). Interleaved sampling keeps 8 x 8 (its M divides 8).
+    // (docs/measurements.md, *Many lights*). Interleaved sampling keeps 8 x 8 (its M divides 8).
     if (settings.direct_interleave <= 1) tree_options.block_size = 4;
     if (tree_direct) stages::validate_direct_light_tree(tree_options);  // before any work
 

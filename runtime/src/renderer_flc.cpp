@@ -1,4 +1,4 @@
-// The renderer's forward light cuts frame (seed 002): VPL candidates, the divergent triangles'
+// The renderer's forward light cuts frame (the FLC paper): VPL candidates, the divergent triangles'
 // subdivision, the stratified decimation (flc_stratify.comp, levels fitted to the scene's area),
 // their compaction, the light at the kept VPLs, and the splatting raster pipeline into
 // the indirect image. flc places its own VPLs (one per kept triangle), reads no VPL source and no
@@ -57,7 +57,7 @@ stages::FlcPartition flc_partition(const RenderSettings& settings, const scene::
 }
 
 // The triangles by the Morton code of their centroids (the stratified decimation's order), from
-// the positions the GPU reads: fixed at first use, as the vertices' random integers are (seed 002
+// the positions the GPU reads: fixed at first use, as the vertices' random integers are (the FLC paper
 // sec. 6), so a triangle's stratum follows it when the scene moves.
 std::vector<uint32_t> triangle_order(const scene::Scene& scene) {
     const std::vector<glm::vec3> corners = scene::triangle_positions(scene);

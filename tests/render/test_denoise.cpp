@@ -136,7 +136,7 @@ TEST_CASE("denoise render: svgf over 4 frames halves the error of one raw frame 
 }
 
 TEST_CASE("denoise render: along an orbit svgf lowers |E'| and does not raise |E|") {
-    // Seed 001's metrics (runtime/sequence_metrics) over 6 frames of a 6-degree orbit in the
+    // The SMC paper's metrics (runtime/sequence_metrics) over 6 frames of a 6-degree orbit in the
     // in-repo Cornell box, 48 x 48, hybrid 8 spp over one set of IR VPLs (512 paths), against the
     // exact gather over 2048 IR paths. Measured: |E'| 0.092 -> 0.0090 with svgf, |E| 0.071 -> 0.025; the
     // checks ask for 2x and "not higher".

@@ -1,4 +1,4 @@
-// The glossy branch (stages/glossy_lobe.hpp, seed 004 sec. 4.2) in whole frames with shadows, on
+// The glossy branch (stages/glossy_lobe.hpp, the SST paper sec. 4.2) in whole frames with shadows, on
 // the glossy scene (scenes/glossy_floor: a dark glossy floor, roughness 0.25, reflecting the
 // light of coloured walls; a copper block). For sst, rtslc and hybrid with the branch as planned
 // (on: the floor and the block are smoother than the limit) and forced off, against `exact` over

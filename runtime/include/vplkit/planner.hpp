@@ -26,7 +26,7 @@ enum class FrameStage {
     direct_tree,      // the light tree over emitters, point and spot lights, and sampling through it
     vpl_paths,        // instant radiosity: light paths through the BVH
     brsm_vpls,        // reflective shadow maps and BRSM placement, light by light
-    smc_vpls,         // one SMC update of the persistent VPL set (seed 001 Alg. 1)
+    smc_vpls,         // one SMC update of the persistent VPL set (the SMC paper Alg. 1)
     flc_vpls,         // forward light cuts: candidates, decimation, compaction, light at the kept VPLs
     vpl_sort,         // keys, sort, leaves in sorted order
     light_tree,       // the RTSLC light tree

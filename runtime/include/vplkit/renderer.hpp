@@ -191,7 +191,7 @@ private:
                           stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, FrameRecording& frame,
                           RenderedImage& out);
 
-    // Forward light cuts (seed 002): its own VPLs, splatted into `indirect` (renderer_flc.cpp).
+    // Forward light cuts (the FLC paper): its own VPLs, splatted into `indirect` (renderer_flc.cpp).
     void render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer, const RenderSettings& settings,
                     Image& indirect, FrameRecording& frame, RenderedImage& out);
     std::optional<Buffer> flc_vertex_random_;  // scene::Scene::vertex_random, uploaded on first use

@@ -223,7 +223,7 @@ struct Scene {
     std::filesystem::path source;  // the file it was loaded from
 
     std::vector<Vertex> vertices;
-    // One random integer per vertex (seed 002 sec. 3), from the vertex's identity in the file
+    // One random integer per vertex (the FLC paper sec. 3), from the vertex's identity in the file
     // (node, mesh, primitive, vertex index: see vertex_random_value), never from its position, so
     // a triangle's random number (the xor of its three) stays the same when its node moves, turns,
     // scales or is skinned. Forward light cuts read it; parallel to `vertices`.
