@@ -32,7 +32,10 @@ std::optional<double> ErrorModel::predict_rmse(const BudgetConfig& config) const
     const NoiseMeasurement* noise = find(config.method, config.half_resolution, config.block_size);
     // temporal alone: its effect depends on how long the camera stays still; not modelled.
     if (!noise || config.denoise == DenoiseMode::temporal) return std::nullopt;
-    double sampling_mse = variance_at_samples(noise->variance, noise->spp, config.spp, noise->exponent);
+    // 1/spp from spp0, not the measured exponent: extrapolated to 64 spp the exponent overrated
+    // the raw frames' noise and the chooser took svgf at 64 spp with 1.5x the best measured
+    // RMSE (docs/budget.md); the exponent is kept as a measurement of how far 1/spp is off.
+    double sampling_mse = variance_at_samples(noise->variance, noise->spp, config.spp);
     // The denoiser filters each frame's new samples; the VPL set stays the same from frame to
     // frame, so its error is not averaged away (its blotches are larger than the a-trous kernel's
     // edge-stopped reach, assumed untouched).

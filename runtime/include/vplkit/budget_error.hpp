@@ -2,9 +2,9 @@
 // The budget's error model: a configuration's predicted RMSE of the tonemapped frame (sRGB / 255,
 // the bench's metric) against the exact frame, without rendering the exact frame. Its squared
 // error is the sum of
-//   sampling noise:  sigma_s^2(method, resolution, block) x (spp0 / spp)^a, measured from two
-//                    frames of this scene with other random numbers (budget_noise.hpp) at spp0,
-//                    and a from two more at spp1 (the samplers' noise falls slower than 1/spp);
+//   sampling noise:  sigma_s^2(method, resolution, block) x spp0 / spp, measured from two
+//                    frames of this scene with other random numbers (budget_noise.hpp) at spp0
+//                    (two more at spp1 measure how far from 1/spp it falls: `exponent`);
 //   the VPL set's noise: sigma_v^2 x V0 / V, measured from two frames with other VPL seeds less
 //                    the sampling noise (the error a VPL set of V has against the light itself);
 //   bias:            the method's floor (sst, hybrid: their substitutes) and half resolution's
@@ -41,7 +41,9 @@ struct NoiseMeasurement {
     uint32_t block_size = 8;
     uint32_t spp = 4;       // spp0
     double variance = 0.0;  // sigma_s^2 per value at spp0
-    double exponent = 1.0;  // a: sigma_s^2 falls as spp^-a (spp_exponent of the two pairs)
+    // a: sigma_s^2 fell as spp^-a from spp0 to spp1 (spp_exponent of the two pairs). Measured and
+    // cached, not used by predict_rmse (docs/budget.md: extrapolated, it chose worse).
+    double exponent = 1.0;
 };
 
 struct ErrorModel {
