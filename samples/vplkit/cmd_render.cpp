@@ -14,6 +14,7 @@
 #include "vpl_view.hpp"
 
 #include "vplkit/auto_exposure.hpp"
+#include "vplkit/budget.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
@@ -71,6 +72,7 @@ struct RenderOutputs {
     std::optional<std::string> out_hdr, out_direct, out_indirect, stats;
     uint32_t frames = 1;
     bool no_antialias = false;
+    std::optional<double> budget_ms;  // --budget-ms: the kit chooses the method and its knobs
 };
 
 // --NAME FILE into `into` (unset when not given).
@@ -114,6 +116,14 @@ void add_render_outputs(CLI::App& command, RenderOutputs& o) {
                  "F", 1, 1000)
         ->group("outputs");
     command.add_flag("--no-antialias", o.no_antialias, "with --frames: every frame at the pixel centres")
+        ->group("outputs");
+    number(command.add_option_function<double>(
+               "--budget-ms", [&o](double v) { o.budget_ms = v; },
+               "choose the method (sst, rtslc, hybrid), --spp, --gi-resolution, --denoise (off, svgf), --vpls and "
+               "--block with the least predicted error within B ms of GPU time per frame on this device, "
+               "replacing those options (about 30 calibration frames, cached in out/budget-cache by device, "
+               "scene, size and camera; docs/budget.md)"),
+           "B", NumberRange::above(0.0))
         ->group("outputs");
 }
 
@@ -170,6 +180,21 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
     Renderer renderer(*context, scene);
     std::printf("bvh: %zu nodes, depth %u, built in %.0f ms\n", renderer.bvh().nodes.size(), renderer.bvh().depth,
                 renderer.bvh_build_ms());
+    // --budget-ms: times and noise measured here (or read from the cache), then the choice.
+    std::optional<BudgetPlan> budget;
+    if (outputs.budget_ms) {
+        BudgetCalibrationOptions budget_options;
+        budget_options.scene_id = described + (request.time ? " at t " + std::to_string(*request.time) : "");
+        budget_options.progress = [](uint32_t done, uint32_t total) {
+            std::fprintf(stderr, "[budget] calibration frame %u/%u\n", done, total);
+        };
+        budget.emplace(
+            plan_for_budget(renderer, device, scene, scene.camera(), settings, *outputs.budget_ms, budget_options));
+        settings = budget->settings;
+        std::printf("budget: %s %s\n", budget->calibration.from_cache ? "model read from" : "calibrated, cached in",
+                    budget->calibration.cache_file.string().c_str());
+        std::printf("%s\n", budget->choice.line().c_str());
+    }
     const bool terminal = isatty(fileno(stderr));
     settings.progress = [terminal](uint32_t done, uint32_t total) {
         if (terminal) {
@@ -289,6 +314,19 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
         stats["frames"] = frames;
         stats["plans"] = plans.json();
         stats.update(timing_stats(frame_timings));
+        if (budget) {
+            const BudgetStatsFields f = budget_stats_fields(budget->choice);
+            stats["budget"] = {{"method", f.method},
+                               {"spp", f.spp},
+                               {"gi_resolution", f.gi_resolution},
+                               {"denoise", f.denoise},
+                               {"vpls", f.vpls},
+                               {"block_size", f.block_size},
+                               {"predicted_ms", json_number(f.predicted_ms)},
+                               {"predicted_rmse", json_number(f.predicted_rmse)},
+                               {"budget_ms", json_number(f.budget_ms)},
+                               {"over_budget", f.over_budget}};
+        }
         stats["counters"] = counters_stats(image, settings);
         // Null when the denoiser did not run (no firefly clamp).
         stats["firefly_moved_fraction"] =
