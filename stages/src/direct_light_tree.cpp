@@ -103,21 +103,11 @@ void add_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, c
     b.cuts = scratch.cuts.descriptor();
     b.gi_counters = counters.descriptor();
     b.radiance = samples_target.descriptor();
-    const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     for (uint32_t first = 0; first < options.samples_per_pixel; first += options.slots_per_dispatch) {
         const uint32_t end = std::min(options.samples_per_pixel, first + options.slots_per_dispatch);
         shaders::direct_light_tree::Push push{};
-        push.camera_position = camera;
-        push.seed = options.seed;
-        push.frame = options.frame;
-        push.block_size = options.block_size;
-        push.cut_size = options.samples_per_pixel;
-        push.blocks_x = scratch.blocks_x();
-        push.leaf_count = tree.leaf_count;
+        set_rtslc_sampling_push(push, camera_position, options, scratch, tree.leaf_count, first, end);
         push.triangle_count = tree.triangle_count;
-        push.slot_first = first;
-        push.slot_end = end;
-        push.interleave = options.interleave;
         add_dispatch<shaders::direct_light_tree::Module>(passes, "direct light tree", pipeline, b, push,
                                                          {samples_target.width, samples_target.height},
                                                          gbuffer_images(gbuffer, {samples_target}));

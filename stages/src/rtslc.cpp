@@ -100,7 +100,6 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     validate(options);
     check_targets(gbuffer, trees, indirect, counters, options, scratch);
     const float similarity_distance = gi_similarity_distance(options.similarity_max_distance, bvh.scene_scale);
-    const shaders::vec3 camera{camera_position.x, camera_position.y, camera_position.z};
     add_gi_counters_clear(passes, counters, "gi counters clear");
 
     add_rtslc_cut_pass(device, passes, gbuffer, bvh, trees.light_tree, trees.leaf_count, camera_position, counters,
@@ -125,16 +124,7 @@ void add_rtslc_passes(Device& device, StepList& passes, const GbufferViews& gbuf
         gi_bindings.gi_counters = counters.descriptor();
         gi_bindings.radiance = radiance.descriptor();
         shaders::rtslc_gi::Push push{};
-        push.camera_position = camera;
-        push.seed = options.seed;
-        push.frame = options.frame;
-        push.block_size = options.block_size;
-        push.cut_size = options.samples_per_pixel;
-        push.blocks_x = scratch.blocks_x();
-        push.leaf_count = trees.leaf_count;
-        push.interleave = options.interleave;
-        push.slot_first = first;
-        push.slot_end = end;
+        set_rtslc_sampling_push(push, camera_position, options, scratch, trees.leaf_count, first, end);
         add_dispatch(passes, "rtslc gi",
                      gbuffer_bvh_uses(gbuffer, bvh,
                                       {Use::read(trees.light_tree), Use::read(trees.leaves), Use::read(scratch.cuts),

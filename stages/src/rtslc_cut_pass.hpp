@@ -27,6 +27,24 @@ void add_rtslc_cut_pass(Device& device, StepList& passes, const GbufferViews& gb
                         const BufferView& counters, const RtslcOptions& options, uint32_t seed,
                         const RtslcScratchBuffers& scratch, bool share_out_slots = false);
 
+// The sampling pass's push constants both rtslc GI (rtslc_gi.comp) and direct light through the
+// tree (direct_light_tree.comp) take alike: the camera, the random numbers, the cut's shape and
+// the slots [first, end) this dispatch draws. Push is the shader's generated Push.
+template <class Push>
+void set_rtslc_sampling_push(Push& push, glm::vec3 camera_position, const RtslcOptions& options,
+                             const RtslcScratchBuffers& scratch, uint32_t leaf_count, uint32_t first, uint32_t end) {
+    push.camera_position = {camera_position.x, camera_position.y, camera_position.z};
+    push.seed = options.seed;
+    push.frame = options.frame;
+    push.block_size = options.block_size;
+    push.cut_size = options.samples_per_pixel;
+    push.blocks_x = scratch.blocks_x();
+    push.leaf_count = leaf_count;
+    push.interleave = options.interleave;
+    push.slot_first = first;
+    push.slot_end = end;
+}
+
 // Adds the pass: each pixel of `target` gets the rescaled sum of its similar sub-block
 // neighbours' estimates (scratch.estimates, written per pixel over its interleaved share of the
 // cut). `similarity_distance` absolute (world units).
