@@ -38,7 +38,7 @@ public:
         label("OPTIONS", "options");
         label("SUBCOMMAND", "command");
     }
-    // The placeholder alone (the helpers in cli_checks.hpp put the range in it); the default goes
+    // The option text alone (the helpers in cli_checks.hpp put the range in it); the default goes
     // into the description.
     std::string make_option_opts(const CLI::Option* option) const override {
         if (option->get_positional()) return "";

@@ -15,7 +15,7 @@ namespace vplkit::cli {
 
 // A whole number from `min` to `max` (decimal digits only).
 CLI::Validator whole_number_check(uint64_t min, uint64_t max);
-// The option takes a whole number from `min` to `max`; `name` is its placeholder ("N").
+// The option takes a whole number from `min` to `max`; `name` is the value's name in the help ("N").
 CLI::Option* whole_number(CLI::Option* option, const std::string& name, uint64_t min, uint64_t max);
 // Comma-separated whole numbers, each from 1 to `max` (at least one).
 CLI::Option* whole_number_list(CLI::Option* option, const std::string& name, uint64_t max);
@@ -36,12 +36,12 @@ struct NumberRange {
 };
 // A finite number in `range`.
 CLI::Validator number_check(const NumberRange& range);
-// The option takes a finite number in `range`; `name` is its placeholder ("MU").
+// The option takes a finite number in `range`; `name` is the value's name in the help ("MU").
 CLI::Option* number(CLI::Option* option, const std::string& name, const NumberRange& range);
 
 // One of `names` (CLI::IsMember), "expects a, b or c, got 'x'".
 CLI::Validator one_of_check(const std::vector<std::string>& names);
-// The option takes one of `names`; its placeholder lists them ("auto|on|off").
+// The option takes one of `names`; the help names the value by listing them ("auto|on|off").
 CLI::Option* one_of(CLI::Option* option, const std::vector<std::string>& names);
 
 // Comma-separated names, each one of `names`: "expects a comma-separated list of a, b, c, got 'x'

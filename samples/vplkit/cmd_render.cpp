@@ -77,11 +77,11 @@ struct RenderOutputs {
 
 // --NAME FILE into `into` (unset when not given).
 void add_file_option(CLI::App& command, const std::string& name, std::optional<std::string>& into,
-                     const std::string& placeholder, const std::string& help) {
+                     const std::string& value_name, const std::string& help) {
     command
         .add_option_function<std::string>(
             name, [&into](const std::string& v) { into = v; }, help)
-        ->option_text(placeholder)
+        ->option_text(value_name)
         ->group("outputs");
 }
 
