@@ -15,7 +15,7 @@
 #include <numeric>
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 namespace {
 
@@ -73,7 +73,7 @@ std::vector<uint32_t> brsm_vpl_shares(std::span<const scene::Light> lights, cons
 }
 
 BrsmOutput BrsmOutput::create_for_lights(Context& context, std::span<const scene::Light> lights,
-                                         const scene::Bounds& bounds, const BrsmOptions& options) {
+                                         const scene::Bounds& bounds, const stages::BrsmOptions& options) {
     validate(options);
     if (lights.empty()) throw Error("BRSM: no punctual light to place VPLs for");
     const std::vector<uint32_t> shares = brsm_vpl_shares(lights, bounds, options.vpl_count);
@@ -91,15 +91,16 @@ BrsmOutput BrsmOutput::create_for_lights(Context& context, std::span<const scene
 
 void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLightBuffers& light) {
     const uint32_t size = std::bit_ceil(std::max(map.width(), map.height()));
-    if (size > kMaxBrsmMapSize) {
+    if (size > stages::kMaxBrsmMapSize) {
         throw Error("BRSM: light '" + map.light.name + "''s shadow map is " + std::to_string(map.width()) + "x" +
                     std::to_string(map.height()) + " texels; importance maps go up to " +
-                    std::to_string(kMaxBrsmMapSize) +
+                    std::to_string(stages::kMaxBrsmMapSize) +
                     "^2 (a point light's cube map is 3 x 2 faces): use smaller faces");
     }
     light.map_size = size;
     if (light.vpl_share == 0) return;
-    const BrsmLightRequirements needed = brsm_light_requirements(map.width(), map.height(), light.vpl_share);
+    const stages::BrsmLightRequirements needed =
+        stages::brsm_light_requirements(map.width(), map.height(), light.vpl_share);
     light.contribution = storage_buffer(context, needed.contribution_bytes, "brsm contribution");
     light.contribution_mips = storage_buffer(context, needed.mip_chain_bytes, "brsm contribution mips");
     light.flux_mips = storage_buffer(context, needed.mip_chain_bytes, "brsm flux mips");
@@ -109,7 +110,7 @@ void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLig
 }
 
 BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
-                              const BrsmOptions& options) {
+                              const stages::BrsmOptions& options) {
     std::vector<scene::Light> lights;
     for (const ShadowMap& map : maps) lights.push_back(map.light);
     BrsmOutput out = create_for_lights(context, lights, bounds, options);
@@ -117,12 +118,12 @@ BrsmOutput BrsmOutput::create(Context& context, std::span<const ShadowMap> maps,
     return out;
 }
 
-void add_brsm_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
-                     std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options,
-                     const BrsmOutputViews& output) {
-    const std::vector<ShadowMapViews> views = shadow_map_views(maps);
-    add_brsm_passes(device, passes, gbuffer, view, std::span<const ShadowMapViews>(views), scene_scale, options,
-                    output);
+void add_brsm_passes(stages::Device& device, StepList& passes, const stages::GbufferViews& gbuffer,
+                     const stages::CameraView& view, std::span<ShadowMap> maps, float scene_scale,
+                     const stages::BrsmOptions& options, const stages::BrsmOutputViews& output) {
+    const std::vector<stages::ShadowMapViews> views = shadow_map_views(maps);
+    stages::add_brsm_passes(device, passes, gbuffer, view, std::span<const stages::ShadowMapViews>(views), scene_scale,
+                            options, output);
 }
 
 uint32_t download_brsm_vpl_count(const BrsmOutput& output) {
@@ -145,4 +146,4 @@ std::vector<uint32_t> download_brsm_light_vpl_counts(const BrsmOutput& output) {
     return counts;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

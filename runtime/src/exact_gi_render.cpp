@@ -12,31 +12,31 @@
 #include <chrono>
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 Buffer create_exact_gi_counters(Context& context) {
-    return Buffer::create(context, kExactGiCountersBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
+    return Buffer::create(context, stages::kExactGiCountersBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device,
                           "exact gi counters");
 }
 
-ExactGiCounts read_exact_gi_counters(const Buffer& counters) {
+stages::ExactGiCounts read_exact_gi_counters(const Buffer& counters) {
     const auto c = counters.download<shaders::ExactGiCounters>(1);
     return {c[0].dropped_pixels, c[0].dropped_contributions, c[0].cut_short};
 }
 
 ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const GpuBvh& bvh, const Buffer& vpls,
                               uint32_t vpl_count, glm::vec3 camera_position, Image& indirect,
-                              const ExactGiOptions& options) {
+                              const stages::ExactGiOptions& options) {
     Buffer counters = create_exact_gi_counters(context);
-    check_exact_gi_inputs(gbuffer, vpls, vpl_count, indirect, counters);
+    stages::check_exact_gi_inputs(gbuffer, vpls, vpl_count, indirect, counters);
     ExactGiResult result;
     {
         PassList clear("exact gi clear");
-        add_exact_gi_clear(clear, indirect, counters);
+        stages::add_exact_gi_clear(clear, indirect, counters);
         clear.run(context);
         result.gpu_ms += clear.total_gpu_ms();
     }
-    const uint32_t chunk = exact_gi_chunk_size(gbuffer.width(), gbuffer.height(), options);
+    const uint32_t chunk = stages::exact_gi_chunk_size(gbuffer.width(), gbuffer.height(), options);
     const auto start = std::chrono::steady_clock::now();
     // One submission per chunk: a device that kills long submissions sees short ones, and the
     // caller hears of progress between them.
@@ -64,4 +64,4 @@ ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const Gp
     return result;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

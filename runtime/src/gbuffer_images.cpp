@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 GbufferImages GbufferImages::create(Context& context, uint32_t width, uint32_t height) {
     if (width == 0 || height == 0) {
@@ -13,15 +13,15 @@ GbufferImages GbufferImages::create(Context& context, uint32_t width, uint32_t h
     }
     constexpr VkImageUsageFlags color = VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT;
     GbufferImages g;
-    g.position = Image::create(context, width, height, kGbufferPositionFormat, color, "gbuffer position");
-    g.normal = Image::create(context, width, height, kGbufferNormalFormat, color, "gbuffer normal");
+    g.position = Image::create(context, width, height, stages::kGbufferPositionFormat, color, "gbuffer position");
+    g.normal = Image::create(context, width, height, stages::kGbufferNormalFormat, color, "gbuffer normal");
     g.geometric_normal =
-        Image::create(context, width, height, kGbufferGeometricNormalFormat, color, "gbuffer geometric normal");
-    g.albedo = Image::create(context, width, height, kGbufferAlbedoFormat, color, "gbuffer albedo");
-    g.emission = Image::create(context, width, height, kGbufferEmissionFormat, color, "gbuffer emission");
-    g.depth = Image::create(context, width, height, kGbufferDepthFormat, VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT,
-                            "gbuffer depth");
+        Image::create(context, width, height, stages::kGbufferGeometricNormalFormat, color, "gbuffer geometric normal");
+    g.albedo = Image::create(context, width, height, stages::kGbufferAlbedoFormat, color, "gbuffer albedo");
+    g.emission = Image::create(context, width, height, stages::kGbufferEmissionFormat, color, "gbuffer emission");
+    g.depth = Image::create(context, width, height, stages::kGbufferDepthFormat,
+                            VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "gbuffer depth");
     return g;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -11,7 +11,7 @@
 #include <cmath>
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 namespace {
 
@@ -68,7 +68,7 @@ struct GpuLightTree::State {
     Buffer keys;
     Buffer leaf_lights;
     Buffer nodes;
-    KeyValueSorter sorter;
+    stages::KeyValueSorter sorter;
 };
 
 GpuLightTree GpuLightTree::create(Context& context, const scene::Scene& scene, const GpuEmitters& emitters) {
@@ -78,9 +78,9 @@ GpuLightTree GpuLightTree::create(Context& context, const scene::Scene& scene, c
         throw Error(scene.source.string() +
                     ": the light tree needs an emissive triangle, a point or a spot light; the scene has none");
     }
-    if (count > kMaxKeyedVpls) {
+    if (count > stages::kMaxKeyedVpls) {
         throw Error(scene.source.string() + ": " + std::to_string(count) + " lights; the light tree keys at most " +
-                    std::to_string(kMaxKeyedVpls));
+                    std::to_string(stages::kMaxKeyedVpls));
     }
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     GpuLightTree tree;
@@ -91,25 +91,26 @@ GpuLightTree GpuLightTree::create(Context& context, const scene::Scene& scene, c
     proxies.upload(lights.proxies);
     tree.state_ = std::make_shared<State>(
         State{std::move(proxies), upload_lights(context, lights.punctual), emitters.triangles,
-              Buffer::create(context, kVplBoundsBytes, storage, MemoryUse::device, "light tree bounds"),
+              Buffer::create(context, stages::kVplBoundsBytes, storage, MemoryUse::device, "light tree bounds"),
               Buffer::create(context, uint64_t(count) * 8, storage, MemoryUse::device, "light tree keys"),
               Buffer::create(context, uint64_t(count) * 4, storage, MemoryUse::device, "light tree leaf lights"),
-              Buffer::create(context, uint64_t(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode), storage,
-                             MemoryUse::device, "light tree over lights"),
-              KeyValueSorter(context, count)});
+              Buffer::create(context, uint64_t(stages::light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
+                             storage, MemoryUse::device, "light tree over lights"),
+              stages::KeyValueSorter(context, count)});
     return tree;
 }
 
 void GpuLightTree::add_build_passes(Context& context, PassList& passes) {
     State& s = *state_;
-    const SceneLightTreeSources sources{count_, triangle_count_, s.proxies, s.emitters, s.punctual.lights};
+    const stages::SceneLightTreeSources sources{count_, triangle_count_, s.proxies, s.emitters, s.punctual.lights};
     add_scene_light_tree_passes(context, passes, sources, {s.bounds, s.keys}, s.sorter, buffers());
 }
 
-SceneLightTreeBuffers GpuLightTree::buffers() const {
+stages::SceneLightTreeBuffers GpuLightTree::buffers() const {
     const State& s = *state_;
-    return {count_,           light_tree_leaf_count(count_), triangle_count_, s.nodes, s.leaf_lights, s.emitters,
-            s.punctual.lights};
+    return {
+        count_,           stages::light_tree_leaf_count(count_), triangle_count_, s.nodes, s.leaf_lights, s.emitters,
+        s.punctual.lights};
 }
 
 const Buffer& GpuLightTree::nodes() const {
@@ -120,4 +121,4 @@ const Buffer& GpuLightTree::leaf_lights() const {
     return state_->leaf_lights;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

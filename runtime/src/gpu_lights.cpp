@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 namespace {
 
@@ -161,7 +161,7 @@ GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
         out.total_power += e.luminance_power;
     }
     if (!triangles.empty()) {
-        const std::vector<float> cdf = selection_cdf(powers);
+        const std::vector<float> cdf = stages::selection_cdf(powers);
         for (size_t i = 0; i < triangles.size(); ++i) triangles[i].cdf = cdf[i];
     }
     out.count = uint32_t(triangles.size());
@@ -172,4 +172,4 @@ GpuEmitters upload_emitters(Context& context, const scene::Scene& scene) {
     return out;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

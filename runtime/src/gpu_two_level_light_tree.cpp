@@ -7,7 +7,7 @@
 
 #include <vector>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct GpuTwoLevelLightTree::State {
     uint32_t top_leaf_count = 0;
@@ -50,9 +50,9 @@ GpuTwoLevelLightTree GpuTwoLevelLightTree::create(Context& context, const scene:
     return out;
 }
 
-TwoLevelLightTreeBuffers GpuTwoLevelLightTree::buffers() const {
+stages::TwoLevelLightTreeBuffers GpuTwoLevelLightTree::buffers() const {
     const State& s = *state_;
     return {s.top_leaf_count, s.triangle_count, s.nodes, s.bottoms, s.leaf_lights, s.emitters, s.punctual.lights};
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

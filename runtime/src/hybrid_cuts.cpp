@@ -2,10 +2,10 @@
 
 #include "vplkit/context.hpp"
 
-namespace vplkit::stages {
+namespace vplkit {
 
-HybridCuts HybridCuts::create(Context& context, uint32_t width, uint32_t height, const HybridOptions& options) {
-    const HybridCutRequirements needs = hybrid_cut_requirements(width, height, options);
+HybridCuts HybridCuts::create(Context& context, uint32_t width, uint32_t height, const stages::HybridOptions& options) {
+    const stages::HybridCutRequirements needs = hybrid_cut_requirements(width, height, options);
     HybridCuts c;
     c.blocks_x = needs.blocks_x;
     c.blocks_y = needs.blocks_y;
@@ -16,4 +16,4 @@ HybridCuts HybridCuts::create(Context& context, uint32_t width, uint32_t height,
     return c;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -49,9 +49,9 @@ Renderer::Renderer(Context& context, const scene::Scene& scene) : context_(conte
     bvh_ = build_scene_bvh(scene);
     bvh_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu_bvh_ = upload_bvh(context, bvh_);
-    lights_ = stages::upload_lights(context, scene.lights);
-    directional_lights_ = stages::upload_lights(context, stages::directional_lights(scene));
-    emitters_ = stages::upload_emitters(context, scene);
+    lights_ = upload_lights(context, scene.lights);
+    directional_lights_ = upload_lights(context, directional_lights(scene));
+    emitters_ = upload_emitters(context, scene);
 }
 
 namespace {
@@ -74,14 +74,14 @@ constexpr uint64_t kBrsmFrameBytes = uint64_t(256) << 20;
 
 // A light's BRSM memory: its map's images (position, normal and flux RGBA32F, depth 32-bit) and
 // its working buffers.
-uint64_t brsm_light_bytes(const stages::ShadowMap& map, const stages::BrsmLightBuffers& light) {
+uint64_t brsm_light_bytes(const ShadowMap& map, const BrsmLightBuffers& light) {
     const uint64_t texels = uint64_t(map.width()) * map.height();
     return texels * (3 * 16 + 4) + light.contribution.size() + light.contribution_mips.size() + light.flux_mips.size() +
            light.importance_mips.size() + light.samples.size() + light.warp_count.size();
 }
 
 // RenderedImage's albedo, normal and depth from the frame's G-buffer (renderer.hpp).
-void read_back_aovs(stages::GbufferImages& gbuffer, const scene::Camera& camera, RenderedImage& out) {
+void read_back_aovs(GbufferImages& gbuffer, const scene::Camera& camera, RenderedImage& out) {
     const auto position = gbuffer.position.download<std::array<float, 4>>();
     const auto normal = gbuffer.normal.download<std::array<float, 4>>();
     const auto albedo = gbuffer.albedo.download<std::array<uint16_t, 4>>();  // RGBA16F
@@ -100,7 +100,7 @@ void read_back_aovs(stages::GbufferImages& gbuffer, const scene::Camera& camera,
 }  // namespace
 
 Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::CameraView& view,
-                                                stages::GbufferImages& gbuffer, const RenderSettings& settings,
+                                                GbufferImages& gbuffer, const RenderSettings& settings,
                                                 FrameRecording& frame, RenderedImage& out) {
     PassList& passes = frame.passes();
     GeneratedVpls generated;
@@ -110,7 +110,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         options.seed = settings.seed;
         const std::string key = vpl_set_key(settings, VplSource::smc, "");
         if (!smc_ || smc_key_ != key) {
-            smc_ = stages::SmcState::create(context_, options);
+            smc_ = SmcState::create(context_, options);
             smc_key_ = key;
         }
         const stages::SmcScene smc_scene{gpu_bvh(), vpl_sources()};
@@ -159,9 +159,9 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     }
     if (source == VplSource::ir) {
         // Light paths from every emitter through the BVH.
-        const stages::VplSources& sources = vpl_sources();
+        const VplSources& sources = vpl_sources();
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
-        auto& output = frame.hold(stages::VplTracingOutput::create(context_, tracing));
+        auto& output = frame.hold(VplTracingOutput::create(context_, tracing));
         passes.set_tag(stage_tag(FrameStage::vpl_paths));
         stages::add_trace_vpls_pass(context_, passes, gpu_bvh(), sources, tracing, output);
         generated.capacity = output.capacity;
@@ -169,7 +169,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         generated.vpls = std::move(output.vpls);  // the frame's scratch stays held until it ran
         generated.count_buffer = std::move(output.count);
         // After the frame (the VPLs are the cache's by then, frame_vpls): paths cut short are an error.
-        frame.after_run([this] { stages::checked_vpl_count(cache_.vpls.count_buffer, cache_.vpls.capacity); });
+        frame.after_run([this] { checked_vpl_count(cache_.vpls.count_buffer, cache_.vpls.capacity); });
         return generated;
     }
 
@@ -188,8 +188,8 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     options.seed = settings.seed;
     // Shared with the after-run reads below: each light's buffers are read and freed after the
     // submission that placed its VPLs.
-    auto output = std::make_shared<stages::BrsmOutput>(
-        stages::BrsmOutput::create_for_lights(context_, scene_source_.lights, scene_.bounds(), options));
+    auto output = std::make_shared<BrsmOutput>(
+        BrsmOutput::create_for_lights(context_, scene_source_.lights, scene_.bounds(), options));
     passes.set_tag(stage_tag(FrameStage::brsm_vpls));
     stages::add_brsm_count_clear_pass(passes, *output);
     // Every light's shadow map and working buffers live until the frame has run, so that the frame
@@ -200,25 +200,25 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     for (size_t i = 0; i < scene_source_.lights.size(); ++i) {
         const scene::Light& light = scene_source_.lights[i];
         if (output->lights[i].vpl_share == 0) continue;  // no power
-        auto map = stages::ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution);
-        stages::allocate_brsm_light_buffers(context_, map, output->lights[i]);
+        auto map = ShadowMap::create(context_, light, scene_.bounds(), settings.rsm_resolution);
+        allocate_brsm_light_buffers(context_, map, output->lights[i]);
         const uint64_t bytes = brsm_light_bytes(map, output->lights[i]);
         if (held_bytes > 0 && held_bytes + bytes > kBrsmFrameBytes) {
             frame.submit(context_, out.timings);
             held_bytes = 0;
         }
         held_bytes += bytes;
-        stages::ShadowMap& held_map = frame.hold_until_submit(std::move(map));
+        ShadowMap& held_map = frame.hold_until_submit(std::move(map));
         passes.set_tag(stage_tag(FrameStage::brsm_vpls));
         stages::add_shadow_map_pass(context_, passes, scene_, held_map, uint32_t(i));
         stages::add_brsm_light_passes(context_, passes, gbuffer, view, held_map, i, gpu_bvh().scene_scale, options,
                                       *output);
         frame.after_run([output, i, &out, name = light.name] {
-            if (stages::download_brsm_light_vpl_count(*output, i) == 0) {
+            if (download_brsm_light_vpl_count(*output, i) == 0) {
                 out.notes.push_back("light " + std::to_string(i) + (name.empty() ? "" : " '" + name + "'") +
                                     ": its shadow map holds no surface that reflects light, so it has no VPLs");
             }
-            output->lights[i] = stages::BrsmLightBuffers{0, output->lights[i].vpl_share};  // frees them
+            output->lights[i] = BrsmLightBuffers{0, output->lights[i].vpl_share};  // frees them
         });
     }
     generated.capacity = output->capacity;
@@ -228,13 +228,13 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
     return generated;
 }
 
-const stages::VplSources& Renderer::vpl_sources() {
-    if (!vpl_sources_) vpl_sources_ = stages::upload_vpl_sources(context_, scene_source_);
+const VplSources& Renderer::vpl_sources() {
+    if (!vpl_sources_) vpl_sources_ = upload_vpl_sources(context_, scene_source_);
     return *vpl_sources_;
 }
 
 const Renderer::GeneratedVpls& Renderer::frame_vpls(const FramePlan& plan, const stages::CameraView& view,
-                                                    stages::GbufferImages& gbuffer, const RenderSettings& settings,
+                                                    GbufferImages& gbuffer, const RenderSettings& settings,
                                                     FrameRecording& frame, RenderedImage& out) {
     if (plan.reuse_vpls) {
         out.notes.insert(out.notes.end(), cache_.vpl_notes.begin(), cache_.vpl_notes.end());
@@ -277,9 +277,8 @@ std::string view_key_of(const stages::CameraView& view, uint32_t w, uint32_t h) 
 
 }  // namespace
 
-void Renderer::denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
-                                stages::GbufferImages& gbuffer, Image& indirect, bool demodulated,
-                                FrameRecording& frame, RenderedImage& out) {
+void Renderer::denoise_indirect(const RenderSettings& settings, const stages::CameraView& view, GbufferImages& gbuffer,
+                                Image& indirect, bool demodulated, FrameRecording& frame, RenderedImage& out) {
     if (!denoiser_ || denoiser_->width() != gbuffer.width() || denoiser_->height() != gbuffer.height()) {
         denoiser_ = Denoiser::create(context_, gbuffer.width(), gbuffer.height());
     }
@@ -301,7 +300,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     const RenderSettings settings = with_scene_relative_thresholds(requested, gpu_bvh().scene_scale);
     constexpr VkImageUsageFlags storage = VK_IMAGE_USAGE_STORAGE_BIT;
     const uint32_t w = settings.width, h = settings.height;
-    auto gbuffer = stages::GbufferImages::create(context_, w, h);
+    auto gbuffer = GbufferImages::create(context_, w, h);
     auto direct = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "direct radiance");
     // Also a colour attachment: flc splats into it with additive blending.
     auto indirect = Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
@@ -310,7 +309,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     auto display = Image::create(context_, w, h, VK_FORMAT_R8G8B8A8_UNORM, storage, "display");
     auto stats = Buffer::create(context_, stages::kTonemapStatsBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                 MemoryUse::device, "tonemap stats");
-    const stages::CameraView view = stages::camera_view(camera, w, h);
+    const stages::CameraView view = camera_view(camera, w, h);
     RenderedImage out;
     out.width = w;
     out.height = h;
@@ -366,7 +365,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         stages::add_direct_emissive_pass(context_, direct_passes, gbuffer, gpu_bvh(), emitters_,
                                          {view.position, settings.direct_samples, settings.seed}, direct);
     }
-    std::optional<stages::RtslcScratch> tree_scratch;
+    std::optional<RtslcScratch> tree_scratch;
     std::optional<Buffer> tree_counters;
     std::optional<Image> tree_light, direct_total;
     if (tree_direct) {
@@ -380,17 +379,17 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
         }
         if (two_level && !two_level_light_tree_) {
             // Built on the host and uploaded once, both levels (gpu_two_level_light_tree.hpp).
-            two_level_light_tree_ = stages::GpuTwoLevelLightTree::create(context_, scene_source_, emitters_);
+            two_level_light_tree_ = GpuTwoLevelLightTree::create(context_, scene_source_, emitters_);
         }
         if (!two_level && !light_tree_) {
             // Built in the first frame that samples through it, and again after lights moved.
-            light_tree_ = stages::GpuLightTree::create(context_, scene_source_, emitters_);
+            light_tree_ = GpuLightTree::create(context_, scene_source_, emitters_);
             light_tree_->add_build_passes(context_, direct_passes);
         }
         const stages::DirectLightTree tree = two_level ? stages::DirectLightTree(two_level_light_tree_->buffers())
                                                        : stages::DirectLightTree(light_tree_->buffers());
-        tree_scratch = stages::RtslcScratch::create(context_, w, h, tree_options);
-        tree_counters = stages::create_gi_counters(context_, "direct tree counters");
+        tree_scratch = RtslcScratch::create(context_, w, h, tree_options);
+        tree_counters = create_gi_counters(context_, "direct tree counters");
         if (tree_options.interleave > 1) {
             // Interleaved, the tree's light is reconstructed into an image of its own, then added.
             tree_light.emplace(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT, storage, "tree light"));
@@ -415,7 +414,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     out.direct_sampler = plan.direct_sampler;
     if (tree_direct) {
         frame.after_run([&out, &tree_counters] {
-            out.direct_counts = stages::read_gi_counters(*tree_counters);
+            out.direct_counts = read_gi_counters(*tree_counters);
             if (out.direct_counts.cut_short > 0) {
                 throw Error("direct light tree: the driver ended " + std::to_string(out.direct_counts.cut_short) +
                             " invocations early (a loop iteration limit): the image would be wrong");

@@ -81,8 +81,8 @@ std::vector<double> triangle_areas(const scene::Scene& scene) {
 
 }  // namespace
 
-void Renderer::render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer,
-                          const RenderSettings& settings, Image& indirect, FrameRecording& frame, RenderedImage& out) {
+void Renderer::render_flc(const stages::CameraView& view, GbufferImages& gbuffer, const RenderSettings& settings,
+                          Image& indirect, FrameRecording& frame, RenderedImage& out) {
     stages::FlcPartition partition = flc_partition(settings, scene_.bounds());
     const uint32_t triangles = scene_.triangle_count();
     if (flc_triangle_areas_.empty()) flc_triangle_areas_ = triangle_areas(scene_source_);

@@ -61,7 +61,7 @@ RenderSettings with_scene_relative_thresholds(RenderSettings settings, float sce
     return settings;
 }
 
-bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
+bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& view, GbufferImages& gbuffer,
                                const RenderSettings& settings, Image& indirect, FrameRecording& frame,
                                RenderedImage& out) {
     const GeneratedVpls& vpls = cache_.vpls;
@@ -85,16 +85,16 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     PassList& passes = frame.passes();
 
     // The G-buffer and target the method works on (the plan's downsample and upsample stages).
-    stages::GbufferImages* half_gbuffer = nullptr;
+    GbufferImages* half_gbuffer = nullptr;
     Image* half_indirect = nullptr;
     if (half) {
-        half_gbuffer = &frame.hold(stages::GbufferImages::create(context_, w, h));
+        half_gbuffer = &frame.hold(GbufferImages::create(context_, w, h));
         half_indirect = &frame.hold(Image::create(context_, w, h, VK_FORMAT_R32G32B32A32_SFLOAT,
                                                   VK_IMAGE_USAGE_STORAGE_BIT, "half indirect radiance"));
         passes.set_tag(stage_tag(FrameStage::gi_downsample));
         stages::add_gbuffer_downsample_pass(context_, passes, gbuffer, *half_gbuffer);
     }
-    stages::GbufferImages& gi_gbuffer = half ? *half_gbuffer : gbuffer;
+    GbufferImages& gi_gbuffer = half ? *half_gbuffer : gbuffer;
     Image& gi_target = half ? *half_indirect : indirect;
 
     if (settings.method == GiMethod::exact) {
@@ -104,8 +104,8 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         stages::ExactGiOptions options;
         options.progress = settings.progress;
         options.min_distance_fraction = settings.exact_min_distance_fraction;
-        const auto result = stages::render_exact_gi(context_, gi_gbuffer, gpu_bvh(), vpls.vpls, vpls.count,
-                                                    view.position, gi_target, options);
+        const auto result =
+            render_exact_gi(context_, gi_gbuffer, gpu_bvh(), vpls.vpls, vpls.count, view.position, gi_target, options);
         out.timings.push_back({"exact gi (" + std::to_string(result.dispatches) + " dispatches)", result.gpu_ms,
                                stage_tag(FrameStage::gi_exact)});
         out.exact_gi_wall_ms = result.wall_ms;
@@ -116,9 +116,9 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         } else {
             // Only the trees the method reads (the plan's light tree and SST stages), over the
             // VPLs' capacity: the padding past the GPU's count sorts last and weighs nothing.
-            stages::VplTreeOptions tree_options;
+            VplTreeOptions tree_options;
             tree_options.sst = settings.sst;
-            cache_.trees = stages::VplTrees::create(context_, vpls.capacity, tree_options);
+            cache_.trees = VplTrees::create(context_, vpls.capacity, tree_options);
             cache_.tree_key = plan.tree_key;
             cache_.light_tree = plan.runs(FrameStage::light_tree);
             cache_.sst = plan.runs(FrameStage::sst);
@@ -126,8 +126,8 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
                 passes, vpls.vpls, vpls.gpu_count(), cache_.light_tree, cache_.sst,
                 {stage_tag(FrameStage::vpl_sort), stage_tag(FrameStage::light_tree), stage_tag(FrameStage::sst)});
         }
-        const stages::VplTrees& trees = *cache_.trees;
-        Buffer& counters = frame.hold(stages::create_gi_counters(context_));
+        const VplTrees& trees = *cache_.trees;
+        Buffer& counters = frame.hold(create_gi_counters(context_));
         if (const std::optional<FrameStage> stage = gi_method(settings.method).stage) {
             passes.set_tag(stage_tag(*stage));
         }
@@ -137,13 +137,13 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
                                           counters, sst_options);
                 break;
             case GiMethod::rtslc: {
-                auto& scratch = frame.hold(stages::RtslcScratch::create(context_, w, h, rtslc_options));
+                auto& scratch = frame.hold(RtslcScratch::create(context_, w, h, rtslc_options));
                 stages::add_rtslc_passes(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
                                          counters, rtslc_options, scratch);
                 break;
             }
             case GiMethod::hybrid: {
-                auto& cuts = frame.hold(stages::HybridCuts::create(context_, w, h, hybrid_options));
+                auto& cuts = frame.hold(HybridCuts::create(context_, w, h, hybrid_options));
                 stages::add_hybrid_gi_passes(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
                                              counters, cuts, hybrid_options);
                 break;
@@ -152,7 +152,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
                 throw Error("render: no indirect-light method to run");
         }
         frame.after_run([&out, &counters, method = settings.method] {
-            out.gi_counts = stages::read_gi_counters(counters);
+            out.gi_counts = read_gi_counters(counters);
             out.dropped_pixels = out.gi_counts.dropped_pixels;
             if (out.gi_counts.cut_short > 0) {
                 throw Error(std::string(gi_method_name(method)) + ": the driver ended " +
@@ -182,7 +182,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
             &frame.hold(Image::create(context_, gbuffer.width(), gbuffer.height(), VK_FORMAT_R32G32B32A32_SFLOAT,
                                       VK_IMAGE_USAGE_STORAGE_BIT, "indirect irradiance"));
     }
-    Buffer& counters = frame.hold(stages::create_upsample_counters(context_));
+    Buffer& counters = frame.hold(create_upsample_counters(context_));
     passes.set_tag(stage_tag(FrameStage::gi_upsample));
     stages::add_demodulate_pass(context_, passes, *half_indirect, half_gbuffer->albedo, half_gbuffer->position,
                                 half_irradiance, modulation);
@@ -190,7 +190,7 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, half_irradiance, upsampled, counters,
                               stages::upsample_options_for_scene(gpu_bvh().scene_scale));
     if (!denoised) stages::add_remodulate_pass(context_, passes, upsampled, gbuffer.albedo, indirect, modulation);
-    frame.after_run([&out, &counters] { out.upsample_counts = stages::read_upsample_counters(counters); });
+    frame.after_run([&out, &counters] { out.upsample_counts = read_upsample_counters(counters); });
     return denoised;
 }
 

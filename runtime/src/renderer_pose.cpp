@@ -69,7 +69,7 @@ PoseUpdate Renderer::update_pose(const scene::PoseChange& change) {
     if (change.vertices) {
         const auto upload_start = std::chrono::steady_clock::now();
         scene_.update_vertices(scene);  // throws for another vertex or triangle count
-        if (!scene.emissive_triangles.empty()) emitters_ = stages::upload_emitters(context_, scene);
+        if (!scene.emissive_triangles.empty()) emitters_ = upload_emitters(context_, scene);
         update.upload_ms = ms_since(upload_start);
 
         const auto bvh_start = std::chrono::steady_clock::now();
@@ -111,8 +111,8 @@ PoseUpdate Renderer::update_pose(const scene::PoseChange& change) {
     }
     if (change.lights) {
         const auto start = std::chrono::steady_clock::now();
-        lights_ = stages::upload_lights(context_, scene.lights);
-        directional_lights_ = stages::upload_lights(context_, stages::directional_lights(scene));
+        lights_ = upload_lights(context_, scene.lights);
+        directional_lights_ = upload_lights(context_, directional_lights(scene));
         update.upload_ms += ms_since(start);
         ++version_.lights;
         update.lights = true;

@@ -2,10 +2,11 @@
 
 #include "vplkit/context.hpp"
 
-namespace vplkit::stages {
+namespace vplkit {
 
-RtslcScratch RtslcScratch::create(Context& context, uint32_t width, uint32_t height, const RtslcOptions& options) {
-    const RtslcScratchRequirements needs = rtslc_scratch_requirements(width, height, options);
+RtslcScratch RtslcScratch::create(Context& context, uint32_t width, uint32_t height,
+                                  const stages::RtslcOptions& options) {
+    const stages::RtslcScratchRequirements needs = rtslc_scratch_requirements(width, height, options);
     RtslcScratch scratch;
     scratch.width = width;
     scratch.height = height;
@@ -23,4 +24,4 @@ RtslcScratch RtslcScratch::create(Context& context, uint32_t width, uint32_t hei
     return scratch;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -13,7 +13,7 @@
 #include <cmath>
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 namespace {
 
 bool finite(glm::vec3 v) {
@@ -77,8 +77,9 @@ ShadowMap ShadowMap::create(Context& context, const scene::Light& light, const s
     uniform.face_texels = float(face_resolution);
     const float n = float(face_resolution);
 
-    const bool cube = light.type == scene::LightType::point ||
-                      (light.type == scene::LightType::spot && light.outer_cone_angle > kSpotSingleFaceMaxAngle);
+    const bool cube =
+        light.type == scene::LightType::point ||
+        (light.type == scene::LightType::spot && light.outer_cone_angle > stages::kSpotSingleFaceMaxAngle);
     if (light.type == scene::LightType::directional) {
         // Orthographic, fitted to the box: view space centred on it, x/y the box's projection
         // perpendicular to the light, depth the signed distance along the light.
@@ -122,7 +123,7 @@ ShadowMap ShadowMap::create(Context& context, const scene::Light& light, const s
         map.far_plane = far_plane;
         if (cube) {
             const float quarter_turn = 0.5f * std::numbers::pi_v<float>;
-            const glm::mat4 projection = vulkan_perspective(quarter_turn, 1.0f, near_plane, far_plane);
+            const glm::mat4 projection = stages::vulkan_perspective(quarter_turn, 1.0f, near_plane, far_plane);
             const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
             for (uint32_t f = 0; f < 6; ++f) {
                 const VkRect2D rect = {{int32_t((f % 3) * face_resolution), int32_t((f / 3) * face_resolution)},
@@ -133,9 +134,9 @@ ShadowMap ShadowMap::create(Context& context, const scene::Light& light, const s
         } else {
             const float outer = light.outer_cone_angle;
             if (!(outer > 0.0f)) throw Error("shadow map: spot light '" + light.name + "' has no cone");
-            map.faces.push_back(
-                {vulkan_perspective(2.0f * outer, 1.0f, near_plane, far_plane) * view_along(light.position, direction),
-                 {{0, 0}, {face_resolution, face_resolution}}});
+            map.faces.push_back({stages::vulkan_perspective(2.0f * outer, 1.0f, near_plane, far_plane) *
+                                     view_along(light.position, direction),
+                                 {{0, 0}, {face_resolution, face_resolution}}});
             uniform.tan_half_fov = std::tan(outer);
         }
         if (light.type == scene::LightType::spot) {
@@ -152,11 +153,11 @@ ShadowMap ShadowMap::create(Context& context, const scene::Light& light, const s
     const std::string label = "shadow map '" + light.name + "' ";
     constexpr VkImageUsageFlags color =
         VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_STORAGE_BIT | VK_IMAGE_USAGE_SAMPLED_BIT;
-    map.position = Image::create(context, width, height, kRsmPositionFormat, color, label + "position");
-    map.normal = Image::create(context, width, height, kRsmNormalFormat, color, label + "normal");
-    map.flux = Image::create(context, width, height, kRsmFluxFormat, color, label + "flux");
+    map.position = Image::create(context, width, height, stages::kRsmPositionFormat, color, label + "position");
+    map.normal = Image::create(context, width, height, stages::kRsmNormalFormat, color, label + "normal");
+    map.flux = Image::create(context, width, height, stages::kRsmFluxFormat, color, label + "flux");
     map.depth =
-        Image::create(context, width, height, kShadowDepthFormat,
+        Image::create(context, width, height, stages::kShadowDepthFormat,
                       VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, label + "depth");
     map.light_uniform = Buffer::create(context, sizeof(uniform), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, MemoryUse::device,
                                        label + "light");
@@ -164,15 +165,16 @@ ShadowMap ShadowMap::create(Context& context, const scene::Light& light, const s
     return map;
 }
 
-std::vector<ShadowMapViews> shadow_map_views(std::span<ShadowMap> maps) {
-    std::vector<ShadowMapViews> views;
+std::vector<stages::ShadowMapViews> shadow_map_views(std::span<ShadowMap> maps) {
+    std::vector<stages::ShadowMapViews> views;
     for (ShadowMap& map : maps) views.push_back(map);
     return views;
 }
 
-void add_shadow_map_passes(Device& device, StepList& passes, const SceneBuffers& scene, std::span<ShadowMap> maps) {
-    const std::vector<ShadowMapViews> views = shadow_map_views(maps);
-    add_shadow_map_passes(device, passes, scene, std::span<const ShadowMapViews>(views));
+void add_shadow_map_passes(stages::Device& device, StepList& passes, const stages::SceneBuffers& scene,
+                           std::span<ShadowMap> maps) {
+    const std::vector<stages::ShadowMapViews> views = shadow_map_views(maps);
+    stages::add_shadow_map_passes(device, passes, scene, std::span<const stages::ShadowMapViews>(views));
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

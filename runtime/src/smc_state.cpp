@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 namespace {
 
@@ -18,12 +18,12 @@ Buffer storage(Context& context, uint64_t bytes, const char* name) {
 
 }  // namespace
 
-SmcState SmcState::create(Context& context, const SmcOptions& options) {
-    validate(options);
-    const SmcRequirements r = smc_requirements(options);
-    SortOptions sort;
+SmcState SmcState::create(Context& context, const stages::SmcOptions& options) {
+    stages::validate(options);
+    const stages::SmcRequirements r = smc_requirements(options);
+    stages::SortOptions sort;
     sort.key_bits = 32;  // the keys are float bits or kSmcNoKey
-    SmcState s(options, KeyValueSorter(context, r.pool, sort));
+    SmcState s(options, stages::KeyValueSorter(context, r.pool, sort));
     s.state_ = storage(context, r.state_bytes, "smc state");
     s.valid_ = storage(context, r.word_bytes, "smc valid");
     s.invalid_list_ = storage(context, r.word_bytes, "smc invalid list");
@@ -45,15 +45,15 @@ SmcState SmcState::create(Context& context, const SmcOptions& options) {
     return s;
 }
 
-SmcBuffers SmcState::views() const {
+stages::SmcBuffers SmcState::views() const {
     return {state_,       valid_,          invalid_list_,      hits_,        pool_keys_,
             pool_values_, candidates_,     candidate_density_, vpl_density_, vpl_keys_,
             vpl_values_,  candidate_keys_, candidate_values_,  moves_,       counters_,
             vpls_};
 }
 
-void SmcState::add_update(Context& context, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
-                          const SmcScene& scene) {
+void SmcState::add_update(Context& context, StepList& passes, const stages::GbufferViews& gbuffer,
+                          const stages::CameraView& view, const stages::SmcScene& scene) {
     add_smc_update_passes(context, passes, gbuffer, view, scene, sorter_, views(), options_, updates_);
     ++updates_;
 }
@@ -79,4 +79,4 @@ SmcCounts SmcState::read_counts() const {
     return n;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

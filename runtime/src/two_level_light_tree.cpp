@@ -11,7 +11,7 @@
 #include <numeric>
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 namespace {
 
@@ -69,7 +69,7 @@ std::vector<uint32_t> morton_order(std::span<const shaders::LightTreeNode> leave
 
 // Appends the perfect tree over `leaves` (in leaf order) to `nodes`; returns its root's index.
 uint32_t append_tree(std::vector<shaders::LightTreeNode>& nodes, std::span<const shaders::LightTreeNode> leaves) {
-    const uint32_t leaf_count = light_tree_leaf_count(uint32_t(leaves.size()));
+    const uint32_t leaf_count = stages::light_tree_leaf_count(uint32_t(leaves.size()));
     const uint32_t base = uint32_t(nodes.size());
     nodes.resize(base + 2 * leaf_count - 1, empty_node());
     for (uint32_t i = 0; i < leaves.size(); ++i) nodes[base + leaf_count - 1 + i] = leaves[i];
@@ -116,7 +116,7 @@ TwoLevelLightTree build_two_level_light_tree(std::span<const TwoLevelLight> ligh
         TwoLevelTopLeaf& b = bottoms[g];
         b.light_base = uint32_t(tree.leaf_lights.size());
         b.light_count = uint32_t(leaves.size());
-        b.leaf_count = light_tree_leaf_count(b.light_count);
+        b.leaf_count = stages::light_tree_leaf_count(b.light_count);
         for (uint32_t i : order) {
             sorted.push_back(leaves[i]);
             tree.leaf_lights.push_back(group_first[g] + i);
@@ -128,7 +128,7 @@ TwoLevelLightTree build_two_level_light_tree(std::span<const TwoLevelLight> ligh
     std::vector<shaders::LightTreeNode> top_leaves;
     for (uint32_t g : top_order) top_leaves.push_back(roots[g]);
     append_tree(tree.nodes, top_leaves);
-    tree.top_leaf_count = light_tree_leaf_count(groups);
+    tree.top_leaf_count = stages::light_tree_leaf_count(groups);
     const uint32_t offset = uint32_t(tree.nodes.size());
     tree.nodes.insert(tree.nodes.end(), bottom_nodes.begin(), bottom_nodes.end());
     for (uint32_t g : top_order) {
@@ -177,4 +177,4 @@ std::vector<TwoLevelLight> two_level_lights(const scene::Scene& scene, std::vect
     return out;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 namespace {
 
@@ -182,7 +182,7 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     out.emissive_count = uint32_t(emissive.size());
     if (std::any_of(weights.begin(), weights.end(), [](double w) { return w != 0.0; })) {
         out.emitter_count = out.punctual_count + out.emissive_count;
-        cdf = selection_cdf(weights);
+        cdf = stages::selection_cdf(weights);
     }
     if (cdf.empty()) cdf.push_back(1.0f);
     if (emissive.empty()) emissive.push_back(shaders::EmitterTriangle{});
@@ -202,8 +202,8 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene) {
     return out;
 }
 
-VplTracingOutput VplTracingOutput::create(Context& context, const VplTracingOptions& options) {
-    const VplTracingRequirements needed = vpl_tracing_requirements(options);
+VplTracingOutput VplTracingOutput::create(Context& context, const stages::VplTracingOptions& options) {
+    const stages::VplTracingRequirements needed = vpl_tracing_requirements(options);
     VplTracingOutput out;
     out.capacity = needed.capacity;
     const uint64_t bytes = needed.vpls_bytes;
@@ -255,4 +255,4 @@ uint32_t checked_vpl_count(const Buffer& count, uint32_t capacity) {
     return counts.vpls;
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -9,19 +9,19 @@
 
 #include <string>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct VplTrees::Scratch {
     Buffer bounds;
     Buffer keys;
     Buffer values;
     Buffer sst_counters;
-    KeyValueSorter sorter;
+    stages::KeyValueSorter sorter;
 };
 
 VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions& options) {
-    if (count == 0 || count > kMaxKeyedVpls) {
-        throw Error("vpl trees: " + std::to_string(count) + " VPLs; 1.." + std::to_string(kMaxKeyedVpls) +
+    if (count == 0 || count > stages::kMaxKeyedVpls) {
+        throw Error("vpl trees: " + std::to_string(count) + " VPLs; 1.." + std::to_string(stages::kMaxKeyedVpls) +
                     " can be sorted");
     }
     constexpr VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
@@ -32,25 +32,27 @@ VplTrees VplTrees::create(Context& context, uint32_t count, const VplTreeOptions
     trees.options_ = options;
     trees.leaves = Buffer::create(context, uint64_t(trees.leaf_count) * sizeof(shaders::Vpl), storage,
                                   MemoryUse::device, "leaves");
-    trees.light_tree = Buffer::create(context, uint64_t(light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
-                                      storage, MemoryUse::device, "light tree");
-    trees.sst = Buffer::create(context, uint64_t(sst_node_count(count)) * sizeof(shaders::SstNode), storage,
+    trees.light_tree =
+        Buffer::create(context, uint64_t(stages::light_tree_node_count(count)) * sizeof(shaders::LightTreeNode),
+                       storage, MemoryUse::device, "light tree");
+    trees.sst = Buffer::create(context, uint64_t(stages::sst_node_count(count)) * sizeof(shaders::SstNode), storage,
                                MemoryUse::device, "sst");
-    trees.scratch_ = std::make_shared<Scratch>(Scratch{
-        Buffer::create(context, kVplBoundsBytes, storage, MemoryUse::device, "vpl bounds"),
-        Buffer::create(context, uint64_t(count) * 8, storage, MemoryUse::device, "vpl keys"),
-        Buffer::create(context, uint64_t(count) * 4, storage, MemoryUse::device, "vpl key values"),
-        Buffer::create(context, uint64_t(sst_counter_count(count)) * 4, storage, MemoryUse::device, "sst counters"),
-        KeyValueSorter(context, count, options.sort)});
+    trees.scratch_ = std::make_shared<Scratch>(
+        Scratch{Buffer::create(context, stages::kVplBoundsBytes, storage, MemoryUse::device, "vpl bounds"),
+                Buffer::create(context, uint64_t(count) * 8, storage, MemoryUse::device, "vpl keys"),
+                Buffer::create(context, uint64_t(count) * 4, storage, MemoryUse::device, "vpl key values"),
+                Buffer::create(context, uint64_t(stages::sst_counter_count(count)) * 4, storage, MemoryUse::device,
+                               "sst counters"),
+                stages::KeyValueSorter(context, count, options.sort)});
     return trees;
 }
 
 void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, bool build_light_tree, bool build_sst,
                                 const VplTreeBuildTags& tags) {
-    add_build_passes(passes, vpls, ElementCount(count), build_light_tree, build_sst, tags);
+    add_build_passes(passes, vpls, stages::ElementCount(count), build_light_tree, build_sst, tags);
 }
 
-void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, const ElementCount& vpl_count,
+void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, const stages::ElementCount& vpl_count,
                                 bool build_light_tree, bool build_sst, const VplTreeBuildTags& tags) {
     if (vpl_count.capacity != count) {
         throw Error("vpl trees: made for " + std::to_string(count) + " VPLs, given a count of capacity " +
@@ -68,4 +70,4 @@ void VplTrees::add_build_passes(PassList& passes, const Buffer& vpls, const Elem
     passes.set_tag(0);
 }
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

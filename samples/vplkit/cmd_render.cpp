@@ -242,7 +242,7 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
             settings.vpls_only ? "vpls" : "indirect", image.vpl_count, scene.lights.size(), settings.rsm_resolution,
             settings.brsm.samples_per_texel, settings.brsm.defensive_fraction);
     } else if (made_vpls && image.vpl_source == VplSource::smc && image.smc) {
-        const stages::SmcCounts& c = *image.smc;
+        const vplkit::SmcCounts& c = *image.smc;
         std::printf(
             "%s: %u VPLs by SMC (budget %u, %u bounces); this frame: %u invalid (%u revalidated), %u candidates, "
             "M_strong %u, M_min %u, %u removed, %u moved in\n",
@@ -353,7 +353,7 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
         if (image.vpl_count == 0) {
             throw Error("render: no VPLs were placed (no light reaches a reflecting surface); no image written");
         }
-        const stages::CameraView view = stages::camera_view(scene.camera(), image.width, image.height);
+        const stages::CameraView view = vplkit::camera_view(scene.camera(), image.width, image.height);
         const VplView drawn = draw_vpl_view(image, view.view_projection, view.position);
         std::printf("vpl view: %u VPLs seen by the camera, %u hidden behind nearer surfaces, %u off screen\n",
                     drawn.visible, drawn.hidden, drawn.off_screen);

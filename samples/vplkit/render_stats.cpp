@@ -144,7 +144,7 @@ nlohmann::ordered_json counters_stats(const RenderedImage& image, const RenderSe
         c["direct_tree"] = gi_counts_stats(image.direct_counts);
     }
     if (image.smc) {
-        const stages::SmcCounts& s = *image.smc;
+        const vplkit::SmcCounts& s = *image.smc;
         c["smc"] = {{"vpls", s.vpls},
                     {"hits", s.hits},
                     {"invalid", s.invalid},

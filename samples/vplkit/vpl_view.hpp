@@ -23,7 +23,7 @@ struct VplView {
 };
 
 // `image` must come from a render with vpls_only (its vpls and gbuffer_position filled);
-// `view_projection` and `eye` are the camera's (stages::camera_view for the image's size).
+// `view_projection` and `eye` are the camera's (vplkit::camera_view for the image's size).
 VplView draw_vpl_view(const RenderedImage& image, const glm::mat4& view_projection, glm::vec3 eye);
 
 }  // namespace vplkit::cli

@@ -4,7 +4,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/dispatch_groups.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/shaders/bitonic_global_step.hpp"
 #include "vplkit/shaders/bitonic_local.hpp"
 

@@ -7,7 +7,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <string>
 #include <vector>

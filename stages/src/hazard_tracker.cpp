@@ -1,6 +1,6 @@
 #include "hazard_tracker.hpp"
 
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 namespace vplkit::detail {
 

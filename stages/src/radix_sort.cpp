@@ -3,7 +3,7 @@
 #include "vplkit/barriers.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/dispatch_groups.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/radix_copy.hpp"
 #include "vplkit/shaders/radix_histogram.hpp"

@@ -8,7 +8,7 @@
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/rtslc.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <glm/vec3.hpp>

@@ -1,7 +1,7 @@
 #include "vplkit/stages/sort.hpp"
 
 #include "vplkit/error.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/bitonic_sort.hpp"
 #include "vplkit/stages/radix_sort.hpp"
 

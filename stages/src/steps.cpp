@@ -1,7 +1,7 @@
 // StepList: merge each step's uses per resource, ask the hazard tracker which barriers they
 // need, and batch those into one vkCmdPipelineBarrier2 before the step.
 
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include "hazard_tracker.hpp"
 #include "vplkit/error.hpp"

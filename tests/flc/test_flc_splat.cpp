@@ -338,7 +338,7 @@ TEST_CASE("flc splat: interleaved sub-tiles, untiled and blurred by flc_untile, 
 TEST_CASE("flc splat: bad arguments are refused with a clear error") {
     vplkit::Context& ctx = vplkit::test::context();
     auto buffer = vplkit::Buffer::create(ctx, 256, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "b");
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 8, 8);
+    auto gbuffer = vplkit::GbufferImages::create(ctx, 8, 8);
     auto small = vplkit::Image::create(ctx, 4, 4, vplkit::stages::kFlcIndirectFormat,
                                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT, "small");
     auto right = vplkit::Image::create(ctx, 8, 8, vplkit::stages::kFlcIndirectFormat,

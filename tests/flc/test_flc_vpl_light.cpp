@@ -108,7 +108,7 @@ Run run(const Mesh& mesh, bool occluder, const std::vector<vplkit::scene::Light>
     }
     emitter_buffer.upload(std::vector<vplkit::shaders::EmissiveTriangle>{e});
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(bvh_vertices));
-    const auto gpu_lights = vplkit::stages::upload_lights(ctx, lights);
+    const auto gpu_lights = vplkit::upload_lights(ctx, lights);
 
     vplkit::PassList passes("flc vpl light test");
     vplkit::stages::add_flc_candidates_pass(ctx, passes, {vertex_buffer, index_buffer, random_buffer, candidates},
@@ -300,7 +300,7 @@ TEST_CASE("flc vpl light: bad input is refused by name") {
     auto small = create(16);
     auto big = create(4096);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(square(1.0)));
-    const auto lights = vplkit::stages::upload_lights(ctx, {});
+    const auto lights = vplkit::upload_lights(ctx, {});
     vplkit::PassList passes("flc bad input");
     const vplkit::stages::EmitterBuffers emitters{small, 0};
     CHECK_THROWS_WITH_AS(vplkit::stages::add_flc_vpl_light_pass(ctx, passes, bvh, lights, emitters,

@@ -73,8 +73,8 @@ int main(int argc, char** argv) {
         const auto positions = vplkit::scene::triangle_positions(scene);
         const auto bvh = vplkit::upload_bvh(*ctx, vplkit::build_bvh(positions));
 
-        auto gbuffer = vplkit::stages::GbufferImages::create(*ctx, width, height);
-        const auto view = vplkit::stages::camera_view(camera, width, height);
+        auto gbuffer = vplkit::GbufferImages::create(*ctx, width, height);
+        const auto view = vplkit::camera_view(camera, width, height);
         {
             vplkit::PassList passes("gbuffer");
             vplkit::stages::add_gbuffer_pass(*ctx, passes, gpu_scene, view, gbuffer);
@@ -119,10 +119,10 @@ int main(int argc, char** argv) {
             if (done == total) std::fprintf(stderr, "\n");
         };
         // A first run pays for pipeline compilation.
-        vplkit::stages::render_exact_gi(*ctx, gbuffer, bvh, vpl_buffer, 1, view.position, indirect);
+        vplkit::render_exact_gi(*ctx, gbuffer, bvh, vpl_buffer, 1, view.position, indirect);
         const auto start = std::chrono::steady_clock::now();
-        const auto result = vplkit::stages::render_exact_gi(*ctx, gbuffer, bvh, vpl_buffer, vpl_count, view.position,
-                                                            indirect, gi_options);
+        const auto result =
+            vplkit::render_exact_gi(*ctx, gbuffer, bvh, vpl_buffer, vpl_count, view.position, indirect, gi_options);
         const double wall_ms =
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         const auto texels = indirect.download<std::array<float, 4>>();

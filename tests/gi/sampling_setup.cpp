@@ -102,12 +102,12 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         uploaded.push_back({p, glm::normalize(p + glm::vec3(0.0f, 6.0f, 0.0f)), glm::vec3(100.0f)});
     }
     auto [gbuffer, bvh, vpls] = test::upload(ctx, scene.width, scene.height, scene.pixels, scene.triangles, uploaded);
-    stages::VplTreeOptions tree_options;
+    vplkit::VplTreeOptions tree_options;
     tree_options.sst = options.sst;
-    auto trees = stages::VplTrees::create(ctx, capacity > 0 ? capacity : uint32_t(scene.vpls.size()), tree_options);
+    auto trees = vplkit::VplTrees::create(ctx, capacity > 0 ? capacity : uint32_t(scene.vpls.size()), tree_options);
     auto indirect = Image::create(ctx, scene.width, scene.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                   VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
-    auto counters = stages::create_gi_counters(ctx);
+    auto counters = vplkit::create_gi_counters(ctx);
 
     PassList passes("sampling test");
     Buffer count_words;
@@ -140,7 +140,7 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.visibility = options.visibility;
         o.glossy = options.glossy;
         o.glossy_lobe_mis = options.rtslc_lobe_mis;
-        auto scratch = stages::RtslcScratch::create(ctx, scene.width, scene.height, o);
+        auto scratch = vplkit::RtslcScratch::create(ctx, scene.width, scene.height, o);
         stages::add_rtslc_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o, scratch);
         passes.run(ctx);
     } else {
@@ -153,14 +153,14 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.mock_cuts = options.mock_cuts;
         o.traversal = options.traversal;
         o.glossy = options.glossy;
-        auto cuts = stages::HybridCuts::create(ctx, scene.width, scene.height, o);
+        auto cuts = vplkit::HybridCuts::create(ctx, scene.width, scene.height, o);
         stages::add_hybrid_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, cuts, o);
         passes.run(ctx);
         out.cuts = cuts.cuts.download<uint32_t>(cuts.cuts.size() / sizeof(uint32_t));
         out.blocks = cuts.blocks.download<shaders::HybridBlock>(cuts.blocks.size() / sizeof(shaders::HybridBlock));
     }
     out.image = indirect.download<Texel>();
-    out.counts = stages::read_gi_counters(counters);
+    out.counts = vplkit::read_gi_counters(counters);
     out.sst = trees.sst.download<shaders::SstNode>(stages::sst_node_count(trees.count));
     out.leaves = trees.leaves.download<shaders::Vpl>(trees.leaf_count);
     out.leaf_count = trees.leaf_count;

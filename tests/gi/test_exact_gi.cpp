@@ -147,16 +147,16 @@ GpuResult run_gpu(const Setup& setup, const vplkit::stages::ExactGiOptions& opti
     if (via_render) {
         auto opts = options;
         opts.progress = [&out](uint32_t done, uint32_t total) { out.progress.push_back({done, total}); };
-        const auto r = vplkit::stages::render_exact_gi(ctx, gbuffer, bvh, vpls, count, setup.camera, indirect, opts);
+        const auto r = vplkit::render_exact_gi(ctx, gbuffer, bvh, vpls, count, setup.camera, indirect, opts);
         out.counts = r.counts;
         out.dispatches = r.dispatches;
     } else {
-        auto counters = vplkit::stages::create_exact_gi_counters(ctx);
+        auto counters = vplkit::create_exact_gi_counters(ctx);
         vplkit::PassList passes("exact gi test");
         vplkit::stages::add_exact_gi_passes(ctx, passes, gbuffer, bvh, vpls, count, setup.camera, indirect, counters,
                                             options);
         passes.run(ctx);
-        out.counts = vplkit::stages::read_exact_gi_counters(counters);
+        out.counts = vplkit::read_exact_gi_counters(counters);
         out.dispatches = uint32_t(passes.size() - 1);
     }
     out.image = indirect.download<Texel>();
@@ -463,11 +463,11 @@ TEST_CASE("exact gi: no VPLs leave the image cleared and bad targets are refused
     CHECK(gpu.progress.empty());
     CHECK(gpu.dispatches == 0);
 
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 8, 4);
+    auto gbuffer = vplkit::GbufferImages::create(ctx, 8, 4);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(setup.triangles));
     auto vpls = vplkit::Buffer::create(ctx, 4 * sizeof(vplkit::shaders::Vpl), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                        vplkit::MemoryUse::device, "vpls");
-    auto counters = vplkit::stages::create_exact_gi_counters(ctx);
+    auto counters = vplkit::create_exact_gi_counters(ctx);
     auto wrong_size =
         vplkit::Image::create(ctx, 8, 5, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
     auto right = vplkit::Image::create(ctx, 8, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "right");

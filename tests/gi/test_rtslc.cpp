@@ -156,26 +156,26 @@ Setup standard_setup(uint32_t count = 100, float s = 1.0f, float flux = 1.0f) {
 struct Gpu {
     vplkit::Context& ctx = vplkit::test::context();
     const Setup& setup;
-    stages::GbufferImages gbuffer;
+    vplkit::GbufferImages gbuffer;
     vplkit::GpuBvh bvh;
     vplkit::Buffer vpls;
-    stages::VplTrees trees;
+    vplkit::VplTrees trees;
     vplkit::Image indirect;
     vplkit::Buffer counters;
-    std::optional<stages::RtslcScratch> scratch;
+    std::optional<vplkit::RtslcScratch> scratch;
 
     explicit Gpu(const Setup& s) : setup(s) {
         auto scene = vplkit::test::upload(ctx, setup.width, setup.height, setup.pixels, setup.triangles, setup.vpls);
         gbuffer = std::move(scene.gbuffer);
         bvh = std::move(scene.bvh);
         vpls = std::move(scene.vpls);
-        trees = stages::VplTrees::create(ctx, uint32_t(setup.vpls.size()));
+        trees = vplkit::VplTrees::create(ctx, uint32_t(setup.vpls.size()));
         vplkit::PassList build("rtslc test trees");
         trees.add_build_passes(build, vpls);
         build.run(ctx);
         indirect = vplkit::Image::create(ctx, setup.width, setup.height, VK_FORMAT_R32G32B32A32_SFLOAT,
                                          VK_IMAGE_USAGE_STORAGE_BIT, "indirect");
-        counters = stages::create_gi_counters(ctx);
+        counters = vplkit::create_gi_counters(ctx);
     }
 
     struct Frame {
@@ -188,14 +188,14 @@ struct Gpu {
     Frame render(const stages::RtslcOptions& options, bool read_cuts = false) {
         if (!scratch || scratch->cut_size != options.samples_per_pixel || scratch->block_size != options.block_size ||
             scratch->interleave != options.interleave) {
-            scratch = stages::RtslcScratch::create(ctx, setup.width, setup.height, options);
+            scratch = vplkit::RtslcScratch::create(ctx, setup.width, setup.height, options);
         }
         vplkit::PassList passes("rtslc test");
         stages::add_rtslc_passes(ctx, passes, gbuffer, bvh, trees, setup.camera, indirect, counters, options, *scratch);
         passes.run(ctx);
         Frame f;
         f.image = indirect.download<Texel>();
-        f.counts = stages::read_gi_counters(counters);
+        f.counts = vplkit::read_gi_counters(counters);
         f.passes = passes.size();
         if (read_cuts) {
             f.cuts = scratch->cuts.download<uint32_t>(size_t(scratch->block_count()) * scratch->cut_size);
@@ -802,7 +802,7 @@ TEST_CASE("rtslc: bad options and targets are refused, naming the problem") {
     const Setup setup = standard_setup(10);
     Gpu gpu(setup);
     stages::RtslcOptions options;
-    auto scratch = stages::RtslcScratch::create(gpu.ctx, 16, 16, options);
+    auto scratch = vplkit::RtslcScratch::create(gpu.ctx, 16, 16, options);
     auto wrong =
         vplkit::Image::create(gpu.ctx, 16, 15, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "small");
     vplkit::PassList passes;
@@ -813,7 +813,7 @@ TEST_CASE("rtslc: bad options and targets are refused, naming the problem") {
     CHECK_THROWS_WITH_AS(stages::add_rtslc_passes(gpu.ctx, passes, gpu.gbuffer, gpu.bvh, gpu.trees, setup.camera,
                                                   gpu.indirect, gpu.counters, options, scratch),
                          doctest::Contains("scratch"), vplkit::Error);
-    CHECK_THROWS_WITH_AS(stages::RtslcScratch::create(gpu.ctx, 0, 16, options), doctest::Contains("0 x 16"),
+    CHECK_THROWS_WITH_AS(vplkit::RtslcScratch::create(gpu.ctx, 0, 16, options), doctest::Contains("0 x 16"),
                          vplkit::Error);
     CHECK(passes.size() == 0);
 }

@@ -149,8 +149,8 @@ vplkit::Image make_indirect(uint32_t width, uint32_t height, const std::string& 
     return vplkit::Image::create(vplkit::test::context(), width, height, format, VK_IMAGE_USAGE_STORAGE_BIT, name);
 }
 
-stages::GbufferImages upload_gbuffer(const Scene& scene) {
-    auto gbuffer = stages::GbufferImages::create(vplkit::test::context(), scene.width, scene.height);
+vplkit::GbufferImages upload_gbuffer(const Scene& scene) {
+    auto gbuffer = vplkit::GbufferImages::create(vplkit::test::context(), scene.width, scene.height);
     gbuffer.position.upload(scene.position);
     gbuffer.normal.upload(scene.normal);
     gbuffer.geometric_normal.upload(scene.geometric);
@@ -170,11 +170,11 @@ GpuRun run_gpu(const Scene& scene, const std::vector<Texel>& half_radiance, int 
     vplkit::Context& ctx = vplkit::test::context();
     auto full = upload_gbuffer(scene);
     const uint32_t half_w = stages::half_resolution(scene.width), half_h = stages::half_resolution(scene.height);
-    auto half = stages::GbufferImages::create(ctx, half_w, half_h);
+    auto half = vplkit::GbufferImages::create(ctx, half_w, half_h);
     auto half_indirect = make_indirect(half_w, half_h, "half indirect");
     half_indirect.upload(half_radiance);
     auto full_indirect = make_indirect(scene.width, scene.height, "full indirect");
-    auto counters = stages::create_upsample_counters(ctx);
+    auto counters = vplkit::create_upsample_counters(ctx);
     stages::UpsampleOptions options;
     options.min_cos = kMinCos;
     options.max_distance = kMaxDistance;
@@ -186,7 +186,7 @@ GpuRun run_gpu(const Scene& scene, const std::vector<Texel>& half_radiance, int 
     CHECK(passes.timings()[0].name == "gbuffer downsample");
     CHECK(passes.timings()[1].name == "upsample clear");
     CHECK(passes.timings()[2].name == "upsample");
-    return {full_indirect.download<Texel>(), stages::read_upsample_counters(counters)};
+    return {full_indirect.download<Texel>(), vplkit::read_upsample_counters(counters)};
 }
 
 // rgb in [0.1, 10] per half sample (alpha random too: the upsampler must drop it).
@@ -261,7 +261,7 @@ TEST_CASE("upsample: the downsample copies exactly the even pixels of every imag
             scene.emission.push_back(random_half());
         }
         auto full = upload_gbuffer(scene);
-        auto half = stages::GbufferImages::create(ctx, stages::half_resolution(width), stages::half_resolution(height));
+        auto half = vplkit::GbufferImages::create(ctx, stages::half_resolution(width), stages::half_resolution(height));
         vplkit::PassList passes("downsample test");
         stages::add_gbuffer_downsample_pass(ctx, passes, full, half);
         passes.run(ctx);
@@ -407,11 +407,11 @@ TEST_CASE("upsample: bad options and mismatched sizes are refused") {
     vplkit::Context& ctx = vplkit::test::context();
     const Scene scene = make_scene(16, 12);
     auto full = upload_gbuffer(scene);
-    auto half = stages::GbufferImages::create(ctx, 8, 6);
-    auto wrong_half = stages::GbufferImages::create(ctx, 8, 7);
+    auto half = vplkit::GbufferImages::create(ctx, 8, 6);
+    auto wrong_half = vplkit::GbufferImages::create(ctx, 8, 7);
     auto half_indirect = make_indirect(8, 6, "half indirect");
     auto full_indirect = make_indirect(16, 12, "full indirect");
-    auto counters = stages::create_upsample_counters(ctx);
+    auto counters = vplkit::create_upsample_counters(ctx);
     vplkit::PassList passes;
     stages::UpsampleOptions good;
     good.max_distance = kMaxDistance;

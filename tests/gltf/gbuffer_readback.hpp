@@ -28,10 +28,9 @@ struct GbufferReadback {
 inline GbufferReadback read_gbuffer(const vplkit::scene::Scene& scene, uint32_t width, uint32_t height) {
     auto& ctx = vplkit::test::context();
     auto gpu = vplkit::GpuScene::create(ctx, scene);
-    auto images = vplkit::stages::GbufferImages::create(ctx, width, height);
+    auto images = vplkit::GbufferImages::create(ctx, width, height);
     vplkit::PassList passes("gltf feature G-buffer");
-    vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, vplkit::stages::camera_view(scene.camera(), width, height),
-                                     images);
+    vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, vplkit::camera_view(scene.camera(), width, height), images);
     passes.run(ctx);
     GbufferReadback out;
     out.width = width;

@@ -81,7 +81,7 @@ TEST_CASE("gltf: an orthographic camera's G-buffer holds the point under each pi
 
 TEST_CASE("gltf: an orthographic camera's eye lies far back along the view, so the view direction is parallel") {
     const auto scene = load(1);
-    const auto view = vplkit::stages::camera_view(scene.camera(), 64, 32);
+    const auto view = vplkit::camera_view(scene.camera(), 64, 32);
     // The direction from the quad's corners to the eye is +Z within 1e-4 rad (camera_view.hpp).
     for (const glm::dvec3 corner : {glm::dvec3(0, 0, 0), glm::dvec3(1, 1, 0)}) {
         const glm::dvec3 to_eye = glm::dvec3(view.position) - corner;

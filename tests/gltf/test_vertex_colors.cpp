@@ -74,10 +74,9 @@ TEST_CASE("gltf: vertex colours reach the G-buffer's albedo") {
     const auto scene = load(gltf_features::vertex_colors(kUnsignedByte, false), "gbuffer_colors");
     constexpr uint32_t kSize = 32;
     auto gpu = vplkit::GpuScene::create(ctx, scene);
-    auto images = vplkit::stages::GbufferImages::create(ctx, kSize, kSize);
+    auto images = vplkit::GbufferImages::create(ctx, kSize, kSize);
     vplkit::PassList passes("vertex colour test");
-    vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, vplkit::stages::camera_view(scene.camera(), kSize, kSize),
-                                     images);
+    vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, vplkit::camera_view(scene.camera(), kSize, kSize), images);
     passes.run(ctx);
     const auto position = images.position.download<glm::vec4>();
     const auto albedo_half = images.albedo.download<uint16_t>();
@@ -99,7 +98,7 @@ TEST_CASE("gltf: vertex colours reach the G-buffer's albedo") {
 TEST_CASE("gltf: vertex colours reach the albedo light paths read at a hit (mean of the triangle's corners)") {
     auto& ctx = vplkit::test::context();
     const auto scene = load(gltf_features::vertex_colors(kFloat, true), "vpl_colors");
-    const auto sources = vplkit::stages::upload_vpl_sources(ctx, scene);
+    const auto sources = vplkit::upload_vpl_sources(ctx, scene);
     const auto albedo = sources.triangle_albedo.template download<vplkit::shaders::vec4>(2);
     // Triangle 0: red, green, blue; triangle 1: red, blue, white (x 0.5, metallic 0).
     const glm::vec3 expected[2] = {glm::vec3(1, 1, 1) / 3.0f * 0.5f, glm::vec3(2, 1, 2) / 3.0f * 0.5f};

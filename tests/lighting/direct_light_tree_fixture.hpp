@@ -238,11 +238,11 @@ public:
     // two_level: run() samples the two-level tree (GpuTwoLevelLightTree) instead of the one-level one.
     Harness(const vplkit::scene::Scene& scene, const Floor& floor, bool two_level = false)
         : ctx_(vplkit::test::context()),
-          gbuffer_(vplkit::stages::GbufferImages::create(ctx_, kSize, kSize)),
+          gbuffer_(vplkit::GbufferImages::create(ctx_, kSize, kSize)),
           bvh_(vplkit::upload_bvh(ctx_, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)))),
-          emitters_(vplkit::stages::upload_emitters(ctx_, scene)),
-          tree_(vplkit::stages::GpuLightTree::create(ctx_, scene, emitters_)),
-          counters_(vplkit::stages::create_gi_counters(ctx_)) {
+          emitters_(vplkit::upload_emitters(ctx_, scene)),
+          tree_(vplkit::GpuLightTree::create(ctx_, scene, emitters_)),
+          counters_(vplkit::create_gi_counters(ctx_)) {
         gbuffer_.position.upload(floor.position);
         gbuffer_.normal.upload(floor.normal);
         gbuffer_.geometric_normal.upload(floor.geometric);
@@ -250,7 +250,7 @@ public:
         vplkit::PassList build("light tree over lights");
         tree_.add_build_passes(ctx_, build);
         build.run(ctx_);
-        if (two_level) two_level_.emplace(vplkit::stages::GpuTwoLevelLightTree::create(ctx_, scene, emitters_));
+        if (two_level) two_level_.emplace(vplkit::GpuTwoLevelLightTree::create(ctx_, scene, emitters_));
     }
 
     // interleave > 1: the interleaved passes, the tree's light alone (frame = seed rotates the shares).
@@ -266,7 +266,7 @@ public:
         options.frame = seed;
         options.visibility = visibility;
         options.interleave = interleave;
-        auto scratch = vplkit::stages::RtslcScratch::create(ctx_, kSize, kSize, options);
+        auto scratch = vplkit::RtslcScratch::create(ctx_, kSize, kSize, options);
         vplkit::PassList passes("direct light tree test");
         const vplkit::stages::DirectLightTree tree = two_level_ ? vplkit::stages::DirectLightTree(two_level_->buffers())
                                                                 : vplkit::stages::DirectLightTree(tree_.buffers());
@@ -278,21 +278,21 @@ public:
                                                          counters_, options, scratch);
         }
         passes.run(ctx_);
-        counts = vplkit::stages::read_gi_counters(counters_);
+        counts = vplkit::read_gi_counters(counters_);
         return radiance.download<Texel>();
     }
 
-    const vplkit::stages::GpuLightTree& tree() const { return tree_; }
-    const vplkit::stages::GpuTwoLevelLightTree& two_level() const { return *two_level_; }
+    const vplkit::GpuLightTree& tree() const { return tree_; }
+    const vplkit::GpuTwoLevelLightTree& two_level() const { return *two_level_; }
     vplkit::stages::GiCounts counts;
 
 private:
     vplkit::Context& ctx_;
-    vplkit::stages::GbufferImages gbuffer_;
+    vplkit::GbufferImages gbuffer_;
     vplkit::GpuBvh bvh_;
-    vplkit::stages::GpuEmitters emitters_;
-    vplkit::stages::GpuLightTree tree_;
-    std::optional<vplkit::stages::GpuTwoLevelLightTree> two_level_;
+    vplkit::GpuEmitters emitters_;
+    vplkit::GpuLightTree tree_;
+    std::optional<vplkit::GpuTwoLevelLightTree> two_level_;
     vplkit::Buffer counters_;
 };
 

@@ -120,13 +120,13 @@ Vec3 reference(const Vec3& x, const Vec3& albedo) {
 std::vector<Texel> run(const vplkit::scene::Scene& scene, const Floor& floor, uint32_t seed, uint32_t samples,
                        float initial) {
     vplkit::Context& ctx = vplkit::test::context();
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, kSize, kSize);
+    auto gbuffer = vplkit::GbufferImages::create(ctx, kSize, kSize);
     gbuffer.position.upload(floor.position);
     gbuffer.normal.upload(floor.normal);
     gbuffer.geometric_normal.upload(floor.geometric);
     gbuffer.albedo.upload(floor.albedo);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
-    const auto emitters = vplkit::stages::upload_emitters(ctx, scene);
+    const auto emitters = vplkit::upload_emitters(ctx, scene);
     auto radiance =
         vplkit::Image::create(ctx, kSize, kSize, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");
     radiance.upload(std::vector<Texel>(kSize * kSize, Texel{initial, initial, initial, 1.0f}));
@@ -196,7 +196,7 @@ TEST_CASE("direct emissive: every emitter with power can be drawn, with the prob
     scene.materials.push_back(scene.materials[1]);
     scene.materials[1].emissive_factor *= 1e9f;
     scene.triangle_materials[3] = 2;  // the emitter's second triangle is the dim one
-    const auto emitters = vplkit::stages::upload_emitters(ctx, scene);
+    const auto emitters = vplkit::upload_emitters(ctx, scene);
     REQUIRE(emitters.count == 2);
     const auto triangles = emitters.triangles.download<vplkit::shaders::EmissiveTriangle>(2);
     const float step = 1.0f / float(vplkit::stages::kSelectionSteps);
@@ -248,9 +248,9 @@ TEST_CASE("direct emissive: a scene without emitters adds nothing and zero sampl
     vplkit::Context& ctx = vplkit::test::context();
     auto scene = make_scene(false);
     scene.emissive_triangles.clear();
-    const auto emitters = vplkit::stages::upload_emitters(ctx, scene);
+    const auto emitters = vplkit::upload_emitters(ctx, scene);
     CHECK(emitters.count == 0);
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 4, 4);
+    auto gbuffer = vplkit::GbufferImages::create(ctx, 4, 4);
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
     auto radiance =
         vplkit::Image::create(ctx, 4, 4, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT, "radiance");

@@ -132,7 +132,7 @@ TEST_CASE("direct light: emission and three kinds of light with BVH shadows matc
         }
     }
 
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, width, height);
+    auto gbuffer = vplkit::GbufferImages::create(ctx, width, height);
     std::vector<Texel> position, normal, geometric;
     std::vector<HalfTexel> albedo, emission;
     for (const Pixel& p : pixels) {
@@ -149,7 +149,7 @@ TEST_CASE("direct light: emission and three kinds of light with BVH shadows matc
     gbuffer.emission.upload(emission);
 
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(scene.triangle_vertices));
-    const auto lights = vplkit::stages::upload_lights(ctx, scene.lights);
+    const auto lights = vplkit::upload_lights(ctx, scene.lights);
     auto radiance = vplkit::Image::create(ctx, width, height, VK_FORMAT_R32G32B32A32_SFLOAT, VK_IMAGE_USAGE_STORAGE_BIT,
                                           "radiance");
     vplkit::PassList passes("direct light test");
@@ -227,8 +227,7 @@ TEST_CASE("direct light: lights with bad values are refused by name") {
     light.name = "lamp";
     light.intensity = -1.0f;
     std::vector<vplkit::scene::Light> lights = {light};
-    CHECK_THROWS_WITH_AS(vplkit::stages::upload_lights(ctx, lights), doctest::Contains("light 0 ('lamp')"),
-                         vplkit::Error);
-    auto none = vplkit::stages::upload_lights(ctx, {});
+    CHECK_THROWS_WITH_AS(vplkit::upload_lights(ctx, lights), doctest::Contains("light 0 ('lamp')"), vplkit::Error);
+    auto none = vplkit::upload_lights(ctx, {});
     CHECK(none.count == 0);
 }

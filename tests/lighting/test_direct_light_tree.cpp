@@ -271,9 +271,8 @@ TEST_CASE("direct light tree: bad options and scenes without tree lights are ref
     sun.type = vplkit::scene::LightType::directional;
     b.s.lights = {sun};
     vplkit::Context& ctx = vplkit::test::context();
-    const auto emitters = vplkit::stages::upload_emitters(ctx, b.s);
-    CHECK_THROWS_WITH_AS(vplkit::stages::GpuLightTree::create(ctx, b.s, emitters), doctest::Contains("no"),
-                         vplkit::Error);
+    const auto emitters = vplkit::upload_emitters(ctx, b.s);
+    CHECK_THROWS_WITH_AS(vplkit::GpuLightTree::create(ctx, b.s, emitters), doctest::Contains("no"), vplkit::Error);
 }
 
 TEST_CASE("triangle emission: an emissive texture counts with its mean over the triangle") {
@@ -301,9 +300,9 @@ TEST_CASE("triangle emission: an emissive texture counts with its mean over the 
     const uint32_t coloured = add({1.55f, 0.1f}, {1.95f, 0.2f}, {1.7f, 0.9f});  // wraps to [0.55, 0.95] (repeat)
     const uint32_t both = add({0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f});        // 3/4 of it has u < 1/2
     auto linear = [](double c) { return std::pow((c / 255.0 + 0.055) / 1.055, 2.4); };
-    const glm::vec3 w = vplkit::stages::triangle_emission(b.s, white);
-    const glm::vec3 k = vplkit::stages::triangle_emission(b.s, coloured);
-    const glm::vec3 h = vplkit::stages::triangle_emission(b.s, both);
+    const glm::vec3 w = vplkit::triangle_emission(b.s, white);
+    const glm::vec3 k = vplkit::triangle_emission(b.s, coloured);
+    const glm::vec3 h = vplkit::triangle_emission(b.s, both);
     CHECK(w.x == doctest::Approx(2.0));
     CHECK(w.z == doctest::Approx(4.0));
     CHECK(k.x == doctest::Approx(2.0 * linear(128)));
@@ -311,7 +310,7 @@ TEST_CASE("triangle emission: an emissive texture counts with its mean over the 
     CHECK(k.z == doctest::Approx(4.0 * linear(64)));
     CHECK(h.y == doctest::Approx(3.0 * 0.75).epsilon(0.05));
     // The tree's power and the flat sampler's triangles use it.
-    const auto triangles = vplkit::stages::emitter_triangles(b.s);
+    const auto triangles = vplkit::emitter_triangles(b.s);
     REQUIRE(triangles.size() == 3);
     CHECK(triangles[1].triangle.radiance.x == doctest::Approx(k.x));
 }

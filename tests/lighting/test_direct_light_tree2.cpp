@@ -135,8 +135,8 @@ TEST_CASE("direct light tree2: a scene without tree lights is refused by name") 
     sun.type = vplkit::scene::LightType::directional;
     b.s.lights = {sun};
     auto& ctx = vplkit::test::context();
-    const auto emitters = vplkit::stages::upload_emitters(ctx, b.s);
-    CHECK_THROWS_WITH_AS(vplkit::stages::GpuTwoLevelLightTree::create(ctx, b.s, emitters),
+    const auto emitters = vplkit::upload_emitters(ctx, b.s);
+    CHECK_THROWS_WITH_AS(vplkit::GpuTwoLevelLightTree::create(ctx, b.s, emitters),
                          doctest::Contains("the light tree needs an emissive triangle, a point or a spot light"),
                          vplkit::Error);
 }
@@ -169,7 +169,7 @@ TEST_CASE("light paths: the first light's pmf is the light tree's leaf intensity
     const Floor floor = make_floor();
     Harness harness(b.s, floor);
     auto& ctx = vplkit::test::context();
-    const vplkit::stages::VplSources sources = vplkit::stages::upload_vpl_sources(ctx, b.s);
+    const vplkit::VplSources sources = vplkit::upload_vpl_sources(ctx, b.s);
     REQUIRE(sources.punctual_count == 3);
     REQUIRE(sources.emissive_count == 14);
     const auto cdf = sources.emitter_cdf.download<float>(sources.emitter_count);
@@ -184,7 +184,7 @@ TEST_CASE("light paths: the first light's pmf is the light tree's leaf intensity
     const auto nodes = harness.tree().nodes().download<vplkit::shaders::LightTreeNode>(2 * leaf_count - 1);
     std::vector<double> intensity(count, 0.0);
     for (uint32_t i = 0; i < count; ++i) intensity[leaves[i]] = nodes[leaf_count - 1 + i].intensity;
-    const auto tree_triangles = vplkit::stages::emitter_triangles(b.s);
+    const auto tree_triangles = vplkit::emitter_triangles(b.s);
     // The CDF entry of tree light k: scene lights first (point 0, spot 2), then emissive in order.
     std::vector<uint32_t> entry(count);
     for (uint32_t k = 0; k < tree_triangles.size(); ++k) {

@@ -56,7 +56,7 @@ struct ReferencePmf {
     double dead = 0.0;
 };
 
-void descend(const vplkit::stages::TwoLevelLightTree& tree, const ref::RtslcShading& s, uint32_t base, uint32_t node,
+void descend(const vplkit::TwoLevelLightTree& tree, const ref::RtslcShading& s, uint32_t base, uint32_t node,
              uint32_t leaf_count, double probability, double inverse_sum,
              const std::function<void(uint32_t, double, double)>& at_leaf, ReferencePmf& out) {
     if (node >= leaf_count - 1) {
@@ -79,8 +79,7 @@ void descend(const vplkit::stages::TwoLevelLightTree& tree, const ref::RtslcShad
     }
 }
 
-ReferencePmf reference_pmf(const vplkit::stages::TwoLevelLightTree& tree, uint32_t light_count,
-                           const ref::RtslcShading& s) {
+ReferencePmf reference_pmf(const vplkit::TwoLevelLightTree& tree, uint32_t light_count, const ref::RtslcShading& s) {
     ReferencePmf out;
     out.pmf.assign(light_count, 0.0);
     out.inverse_sum.assign(light_count, 0.0);
@@ -131,14 +130,14 @@ TEST_CASE("two-level traversal: the pmf is the probability of the path taken, an
         b.s.lights = {point, second};
     }
     std::vector<uint32_t> group_first;
-    const auto lights = vplkit::stages::two_level_lights(b.s, group_first);
-    const auto tree = vplkit::stages::build_two_level_light_tree(lights, group_first);
+    const auto lights = vplkit::two_level_lights(b.s, group_first);
+    const auto tree = vplkit::build_two_level_light_tree(lights, group_first);
     const uint32_t light_count = uint32_t(lights.size());
     REQUIRE(light_count == 38 + 2);
 
     auto& ctx = vplkit::test::context();
-    const auto emitters = vplkit::stages::upload_emitters(ctx, b.s);
-    const auto gpu_tree = vplkit::stages::GpuTwoLevelLightTree::create(ctx, b.s, emitters);
+    const auto emitters = vplkit::upload_emitters(ctx, b.s);
+    const auto gpu_tree = vplkit::GpuTwoLevelLightTree::create(ctx, b.s, emitters);
     const auto buffers = gpu_tree.buffers();
     auto output = vplkit::Buffer::create(ctx, kSamples * sizeof(Result), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                                          vplkit::MemoryUse::device, "two-level paths");

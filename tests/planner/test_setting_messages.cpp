@@ -146,7 +146,7 @@ TEST_CASE("setting messages: the renderer and the denoiser refuse in the runtime
     }
     // The denoiser with no filter asked for.
     auto denoiser = vplkit::Denoiser::create(ctx, 8, 8);
-    auto gbuffer = vplkit::stages::GbufferImages::create(ctx, 8, 8);
+    auto gbuffer = vplkit::GbufferImages::create(ctx, 8, 8);
     vplkit::PassList passes("denoise off");
     try {
         denoiser.add_passes(ctx, passes, vplkit::DenoiseMode::off, gbuffer, gbuffer.albedo, {}, false);

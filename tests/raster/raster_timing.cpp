@@ -97,9 +97,9 @@ int main(int argc, char** argv) {
                     std::chrono::duration<double, std::milli>(t1 - t0).count(),
                     std::chrono::duration<double, std::milli>(t2 - t1).count());
 
-        auto images = vplkit::stages::GbufferImages::create(*ctx, width, height);
-        const auto view = vplkit::stages::camera_view(camera, width, height);
-        auto map = vplkit::stages::ShadowMap::create(*ctx, light, gpu.bounds(), rsm);
+        auto images = vplkit::GbufferImages::create(*ctx, width, height);
+        const auto view = vplkit::camera_view(camera, width, height);
+        auto map = vplkit::ShadowMap::create(*ctx, light, gpu.bounds(), rsm);
         vplkit::PassList passes("raster timing");
         vplkit::stages::add_gbuffer_pass(*ctx, passes, gpu, view, images);
         vplkit::stages::add_shadow_map_pass(*ctx, passes, gpu, map);

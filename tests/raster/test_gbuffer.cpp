@@ -46,7 +46,7 @@ struct GbufferRead {
 GbufferRead render(vplkit::Context& ctx, const vplkit::scene::Scene& scene, const vplkit::stages::CameraView& view,
                    uint32_t width, uint32_t height) {
     auto gpu = vplkit::GpuScene::create(ctx, scene);
-    auto images = vplkit::stages::GbufferImages::create(ctx, width, height);
+    auto images = vplkit::GbufferImages::create(ctx, width, height);
     vplkit::PassList passes("gbuffer test");
     vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, view, images);
     passes.run(ctx);
@@ -95,7 +95,7 @@ TEST_CASE("gbuffer: a small scene matches a CPU rasterization at pixel centres")
                                                               {0.0f, 1.0f, 0.0f}, glm::radians(60.0f));
         camera.znear = 0.1f * scale;
         camera.zfar = 10.0f * scale;
-        const auto view = vplkit::stages::camera_view(camera, width, height);
+        const auto view = vplkit::camera_view(camera, width, height);
         const GbufferRead got = render(ctx, scene, view, width, height);
         const auto expected = vplkit::reference::rasterize_gbuffer(scene, glm::dmat4(view.view_projection),
                                                                    glm::dvec3(view.position), width, height);
@@ -147,7 +147,7 @@ TEST_CASE("gbuffer: the in-repo Cornell box gives a sane G-buffer") {
     const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
     const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
     constexpr uint32_t width = 64, height = 48;
-    const auto view = vplkit::stages::camera_view(scene.camera(), width, height);
+    const auto view = vplkit::camera_view(scene.camera(), width, height);
     const GbufferRead got = render(ctx, scene, view, width, height);
 
     int covered = 0;

@@ -89,12 +89,12 @@ const KitGbuffer& kit_gbuffer(vplkit::Context& ctx) {
         camera.znear = file_camera.znear;
         camera.zfar = file_camera.zfar;
         KitGbuffer k;
-        k.view = vplkit::stages::camera_view(camera, kWidth, kHeight);
+        k.view = vplkit::camera_view(camera, kWidth, kHeight);
         k.view_to_world = glm::dmat3(glm::mat3(camera.world_from_camera()));
         const glm::vec3 corner = glm::max(glm::abs(scene.bounds.min), glm::abs(scene.bounds.max));
         k.max_coordinate = std::max({corner.x, corner.y, corner.z});
         auto gpu = vplkit::GpuScene::create(ctx, scene);
-        auto images = vplkit::stages::GbufferImages::create(ctx, kWidth, kHeight);
+        auto images = vplkit::GbufferImages::create(ctx, kWidth, kHeight);
         vplkit::PassList passes("gbuffer adapter: kit gbuffer");
         vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, k.view, images);
         passes.run(ctx);
@@ -327,7 +327,7 @@ TEST_CASE("gbuffer adapter: depth, normals and albedo in a renderer's encodings 
         vplkit::stages::GbufferAdapterInputs inputs{
             depth_image, normal_image, albedo_image,
             c.material_image ? vplkit::ImageView(material_image) : vplkit::ImageView{}};
-        auto out = vplkit::stages::GbufferImages::create(ctx, kWidth, kHeight);
+        auto out = vplkit::GbufferImages::create(ctx, kWidth, kHeight);
         vplkit::PassList passes("gbuffer adapter");
         vplkit::stages::add_gbuffer_adapter_pass(ctx, passes, inputs, options, out);
         passes.run(ctx);
@@ -417,7 +417,7 @@ TEST_CASE("gbuffer adapter: inconsistent images and options are refused with a m
     auto normal = sampled(8, 8, VK_FORMAT_R16G16_SNORM, "normal");
     auto albedo = sampled(8, 8, VK_FORMAT_R8G8B8A8_SRGB, "albedo");
     auto small_albedo = sampled(4, 8, VK_FORMAT_R8G8B8A8_SRGB, "small albedo");
-    auto out = vplkit::stages::GbufferImages::create(ctx, 8, 8);
+    auto out = vplkit::GbufferImages::create(ctx, 8, 8);
     vplkit::PassList passes("gbuffer adapter refusals");
     vplkit::stages::GbufferAdapterOptions options;
     const vplkit::stages::GbufferViews gbuffer = out;

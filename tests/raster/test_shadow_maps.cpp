@@ -37,7 +37,7 @@
 
 namespace {
 
-using vplkit::stages::ShadowMap;
+using vplkit::ShadowMap;
 
 struct RsmRead {
     std::vector<glm::vec4> position, normal, flux;

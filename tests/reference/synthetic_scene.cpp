@@ -33,7 +33,7 @@ GpuSyntheticScene upload(Context& context, uint32_t width, uint32_t height, std:
     GpuSyntheticScene out;
     // The layout of shaders/include/vplkit/gbuffer.glsl: coverage in position.w, roughness in
     // normal.w, metallic in geometric_normal.w.
-    out.gbuffer = stages::GbufferImages::create(context, width, height);
+    out.gbuffer = vplkit::GbufferImages::create(context, width, height);
     std::vector<Texel> position, normal, geometric;
     std::vector<HalfTexel> albedo, emission;
     for (const Pixel& p : pixels) {

@@ -41,7 +41,7 @@ float half_round(float v);
 reference::Vec3 d3(glm::vec3 v);
 
 struct GpuSyntheticScene {
-    stages::GbufferImages gbuffer;
+    vplkit::GbufferImages gbuffer;
     GpuBvh bvh;
     Buffer vpls;  // shaders::Vpl, in the given order
 };

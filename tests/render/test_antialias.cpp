@@ -96,7 +96,7 @@ TEST_CASE("antialias: frame 0 at the pixel centre, then Halton(2,3) less 0.5, al
 TEST_CASE("antialias: jittered_view moves a projected point by the offset in pixels, near and far") {
     const auto scene = vplkit::scene::load_gltf(kCornellPoint);
     const uint32_t w = 64, h = 48;
-    const auto view = vplkit::stages::camera_view(scene.camera(), w, h);
+    const auto view = vplkit::camera_view(scene.camera(), w, h);
     const glm::vec2 offset(0.25f, -0.375f);
     const auto moved = vplkit::jittered_view(view, offset, w, h);
     const vplkit::scene::Camera& c = scene.camera();

@@ -106,7 +106,7 @@ void check_direct_against_cpu_path(bool lambert) {
 
     const auto triangles = reference_triangles(scene);
     const glm::dmat4 clip_to_world =
-        glm::inverse(glm::dmat4(vplkit::stages::camera_view(camera, width, height).view_projection));
+        glm::inverse(glm::dmat4(vplkit::camera_view(camera, width, height).view_projection));
     const auto& light = scene.lights[0];
     vplkit::reference::LightDesc light_desc;
     light_desc.kind = vplkit::reference::LightKind::point;

@@ -4,7 +4,7 @@
 #include "vplkit/shaders/build_sst.hpp"
 #include "vplkit/shaders/hybrid_gi.hpp"
 #include "vplkit/stages/binding_uses.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <doctest/doctest.h>
 

@@ -111,7 +111,7 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     light.color = s.intensity / 10.0f;
     light.intensity = 10.0f;
     const std::vector<vplkit::scene::Light> lights = {light};
-    const auto gpu_lights = vplkit::stages::upload_lights(ctx, lights);
+    const auto gpu_lights = vplkit::upload_lights(ctx, lights);
     auto emissive = make(sizeof(vplkit::shaders::EmitterTriangle), "emissive");
     emissive.upload(
         std::vector<vplkit::shaders::EmitterTriangle>{s.emitter.value_or(vplkit::shaders::EmitterTriangle{})});

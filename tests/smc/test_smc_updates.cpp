@@ -159,7 +159,7 @@ TEST_CASE("smc: a static camera empties the invalid set") {
     const auto view = orbit(scene, 35.0f);
     auto image = renderer.render(view, s);
     // Invalid VPLs go first (then weak valid ones, up to M_min): those left are the rest.
-    auto invalid_left = [](const vplkit::stages::SmcCounts& c) {
+    auto invalid_left = [](const vplkit::SmcCounts& c) {
         return c.still_invalid - std::min(c.still_invalid, c.removed);
     };
     uint32_t left = invalid_left(*image.smc);

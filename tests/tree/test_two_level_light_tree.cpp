@@ -22,9 +22,9 @@
 
 namespace {
 
+using vplkit::TwoLevelLight;
+using vplkit::TwoLevelLightTree;
 using vplkit::shaders::LightTreeNode;
-using vplkit::stages::TwoLevelLight;
-using vplkit::stages::TwoLevelLightTree;
 
 bool same(const LightTreeNode& a, const LightTreeNode& b) {
     return a.box_min.x == b.box_min.x && a.box_min.y == b.box_min.y && a.box_min.z == b.box_min.z &&
@@ -92,7 +92,7 @@ TEST_CASE("two-level light tree over irregular mesh lights: structure and path p
         }
         group_first.push_back(uint32_t(lights.size()));
     }
-    const TwoLevelLightTree t = vplkit::stages::build_two_level_light_tree(lights, group_first);
+    const TwoLevelLightTree t = vplkit::build_two_level_light_tree(lights, group_first);
 
     REQUIRE(t.top_leaves.size() == sizes.size());
     CHECK(t.top_leaf_count == 8);
@@ -165,13 +165,12 @@ TEST_CASE("two-level light tree: mesh lights of a scene are its emitting primiti
     point.position = {0, 3, 0};
     s.lights.push_back(point);
     std::vector<uint32_t> group_first;
-    const auto lights = vplkit::stages::two_level_lights(s, group_first);
+    const auto lights = vplkit::two_level_lights(s, group_first);
     CHECK(lights.size() == 10);
     CHECK(group_first == std::vector<uint32_t>{0, 1, 4, 9, 10});
-    const TwoLevelLightTree t = vplkit::stages::build_two_level_light_tree(lights, group_first);
+    const TwoLevelLightTree t = vplkit::build_two_level_light_tree(lights, group_first);
     CHECK(t.top_leaves.size() == 4);
 
-    CHECK_THROWS_AS(vplkit::stages::build_two_level_light_tree(lights, std::vector<uint32_t>{0, 4, 4, 10}),
-                    vplkit::Error);
-    CHECK_THROWS_AS(vplkit::stages::build_two_level_light_tree(lights, std::vector<uint32_t>{0, 9}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::build_two_level_light_tree(lights, std::vector<uint32_t>{0, 4, 4, 10}), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::build_two_level_light_tree(lights, std::vector<uint32_t>{0, 9}), vplkit::Error);
 }

@@ -39,14 +39,14 @@ int main(int argc, char** argv) {
         const float scene_scale = vplkit::build_bvh(vplkit::scene::triangle_positions(scene)).scene_scale;
         auto gpu = vplkit::GpuScene::create(*ctx, scene);
         const uint32_t w = setup.width ? setup.width : 640, h = setup.height ? setup.height : 360;
-        auto gbuffer = vplkit::stages::GbufferImages::create(*ctx, w, h);
-        const auto view = vplkit::stages::camera_view(scene.camera(), w, h);
-        std::vector<vplkit::stages::ShadowMap> maps;
+        auto gbuffer = vplkit::GbufferImages::create(*ctx, w, h);
+        const auto view = vplkit::camera_view(scene.camera(), w, h);
+        std::vector<vplkit::ShadowMap> maps;
         for (const auto& light : scene.lights)
-            maps.push_back(vplkit::stages::ShadowMap::create(*ctx, light, gpu.bounds(), kRsmResolution));
+            maps.push_back(vplkit::ShadowMap::create(*ctx, light, gpu.bounds(), kRsmResolution));
         vplkit::PassList raster("brsm timing raster");
         vplkit::stages::add_gbuffer_pass(*ctx, raster, gpu, view, gbuffer);
-        vplkit::stages::add_shadow_map_passes(*ctx, raster, gpu, maps);
+        vplkit::add_shadow_map_passes(*ctx, raster, gpu, maps);
         raster.run(*ctx);
         double shadow_ms = 0;
         for (const auto& t : raster.timings()) shadow_ms += t.name.rfind("shadow map", 0) == 0 ? t.gpu_ms : 0.0;
@@ -56,14 +56,14 @@ int main(int argc, char** argv) {
         for (uint32_t n : counts) {
             vplkit::stages::BrsmOptions options;
             options.vpl_count = n;
-            auto out = vplkit::stages::BrsmOutput::create(*ctx, maps, gpu.bounds(), options);
+            auto out = vplkit::BrsmOutput::create(*ctx, maps, gpu.bounds(), options);
             std::vector<std::string> order;
             std::map<std::string, std::vector<double>> per_stage;
             for (int run = 0; run <= kRuns; ++run) {
                 std::fprintf(stderr, "\r[brsm timing] %u VPLs: run %d/%d", n, run, kRuns);
                 options.seed = uint32_t(run);
                 vplkit::PassList passes("brsm timing");
-                vplkit::stages::add_brsm_passes(*ctx, passes, gbuffer, view, maps, scene_scale, options, out);
+                vplkit::add_brsm_passes(*ctx, passes, gbuffer, view, maps, scene_scale, options, out);
                 const auto start = std::chrono::steady_clock::now();
                 passes.run(*ctx);
                 const double wall =
@@ -85,8 +85,7 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "\r%60s\r", "");
             order.push_back("total");
             order.push_back("wall clock (host)");
-            std::printf("%u VPLs (%u placed), medians of %d runs:\n", n, vplkit::stages::download_brsm_vpl_count(out),
-                        kRuns);
+            std::printf("%u VPLs (%u placed), medians of %d runs:\n", n, vplkit::download_brsm_vpl_count(out), kRuns);
             for (const auto& name : order) {
                 auto v = per_stage[name];
                 std::sort(v.begin(), v.end());

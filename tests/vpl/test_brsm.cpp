@@ -46,12 +46,12 @@
 namespace {
 
 namespace ref = vplkit::reference;
+using vplkit::BrsmOutput;
+using vplkit::ShadowMap;
 using vplkit::scene::Light;
 using vplkit::scene::LightType;
 using vplkit::scene::Scene;
 using vplkit::stages::BrsmOptions;
-using vplkit::stages::BrsmOutput;
-using vplkit::stages::ShadowMap;
 
 constexpr std::array<glm::vec2, 4> kUv = {glm::vec2(0, 0), glm::vec2(0, 1), glm::vec2(1, 1), glm::vec2(1, 0)};
 
@@ -132,15 +132,15 @@ public:
           uint32_t height = 48)
         : scene_(std::move(scene)),
           gpu_(vplkit::GpuScene::create(ctx(), scene_)),
-          gbuffer_(vplkit::stages::GbufferImages::create(ctx(), width, height)),
-          view_(vplkit::stages::camera_view(camera, width, height)),
+          gbuffer_(vplkit::GbufferImages::create(ctx(), width, height)),
+          view_(vplkit::camera_view(camera, width, height)),
           scene_scale_(vplkit::build_bvh(vplkit::scene::triangle_positions(scene_)).scene_scale) {
         for (const Light& light : scene_.lights) {
             maps_.push_back(ShadowMap::create(ctx(), light, gpu_.bounds(), rsm_resolution));
         }
         vplkit::PassList passes("brsm test raster");
         vplkit::stages::add_gbuffer_pass(ctx(), passes, gpu_, view_, gbuffer_);
-        vplkit::stages::add_shadow_map_passes(ctx(), passes, gpu_, maps_);
+        vplkit::add_shadow_map_passes(ctx(), passes, gpu_, maps_);
         passes.run(ctx());
     }
 
@@ -149,13 +149,13 @@ public:
     BrsmOutput run(const BrsmOptions& options) {
         BrsmOutput out = BrsmOutput::create(ctx(), maps_, gpu_.bounds(), options);
         vplkit::PassList passes("brsm test");
-        vplkit::stages::add_brsm_passes(ctx(), passes, gbuffer_, view_, maps_, scene_scale_, options, out);
+        vplkit::add_brsm_passes(ctx(), passes, gbuffer_, view_, maps_, scene_scale_, options, out);
         passes.run(ctx());
         return out;
     }
 
     std::vector<vplkit::shaders::Vpl> vpls(const BrsmOutput& out) {
-        const uint32_t count = vplkit::stages::download_brsm_vpl_count(out);
+        const uint32_t count = vplkit::download_brsm_vpl_count(out);
         return count ? out.vpls.download<vplkit::shaders::Vpl>(count) : std::vector<vplkit::shaders::Vpl>{};
     }
 
@@ -183,7 +183,7 @@ public:
 
     const Scene& scene() const { return scene_; }
     const vplkit::stages::CameraView& view() const { return view_; }
-    vplkit::stages::GbufferImages& gbuffer_images() { return gbuffer_; }
+    vplkit::GbufferImages& gbuffer_images() { return gbuffer_; }
     float scene_scale() const { return scene_scale_; }
     std::vector<ShadowMap>& maps() { return maps_; }
 
@@ -194,7 +194,7 @@ private:
 
     Scene scene_;
     vplkit::GpuScene gpu_;
-    vplkit::stages::GbufferImages gbuffer_;
+    vplkit::GbufferImages gbuffer_;
     vplkit::stages::CameraView view_;
     float scene_scale_;
     std::vector<ShadowMap> maps_;
@@ -237,7 +237,7 @@ void check_mean_flux(Setup& setup, BrsmOptions options, uint32_t seeds, const st
         options.seed = seed;
         const BrsmOutput out = setup.run(options);
         const auto vpls = setup.vpls(out);
-        const auto counts = vplkit::stages::download_brsm_light_vpl_counts(out);
+        const auto counts = vplkit::download_brsm_light_vpl_counts(out);
         size_t first = 0;
         for (size_t l = 0; l < expected.size(); ++l) {
             totals[l].push_back(total_flux(vpls, first, counts[l]));
@@ -508,7 +508,7 @@ TEST_CASE("brsm: a light whose map has no surface places no VPLs and says so") {
         box_with({spot_light({0.0f, 1.0f, 0.0f}, {0.0f, 0.0f, 1.0f}, 5.0f), point_light({0.2f, 1.7f, -0.3f}, 3.0f)}),
         box_camera(), 16);
     const BrsmOutput out = setup.run(small_options(300));
-    const auto counts = vplkit::stages::download_brsm_light_vpl_counts(out);
+    const auto counts = vplkit::download_brsm_light_vpl_counts(out);
     REQUIRE(counts.size() == 2);
     CHECK(counts[0] == 0);
     CHECK(counts[1] == out.lights[1].vpl_share);
@@ -551,15 +551,15 @@ TEST_CASE("brsm: light by light gives the same VPLs as all lights at once") {
     REQUIRE(out.lights.size() == 2);
     for (size_t i = 0; i < 2; ++i) {
         ShadowMap& map = setup.maps()[i];
-        vplkit::stages::allocate_brsm_light_buffers(ctx, map, out.lights[i]);
+        vplkit::allocate_brsm_light_buffers(ctx, map, out.lights[i]);
         vplkit::PassList passes("brsm light by light");
         if (i == 0) vplkit::stages::add_brsm_count_clear_pass(passes, out);
         vplkit::stages::add_brsm_light_passes(ctx, passes, setup.gbuffer_images(), setup.view(), map, i,
                                               setup.scene_scale(), options, out);
         passes.run(ctx);
-        CHECK(vplkit::stages::download_brsm_light_vpl_count(out, i) == out.lights[i].vpl_share);
-        out.lights[i] = vplkit::stages::BrsmLightBuffers{0, out.lights[i].vpl_share};
-        CHECK_THROWS_AS(vplkit::stages::download_brsm_light_vpl_count(out, i), vplkit::Error);  // released
+        CHECK(vplkit::download_brsm_light_vpl_count(out, i) == out.lights[i].vpl_share);
+        out.lights[i] = vplkit::BrsmLightBuffers{0, out.lights[i].vpl_share};
+        CHECK_THROWS_AS(vplkit::download_brsm_light_vpl_count(out, i), vplkit::Error);  // released
     }
     const auto apart = setup.vpls(out);
     REQUIRE(apart.size() == together.size());
@@ -573,14 +573,14 @@ TEST_CASE("brsm: light by light gives the same VPLs as all lights at once") {
 TEST_CASE("brsm: the VPL budget follows light power") {
     vplkit::scene::Bounds bounds{{-1.0f, 0.0f, -1.0f}, {1.0f, 2.0f, 1.0f}};
     Light dim = point_light({0, 1, 0}, 1.0f), bright = point_light({0, 1, 0}, 3.0f), off = point_light({0, 1, 0}, 0.0f);
-    auto shares = vplkit::stages::brsm_vpl_shares(std::vector<Light>{dim, off, bright}, bounds, 1000);
+    auto shares = vplkit::brsm_vpl_shares(std::vector<Light>{dim, off, bright}, bounds, 1000);
     CHECK(shares == std::vector<uint32_t>{250, 0, 750});
-    shares = vplkit::stages::brsm_vpl_shares(std::vector<Light>{dim, bright, bright}, bounds, 10);
+    shares = vplkit::brsm_vpl_shares(std::vector<Light>{dim, bright, bright}, bounds, 10);
     CHECK(shares[0] + shares[1] + shares[2] == 10);
     CHECK(shares[0] >= 1);
     // A very dim light still gets one VPL: none would lose its light from the image.
     Light faint = point_light({0, 1, 0}, 1e-6f);
-    shares = vplkit::stages::brsm_vpl_shares(std::vector<Light>{faint, bright}, bounds, 100);
+    shares = vplkit::brsm_vpl_shares(std::vector<Light>{faint, bright}, bounds, 100);
     CHECK(shares == std::vector<uint32_t>{1, 99});
     // A sun's power is its irradiance over the scene's bounding disc.
     Light s = sun({0, -1, 0}, 1.0f);
@@ -588,10 +588,10 @@ TEST_CASE("brsm: the VPL budget follows light power") {
     Light p = point_light({0, 1, 0}, 1.0f);
     p.color = glm::vec3(1.0f);
     const double disc = std::numbers::pi * 3.0;  // radius^2 = (|(2, 2, 2)| / 2)^2 = 3
-    shares = vplkit::stages::brsm_vpl_shares(std::vector<Light>{s, p}, bounds, 100000);
+    shares = vplkit::brsm_vpl_shares(std::vector<Light>{s, p}, bounds, 100000);
     CHECK(std::abs(shares[0] / 100000.0 - disc / (disc + 4.0 * std::numbers::pi)) < 1e-4);
-    CHECK_THROWS_AS(vplkit::stages::brsm_vpl_shares(std::vector<Light>{off}, bounds, 10), vplkit::Error);
-    CHECK_THROWS_AS(vplkit::stages::brsm_vpl_shares(std::vector<Light>{dim, bright}, bounds, 1), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::brsm_vpl_shares(std::vector<Light>{off}, bounds, 10), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::brsm_vpl_shares(std::vector<Light>{dim, bright}, bounds, 1), vplkit::Error);
 }
 
 TEST_CASE("brsm: invalid options are refused") {

@@ -118,11 +118,11 @@ struct Traced {
 
 Traced trace(const vplkit::GpuBvh& bvh, const vplkit::stages::VplSourceBuffers& sources) {
     vplkit::Context& ctx = vplkit::test::context();
-    auto output = vplkit::stages::VplTracingOutput::create(ctx, kOptions);
+    auto output = vplkit::VplTracingOutput::create(ctx, kOptions);
     vplkit::PassList passes("renderer vpl sources test");
     vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh, sources, kOptions, output);
     passes.run(ctx);
-    const uint32_t count = vplkit::stages::download_vpl_count(output);
+    const uint32_t count = vplkit::download_vpl_count(output);
     Traced t;
     if (count > 0) {
         t.vpls = output.vpls.download<vplkit::shaders::Vpl>(count);
@@ -136,7 +136,7 @@ size_t check_same_vpls(const Scene& scene, const std::vector<RendererEmitter>& e
     vplkit::Context& ctx = vplkit::test::context();
     const std::vector<glm::vec3> triangles = vplkit::scene::triangle_positions(scene);
     const vplkit::GpuBvh bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(triangles));
-    const auto loader = vplkit::stages::upload_vpl_sources(ctx, scene);
+    const auto loader = vplkit::upload_vpl_sources(ctx, scene);
     const Traced expected = trace(bvh, loader);
 
     std::vector<glm::vec3> albedo;
@@ -238,7 +238,7 @@ TEST_CASE("renderer VPL sources: a texture's mean albedo is the scene loader's")
         m.base_color_texture = 0;
     }
     scene.lights = scene_lights();
-    const auto loader = vplkit::stages::upload_vpl_sources(ctx, scene);
+    const auto loader = vplkit::upload_vpl_sources(ctx, scene);
     const auto rho = loader.triangle_albedo.download<vplkit::shaders::vec4>(scene.triangle_materials.size());
     const glm::vec3 mean = vplkit::stages::mean_texture_albedo(texels, 3, 2, /*srgb=*/true);
     CHECK(rho[0].x == mean.x);
@@ -292,7 +292,7 @@ TEST_CASE("renderer VPL sources: bad input is refused with its reason") {
     vplkit::stages::VplSourceBuffers views = data.views(block);
     views.lights = {};
     const vplkit::GpuBvh bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(triangles));
-    auto output = vplkit::stages::VplTracingOutput::create(ctx, kOptions);
+    auto output = vplkit::VplTracingOutput::create(ctx, kOptions);
     vplkit::PassList passes;
     CHECK_THROWS_WITH_AS(vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh, views, kOptions, output),
                          doctest::Contains("lights buffer '' holds fewer than 3 records"), vplkit::Error);

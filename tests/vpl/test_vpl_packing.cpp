@@ -52,7 +52,7 @@ TEST_CASE("vpl packing: vpl_block_counts, vpl_block_offsets and compact_vpls pac
     vplkit::Context& ctx = vplkit::test::context();
     const vplkit::stages::VplTracingOptions options{70000, 3, 1};
     REQUIRE(options.paths / vplkit::stages::vpl_tracing_block_size() > 256);  // two chunks of blocks
-    auto output = vplkit::stages::VplTracingOutput::create(ctx, options);
+    auto output = vplkit::VplTracingOutput::create(ctx, options);
 
     std::vector<Vpl> path_vpls(output.capacity, marked_vpl(0xffffff, 99));  // unused slots: never copied
     std::vector<uint32_t> counts(options.paths);
@@ -92,7 +92,7 @@ TEST_CASE("vpl packing: vpl_block_counts, vpl_block_offsets and compact_vpls pac
 TEST_CASE("vpl packing: no VPL at all gives a count of 0") {
     vplkit::Context& ctx = vplkit::test::context();
     const vplkit::stages::VplTracingOptions options{300, 2, 1};
-    auto output = vplkit::stages::VplTracingOutput::create(ctx, options);
+    auto output = vplkit::VplTracingOutput::create(ctx, options);
     output.path_counts.upload(std::vector<uint32_t>(options.paths, 0u));
     output.count.upload(std::vector<uint32_t>{123u, 0u});
     vplkit::PassList passes("vpl packing test");

@@ -105,18 +105,18 @@ public:
     explicit Tracer(const Scene& scene)
         : bvh_(
               vplkit::upload_bvh(vplkit::test::context(), vplkit::build_bvh(vplkit::scene::triangle_positions(scene)))),
-          sources_(vplkit::stages::upload_vpl_sources(vplkit::test::context(), scene)) {}
+          sources_(vplkit::upload_vpl_sources(vplkit::test::context(), scene)) {}
 
     Traced run(const VplTracingOptions& options) {
         vplkit::Context& ctx = vplkit::test::context();
-        auto output = vplkit::stages::VplTracingOutput::create(ctx, options);
+        auto output = vplkit::VplTracingOutput::create(ctx, options);
         vplkit::PassList passes("vpl tracing test");
         vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh_, sources_, options, output);
         passes.run(ctx);
-        const auto counts = vplkit::stages::download_vpl_counts(output);
+        const auto counts = vplkit::download_vpl_counts(output);
         // Short paths stay far below lavapipe's loop limit: none may be reported cut.
         REQUIRE(counts.cut_short == 0);
-        const uint32_t count = vplkit::stages::download_vpl_count(output);
+        const uint32_t count = vplkit::download_vpl_count(output);
         REQUIRE(count == counts.vpls);
         REQUIRE(count <= output.capacity);
         Traced t;
@@ -127,12 +127,12 @@ public:
         return t;
     }
 
-    const vplkit::stages::VplSources& sources() const { return sources_; }
+    const vplkit::VplSources& sources() const { return sources_; }
     const vplkit::GpuBvh& bvh() const { return bvh_; }
 
 private:
     vplkit::GpuBvh bvh_;
-    vplkit::stages::VplSources sources_;
+    vplkit::VplSources sources_;
 };
 
 using Rgb = std::array<double, 3>;
@@ -631,7 +631,7 @@ TEST_CASE("vpl tracing: an alpha-tested material reflects the mean of the texels
         scene.materials[m].alpha_cutoff = c.cutoff;  // blend: 0.5 whatever the file says
         add_triangle(scene, {0.0f, 0.0f, 0.0f}, {1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}, m);
         scene.lights.push_back(point_light({0.2f, 0.2f, 1.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
-        const auto sources = vplkit::stages::upload_vpl_sources(vplkit::test::context(), scene);
+        const auto sources = vplkit::upload_vpl_sources(vplkit::test::context(), scene);
         const auto albedo = sources.triangle_albedo.template download<vplkit::shaders::vec4>(1);
         CHECK(std::abs(albedo[0].x - c.expected) <= 1e-6);
         CHECK(std::abs(albedo[0].y - c.expected) <= 1e-6);
@@ -648,18 +648,18 @@ TEST_CASE("vpl tracing: paths a driver cuts short are counted and refused never 
     Tracer tracer(scene);
     vplkit::Context& ctx = vplkit::test::context();
     const VplTracingOptions options{16, 20000, 1};
-    auto output = vplkit::stages::VplTracingOutput::create(ctx, options);
+    auto output = vplkit::VplTracingOutput::create(ctx, options);
     vplkit::PassList passes("vpl tracing cut short");
     vplkit::stages::add_trace_vpls_pass(ctx, passes, tracer.bvh(), tracer.sources(), options, output);
     passes.run(ctx);
-    const auto counts = vplkit::stages::download_vpl_counts(output);
+    const auto counts = vplkit::download_vpl_counts(output);
     MESSAGE("cut short: " << counts.cut_short << " of 16 paths, " << counts.vpls << " VPLs");
     if (counts.cut_short == 0) {
         CHECK(counts.vpls == 16u * 20000u);
-        CHECK(vplkit::stages::download_vpl_count(output) == counts.vpls);
+        CHECK(vplkit::download_vpl_count(output) == counts.vpls);
     } else {
         CHECK(counts.vpls < 16u * 20000u);
-        CHECK_THROWS_AS(vplkit::stages::download_vpl_count(output), vplkit::Error);
+        CHECK_THROWS_AS(vplkit::download_vpl_count(output), vplkit::Error);
     }
 }
 
@@ -670,5 +670,5 @@ TEST_CASE("vpl tracing: invalid options are refused") {
     CHECK_THROWS_AS(vplkit::stages::vpl_capacity({1, 0xffffffffu, 0}), vplkit::Error);
     CHECK(vplkit::stages::vpl_capacity({1000, 3, 0}) == 3000);
     Scene empty;
-    CHECK_THROWS_AS(vplkit::stages::upload_vpl_sources(vplkit::test::context(), empty), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::upload_vpl_sources(vplkit::test::context(), empty), vplkit::Error);
 }

@@ -60,8 +60,8 @@ int main(int argc, char** argv) {
                     ctx->info().name.c_str(), path.c_str(), scene.triangle_count(), scene.lights.size(),
                     scene.emissive_triangles.size());
         const auto bvh = vplkit::upload_bvh(*ctx, vplkit::build_bvh(vplkit::scene::triangle_positions(scene)));
-        const auto sources = vplkit::stages::upload_vpl_sources(*ctx, scene);
-        auto output = vplkit::stages::VplTracingOutput::create(*ctx, options);
+        const auto sources = vplkit::upload_vpl_sources(*ctx, scene);
+        auto output = vplkit::VplTracingOutput::create(*ctx, options);
         std::vector<double> ms, packing_ms;
         uint32_t count = 0;
         for (uint32_t r = 0; r < runs; ++r) {
@@ -73,7 +73,7 @@ int main(int argc, char** argv) {
             ms.push_back(timings[1].gpu_ms);
             // vpl block counts, vpl block offsets, compact vpls: the packing in path order.
             packing_ms.push_back(timings[2].gpu_ms + timings[3].gpu_ms + timings[4].gpu_ms);
-            count = vplkit::stages::download_vpl_count(output);
+            count = vplkit::download_vpl_count(output);
         }
         std::vector<double> sorted = ms;
         std::sort(sorted.begin(), sorted.end());

@@ -18,7 +18,7 @@ namespace vplkit {
 class Context;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // Each light's share of `vpl_count`, in proportion to its power (punctual_light_power, summed
 // over RGB; directional lights over the disc of the scene's bounding sphere), rounded by largest
@@ -29,20 +29,20 @@ std::vector<uint32_t> brsm_vpl_shares(std::span<const scene::Light> lights, cons
                                       uint32_t vpl_count);
 
 // One light's working buffers, owned (stages/brsm.hpp's BrsmLightSet; converts to BrsmLightViews).
-using BrsmLightBuffers = BrsmLightSet<Buffer>;
+using BrsmLightBuffers = stages::BrsmLightSet<Buffer>;
 
 // The VPLs, their count and each light's buffers, owned (stages/brsm.hpp's BrsmOutputSet;
 // converts to BrsmOutputViews).
-struct BrsmOutput : BrsmOutputSet<Buffer> {
+struct BrsmOutput : stages::BrsmOutputSet<Buffer> {
     // Buffers for these maps (each map's light gives its share). Throws Error for bad options
     // (validate), no maps, a map too large for an importance map (4096^2), or buffers beyond the
     // device's maxStorageBufferRange.
     static BrsmOutput create(Context& context, std::span<const ShadowMap> maps, const scene::Bounds& bounds,
-                             const BrsmOptions& options);
+                             const stages::BrsmOptions& options);
     // The VPL buffer, the count and each light's share, but no light's buffers yet
     // (allocate_brsm_light_buffers). Errors as create, and no lights.
     static BrsmOutput create_for_lights(Context& context, std::span<const scene::Light> lights,
-                                        const scene::Bounds& bounds, const BrsmOptions& options);
+                                        const scene::Bounds& bounds, const stages::BrsmOptions& options);
 };
 
 // A light's working buffers for its map (nothing when its share is 0). Throws Error for a map
@@ -50,9 +50,9 @@ struct BrsmOutput : BrsmOutputSet<Buffer> {
 void allocate_brsm_light_buffers(Context& context, const ShadowMap& map, BrsmLightBuffers& light);
 
 // add_brsm_passes over the runtime's maps.
-void add_brsm_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
-                     std::span<ShadowMap> maps, float scene_scale, const BrsmOptions& options,
-                     const BrsmOutputViews& output);
+void add_brsm_passes(stages::Device& device, StepList& passes, const stages::GbufferViews& gbuffer,
+                     const stages::CameraView& view, std::span<ShadowMap> maps, float scene_scale,
+                     const stages::BrsmOptions& options, const stages::BrsmOutputViews& output);
 
 // Blocking read of output.count after a run: the VPLs placed (lights whose importance was all
 // zero placed none).
@@ -64,4 +64,4 @@ uint32_t download_brsm_vpl_count(const BrsmOutput& output);
 uint32_t download_brsm_light_vpl_count(const BrsmOutput& output, size_t light_index);
 std::vector<uint32_t> download_brsm_light_vpl_counts(const BrsmOutput& output);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -6,7 +6,7 @@
 
 #include <cstdint>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // The camera's view for an image of width x height (the image's aspect ratio, not the file's:
 // pixels stay square). Errors as vulkan_perspective / vulkan_orthographic, and for a zero size.
@@ -14,10 +14,10 @@ namespace vplkit::stages {
 // stages turn normals towards it and take the direction to it as the direction to the viewer)
 // lies kOrthographicEyeDistance times the view volume's extent back along -forward: the
 // direction to it from any visible point is the parallel view direction within 1e-4 rad.
-CameraView camera_view(const scene::Camera& camera, uint32_t width, uint32_t height);
+stages::CameraView camera_view(const scene::Camera& camera, uint32_t width, uint32_t height);
 
 inline constexpr float kOrthographicEyeDistance = 1e4f;
 // The eye of an orthographic camera for an image of aspect ratio `aspect` (see camera_view).
 glm::vec3 orthographic_eye(const scene::Camera& camera, float aspect);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

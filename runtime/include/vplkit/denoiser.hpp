@@ -12,7 +12,7 @@
 #include "vplkit/render_settings.hpp"
 #include "vplkit/stages/denoise.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <glm/mat4x4.hpp>
 

@@ -15,16 +15,16 @@ class Image;
 struct GpuBvh;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct GbufferImages;
 
 // A device buffer for the counters (add_exact_gi_passes clears it), and reading it back.
 Buffer create_exact_gi_counters(Context& context);
-ExactGiCounts read_exact_gi_counters(const Buffer& counters);
+stages::ExactGiCounts read_exact_gi_counters(const Buffer& counters);
 
 struct ExactGiResult {
-    ExactGiCounts counts;
+    stages::ExactGiCounts counts;
     uint32_t dispatches = 0;
     double gpu_ms = 0.0;  // summed over the submissions
     // Host time from the first chunk's submission to the last one's end, counter reads included.
@@ -38,6 +38,6 @@ struct ExactGiResult {
 // retry with a smaller chunk_size.
 ExactGiResult render_exact_gi(Context& context, GbufferImages& gbuffer, const GpuBvh& bvh, const Buffer& vpls,
                               uint32_t vpl_count, glm::vec3 camera_position, Image& indirect,
-                              const ExactGiOptions& options = {});
+                              const stages::ExactGiOptions& options = {});
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -12,7 +12,7 @@ namespace vplkit {
 class Context;
 }
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct GbufferImages {
     Image position;
@@ -28,7 +28,7 @@ struct GbufferImages {
     uint32_t height() const { return position.height(); }
 
     // As the stages take it; layouts stay tracked in these Images.
-    operator GbufferViews() { return {position, normal, geometric_normal, albedo, emission, depth}; }
+    operator stages::GbufferViews() { return {position, normal, geometric_normal, albedo, emission, depth}; }
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -9,10 +9,10 @@ namespace vplkit {
 class Context;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // A device buffer of kGiCountersBytes for the counters.
 Buffer create_gi_counters(Context& context, const char* name = "gi counters");
-GiCounts read_gi_counters(const Buffer& counters);
+stages::GiCounts read_gi_counters(const Buffer& counters);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

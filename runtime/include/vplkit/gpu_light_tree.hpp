@@ -19,7 +19,7 @@ class Context;
 class PassList;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // What the tree holds, made on the host: a proxy (position, normal, RGB power as flux) per
 // light, emissive triangles first (upload_emitters' order), then the scene's point and spot
@@ -46,7 +46,7 @@ public:
     uint32_t count() const { return count_; }
     uint32_t triangle_count() const { return triangle_count_; }
     // The tree as the sampling stage reads it (valid after the build passes ran).
-    SceneLightTreeBuffers buffers() const;
+    stages::SceneLightTreeBuffers buffers() const;
     // The built tree's buffers, for reading back (tests): LightTreeNode[], uint32 leaf -> light.
     const Buffer& nodes() const;
     const Buffer& leaf_lights() const;
@@ -58,4 +58,4 @@ private:
     uint32_t triangle_count_ = 0;
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

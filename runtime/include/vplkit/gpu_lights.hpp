@@ -19,18 +19,18 @@ namespace vplkit {
 class Context;
 }
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // The scene's punctual lights in the shader's layout (PunctualLight, shaders/include/vplkit/lights.glsl).
 // Never empty (Vulkan has no empty buffers): with no lights it holds one unused entry and count 0.
-using GpuLights = LightSet<Buffer>;
+using GpuLights = stages::LightSet<Buffer>;
 // Throws vplkit::Error naming the light for a non-finite or negative value.
 GpuLights upload_lights(Context& context, std::span<const scene::Light> lights);
 
 // The scene's emissive triangles (EmissiveTriangle, shaders/include/vplkit/emitters.glsl), each
 // with the probability of being sampled, proportional to its power (luminance of the emitted
 // radiance x area). Never empty: with no emitter it holds one unused entry and count 0.
-struct GpuEmitters : EmitterSet<Buffer> {
+struct GpuEmitters : stages::EmitterSet<Buffer> {
     double total_power = 0.0;  // sum of luminance(radiance) x area x pi, watts in luminance
 };
 GpuEmitters upload_emitters(Context& context, const scene::Scene& scene);
@@ -54,4 +54,4 @@ struct EmitterTriangle {
 // scene.emissive_triangles order: the entries of upload_emitters' buffer, one for one.
 std::vector<EmitterTriangle> emitter_triangles(const scene::Scene& scene);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

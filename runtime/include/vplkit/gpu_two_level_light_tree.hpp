@@ -15,7 +15,7 @@ namespace vplkit {
 class Context;
 }
 
-namespace vplkit::stages {
+namespace vplkit {
 
 class GpuTwoLevelLightTree {
 public:
@@ -26,7 +26,7 @@ public:
 
     uint32_t count() const { return count_; }              // lights
     uint32_t mesh_lights() const { return mesh_lights_; }  // bottom trees
-    TwoLevelLightTreeBuffers buffers() const;
+    stages::TwoLevelLightTreeBuffers buffers() const;
 
 private:
     struct State;
@@ -35,4 +35,4 @@ private:
     uint32_t mesh_lights_ = 0;
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

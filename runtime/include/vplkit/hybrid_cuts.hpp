@@ -12,11 +12,11 @@ namespace vplkit {
 class Context;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
-struct HybridCuts : HybridCutSet<Buffer> {
+struct HybridCuts : stages::HybridCutSet<Buffer> {
     // Validates the options; throws vplkit::Error for a zero size too (hybrid_cut_requirements).
-    static HybridCuts create(Context& context, uint32_t width, uint32_t height, const HybridOptions& options);
+    static HybridCuts create(Context& context, uint32_t width, uint32_t height, const stages::HybridOptions& options);
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -1,5 +1,5 @@
 #pragma once
-// PassList: a StepList (vplkit/stages/steps.hpp) that the runtime runs. Passes are recorded in
+// PassList: a StepList (vplkit/steps.hpp) that the runtime runs. Passes are recorded in
 // the order they were added; each pass declares which buffers and images it touches and how, and
 // run() inserts a synchronization2 barrier before a pass only where a declared use conflicts with
 // an earlier one (read-after-write, write-after-write, write-after-read, or an image layout
@@ -16,7 +16,7 @@
 // full memory barrier, so nothing from an earlier submission needs synchronizing. Image layouts
 // persist in the Image objects across runs (an Image must stay at its address until run()).
 
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -40,9 +40,7 @@ namespace vplkit {
 class Context;
 class Image;
 class FrameRecording;
-namespace stages {
 struct GbufferImages;
-}
 
 // One VPL as the host sees it (RenderedImage::vpls).
 struct VplPoint {
@@ -78,8 +76,8 @@ struct RenderedImage {
     VplSource vpl_source = VplSource::ir;  // where this frame's VPLs came from (automatic resolved)
     bool reused_vpls = false;              // the previous frame's VPLs (and, below, trees) served this one
     bool reused_trees = false;
-    std::optional<stages::SmcCounts> smc;  // --vpl-source smc: what this frame's update counted
-    uint32_t non_finite_pixels = 0;        // shown magenta in rgba8; a correct frame has none
+    std::optional<SmcCounts> smc;    // --vpl-source smc: what this frame's update counted
+    uint32_t non_finite_pixels = 0;  // shown magenta in rgba8; a correct frame has none
     // --denoise: the firefly clamp's luminance moved (taken off outliers of the accumulated image,
     // spread over their neighbours: none is lost) over the luminance it was given.
     double firefly_moved_fraction = 0.0;
@@ -171,28 +169,26 @@ private:
     // and leave their read-backs (counts, counters, notes) to run after it.
 
     // VPLs from `source` for the frame whose G-buffer is `gbuffer`; notes into `out`.
-    GeneratedVpls generate_vpls(VplSource source, const stages::CameraView& view, stages::GbufferImages& gbuffer,
+    GeneratedVpls generate_vpls(VplSource source, const stages::CameraView& view, GbufferImages& gbuffer,
                                 const RenderSettings& settings, FrameRecording& frame, RenderedImage& out);
     // The frame's VPLs: the previous frame's when the plan reuses them, else new ones (kept for
     // the next frame).
-    const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view,
-                                    stages::GbufferImages& gbuffer, const RenderSettings& settings,
-                                    FrameRecording& frame, RenderedImage& out);
+    const GeneratedVpls& frame_vpls(const FramePlan& plan, const stages::CameraView& view, GbufferImages& gbuffer,
+                                    const RenderSettings& settings, FrameRecording& frame, RenderedImage& out);
     // Indirect light from the cached VPLs by settings.method into `indirect` (full size), at full
     // or half resolution, with the trees the plan builds or reuses (renderer_gi.cpp). At half
     // resolution the light is demodulated before upsampling (texture stays sharp); returns true
     // when `indirect` is left as irradiance for the denoiser to remodulate.
-    bool render_indirect(const FramePlan& plan, const stages::CameraView& view, stages::GbufferImages& gbuffer,
+    bool render_indirect(const FramePlan& plan, const stages::CameraView& view, GbufferImages& gbuffer,
                          const RenderSettings& settings, Image& indirect, FrameRecording& frame, RenderedImage& out);
 
     // --denoise: filters `indirect` in place (radiance, or irradiance when `demodulated`) with the
     // history of the previous frames, and keeps this frame as the next one's history.
-    void denoise_indirect(const RenderSettings& settings, const stages::CameraView& view,
-                          stages::GbufferImages& gbuffer, Image& indirect, bool demodulated, FrameRecording& frame,
-                          RenderedImage& out);
+    void denoise_indirect(const RenderSettings& settings, const stages::CameraView& view, GbufferImages& gbuffer,
+                          Image& indirect, bool demodulated, FrameRecording& frame, RenderedImage& out);
 
     // Forward light cuts (the FLC paper): its own VPLs, splatted into `indirect` (renderer_flc.cpp).
-    void render_flc(const stages::CameraView& view, stages::GbufferImages& gbuffer, const RenderSettings& settings,
+    void render_flc(const stages::CameraView& view, GbufferImages& gbuffer, const RenderSettings& settings,
                     Image& indirect, FrameRecording& frame, RenderedImage& out);
     std::optional<Buffer> flc_vertex_random_;  // scene::Scene::vertex_random, uploaded on first use
     std::vector<double> flc_triangle_areas_;   // each triangle's area, for the subdivision (first use)
@@ -208,20 +204,20 @@ private:
         GeneratedVpls vpls;
         std::vector<std::string> vpl_notes;
         std::string tree_key;
-        std::optional<stages::VplTrees> trees;
+        std::optional<VplTrees> trees;
         bool light_tree = false;
         bool sst = false;
     };
     FrameCache cache_;
     // SMC: the persistent VPL set (while the SMC options stay the same) and the scene's emitters
     // and reflectances it reads, uploaded on first use.
-    std::optional<stages::SmcState> smc_;
+    std::optional<SmcState> smc_;
     // --denoise: the filter's history, while the frame size stays the same.
     std::optional<Denoiser> denoiser_;
     FrameAccumulator accumulator_;  // RenderSettings::antialias: the mean of the frames on this camera
     std::string smc_key_;
-    std::optional<stages::VplSources> vpl_sources_;
-    const stages::VplSources& vpl_sources();
+    std::optional<VplSources> vpl_sources_;
+    const VplSources& vpl_sources();
 
     Context& context_;
     GpuScene scene_;
@@ -238,13 +234,12 @@ private:
     SceneVersion denoise_scene_;                     // the pose of the denoiser's history
     std::optional<SceneVersion> direct_tree_scene_;  // the pose the direct light tree was built at
     std::string pose_note_;                          // the last update_pose's summary, for the next plan
-    stages::GpuLights lights_;
-    stages::GpuEmitters emitters_;
-    stages::GpuLights directional_lights_;            // the direct-light pass's lights when the tree samples the rest
-    std::optional<stages::GpuLightTree> light_tree_;  // over emitters, point and spot lights; built on first use
-    std::optional<stages::GpuTwoLevelLightTree>
-        two_level_light_tree_;          // the same lights in two levels (--direct tree2)
-    const scene::Scene& scene_source_;  // for the VPL sources, uploaded on first use
+    GpuLights lights_;
+    GpuEmitters emitters_;
+    GpuLights directional_lights_;            // the direct-light pass's lights when the tree samples the rest
+    std::optional<GpuLightTree> light_tree_;  // over emitters, point and spot lights; built on first use
+    std::optional<GpuTwoLevelLightTree> two_level_light_tree_;  // the same lights in two levels (--direct tree2)
+    const scene::Scene& scene_source_;                          // for the VPL sources, uploaded on first use
     double bvh_build_ms_ = 0.0;
 };
 

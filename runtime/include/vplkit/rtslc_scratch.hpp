@@ -12,7 +12,7 @@ namespace vplkit {
 class Context;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct RtslcScratch {
     uint32_t width = 0, height = 0;
@@ -28,12 +28,12 @@ struct RtslcScratch {
     uint32_t block_count() const { return blocks_x() * blocks_y(); }
 
     // Validates the options; throws vplkit::Error for a zero size too (rtslc_scratch_requirements).
-    static RtslcScratch create(Context& context, uint32_t width, uint32_t height, const RtslcOptions& options);
+    static RtslcScratch create(Context& context, uint32_t width, uint32_t height, const stages::RtslcOptions& options);
 
     // As the stage takes it; the estimates' layout stays tracked in `estimates`.
-    operator RtslcScratchBuffers() {
+    operator stages::RtslcScratchBuffers() {
         return {width, height, block_size, cut_size, interleave, cuts, representatives, estimates};
     }
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

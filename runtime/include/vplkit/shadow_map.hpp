@@ -17,12 +17,12 @@ namespace vplkit {
 class Context;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct ShadowMap {
     scene::Light light;
-    uint32_t face_resolution = 0;   // texels along a face's side
-    std::vector<ShadowFace> faces;  // 1, or 6 for a cube map
+    uint32_t face_resolution = 0;           // texels along a face's side
+    std::vector<stages::ShadowFace> faces;  // 1, or 6 for a cube map
     // Where depth is 0 and 1: distance from the light along the face's axis (point, spot), or
     // signed distance along the light from the bounds' centre (directional; depth is linear).
     float near_plane = 0.0f;
@@ -45,13 +45,14 @@ struct ShadowMap {
     uint32_t height() const { return position.height(); }
 
     // As the stages take it; layouts stay tracked in these Images, the faces in this object.
-    operator ShadowMapViews() { return {faces, position, normal, flux, depth, light_uniform}; }
+    operator stages::ShadowMapViews() { return {faces, position, normal, flux, depth, light_uniform}; }
 };
 
 // The maps as the stages take them (views of each, in order).
-std::vector<ShadowMapViews> shadow_map_views(std::span<ShadowMap> maps);
+std::vector<stages::ShadowMapViews> shadow_map_views(std::span<ShadowMap> maps);
 
 // add_shadow_map_passes over the runtime's maps.
-void add_shadow_map_passes(Device& device, StepList& passes, const SceneBuffers& scene, std::span<ShadowMap> maps);
+void add_shadow_map_passes(stages::Device& device, StepList& passes, const stages::SceneBuffers& scene,
+                           std::span<ShadowMap> maps);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -13,7 +13,7 @@ namespace vplkit {
 class Context;
 }
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // What the last update counted (SmcCounters, smc.glsl).
 struct SmcCounts {
@@ -33,16 +33,16 @@ struct SmcCounts {
 class SmcState {
 public:
     // Buffers for `options` (Error for bad options); Y starts empty.
-    static SmcState create(Context& context, const SmcOptions& options);
+    static SmcState create(Context& context, const stages::SmcOptions& options);
 
-    const SmcOptions& options() const { return options_; }
+    const stages::SmcOptions& options() const { return options_; }
     // Updates recorded so far (each draws its own random numbers).
     uint32_t updates() const { return updates_; }
     bool empty() const { return updates_ == 0; }
 
     // Adds one update (stages::add_smc_update_passes) for the frame of `gbuffer` and `view`.
-    void add_update(Context& context, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
-                    const SmcScene& scene);
+    void add_update(Context& context, StepList& passes, const stages::GbufferViews& gbuffer,
+                    const stages::CameraView& view, const stages::SmcScene& scene);
     // Blocking read of the last update's counts (after its passes ran). Throws Error when the
     // driver cut radiosity paths short (lavapipe's loop limit): the estimates would be low.
     SmcCounts read_counts() const;
@@ -57,14 +57,15 @@ public:
     SmcState& operator=(SmcState&&) = default;
 
 private:
-    SmcState(const SmcOptions& options, KeyValueSorter sorter) : options_(options), sorter_(std::move(sorter)) {}
-    SmcBuffers views() const;
+    SmcState(const stages::SmcOptions& options, stages::KeyValueSorter sorter)
+        : options_(options), sorter_(std::move(sorter)) {}
+    stages::SmcBuffers views() const;
 
-    SmcOptions options_;
-    KeyValueSorter sorter_;
+    stages::SmcOptions options_;
+    stages::KeyValueSorter sorter_;
     uint32_t updates_ = 0;
     Buffer state_, valid_, invalid_list_, hits_, pool_keys_, pool_values_, candidates_, candidate_density_,
         vpl_density_, vpl_keys_, vpl_values_, candidate_keys_, candidate_values_, moves_, counters_, vpls_;
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -21,7 +21,7 @@
 #include <span>
 #include <vector>
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // One light as the trees see it: its extent (a triangle's corners' box, a punctual light's
 // position) and its RGB power (watts), whose light_tree_intensity is the leaf's intensity.
@@ -54,4 +54,4 @@ TwoLevelLightTree build_two_level_light_tree(std::span<const TwoLevelLight> ligh
 // punctual light. Returns group_first through `group_first`.
 std::vector<TwoLevelLight> two_level_lights(const scene::Scene& scene, std::vector<uint32_t>& group_first);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -9,10 +9,10 @@ namespace vplkit {
 class Context;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // A device buffer of kUpsampleCountersBytes (add_upsample_pass clears it), and reading it back.
 Buffer create_upsample_counters(Context& context);
-UpsampleCounts read_upsample_counters(const Buffer& counters);
+stages::UpsampleCounts read_upsample_counters(const Buffer& counters);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

@@ -17,11 +17,11 @@ struct Scene;
 }
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 // Everything the tracer reads about the scene besides the BVH, owned (stages/vpl_tracing.hpp's
 // VplSourceSet; converts to VplSourceBuffers).
-struct VplSources : VplSourceSet<Buffer> {
+struct VplSources : stages::VplSourceSet<Buffer> {
     // Sum over emitters of the power they emit, RGB (W): point 4 pi I, spot 2 pi I x the
     // integral of the squared cone attenuation, directional E x pi r^2 of the covering disc,
     // emissive triangle pi L A (x 2 when double-sided). Range windows are not counted.
@@ -40,12 +40,12 @@ VplSources upload_vpl_sources(Context& context, const scene::Scene& scene);
 
 // The VPL buffers of one tracing, owned (stages/vpl_tracing.hpp's VplTracingSet; converts to
 // VplTracingBuffers): capacity = paths x max_bounces VPLs.
-struct VplTracingOutput : VplTracingSet<Buffer> {
+struct VplTracingOutput : stages::VplTracingSet<Buffer> {
     uint32_t capacity = 0;
 
     // Throws Error when the options are invalid or the VPL buffer would exceed the device's
     // maxStorageBufferRange.
-    static VplTracingOutput create(Context& context, const VplTracingOptions& options);
+    static VplTracingOutput create(Context& context, const stages::VplTracingOptions& options);
 };
 
 struct VplCounts {
@@ -62,4 +62,4 @@ uint32_t download_vpl_count(const VplTracingOutput& output);
 // The same from a VplCountBuffer that outlived its VplTracingOutput (a frame's VPLs keep it).
 uint32_t checked_vpl_count(const Buffer& count, uint32_t capacity);
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

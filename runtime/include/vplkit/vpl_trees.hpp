@@ -18,12 +18,12 @@ class Context;
 class PassList;
 }  // namespace vplkit
 
-namespace vplkit::stages {
+namespace vplkit {
 
 struct VplTreeOptions {
-    SortOptions sort;
-    LightTreeOptions light_tree;
-    SstOptions sst;
+    stages::SortOptions sort;
+    stages::LightTreeOptions light_tree;
+    stages::SstOptions sst;
 };
 
 // The tags (StepList::set_tag) of the passes of each part of the build, for a frame graph that
@@ -35,7 +35,7 @@ struct VplTreeBuildTags {
 };
 
 // The trees' buffers, owned (stages/vpl_tree_buffers.hpp's VplTreeSet; converts to VplTreeBuffers).
-struct VplTrees : VplTreeSet<Buffer> {
+struct VplTrees : stages::VplTreeSet<Buffer> {
     // The buffers for `count` VPLs (1..kMaxKeyedVpls); throws vplkit::Error otherwise.
     static VplTrees create(Context& context, uint32_t count, const VplTreeOptions& options = {});
 
@@ -48,8 +48,8 @@ struct VplTrees : VplTreeSet<Buffer> {
     // The same over the count a GPU pass wrote (ElementCount::on_gpu, its capacity this object's
     // `count`): the trees are those of the capacity with every VPL past the count bogus padding,
     // so a frame samples VPLs it never read back.
-    void add_build_passes(PassList& passes, const Buffer& vpls, const ElementCount& vpl_count, bool light_tree = true,
-                          bool sst = true, const VplTreeBuildTags& tags = {});
+    void add_build_passes(PassList& passes, const Buffer& vpls, const stages::ElementCount& vpl_count,
+                          bool light_tree = true, bool sst = true, const VplTreeBuildTags& tags = {});
 
 private:
     struct Scratch;
@@ -58,4 +58,4 @@ private:
     VplTreeOptions options_;
 };
 
-}  // namespace vplkit::stages
+}  // namespace vplkit

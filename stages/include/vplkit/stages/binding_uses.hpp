@@ -16,7 +16,7 @@
 
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <vulkan/vulkan.h>
 

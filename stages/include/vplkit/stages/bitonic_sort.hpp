@@ -5,7 +5,7 @@
 // is one step (or a run of steps that fits one workgroup's shared memory).
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <cstdint>
 

@@ -40,7 +40,7 @@
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <cstddef>

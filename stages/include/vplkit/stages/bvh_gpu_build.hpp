@@ -42,7 +42,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/radix_sort.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -6,7 +6,7 @@
 // added to it in place (a renderer's colour target, say).
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <vulkan/vulkan.h>

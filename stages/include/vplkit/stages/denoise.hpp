@@ -18,7 +18,7 @@
 // usage, GENERAL layout. Errors: vplkit::Error naming the image or option.
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <glm/mat4x4.hpp>

@@ -34,7 +34,7 @@
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/scene_light_tree.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <glm/vec3.hpp>

@@ -13,7 +13,7 @@
 #include "vplkit/stages/direct_light.hpp"
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <glm/vec3.hpp>
 

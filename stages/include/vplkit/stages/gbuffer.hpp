@@ -9,7 +9,7 @@
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/scene_buffers.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

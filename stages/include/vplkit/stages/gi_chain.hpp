@@ -36,7 +36,7 @@
 #include "vplkit/stages/radix_sort.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/sst.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"

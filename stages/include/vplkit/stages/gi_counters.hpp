@@ -5,7 +5,7 @@
 // The buffer is the caller's (kGiCountersBytes, storage usage); the runtime's
 // create_gi_counters / read_gi_counters (vplkit/gi_counters_buffer.hpp) allocate and read it.
 
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <cstdint>

@@ -12,7 +12,7 @@
 // The map must be finite and non-negative (it is an importance): a negative texel breaks the ratios.
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <cstdint>

@@ -12,7 +12,7 @@
 
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/element_count.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <cstdint>
 

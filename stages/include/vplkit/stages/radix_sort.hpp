@@ -15,7 +15,7 @@
 // No shader uses subgroup operations: nothing depends on the subgroup size.
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -14,7 +14,7 @@
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/light_tree.hpp"
 #include "vplkit/stages/sort.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <cstdint>

@@ -27,7 +27,7 @@
 
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/scene_buffers.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <glm/mat4x4.hpp>

@@ -33,7 +33,7 @@
 #include "vplkit/stages/gbuffer.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/sort.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
 

@@ -8,7 +8,7 @@
 //   passes.record(cmd);                                         // keys/values now sorted in place
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <vulkan/vulkan.h>
 

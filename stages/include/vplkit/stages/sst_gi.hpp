@@ -15,7 +15,7 @@
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/gi_counters.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 #include "vplkit/stages/vpl_tree_buffers.hpp"
 

@@ -3,7 +3,7 @@
 // non-finite pixels become magenta and are counted.
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <cstdint>

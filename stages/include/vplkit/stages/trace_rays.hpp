@@ -6,7 +6,7 @@
 
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 #include "vplkit/stages/views.hpp"
 
 #include <cstdint>

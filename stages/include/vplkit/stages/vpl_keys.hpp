@@ -5,7 +5,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/element_count.hpp"
-#include "vplkit/stages/steps.hpp"
+#include "vplkit/steps.hpp"
 
 #include <cstdint>
 #include <span>
