@@ -188,22 +188,42 @@ LoadedScene load_request_scene(RenderRequest& request) {
 
 LoadedScene load_request_posable(RenderRequest& request) {
     const std::string& scene_arg = request.scene_arg;
-    if (!is_scene_file(scene_arg)) {
-        throw UsageError(
-            "--animate poses a glTF file's animations: give --scene FILE.gltf|.glb (a set-up is not "
-            "posed)");
-    }
     const auto load_start = std::chrono::steady_clock::now();
     LoadedScene loaded;
     scene::LoadOptions load_options;
     load_options.camera = request.camera;
     load_options.time = request.time.value_or(0.0);
     load_options.animation = request.animation;
-    loaded.posable = std::make_unique<scene::PosableScene>(scene_arg, load_options);
-    loaded.described = scene_arg;
-    loaded.target = loaded.active().bounds.center();
-    request.settings.width = request.width.value_or(640);
-    request.settings.height = request.height.value_or(360);
+    if (is_scene_file(scene_arg)) {
+        loaded.posable = std::make_unique<scene::PosableScene>(scene_arg, load_options);
+        loaded.described = scene_arg;
+        loaded.target = loaded.active().bounds.center();
+        request.settings.width = request.width.value_or(640);
+        request.settings.height = request.height.value_or(360);
+    } else {
+        // A set-up's file posed; its lights and camera added as load_setup_scene adds them (a pose
+        // keeps what the caller added).
+        const scene::Setups setups = scene::load_setups(VPLKIT_SETUPS_FILE);
+        const scene::Setup& setup = scene_arg.empty() ? setups.default_setup() : setups.find(scene_arg);
+        loaded.posable = std::make_unique<scene::PosableScene>(scene::require_scene(setup), load_options);
+        scene::Scene& scene = loaded.active();
+        if (scene.animations.empty()) {
+            throw UsageError("--animate poses a glTF file's animations: set-up '" + setup.name + "' (" +
+                             setup.scene_as_written + ") has none");
+        }
+        scene.lights.insert(scene.lights.end(), setup.lights.begin(), setup.lights.end());
+        if (!request.camera) {
+            if (scene.cameras.size() == 1 && scene.cameras[0].origin == scene::CameraOrigin::generated) {
+                scene.cameras.clear();
+            }
+            scene.cameras.push_back(scene::setup_camera(setup, scene.bounds));
+            scene.active_camera = uint32_t(scene.cameras.size() - 1);
+        }
+        loaded.described = setup.name + " (" + setup.scene.string() + ")";
+        loaded.target = setup.camera.target;
+        request.settings.width = request.width.value_or(setup.width ? setup.width : 640);
+        request.settings.height = request.height.value_or(setup.height ? setup.height : 360);
+    }
     finish_loaded_scene(request, loaded);
     loaded.load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - load_start).count();
     return loaded;
