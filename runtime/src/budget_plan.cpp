@@ -11,7 +11,8 @@ namespace vplkit {
 
 BudgetPlan plan_for_budget(Renderer& renderer, const DeviceInfo& device, const scene::Scene& scene,
                            const scene::Camera& camera, const RenderSettings& base, double budget_ms,
-                           const BudgetCalibrationOptions& options, std::optional<BudgetSpace> space) {
+                           const BudgetCalibrationOptions& options, std::optional<BudgetSpace> space,
+                           const BudgetFixed& fixed) {
     // The budget is checked before the calibration's frames are spent.
     if (!std::isfinite(budget_ms) || budget_ms <= 0.0) {
         throw Error("budget: the frame time budget must be a number of milliseconds > 0");
@@ -19,7 +20,8 @@ BudgetPlan plan_for_budget(Renderer& renderer, const DeviceInfo& device, const s
     BudgetPlan plan;
     plan.base = base;
     plan.vpl_source = plan_frame(scene, base, "budget").vpl_source;
-    plan.space = space ? *space : default_budget_space(base, plan.vpl_source);
+    plan.fixed = fixed;
+    plan.space = narrow_budget_space(space ? *space : default_budget_space(base, plan.vpl_source), fixed);
     plan.calibration = calibrate_budget(renderer, device, scene, camera, base, plan.space, options);
     plan.candidates = budget_candidates(plan.calibration.model, plan.space, scene, base);
     if (plan.candidates.empty()) {

@@ -1,6 +1,7 @@
 // The budget chooser (budget_chooser.hpp) on a synthetic table of predicted times and errors.
 
 #include "vplkit/budget_chooser.hpp"
+#include "vplkit/budget_fixed.hpp"
 
 #include "vplkit/error.hpp"
 
@@ -121,4 +122,56 @@ TEST_CASE("budget: the chooser refuses no candidates and budgets that are not a 
     CHECK_THROWS_AS(vplkit::choose_for_budget(t, std::numeric_limits<double>::quiet_NaN()), vplkit::Error);
     CHECK_THROWS_WITH_AS(vplkit::choose_for_budget(std::vector<BudgetCandidate>{}, 10.0),
                          doctest::Contains("no configuration"), vplkit::Error);
+}
+
+TEST_CASE("budget: knobs the user fixed are kept and the chooser varies the rest") {
+    const auto t = table();
+    // The method fixed is the one the unconstrained choice does not take (else keeping it would prove nothing).
+    const double budget = 60.0;
+    const GiMethod free = vplkit::choose_for_budget(t, budget).chosen.config.method;
+    const GiMethod other = free == GiMethod::rtslc ? GiMethod::hybrid : GiMethod::rtslc;
+    vplkit::BudgetFixed fixed;
+    fixed.method = other;
+    const auto kept = vplkit::candidates_keeping(t, fixed);
+    const auto choice = vplkit::choose_for_budget(kept, budget);
+    CHECK(choice.chosen.config.method == other);
+    // ... and the best configuration of that method within the budget, by brute force.
+    const BudgetCandidate* best = optimum(kept, budget);
+    REQUIRE(best);
+    CHECK(same(choice.chosen.config, best->config));
+    REQUIRE(choice.next_best);
+    CHECK(choice.next_best->config.method == other);
+
+    // Two fixed knobs: the chooser still picks the spp and the resolution.
+    fixed.method = GiMethod::rtslc;
+    fixed.denoise = DenoiseMode::svgf;
+    for (double b : {30.0, 60.0, 300.0}) {
+        const auto c = vplkit::choose_for_budget(vplkit::candidates_keeping(t, fixed), b);
+        CHECK(c.chosen.config.method == GiMethod::rtslc);
+        CHECK(c.chosen.config.denoise == DenoiseMode::svgf);
+    }
+    CHECK(vplkit::describe_budget_fixed(fixed) == "method rtslc, denoise svgf");
+    CHECK(vplkit::describe_budget_fixed({}).empty());
+}
+
+TEST_CASE("budget: the space narrowed to the fixed knobs") {
+    vplkit::BudgetSpace space;
+    space.vpls = {1024, 4096};
+    space.block_sizes = {4, 8};
+    vplkit::BudgetFixed fixed;
+    fixed.spp = 8;
+    fixed.half_resolution = true;
+    fixed.vpls = 4096;
+    const auto narrow = vplkit::narrow_budget_space(space, fixed);
+    CHECK(narrow.methods.size() == 3);  // not fixed: all three
+    CHECK(narrow.spp == std::vector<uint32_t>{8});
+    CHECK(narrow.half_resolution == std::vector<bool>{true});
+    CHECK(narrow.denoise.size() == 2);
+    CHECK(narrow.vpls == std::vector<uint32_t>{4096});
+    CHECK(narrow.block_sizes == std::vector<uint32_t>{4, 8});
+    // sst has no block size to keep.
+    fixed = {};
+    fixed.block_size = 4;
+    CHECK(vplkit::keeps_fixed(BudgetConfig{GiMethod::sst, 8, false, DenoiseMode::off, 4096, 8}, fixed));
+    CHECK(!vplkit::keeps_fixed(BudgetConfig{GiMethod::rtslc, 8, false, DenoiseMode::off, 4096, 8}, fixed));
 }

@@ -14,6 +14,7 @@
 #include "vplkit/budget_chooser.hpp"
 #include "vplkit/budget_config.hpp"
 #include "vplkit/budget_drift.hpp"
+#include "vplkit/budget_fixed.hpp"
 
 #include <optional>
 #include <vector>
@@ -22,7 +23,8 @@ namespace vplkit {
 
 struct BudgetPlan {
     BudgetCalibration calibration;
-    BudgetSpace space;
+    BudgetSpace space;  // narrowed to the fixed knobs
+    BudgetFixed fixed;
     std::vector<BudgetCandidate> candidates;
     BudgetChoice choice;
     VplSource vpl_source = VplSource::ir;  // the base settings' source, resolved
@@ -31,11 +33,13 @@ struct BudgetPlan {
     BudgetDrift drift;                     // started with the choice's predicted time
 };
 
-// `space`: the configurations to weigh (none: default_budget_space of `base`). Throws
-// vplkit::Error for a bad budget or space, or when the model predicts no configuration of it.
+// `space`: the configurations to weigh (none: default_budget_space of `base`), narrowed to
+// `fixed` (the knobs the user gave: only the rest are chosen). Throws vplkit::Error for a bad
+// budget or space, or when the model predicts no configuration of it.
 BudgetPlan plan_for_budget(Renderer& renderer, const DeviceInfo& device, const scene::Scene& scene,
                            const scene::Camera& camera, const RenderSettings& base, double budget_ms,
-                           const BudgetCalibrationOptions& options, std::optional<BudgetSpace> space = std::nullopt);
+                           const BudgetCalibrationOptions& options, std::optional<BudgetSpace> space = std::nullopt,
+                           const BudgetFixed& fixed = {});
 
 // Chooses again over the candidates' times scaled by plan.drift.scale(), updates the choice and
 // the settings, and restarts the drift's window.
