@@ -9,13 +9,8 @@
 // failure per check) plus 2e-4 relative for float accumulation (the first bounce of a point light
 // in a grey box has no variance at all: every path deposits exactly Phi rho / N).
 //
-// Geometry checks (every VPL finite, on a surface, unit normal facing the arriving light) use a
-// CPU point-to-triangle distance in double; a hit point from barycentrics is off by a few ulps of
-// the coordinates, so 1e-5 of the scene's size is generous.
-
-#include "vplkit/buffer.hpp"
-#include "vplkit/bvh.hpp"
-#include "vplkit/bvh_gpu.hpp"
+// Geometry, seeds and the order of the VPLs: test_vpl_tracing_paths.cpp; the scenes and the
+// tracer: vpl_tracing_setup.cpp.
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
@@ -23,8 +18,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/vpl_tracing_buffers.hpp"
 #include "vplkit_test/context.hpp"
-#include "brsm_reference.hpp"
-#include "geometry_reference.hpp"
+#include "vpl_tracing_setup.hpp"
 
 #include <doctest/doctest.h>
 
@@ -34,155 +28,11 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <numbers>
-#include <tuple>
 #include <vector>
 
+using namespace vplkit::vpl_tracing_test;
+
 namespace {
-
-using vplkit::scene::Scene;
-using vplkit::stages::VplTracingOptions;
-constexpr double kPi = std::numbers::pi;
-
-uint32_t add_material(Scene& scene, glm::vec3 rho, float metallic = 0.0f) {
-    vplkit::scene::Material m;
-    m.base_color_factor = glm::vec4(rho, 1.0f);
-    m.metallic_factor = metallic;
-    scene.materials.push_back(m);
-    return uint32_t(scene.materials.size() - 1);
-}
-
-void add_triangle(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, uint32_t material) {
-    for (glm::vec3 p : {a, b, c}) {
-        vplkit::scene::Vertex v;
-        v.position = p;
-        v.normal = glm::normalize(glm::cross(b - a, c - a));
-        scene.indices.push_back(uint32_t(scene.vertices.size()));
-        scene.vertices.push_back(v);
-    }
-    scene.triangle_materials.push_back(material);
-    if (scene.materials[material].emits())
-        scene.emissive_triangles.push_back(uint32_t(scene.triangle_materials.size() - 1));
-}
-
-void add_quad(Scene& scene, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, uint32_t material) {
-    add_triangle(scene, a, b, c, material);
-    add_triangle(scene, a, c, d, material);
-}
-
-// The six faces of [lo, hi], each split in two triangles (windings mixed on purpose: light is
-// two-sided for the tracer).
-void add_box(Scene& scene, glm::vec3 lo, glm::vec3 hi, uint32_t material) {
-    const glm::vec3 c[8] = {{lo.x, lo.y, lo.z}, {hi.x, lo.y, lo.z}, {hi.x, hi.y, lo.z}, {lo.x, hi.y, lo.z},
-                            {lo.x, lo.y, hi.z}, {hi.x, lo.y, hi.z}, {hi.x, hi.y, hi.z}, {lo.x, hi.y, hi.z}};
-    add_quad(scene, c[0], c[1], c[2], c[3], material);
-    add_quad(scene, c[4], c[5], c[6], c[7], material);
-    add_quad(scene, c[0], c[1], c[5], c[4], material);
-    add_quad(scene, c[3], c[2], c[6], c[7], material);
-    add_quad(scene, c[0], c[3], c[7], c[4], material);
-    add_quad(scene, c[1], c[2], c[6], c[5], material);
-}
-
-const glm::vec3 kBoxLo{-1.0f, -0.75f, -0.5f}, kBoxHi{1.0f, 0.75f, 0.5f};
-
-vplkit::scene::Light point_light(glm::vec3 position, glm::vec3 color, float intensity) {
-    vplkit::scene::Light l;
-    l.type = vplkit::scene::LightType::point;
-    l.position = position;
-    l.color = color;
-    l.intensity = intensity;
-    return l;
-}
-
-struct Traced {
-    std::vector<vplkit::shaders::Vpl> vpls;
-    std::vector<uint32_t> bounces;
-};
-
-// Traces `scene` with `options`; the BVH's ids are the scene's triangle indices.
-class Tracer {
-public:
-    explicit Tracer(const Scene& scene)
-        : bvh_(
-              vplkit::upload_bvh(vplkit::test::context(), vplkit::build_bvh(vplkit::scene::triangle_positions(scene)))),
-          sources_(vplkit::upload_vpl_sources(vplkit::test::context(), scene)) {}
-
-    Traced run(const VplTracingOptions& options) {
-        vplkit::Context& ctx = vplkit::test::context();
-        auto output = vplkit::VplTracingOutput::create(ctx, options);
-        vplkit::PassList passes("vpl tracing test");
-        vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh_, sources_, options, output);
-        passes.run(ctx);
-        const auto counts = vplkit::download_vpl_counts(output);
-        // Short paths stay far below lavapipe's loop limit: none may be reported cut.
-        REQUIRE(counts.cut_short == 0);
-        const uint32_t count = vplkit::download_vpl_count(output);
-        REQUIRE(count == counts.vpls);
-        REQUIRE(count <= output.capacity);
-        Traced t;
-        if (count > 0) {
-            t.vpls = output.vpls.download<vplkit::shaders::Vpl>(count);
-            t.bounces = output.bounces.download<uint32_t>(count);
-        }
-        return t;
-    }
-
-    const vplkit::VplSources& sources() const { return sources_; }
-    const vplkit::GpuBvh& bvh() const { return bvh_; }
-
-private:
-    vplkit::GpuBvh bvh_;
-    vplkit::VplSources sources_;
-};
-
-using Rgb = std::array<double, 3>;
-
-// Per bounce 1..max_bounces: the summed VPL flux (index 0 unused).
-std::vector<Rgb> flux_per_bounce(const Traced& t, uint32_t max_bounces) {
-    std::vector<Rgb> sums(max_bounces + 1, Rgb{0, 0, 0});
-    for (size_t i = 0; i < t.vpls.size(); ++i) {
-        REQUIRE(t.bounces[i] >= 1);
-        REQUIRE(t.bounces[i] <= max_bounces);
-        sums[t.bounces[i]][0] += t.vpls[i].flux.x;
-        sums[t.bounces[i]][1] += t.vpls[i].flux.y;
-        sums[t.bounces[i]][2] += t.vpls[i].flux.z;
-    }
-    return sums;
-}
-
-// Mean over seeds of the per-bounce flux against expected[k] (k = 1..max_bounces), per channel.
-void check_mean_flux(Tracer& tracer, VplTracingOptions options, uint32_t seeds, const std::vector<Rgb>& expected) {
-    std::vector<std::vector<Rgb>> runs;
-    for (uint32_t s = 0; s < seeds; ++s) {
-        options.seed = 1000 + 17 * s;
-        runs.push_back(flux_per_bounce(tracer.run(options), options.max_bounces));
-    }
-    for (uint32_t k = 1; k <= options.max_bounces; ++k) {
-        for (int c = 0; c < 3; ++c) {
-            double mean = 0.0;
-            for (const auto& r : runs) mean += r[k][c];
-            mean /= seeds;
-            double var = 0.0;
-            for (const auto& r : runs) var += (r[k][c] - mean) * (r[k][c] - mean);
-            const double sigma = std::sqrt(var / (seeds - 1));
-            const double bound = 4.0 * sigma / std::sqrt(double(seeds)) + 2e-4 * expected[k][c];
-            CAPTURE(k);
-            CAPTURE(c);
-            CAPTURE(mean);
-            CAPTURE(expected[k][c]);
-            CAPTURE(sigma);
-            CHECK(std::abs(mean - expected[k][c]) <= bound);
-        }
-    }
-}
-
-bool finite(const vplkit::shaders::vec3& v) {
-    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-glm::dvec3 to_d(const vplkit::shaders::vec3& v) {
-    return {v.x, v.y, v.z};
-}
 
 // Spot power by midpoint quadrature of lights.glsl's squared angular attenuation over the sphere
 // (independent of the closed form upload_vpl_sources uses).
@@ -268,169 +118,6 @@ TEST_CASE("vpl tracing: closed box with a spot light a point light and a double-
         for (int c = 0; c < 3; ++c) expected[k][c] = phi[c] * std::pow(double(rho), double(k));
     }
     check_mean_flux(tracer, {4000, max_bounces, 0}, 16, expected);
-}
-
-TEST_CASE("vpl tracing: every VPL is finite and on a surface with a unit normal facing the light") {
-    Scene scene;
-    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.7f, 0.6f, 0.5f)));
-    scene.lights.push_back(point_light({-0.4f, 0.2f, 0.1f}, {1.0f, 1.0f, 1.0f}, 2.0f));
-    Tracer tracer(scene);
-    const Traced t = tracer.run({3000, 5, 7});
-    REQUIRE(t.vpls.size() >= 3000);
-    const auto positions = vplkit::scene::triangle_positions(scene);
-    const glm::dvec3 center = (glm::dvec3(kBoxLo) + glm::dvec3(kBoxHi)) * 0.5;
-    int failures = 0;
-    for (size_t i = 0; i < t.vpls.size() && failures < 5; ++i) {
-        const auto& v = t.vpls[i];
-        CAPTURE(i);
-        bool ok = finite(v.position) && finite(v.normal) && finite(v.flux);
-        const glm::dvec3 p = to_d(v.position), n = to_d(v.normal);
-        ok = ok && std::abs(glm::length(n) - 1.0) < 1e-5;
-        ok = ok && v.flux.x > 0 && v.flux.y > 0 && v.flux.z > 0;
-        double nearest = 1e30;
-        glm::dvec3 face{0.0};
-        for (size_t k = 0; k < positions.size(); k += 3) {
-            const glm::dvec3 a(positions[k]), b(positions[k + 1]), c(positions[k + 2]);
-            const double d = vplkit::reference::point_triangle_distance(p, a, b, c);
-            if (d < nearest) {
-                nearest = d;
-                face = glm::normalize(glm::cross(b - a, c - a));
-            }
-        }
-        CAPTURE(nearest);
-        ok = ok && nearest <= 1e-5;
-        // The face normal, turned to the inside of the box (where all the light comes from).
-        ok = ok && std::abs(std::abs(glm::dot(n, face)) - 1.0) < 1e-5 && glm::dot(n, center - p) > 0.0;
-        if (!ok) ++failures;
-        CHECK(ok);
-    }
-}
-
-TEST_CASE("vpl tracing: the same seed gives the same VPLs and another seed other ones") {
-    Scene scene;
-    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(0.5f)));
-    scene.lights.push_back(point_light({0.1f, 0.2f, 0.0f}, {1.0f, 1.0f, 1.0f}, 1.0f));
-    Tracer tracer(scene);
-    // The members (not the padding, which nothing writes), in buffer order.
-    auto in_order = [](const Traced& t) {
-        std::vector<std::tuple<uint32_t, float, float, float, float, float, float, float, float, float>> v;
-        for (size_t i = 0; i < t.vpls.size(); ++i) {
-            const auto& x = t.vpls[i];
-            v.emplace_back(t.bounces[i], x.position.x, x.position.y, x.position.z, x.normal.x, x.normal.y, x.normal.z,
-                           x.flux.x, x.flux.y, x.flux.z);
-        }
-        return v;
-    };
-    auto sorted = [&](const Traced& t) {
-        auto v = in_order(t);
-        std::sort(v.begin(), v.end());
-        return v;
-    };
-    const Traced first = tracer.run({2000, 3, 42});
-    const Traced again = tracer.run({2000, 3, 42});
-    // The same VPLs in the same order, bit for bit (the order is fixed by the seed: see the next case).
-    CHECK(in_order(first) == in_order(again));
-    const auto a = sorted(first);
-    const auto c = sorted(tracer.run({2000, 3, 43}));
-    REQUIRE(!a.empty());
-    CHECK(a != c);
-    // Not merely a reordering: the first-bounce positions differ.
-    size_t same = 0;
-    for (const auto& x : c) same += std::binary_search(a.begin(), a.end(), x) ? 1 : 0;
-    CHECK(same < c.size() / 100);
-}
-
-namespace {
-
-// Where path `path` of trace_vpls.comp, from the only emitter, a point light at `light` inside the
-// box [lo, hi], first meets the box: the shader's random numbers (PCG32 stream `path` under
-// `seed`: the emitter's number, then u.x, u.y of sample_uniform_sphere), the ray in double.
-struct BoxHit {
-    glm::dvec3 position{0.0};
-    glm::dvec3 normal{0.0};      // the face's, facing the light (the inside)
-    double edge_distance = 0.0;  // to the nearest edge of the face
-};
-BoxHit first_box_hit(vplkit::reference::Pcg32& rng, glm::dvec3 light, glm::dvec3 lo, glm::dvec3 hi) {
-    rng.next_float();  // which emitter: there is one
-    const double ux = rng.next_float(), uy = rng.next_float();
-    const double z = 1.0 - 2.0 * ux, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = 2.0 * kPi * uy;
-    const glm::dvec3 d(r * std::cos(phi), r * std::sin(phi), z);
-    int axis = -1;
-    double t = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0) continue;
-        const double ta = ((d[a] > 0.0 ? hi[a] : lo[a]) - light[a]) / d[a];
-        if (ta < t) t = ta, axis = a;
-    }
-    BoxHit h;
-    h.position = light + t * d;
-    h.normal[axis] = d[axis] > 0.0 ? -1.0 : 1.0;
-    h.edge_distance = std::numeric_limits<double>::infinity();
-    for (int a = 0; a < 3; ++a) {
-        if (a == axis) continue;
-        h.edge_distance = std::min({h.edge_distance, h.position[a] - lo[a], hi[a] - h.position[a]});
-    }
-    return h;
-}
-
-}  // namespace
-
-// Before the VPLs were packed by path (trace_vpls.comp appended each at atomicAdd(count, 1)),
-// this failed: the invocations of a SIMD batch appended their first hits together, then their
-// second ones, and the batches landed in the order the driver's threads ran them.
-TEST_CASE("vpl tracing: the VPLs come out by path then bounce, in the order of a CPU trace of the same paths") {
-    const float rho = 0.7f;
-    Scene scene;
-    add_box(scene, kBoxLo, kBoxHi, add_material(scene, glm::vec3(rho)));
-    const glm::vec3 light{0.3f, 0.1f, -0.2f};
-    const float intensity = 3.0f;
-    scene.lights.push_back(point_light(light, {1.0f, 1.0f, 1.0f}, intensity));
-    Tracer tracer(scene);
-    // 1000 paths: four blocks of the packing (256 paths each), the last one partial.
-    const VplTracingOptions options{1000, 3, 77};
-    const Traced t = tracer.run(options);
-
-    // The CPU trace. In the closed box every path hits a wall first (a VPL, rho > 0); Russian
-    // roulette then goes on while its number is below q = rho (grey: beta * rho / q keeps beta), up
-    // to max_bounces hits. Between two roulette numbers the path draws its bounce direction (two).
-    std::vector<uint32_t> bounces;
-    std::vector<BoxHit> first_hits;
-    for (uint32_t path = 0; path < options.paths; ++path) {
-        vplkit::reference::Pcg32 rng(options.seed, path);
-        first_hits.push_back(first_box_hit(rng, light, kBoxLo, kBoxHi));
-        uint32_t hits = 1;
-        while (hits < options.max_bounces && rng.next_float() < double(rho)) {
-            rng.next_float();
-            rng.next_float();
-            ++hits;
-        }
-        for (uint32_t k = 1; k <= hits; ++k) bounces.push_back(k);
-    }
-    // Element by element, in order: the bounces say where each path's VPLs begin.
-    REQUIRE(t.bounces == bounces);
-    const double phi_per_path = 4.0 * kPi * intensity / options.paths;
-    size_t path = 0, checked_normals = 0;
-    for (size_t i = 0; i < t.vpls.size(); ++i) {
-        CAPTURE(i);
-        const auto& v = t.vpls[i];
-        // Flux Phi / N rho at every bounce (roulette's beta * rho / q keeps beta in a grey box):
-        // a few float products, so 1e-5 relative is a few ulps.
-        const double flux = phi_per_path * double(rho);
-        CHECK(v.flux.x == doctest::Approx(flux).epsilon(1e-5));
-        CHECK(v.flux.z == doctest::Approx(flux).epsilon(1e-5));
-        if (t.bounces[i] != 1) continue;
-        const BoxHit& h = first_hits[path++];
-        CAPTURE(path);
-        // The float ray and BVH against the double ray: 1e-5 of the box's size (2) is generous.
-        CHECK(glm::distance(to_d(v.position), h.position) <= 2e-5);
-        // At an edge the shader may take either face: its normal is checked away from them.
-        if (h.edge_distance > 1e-4) {
-            CHECK(glm::dot(to_d(v.normal), h.normal) > 1.0 - 1e-5);
-            ++checked_normals;
-        }
-    }
-    CHECK(path == options.paths);
-    CHECK(checked_normals > options.paths * 9 / 10);
 }
 
 TEST_CASE("vpl tracing: Russian roulette and the bounce limit") {
