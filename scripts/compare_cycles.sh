@@ -4,7 +4,7 @@
 # 160x90; see its README) against Cycles' own, printed by scripts/cycles_ratio.py.
 #   scripts/compare_cycles.sh [PATHS] [OUT] [extra render options...]
 # PATHS: instant-radiosity light paths per render (default 65536: 36,988 VPLs on Sponza-sun, the
-# rest leave the scene); the gather is every VPL at every pixel (~25 minutes per render on a
+# rest leave the scene); the gather is every VPL at every pixel (about 150 s per render on a
 # shared 2-core lavapipe). Environment:
 #   SEEDS="0 1 2"  one render per seed, averaged pixel by pixel before the ratios (default "0");
 #                  the median ratio is biased low by VPL noise (see cycles_ratio.py) and rises
