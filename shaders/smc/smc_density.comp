@@ -13,7 +13,23 @@
 //
 // out[q] = (p, I(y) = lum(B) / p (eq. 6, B: the estimate that chose y, see smc.glsl), the area one point stands for = 1 / (I p), r_k): a
 // VPL's flux is B / (I p) (smc_vpls.comp). For the VPLs, k + 1/2 points share the disc (see main).
+//
+// The VPLs' discs where surfaces end (surface_samples > 0). Eq. 7 takes the whole disc of radius
+// r_k for surface: at an open edge (the Cornell box's front, a block's rim) part of it is air, so
+// the area came out too large and the light too bright (the box's floor 1.2-1.3x the reference
+// at 512 VPLs, all of it 1.05-1.08x); in a corner the k nearest include the other wall's VPLs,
+// so it came out too small. Here a VPL counts only neighbours on its own plane (normals within
+// ~25 degrees, within ~14 degrees of its tangent plane), and the disc's area is what of it is
+// surface reachable along the surface: of `surface_samples` points spread evenly over the disc
+// on the tangent plane, those with a surface of the VPL's orientation just below them (a short
+// ray down the normal) and nothing between them and the VPL (a ray at the same height).
 
+#define VPLKIT_BVH_NODES_BINDING 4
+#define VPLKIT_BVH_TRIANGLES_BINDING 5
+#define VPLKIT_BVH_ALPHA_BINDING 6
+#include "vplkit/bvh.glsl"
+#include "vplkit/rng.glsl"
+#include "../vpl/vpl_sampling.glsl"
 #include "smc.glsl"
 #include "vplkit/dispatch.glsl"
 
@@ -30,9 +46,55 @@ layout(push_constant) uniform SmcDensityPush {
     uint queries_are_vpls;  // 1: the queries are Y itself (count |Y|, each leaves itself out); 0: the candidates
     float min_distance2;    // floor of r_k^2, so coincident points give a finite density
     float fallback_area;    // the area a lone VPL stands for (no neighbour to measure by)
+    uint surface_samples;   // VPL queries: points measuring how much of the disc is surface (0: all of it)
 } push;
 
 const uint kSmcMaxNeighbours = 32u;
+// A neighbour on the query's plane: normals within ~25 degrees, its offset within ~14 degrees of
+// the tangent plane (a sphere's 1024 VPLs, k = 5, stay within ~9 and ~4).
+const float kSmcPlaneNormalCos = 0.9;
+const float kSmcPlaneOffsetSin = 0.25;
+const float kGoldenAngle = 2.39996322972865332;
+
+bool on_query_plane(SmcVpl query, SmcVpl other, vec3 d, float d2) {
+    return dot(other.normal, query.normal) >= kSmcPlaneNormalCos &&
+           abs(dot(d, query.normal)) <= kSmcPlaneOffsetSin * sqrt(d2);
+}
+
+// The share of the disc of radius r about the query on its tangent plane that is surface
+// reachable from it: points spread evenly over the disc (a Vogel spiral turned by the VPL's own
+// seed, so the share stays from frame to frame), each counted when a ray a height h above the
+// plane reaches the point above it unblocked and a ray from there down the normal meets a surface
+// of the query's orientation within 2h. h = r / 4 clears a curved surface's rise over the disc
+// (r^2 / 2R for radius of curvature R, up to r / 14 on the 1024-VPL sphere).
+float surface_share(SmcVpl query, float r, float scale) {
+    vec3 n = query.normal;
+    vec3 t, b;
+    orthonormal_basis(n, t, b);
+    float h = 0.25 * r;
+    vec3 above = offset_ray_origin(query.position, n, scale) + n * h;
+    float lift = length(above - query.position);
+    float turn = float(pcg_hash(query.seed)) * (6.28318530717958648 / 4294967296.0);
+    uint reached = 0u;
+    for (uint s = 0u; s < push.surface_samples; ++s) {
+        float rho = r * sqrt((float(s) + 0.5) / float(push.surface_samples));
+        float phi = float(s) * kGoldenAngle + turn;
+        vec3 offset = rho * (cos(phi) * t + sin(phi) * b);
+        if (bvh_occluded(above, offset, 0.0, 1.0)) {
+            continue;
+        }
+        BvhHit hit = bvh_closest_hit(above + offset, -n, 0.0, 2.0 * lift);
+        if (hit.id == kBvhNoHit) {
+            continue;
+        }
+        vec3 hit_normal = normalize(bvh_triangle_normal(hit.triangle));
+        if (abs(dot(hit_normal, n)) >= kSmcPlaneNormalCos) {
+            ++reached;
+        }
+    }
+    // The VPL stands on surface itself: half a point at least, so its area never comes out 0.
+    return max(float(reached), 0.5) / float(max(push.surface_samples, 1u));
+}
 
 void main() {
     uint q = linear_thread_index();
@@ -42,7 +104,9 @@ void main() {
         return;
     }
     SmcVpl query = queries.items[q];
-    uint others = push.queries_are_vpls != 0u ? n - 1u : n;
+    bool vpl_query = push.queries_are_vpls != 0u;
+    bool measure_surface = vpl_query && push.surface_samples > 0u;
+    uint others = vpl_query ? n - 1u : n;
     uint k = min(push.k, others);
     float area;
     float best_distance2 = 0.0;
@@ -53,15 +117,21 @@ void main() {
         [[unroll]] for (uint b = 0u; b < kSmcMaxNeighbours; ++b) {
             best[b] = 3.4028234663852886e38;
         }
+        uint found = 0u;  // neighbours taken, up to k
         for (uint j = 0u; j < n; ++j) {
-            if (push.queries_are_vpls != 0u && j == q) {
+            if (vpl_query && j == q) {
                 continue;
             }
-            vec3 d = state.items[j].position - query.position;
+            SmcVpl other = state.items[j];
+            vec3 d = other.position - query.position;
             float d2 = dot(d, d);
             if (!(d2 < best[k - 1u])) {
                 continue;
             }
+            if (measure_surface && !on_query_plane(query, other, d, d2)) {
+                continue;
+            }
+            found = min(found + 1u, k);
             // Insert into the sorted list best[0..k): from the top, shift what is larger.
             [[unroll]] for (int b = int(kSmcMaxNeighbours) - 1; b >= 0; --b) {
                 if (uint(b) < k && d2 < best[b]) {
@@ -75,9 +145,19 @@ void main() {
         // rarely chosen) that overstates each VPL's area: in a closed sphere of known radiosity
         // the flux of a 1024-VPL set came out 13% high with k = 5 and 8% with k = 8 (k + 1/2:
         // within 2%). Candidates keep the paper's k = 1 (their densities only rank them).
-        best_distance2 = best[k - 1u];
-        float points = push.queries_are_vpls != 0u ? float(k) + 0.5 : float(k);
-        area = 3.14159265358979 * max(best[k - 1u], push.min_distance2) / points;
+        float points = vpl_query ? float(k) + 0.5 : float(k);
+        float radius2 = best[k - 1u];
+        if (found < k) {
+            // Fewer than k VPLs on its plane in all: they and it share the disc of the scene's size
+            // (of which surface_share keeps the plane's reachable part).
+            radius2 = push.fallback_area / 3.14159265358979;
+            points = float(found) + 1.0;
+        }
+        best_distance2 = radius2;
+        area = 3.14159265358979 * max(radius2, push.min_distance2) / points;
+        if (measure_surface) {
+            area *= surface_share(query, sqrt(max(radius2, push.min_distance2)), bvh_scene_scale());
+        }
     }
     float pdf = 1.0 / (float(max(n, 1u)) * area);
     float intensity = smc_luminance(query.choice_radiosity) / pdf;  // ranks: the choosing estimate

@@ -37,6 +37,10 @@ void validate(const SmcOptions& o) {
     if (o.visibility_tries > 1024) fail("visibility tries must be 0..1024");
     if (o.visibility_rounds > 16) fail("visibility rounds must be 0..16");
     if (!(o.strong_quantile >= 0.0f && o.strong_quantile <= 1.0f)) fail("the strong quantile must be in [0, 1]");
+    if (o.surface_samples > kSmcMaxSurfaceSamples) {
+        fail("surface samples must be 0.." + std::to_string(kSmcMaxSurfaceSamples) + ", got " +
+             std::to_string(o.surface_samples));
+    }
     (void)smc_pool_size(o);
 }
 
@@ -118,16 +122,20 @@ void add_budget_dispatch(StepList& passes, std::string name, const Pipeline& pip
 
 }  // namespace
 
-void add_smc_density_pass(Device& device, StepList& passes, const BufferView& state, const BufferView& queries,
-                          const BufferView& density, const BufferView& counters, uint32_t budget, uint32_t k,
-                          bool queries_are_vpls, float scene_scale) {
+void add_smc_density_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const BufferView& state,
+                          const BufferView& queries, const BufferView& density, const BufferView& counters,
+                          uint32_t budget, uint32_t k, bool queries_are_vpls, uint32_t surface_samples) {
     // Report the caller's names, not the bindings' (StepList::name).
-    passes.names({state, queries, density, counters});
+    passes.names({bvh.nodes, bvh.triangles, bvh.alpha, state, queries, density, counters});
     if (k < 1 || k > kSmcMaxNeighbours) {
         throw Error("smc density: k must be 1.." + std::to_string(kSmcMaxNeighbours) + ", got " + std::to_string(k));
     }
-    const auto& pipeline = device.pipeline<shaders::smc_density::Pipeline>();
+    if (surface_samples > kSmcMaxSurfaceSamples) {
+        throw Error("smc density: surface samples must be 0.." + std::to_string(kSmcMaxSurfaceSamples));
+    }
+    const auto& pipeline = device.pipeline<shaders::smc_density::Pipeline>(bvh_spec<shaders::smc_density::Spec>(bvh));
     shaders::smc_density::Bindings b;
+    bind_bvh(b, bvh);
     b.state = state.descriptor();
     b.queries = queries.descriptor();
     b.density = density.descriptor();
@@ -136,8 +144,9 @@ void add_smc_density_pass(Device& device, StepList& passes, const BufferView& st
     push.budget = budget;
     push.k = k;
     push.queries_are_vpls = queries_are_vpls ? 1u : 0u;
-    push.min_distance2 = min_neighbour_distance2(scene_scale);
-    push.fallback_area = lone_vpl_area(scene_scale);
+    push.min_distance2 = min_neighbour_distance2(bvh.scene_scale);
+    push.fallback_area = lone_vpl_area(bvh.scene_scale);
+    push.surface_samples = queries_are_vpls ? surface_samples : 0u;
     add_dispatch<shaders::smc_density::Module>(passes, queries_are_vpls ? "smc vpl density" : "smc candidate density",
                                                pipeline, b, push, push.budget);
 }
@@ -304,8 +313,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
                                                              push.budget);
     }
     add_radiosity_pass(buffers.candidates, false);
-    add_smc_density_pass(device, passes, buffers.state, buffers.candidates, buffers.candidate_density, counters, budget,
-                         1, false, bvh.scene_scale);
+    add_smc_density_pass(device, passes, bvh, buffers.state, buffers.candidates, buffers.candidate_density, counters,
+                         budget, 1, false, 0);
     {
         shaders::smc_selection_keys::Bindings b;
         b.state = buffers.state.descriptor();
@@ -347,8 +356,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
             passes, "smc replace", device.pipeline<shaders::smc_replace::Pipeline>(), b, budget, budget);
     }
     add_radiosity_pass(buffers.state, true);
-    add_smc_density_pass(device, passes, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
-                         smc_render_neighbours(budget), true, bvh.scene_scale);
+    add_smc_density_pass(device, passes, bvh, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
+                         smc_render_neighbours(budget), true, options.surface_samples);
     {
         shaders::smc_vpls::Bindings b;
         b.state = buffers.state.descriptor();

@@ -8,8 +8,16 @@
 // variable), 1.21 for k = 8; its relative spread per point is about 1 / sqrt(k - 2), so over ~600
 // interior points the mean is within a few percent of that: we check [1.1, 1.35]. (The + 1/2
 // is for the blue-noise sets SMC keeps, on which it is unbiased: test_smc_updates.cpp.)
+//
+// Where surfaces end (surface samples > 0): on an L of two unit squares (a floor and a wall
+// meeting in a corner, every other edge open), jittered-grid points near an open edge or the
+// corner stand for as much area as those in the middle (within 12%); eq. 7's whole disc gave
+// the open edges' points 1.5x (the disc half air; the corner's 1.01x: there the ball about a
+// point holds as much of the wall as the floor it lacks).
 
 #include "vplkit/buffer.hpp"
+#include "vplkit/bvh.hpp"
+#include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
@@ -18,6 +26,8 @@
 #include "vplkit_test/context.hpp"
 
 #include <doctest/doctest.h>
+
+#include <glm/vec3.hpp>
 
 #include <algorithm>
 #include <array>
@@ -63,8 +73,13 @@ struct Densities {
     std::vector<std::array<float, 4>> vpls;        // k = k_vpls, self left out
 };
 
-Densities run(const std::vector<SmcVpl>& vpls, const std::vector<SmcVpl>& queries, uint32_t budget, uint32_t k_vpls) {
+// The unit square z = 0 (two triangles): scene scale 1, the surface of uniform_square's points.
+const std::vector<glm::vec3> kUnitSquare = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+
+Densities run(const std::vector<SmcVpl>& vpls, const std::vector<SmcVpl>& queries, uint32_t budget, uint32_t k_vpls,
+              const std::vector<glm::vec3>& triangles = kUnitSquare, uint32_t surface_samples = 0) {
     vplkit::Context& ctx = vplkit::test::context();
+    const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(triangles));
     using vplkit::Buffer;
     constexpr auto storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     auto state = Buffer::create(ctx, budget * sizeof(SmcVpl), storage, vplkit::MemoryUse::device, "state");
@@ -80,8 +95,9 @@ Densities run(const std::vector<SmcVpl>& vpls, const std::vector<SmcVpl>& querie
     c.candidate_count = uint32_t(queries.size());
     counters.upload(std::vector<vplkit::shaders::SmcCounters>{c});
     vplkit::PassList passes("smc density test");
-    vplkit::stages::add_smc_density_pass(ctx, passes, state, query, out_c, counters, budget, 1, false, 1.0f);
-    vplkit::stages::add_smc_density_pass(ctx, passes, state, state, out_v, counters, budget, k_vpls, true, 1.0f);
+    vplkit::stages::add_smc_density_pass(ctx, passes, bvh, state, query, out_c, counters, budget, 1, false, 0);
+    vplkit::stages::add_smc_density_pass(ctx, passes, bvh, state, state, out_v, counters, budget, k_vpls, true,
+                                         surface_samples);
     passes.run(ctx);
     Densities d;
     d.candidates = out_c.download<std::array<float, 4>>(queries.size());
@@ -149,6 +165,80 @@ TEST_CASE("smc: coincident VPLs and a lone VPL get finite densities") {
     CHECK(lone.vpls[0][2] == doctest::Approx(std::numbers::pi));  // a disc of the scene's size (scale 1)
 }
 
+namespace {
+
+// A jittered grid of side x side points on the unit square of the corner `origin`, spanned by
+// the unit vectors u and v, normal n: a blue-noise-like set, as SMC keeps.
+void add_jittered_square(std::vector<SmcVpl>& points, glm::vec3 origin, glm::vec3 u, glm::vec3 v, glm::vec3 n,
+                         uint32_t side, std::mt19937& rng) {
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (uint32_t i = 0; i < side; ++i) {
+        for (uint32_t j = 0; j < side; ++j) {
+            SmcVpl p{};
+            const float a = (float(i) + unit(rng)) / float(side), b = (float(j) + unit(rng)) / float(side);
+            const glm::vec3 at = origin + a * u + b * v;
+            p.position = {at.x, at.y, at.z};
+            p.normal = {n.x, n.y, n.z};
+            p.radiosity = p.choice_radiosity = {1.0f, 1.0f, 1.0f};
+            p.seed = uint32_t(rng());
+            points.push_back(p);
+        }
+    }
+}
+
+struct EdgeAreas {
+    double open_edge = 0.0, corner = 0.0;  // mean area there over the middle's
+};
+
+// The floor z = 0 and the wall x = 0 over [0, 1]^2 meeting along the y axis.
+EdgeAreas l_shape_areas(uint32_t surface_samples) {
+    const uint32_t side = 20, k = 5;
+    std::mt19937 rng(11);
+    std::vector<SmcVpl> points;
+    add_jittered_square(points, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, side, rng);  // floor
+    add_jittered_square(points, {0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {1, 0, 0}, side, rng);  // wall
+    std::vector<glm::vec3> triangles = kUnitSquare;
+    for (glm::vec3 p : kUnitSquare) triangles.push_back({0.0f, p.y, p.x});  // the wall
+    const uint32_t n = uint32_t(points.size());
+    const Densities d = run(points, {points.front()}, n, k, triangles, surface_samples);
+    double middle = 0, open = 0, corner = 0;
+    uint32_t middle_n = 0, open_n = 0, corner_n = 0;
+    for (uint32_t i = 0; i < n; ++i) {
+        // (along the corner, across it) in the point's own square
+        const auto& p = points[i].position;
+        const float along = p.y, across = i < side * side ? p.x : p.z;
+        const float to_open = std::min({along, 1.0f - along, 1.0f - across});
+        if (to_open < 0.05f && across > 0.2f) {
+            open += d.vpls[i][2];
+            ++open_n;
+        } else if (across < 0.05f && along > 0.2f && along < 0.8f) {
+            corner += d.vpls[i][2];
+            ++corner_n;
+        } else if (to_open > 0.2f && across > 0.2f) {
+            middle += d.vpls[i][2];
+            ++middle_n;
+        }
+    }
+    REQUIRE(open_n > 40);
+    REQUIRE(corner_n > 10);
+    REQUIRE(middle_n > 100);
+    return {(open / open_n) / (middle / middle_n), (corner / corner_n) / (middle / middle_n)};
+}
+
+}  // namespace
+
+TEST_CASE("smc: a VPL where a surface ends stands for no more area than one in the middle") {
+    const EdgeAreas plain = l_shape_areas(0);  // eq. 7's whole disc
+    CAPTURE(plain.open_edge);
+    CAPTURE(plain.corner);
+    CHECK(plain.open_edge > 1.25);
+    const EdgeAreas measured = l_shape_areas(16);
+    CAPTURE(measured.open_edge);
+    CAPTURE(measured.corner);
+    CHECK(measured.open_edge == doctest::Approx(1.0).epsilon(0.12));
+    CHECK(measured.corner == doctest::Approx(1.0).epsilon(0.12));
+}
+
 TEST_CASE("smc: eq. 8 and bad options") {
     CHECK(vplkit::stages::smc_render_neighbours(1) == 1);
     CHECK(vplkit::stages::smc_render_neighbours(256) == 2);
@@ -164,4 +254,7 @@ TEST_CASE("smc: eq. 8 and bad options") {
     o = {};
     o.strong_quantile = 1.5f;
     CHECK_THROWS_WITH_AS(vplkit::stages::validate(o), doctest::Contains("quantile"), vplkit::Error);
+    o = {};
+    o.surface_samples = vplkit::stages::kSmcMaxSurfaceSamples + 1;
+    CHECK_THROWS_WITH_AS(vplkit::stages::validate(o), doctest::Contains("surface samples"), vplkit::Error);
 }

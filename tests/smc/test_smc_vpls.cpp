@@ -10,6 +10,8 @@
 // - |Y| = 0 writes nothing.
 
 #include "vplkit/buffer.hpp"
+#include "vplkit/bvh.hpp"
+#include "vplkit/bvh_gpu.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/smc_vpls.hpp"
@@ -24,6 +26,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -77,9 +80,13 @@ Written run(const std::vector<SmcVpl>& state, uint32_t vpl_count, const std::vec
     counters.vpl_count = vpl_count;
     counter_buffer.upload(std::vector<SmcCounters>{counters});
     vplkit::PassList passes("smc vpls test");
+    std::optional<vplkit::GpuBvh> bvh;  // held until the passes ran
     if (density.empty()) {
-        vplkit::stages::add_smc_density_pass(ctx, passes, state_buffer, state_buffer, density_buffer, counter_buffer,
-                                             budget, k, true, 1.0f);
+        // The unit square the points lie on: scene scale 1; eq. 7's whole disc (no surface samples).
+        const std::vector<glm::vec3> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+        bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(square));
+        vplkit::stages::add_smc_density_pass(ctx, passes, *bvh, state_buffer, state_buffer, density_buffer,
+                                             counter_buffer, budget, k, true, 0);
     } else {
         density_buffer.upload(density);
     }

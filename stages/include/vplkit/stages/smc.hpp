@@ -53,6 +53,9 @@ struct SmcOptions {
     uint32_t visibility_tries = 16;  // V: invalid VPLs each camera point tries per round (the paper's 16)
     uint32_t visibility_rounds = 2;  // rounds of those tries per update (the paper's 2)
     float strong_quantile = 0.95f;   // eq. 9: candidates stronger than this share of Y are "strong"
+    // Points that measure how much of each VPL's kNN disc is surface (its area where a surface
+    // ends: smc_density.comp), 0..kSmcMaxSurfaceSamples; 0: eq. 7's whole disc.
+    uint32_t surface_samples = 16;
     uint32_t seed = 0;
 };
 
@@ -60,6 +63,7 @@ struct SmcOptions {
 // 65535 iterations; k by eq. 8 stays within the shader's 32 neighbours below it too.
 inline constexpr uint32_t kSmcMaxBudget = 32768;
 inline constexpr uint32_t kSmcMaxNeighbours = 32;
+inline constexpr uint32_t kSmcMaxSurfaceSamples = 256;
 
 // Throws vplkit::Error naming the bad option.
 void validate(const SmcOptions& options);
@@ -125,9 +129,11 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
 
 // One kNN density pass alone (smc_density.comp), for tests: the densities of `queries` (the
 // first counters.candidate_count, or with queries_are_vpls the VPLs of `state` themselves, each
-// leaving itself out) among the first counters.vpl_count of `state`, with k neighbours.
-void add_smc_density_pass(Device& device, StepList& passes, const BufferView& state, const BufferView& queries,
-                          const BufferView& density, const BufferView& counters, uint32_t budget, uint32_t k,
-                          bool queries_are_vpls, float scene_scale);
+// leaving itself out) among the first counters.vpl_count of `state`, with k neighbours. For the
+// VPLs, surface_samples > 0 counts only neighbours on each one's plane and measures the share of
+// its disc that is surface with rays through `bvh` (whose scene scale also sets the floors).
+void add_smc_density_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const BufferView& state,
+                          const BufferView& queries, const BufferView& density, const BufferView& counters,
+                          uint32_t budget, uint32_t k, bool queries_are_vpls, uint32_t surface_samples);
 
 }  // namespace vplkit::stages
