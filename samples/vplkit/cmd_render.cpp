@@ -1,6 +1,7 @@
 // `vplkit render`: one frame of a scene (a standard set-up's name or a glTF file) with direct
 // light, written as PNG (and linear PFM on request), with the device and per-stage GPU times.
 
+#include "budget_option.hpp"
 #include "cli.hpp"
 #include "cli_checks.hpp"
 #include "commands.hpp"
@@ -117,21 +118,14 @@ void add_render_outputs(CLI::App& command, RenderOutputs& o) {
         ->group("outputs");
     command.add_flag("--no-antialias", o.no_antialias, "with --frames: every frame at the pixel centres")
         ->group("outputs");
-    number(command.add_option_function<double>(
-               "--budget-ms", [&o](double v) { o.budget_ms = v; },
-               "choose the method (sst, rtslc, hybrid), --spp, --gi-resolution, --denoise (off, svgf), --vpls and "
-               "--block with the least predicted error within B ms of GPU time per frame on this device, "
-               "replacing those options (about 30 calibration frames, cached in out/budget-cache by device, "
-               "scene, size and camera; docs/budget.md)"),
-           "B", NumberRange::above(0.0))
-        ->group("outputs");
+    add_budget_option(command, o.budget_ms, "")->group("outputs");
 }
 
-int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, bool plan_only) {
+int render_or_plan(const CLI::App& command, const RenderOptions& options, const RenderOutputs& outputs,
+                   bool plan_only) {
     RenderRequest request = options.request();
     RenderSettings& settings = request.settings;
     const ContextOptions& context_options = request.context;
-    const GiMethodInfo& method = gi_method(settings.method);
     const std::filesystem::path out = outputs.out;
     const auto& out_hdr = outputs.out_hdr;
     const auto& out_direct = outputs.out_direct;
@@ -183,18 +177,12 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
     // --budget-ms: times and noise measured here (or read from the cache), then the choice.
     std::optional<BudgetPlan> budget;
     if (outputs.budget_ms) {
-        BudgetCalibrationOptions budget_options;
-        budget_options.scene_id = described + (request.time ? " at t " + std::to_string(*request.time) : "");
-        budget_options.progress = [](uint32_t done, uint32_t total) {
-            std::fprintf(stderr, "[budget] calibration frame %u/%u\n", done, total);
-        };
-        budget.emplace(
-            plan_for_budget(renderer, device, scene, scene.camera(), settings, *outputs.budget_ms, budget_options));
+        budget.emplace(plan_budget(renderer, device, scene, scene.camera(), settings, *outputs.budget_ms,
+                                   described + (request.time ? " at t " + std::to_string(*request.time) : ""),
+                                   budget_fixed_by_options(command, settings)));
         settings = budget->settings;
-        std::printf("budget: %s %s\n", budget->calibration.from_cache ? "model read from" : "calibrated, cached in",
-                    budget->calibration.cache_file.string().c_str());
-        std::printf("%s\n", budget->choice.line().c_str());
     }
+    const GiMethodInfo& method = gi_method(settings.method);  // the budget's, when it chose
     const bool terminal = isatty(fileno(stderr));
     settings.progress = [terminal](uint32_t done, uint32_t total) {
         if (terminal) {
@@ -314,19 +302,7 @@ int render_or_plan(const RenderOptions& options, const RenderOutputs& outputs, b
         stats["frames"] = frames;
         stats["plans"] = plans.json();
         stats.update(timing_stats(frame_timings));
-        if (budget) {
-            const BudgetStatsFields f = budget_stats_fields(budget->choice);
-            stats["budget"] = {{"method", f.method},
-                               {"spp", f.spp},
-                               {"gi_resolution", f.gi_resolution},
-                               {"denoise", f.denoise},
-                               {"vpls", f.vpls},
-                               {"block_size", f.block_size},
-                               {"predicted_ms", json_number(f.predicted_ms)},
-                               {"predicted_rmse", json_number(f.predicted_rmse)},
-                               {"budget_ms", json_number(f.budget_ms)},
-                               {"over_budget", f.over_budget}};
-        }
+        if (budget) stats["budget"] = budget_stats_json(budget->choice);
         stats["counters"] = counters_stats(image, settings);
         // Null when the denoiser did not run (no firefly clamp).
         stats["firefly_moved_fraction"] =
@@ -398,7 +374,8 @@ void add_render(CLI::App& vplkit, Runners& runners) {
     auto options = std::make_shared<RenderOptions>(*render);
     auto outputs = std::make_shared<RenderOutputs>();
     add_render_outputs(*render, *outputs);
-    runners.push_back({render, [options, outputs] { return render_or_plan(*options, *outputs, false); }});
+    runners.push_back(
+        {render, [render, options, outputs] { return render_or_plan(*render, *options, *outputs, false); }});
 }
 
 void add_plan(CLI::App& vplkit, Runners& runners) {
@@ -409,7 +386,7 @@ void add_plan(CLI::App& vplkit, Runners& runners) {
         "render` prints the plan's one-line summary. The scene's warnings (what the file states that vplkit skips "
         "or approximates) are printed first; --strict fails on them.");
     auto options = std::make_shared<RenderOptions>(*plan);
-    runners.push_back({plan, [options] { return render_or_plan(*options, RenderOutputs{}, true); }});
+    runners.push_back({plan, [plan, options] { return render_or_plan(*plan, *options, RenderOutputs{}, true); }});
 }
 
 }  // namespace vplkit::cli

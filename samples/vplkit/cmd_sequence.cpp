@@ -3,6 +3,7 @@
 // the SMC paper's temporal metrics (|E|, |E'| on Reinhard-tonemapped indirect luminance) as CSV, a
 // plot and a report.
 
+#include "budget_option.hpp"
 #include "camera_path.hpp"
 #include "cli_checks.hpp"
 #include "commands.hpp"
@@ -98,6 +99,7 @@ struct SequenceOptions {
     float fps = 24.0f;
     uint32_t reference_paths = 16384;
     std::string cache = "out/sequence-cache";
+    std::optional<double> budget_ms;  // --budget-ms: chosen for the first frame's view, re-planned on drift
 };
 
 int run_sequence(const CLI::App& command, const SequenceOptions& o, const RenderOptions& render_options) {
@@ -147,7 +149,7 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         throw UsageError("--fresh-vpls is for --vpl-source ir or brsm: an SMC set persists by design");
     }
     const uint32_t base_seed = settings.seed;
-    if (reference && settings.method == GiMethod::none) {
+    if (reference && settings.method == GiMethod::none && !o.budget_ms) {
         throw UsageError("--reference compares indirect light: give an indirect-light --method");
     }
     std::optional<std::vector<CameraKey>> keys;
@@ -200,6 +202,15 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
     reference_settings.half_resolution_gi = false;
     reference_settings.denoise = DenoiseMode::off;
     if (reference) reference_renderer.emplace(*context, scene);
+    // --budget-ms: calibrated from the first frame's view; re-planned when the measured times drift.
+    std::optional<BudgetPlan> budget;
+    nlohmann::ordered_json replans = nlohmann::ordered_json::array();
+    if (o.budget_ms) {
+        budget.emplace(plan_budget(renderer, context->info(), scene, path.front(), settings, *o.budget_ms,
+                                   loaded.described + (request.time ? " at t " + std::to_string(*request.time) : ""),
+                                   budget_fixed_by_options(command, settings)));
+        settings = apply_budget_config(settings, budget->choice.chosen.config, budget->vpl_source);
+    }
 
     const bool terminal = isatty(fileno(stderr));
     settings.smc_warmup_progress = [terminal](uint32_t done, uint32_t total) {
@@ -310,6 +321,18 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
             if (f > 0)
                 frame_stats.back()["mean_abs_error_change"] = json_number(meter.result().mean_abs_error_change.back());
         }
+        if (budget && budget->drift.record(total)) {
+            // The device runs slower or faster than calibrated (load, reuse on a still camera):
+            // the candidates' times scaled by what was measured, and the choice made again.
+            replan_for_budget(*budget);
+            settings = apply_budget_config(settings, budget->choice.chosen.config, budget->vpl_source);
+            std::printf("frame %u: measured times %.2fx the calibration's: re-planned: %s\n", f + 1,
+                        budget->drift.scale(), budget->choice.line().c_str());
+            nlohmann::ordered_json replan = budget_stats_json(budget->choice);
+            replan["after_frame"] = f;
+            replan["scale"] = json_number(budget->drift.scale());
+            replans.push_back(replan);
+        }
         const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         std::fprintf(stderr, "[sequence] frame %u/%u: %.1f ms GPU%s (%.0f s so far)\n", f + 1, frames, total,
                      status.c_str(), elapsed);
@@ -332,6 +355,11 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         stats["out"] = out_dir.string();
         stats["plans"] = plans.json();
         stats.update(timing_stats(frame_timings));
+        if (budget) {
+            // The last choice; each re-plan after the frame whose window drifted.
+            stats["budget"] = budget_stats_json(budget->choice);
+            stats["budget"]["replans"] = replans;
+        }
         if (reference) {
             stats["average_mean_abs_error"] = json_number(meter.result().average_error());
             stats["average_mean_abs_error_change"] = json_number(meter.result().average_error_change());
@@ -446,6 +474,10 @@ void add_sequence(CLI::App& vplkit, Runners& runners) {
             "alike), GPU times (frame_ms: the median frame's sum over every pass; per stage and pass), each "
             "frame's counters (and metrics with --reference); a number that is not finite is written as null")
         ->option_text("FILE.json")
+        ->group("sequence");
+    add_budget_option(*sequence, o->budget_ms,
+                      "; chosen for the first frame's view, and chosen again (printed) when the median of the last "
+                      "5 frames' measured GPU time leaves 1/1.15..1.15 of the prediction")
         ->group("sequence");
     auto render_options = std::make_shared<RenderOptions>(*sequence);
     // Sequences are what the filter is for.

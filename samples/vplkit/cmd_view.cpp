@@ -3,6 +3,7 @@
 // top. With --screenshot the loop runs --frames frames and writes the last one as the window shows
 // it: the mode tests and scripts use.
 
+#include "budget_option.hpp"
 #include "cli.hpp"
 #include "cli_checks.hpp"
 #include "commands.hpp"
@@ -127,9 +128,10 @@ struct ViewOptions {
     std::optional<uint32_t> frames;
     std::optional<std::string> window;
     bool no_panel = false, compare_exact = false;
+    std::optional<double> budget_ms;
 };
 
-int run_view(const ViewOptions& o, const RenderOptions& render_options) {
+int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions& render_options) {
     const std::optional<std::string>& screenshot = o.screenshot;
     std::optional<uint32_t> frames = o.frames;
     if (screenshot && !frames) frames = 1;
@@ -166,6 +168,15 @@ int run_view(const ViewOptions& o, const RenderOptions& render_options) {
     Gui gui(*context, window.handle(), swapchain);
     ViewCamera camera(scene.camera(), loaded.target);
     ViewPanel panel;
+    // --budget-ms: chosen for the start view, chosen again when the frames' times drift; a
+    // setting changed in the panel ends it (the user took over).
+    std::optional<BudgetPlan> budget;
+    if (o.budget_ms) {
+        budget.emplace(plan_budget(renderer, device, scene, camera.camera(), settings, *o.budget_ms, loaded.described,
+                                   budget_fixed_by_options(command, settings)));
+        settings = budget->settings;
+        panel.set_budget(budget->choice.line());
+    }
 
     uint32_t frame = 0;  // frames since the view or the settings last changed (accumulation)
     uint32_t shown = 0;
@@ -192,6 +203,10 @@ int run_view(const ViewOptions& o, const RenderOptions& render_options) {
             frame = 0;
             exact.clear();
         }
+        if (changed && budget) {
+            budget.reset();
+            panel.set_budget("budget: off (a setting was changed here)");
+        }
         settings.frame = frame++;
         try {
             image = renderer.render(camera.camera(), settings);
@@ -206,6 +221,19 @@ int run_view(const ViewOptions& o, const RenderOptions& render_options) {
             continue;
         }
         panel.add_frame(image);
+        if (budget) {
+            double frame_ms = 0.0;
+            for (const PassTiming& t : image.timings) frame_ms += t.gpu_ms;
+            if (budget->drift.record(frame_ms)) {
+                replan_for_budget(*budget);
+                settings = apply_budget_config(settings, budget->choice.chosen.config, budget->vpl_source);
+                frame = 0;
+                panel.set_budget(budget->choice.line());
+                std::printf("view: measured times %.2fx the calibration's: re-planned: %s\n", budget->drift.scale(),
+                            budget->choice.line().c_str());
+                std::fflush(stdout);
+            }
+        }
         if (panel.take_exact_request() || std::exchange(compare_exact, false)) {
             exact = exact_radiance(renderer, camera.camera(), settings);
             // The exact frame went through the renderer's accumulation (anti-aliasing, the
@@ -284,8 +312,12 @@ void add_view(CLI::App& vplkit, Runners& runners) {
                    "render the exact frame (every VPL at every pixel) once at start and show each frame's "
                    "relative RMSE against it (the panel's button does the same)")
         ->group("view");
+    add_budget_option(*view, o->budget_ms,
+                      "; chosen for the start view (shown in the panel), chosen again when the median of the last 5 "
+                      "frames' GPU time leaves 1/1.15..1.15 of the prediction, ended by a change in the panel")
+        ->group("view");
     auto render_options = std::make_shared<RenderOptions>(*view);
-    runners.push_back({view, [o, render_options] { return run_view(*o, *render_options); }});
+    runners.push_back({view, [view, o, render_options] { return run_view(*view, *o, *render_options); }});
 }
 
 }  // namespace vplkit::cli

@@ -51,12 +51,15 @@ RenderRequest RenderOptions::request() const {
                          ": the tree samples at most 64 cut nodes per pixel");
     }
     settings.method = find_gi_method(method_)->method;
+    // --budget-ms (render, sequence, view) chooses the method: its knobs may come without one.
+    const CLI::Option* budget_option = command_.get_option_no_throw("--budget-ms");
+    const bool budget = budget_option && budget_option->count() > 0;
     if ((given("--flc-levels") || given("--flc-mu") || given("--flc-navg") || given("--flc-subtiles")) &&
         settings.method != GiMethod::flc) {
         throw UsageError("--flc-levels, --flc-mu, --flc-navg and --flc-subtiles are for --method flc");
     }
-    if (given("--spp")) require_method_with(settings, &GiMethodInfo::samples, "--spp");
-    if (given("--block")) require_method_with(settings, &GiMethodInfo::blocks, "--block");
+    if (given("--spp") && !budget) require_method_with(settings, &GiMethodInfo::samples, "--spp");
+    if (given("--block") && !budget) require_method_with(settings, &GiMethodInfo::blocks, "--block");
     if (given("--interleave")) require_method_with(settings, &GiMethodInfo::interleaves, "--interleave");
     if (given("--traversal")) require_method_with(settings, &GiMethodInfo::chooses_traversal, "--traversal");
     if (traversal_ == "lightcuts") settings.hybrid_traversal = stages::HybridTraversal::lightcuts;
@@ -69,7 +72,7 @@ RenderRequest RenderOptions::request() const {
         require_method_with(settings, &GiMethodInfo::reads_sst, "--sigma-max");
         settings.sigma_max_scene_fraction.reset();  // absolute, as given
     }
-    if (given("--gi-resolution") && settings.method == GiMethod::none) {
+    if (given("--gi-resolution") && settings.method == GiMethod::none && !budget) {
         throw UsageError("--gi-resolution needs an indirect-light --method");
     }
     settings.half_resolution_gi = gi_resolution_ == "half";
@@ -77,7 +80,7 @@ RenderRequest RenderOptions::request() const {
     settings.denoise = denoise_ == "temporal" ? DenoiseMode::temporal
                        : denoise_ == "svgf"   ? DenoiseMode::svgf
                                               : DenoiseMode::off;
-    if (settings.denoise != DenoiseMode::off && settings.method == GiMethod::none) {
+    if (settings.denoise != DenoiseMode::off && settings.method == GiMethod::none && !budget) {
         throw UsageError("--denoise filters indirect light: give an indirect-light --method");
     }
     if (given("--firefly-sigma") && settings.denoise == DenoiseMode::off) {
@@ -116,7 +119,7 @@ RenderRequest RenderOptions::request() const {
     const bool vpl_options = given("--vpl-source") || given("--vpls") || given("--bounces") || brsm_options ||
                              given("--smc-max-moves") || given("--smc-resample") || given("--smc-radiosity-samples") ||
                              given("--smc-warmup");
-    if (vpl_options && settings.method == GiMethod::none && !settings.vpls_only) {
+    if (vpl_options && settings.method == GiMethod::none && !settings.vpls_only && !budget) {
         throw UsageError(
             "--vpl-source, --vpls, --bounces and the --brsm options need an indirect-light --method "
             "or --vpls-only (direct light uses no VPLs)");

@@ -59,6 +59,7 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
     if (ImGui::Begin("vplkit")) {
         ImGui::Text("%ux%u, %u VPLs, frame %u, exposure %.2f", last.width, last.height, last.vpl_count, settings.frame,
                     double(last.exposure));
+        if (!budget_.empty()) ImGui::TextWrapped("%s", budget_.c_str());
         RenderSettings edited = settings;
         if (draw_settings(edited, last.plan)) {
             try {

@@ -30,6 +30,9 @@ public:
     // Shows a message under the settings (e.g. why the renderer refused them) until they change.
     void set_error(std::string message) { error_ = std::move(message); }
 
+    // The budget's choice (`vplkit view --budget-ms`), shown above the settings.
+    void set_budget(std::string line) { budget_ = std::move(line); }
+
     // "compare with exact" was pressed since the last call.
     bool take_exact_request() { return std::exchange(exact_requested_, false); }
     // The frame's relative RMSE against the exact frame of the same view and VPLs; none: no
@@ -42,6 +45,7 @@ private:
     void draw_times(const RenderedImage& last);
 
     std::string error_;
+    std::string budget_;
     bool exact_requested_ = false;
     std::optional<double> exact_error_;
     // Each stage's GPU milliseconds over the last frames, stages in the order first seen.
