@@ -55,7 +55,7 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
     Image& accumulated = spatial ? accumulated_ : next.color;
     stages::add_temporal_accumulate_pass(context, passes, input, gbuffer.position, gbuffer.normal, previous.views(),
                                          next.views(), accumulated, next.moments, previous_view_projection_,
-                                         has_history_, temporal_options);
+                                         has_history_, temporal_options, gbuffer.motion);
     ImageView result = accumulated;
     variance_from_ = spatial ? 2 : int(current_);
     // The firefly clamp acts on the accumulated image, not on the frame: the history keeps the

@@ -19,6 +19,7 @@ GbufferImages GbufferImages::create(Context& context, uint32_t width, uint32_t h
         Image::create(context, width, height, stages::kGbufferGeometricNormalFormat, color, "gbuffer geometric normal");
     g.albedo = Image::create(context, width, height, stages::kGbufferAlbedoFormat, color, "gbuffer albedo");
     g.emission = Image::create(context, width, height, stages::kGbufferEmissionFormat, color, "gbuffer emission");
+    g.motion = Image::create(context, width, height, stages::kGbufferMotionFormat, color, "gbuffer motion");
     g.depth = Image::create(context, width, height, stages::kGbufferDepthFormat,
                             VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, "gbuffer depth");
     return g;

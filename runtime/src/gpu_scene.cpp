@@ -250,6 +250,8 @@ GpuScene& GpuScene::operator=(GpuScene&& other) noexcept {
         release();
         context_ = std::exchange(other.context_, nullptr);
         vertices_ = std::move(other.vertices_);
+        previous_vertices_ = std::move(other.previous_vertices_);
+        motion_ = std::exchange(other.motion_, false);
         indices_ = std::move(other.indices_);
         materials_ = std::move(other.materials_);
         draws_ = std::move(other.draws_);
@@ -281,6 +283,16 @@ void GpuScene::update_vertices(const scene::Scene& scene) {
     for (uint32_t index : scene.indices) {
         bounds_.min = glm::min(bounds_.min, scene.vertices[index].position);
         bounds_.max = glm::max(bounds_.max, scene.vertices[index].position);
+    }
+    // The pose drawn last becomes the previous one; a second pose before any frame keeps it.
+    if (!motion_) {
+        if (!previous_vertices_) {
+            previous_vertices_ = Buffer::create(*context_, vertices_.size(),
+                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                                MemoryUse::device, "scene previous vertices");
+        }
+        std::swap(vertices_, previous_vertices_);
+        motion_ = true;
     }
     vertices_.upload(scene.vertices);
 }

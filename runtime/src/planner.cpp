@@ -392,18 +392,27 @@ FramePlan plan_frame(const scene::Scene& scene, const RenderSettings& settings, 
     // The filter only where it can help: exact is the ground truth, and a temporal-only filter
     // without history has nothing to average (it still runs then, to start the history).
     const bool denoise = gi && settings.denoise != DenoiseMode::off && !method.ground_truth;
-    // The filter reprojects its history with the camera alone: after geometry moved, the history
-    // would drag moved objects' light along, so it is dropped (moved lights only lag, kept).
-    plan.drop_denoise_history = denoise && previous.denoise_history && previous.history_scene.geometry != now.geometry;
+    // The filter follows moved geometry with the G-buffer's motion. Reprojected with the camera
+    // alone, the history would drag moved objects' light along, so it is dropped then (moved
+    // lights only lag: kept).
+    const bool geometry_moved = previous.history_scene.geometry != now.geometry;
+    plan.drop_denoise_history =
+        denoise && previous.denoise_history && geometry_moved && settings.denoise_motion == DenoiseMotion::drop;
     const bool history = previous.denoise_history && !plan.drop_denoise_history;
+    const bool follows_motion =
+        denoise && history && geometry_moved && settings.denoise_motion == DenoiseMotion::follow;
     const std::string no_history = plan.drop_denoise_history ? "history dropped: geometry moved" : "no history yet";
     add(FrameStage::denoise, denoise,
-        !gi                                     ? no_gi + ": nothing to filter"
-        : settings.denoise == DenoiseMode::off  ? "`denoise` off"
-        : method.ground_truth                   ? std::string(method.name) + " is the ground truth: nothing to filter"
-        : settings.denoise == DenoiseMode::svgf ? std::string("svgf: temporal accumulation and the a-trous filter") +
-                                                      (history ? "" : " (" + no_history + ": spatial only)")
-        : history ? "temporal: accumulation with the previous frames"
+        !gi                                    ? no_gi + ": nothing to filter"
+        : settings.denoise == DenoiseMode::off ? "`denoise` off"
+        : method.ground_truth                  ? std::string(method.name) + " is the ground truth: nothing to filter"
+        : settings.denoise == DenoiseMode::svgf
+            ? std::string("svgf: temporal accumulation and the a-trous filter") +
+                  (!history         ? " (" + no_history + ": spatial only)"
+                   : follows_motion ? " (geometry moved: its history found where it was)"
+                                    : "")
+        : history ? std::string("temporal: accumulation with the previous frames") +
+                        (follows_motion ? " (geometry moved: its history found where it was)" : "")
                   : "temporal: " + no_history + ", this frame starts it (image unchanged)");
     plan.glossy_reason = glossy_branch_reason(scene, settings, gi && sampled, plan.glossy_branch);
     add(FrameStage::compose, true, "every frame: direct + indirect");

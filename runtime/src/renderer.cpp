@@ -85,6 +85,7 @@ void read_back_aovs(GbufferImages& gbuffer, const scene::Camera& camera, Rendere
     const auto position = gbuffer.position.download<std::array<float, 4>>();
     const auto normal = gbuffer.normal.download<std::array<float, 4>>();
     const auto albedo = gbuffer.albedo.download<std::array<uint16_t, 4>>();  // RGBA16F
+    const auto motion = gbuffer.motion.download<std::array<float, 4>>();
     const glm::vec3 forward = glm::normalize(camera.forward);
     for (size_t i = 0; i < position.size(); ++i) {
         const bool covered = position[i][3] > 0.5f;
@@ -93,6 +94,7 @@ void read_back_aovs(GbufferImages& gbuffer, const scene::Camera& camera, Rendere
         for (int c = 0; c < 3; ++c) {
             out.normal.push_back(covered ? normal[i][c] : 0.0f);
             out.albedo.push_back(covered ? glm::unpackHalf1x16(albedo[i][c]) : 0.0f);
+            out.motion.push_back(covered ? motion[i][c] : 0.0f);
         }
     }
 }
@@ -287,7 +289,9 @@ void Renderer::denoise_indirect(const RenderSettings& settings, const stages::Ca
     options.scene_scale = gpu_bvh().scene_scale;
     PassList& passes = frame.passes();
     passes.set_tag(stage_tag(FrameStage::denoise));
-    denoiser_->add_passes(context_, passes, settings.denoise, gbuffer, indirect, options, demodulated);
+    stages::GbufferViews views = gbuffer;
+    if (settings.denoise_motion != DenoiseMotion::follow) views.motion = {};  // the camera alone
+    denoiser_->add_passes(context_, passes, settings.denoise, views, indirect, options, demodulated);
     denoiser_->end_frame(view.view_projection);  // the next frame's history: only bookkeeping on the host
     frame.after_run([this, &out, aovs = settings.read_back_aovs] {
         out.firefly_moved_fraction = denoiser_->firefly_moved_fraction();
@@ -453,6 +457,7 @@ RenderedImage Renderer::render(const scene::Camera& camera, const RenderSettings
     frame.passes().set_tag(stage_tag(FrameStage::compose));
     stages::add_compose_pass(context_, frame.passes(), direct_out, indirect, composed);
     frame.submit(context_, out.timings);
+    scene_.settle_motion();  // this pose is the next frame's previous one
     out.radiance = rgb_of(composed);
     out.direct = rgb_of(direct_out);
     out.indirect = rgb_of(indirect);

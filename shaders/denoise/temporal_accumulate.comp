@@ -1,9 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // Temporal accumulation with reprojection (SVGF, Schied et al. 2017, sec. 4.1): each pixel's
-// world position is projected with the previous frame's view-projection; the previous frame's
+// world position in the previous frame (its position plus the G-buffer's motion: where a moving
+// object's point was) is projected with the previous frame's view-projection; the previous frame's
 // four pixels around that point are the history, each tap kept only if it shows the same surface
-// (covered, within max_plane_distance of the pixel's tangent plane, normals within min_normal_cos:
+// (covered, within max_plane_distance of the tangent plane through the point's previous position,
+// normals within min_normal_cos:
 // the mesh-id test of SVGF is left to these two, as the G-buffer holds no ids), bilinear weights
 // renormalized over the kept taps. No tap kept: a disocclusion, the history restarts at 1.
 // A pixel whose point reprojects onto its own centre (within kStaticPixels: a static camera, up
@@ -33,6 +35,8 @@ layout(set = 0, binding = 7, rgba32f) uniform writeonly image2D accumulated;
 layout(set = 0, binding = 8, rgba32f) uniform writeonly image2D moments;
 layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D history_position;
 layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D history_normal;
+// xyz: previous position - position (gbuffer.glsl's motion); read only when push.has_motion is 1.
+layout(set = 0, binding = 11, rgba32f) uniform readonly image2D motion;
 
 layout(push_constant) uniform TemporalAccumulatePush {
     mat4 previous_view_projection;  // world -> the previous frame's Vulkan clip space
@@ -41,6 +45,7 @@ layout(push_constant) uniform TemporalAccumulatePush {
     uint max_history;               // the cap on n: alpha never falls below 1 / max_history
     uint has_history;               // 0 on the first frame: the previous images hold nothing
     uint static_max_history;        // the cap where a pixel reprojects onto itself; 0: none
+    uint has_motion;                // 1: `motion` holds the G-buffer's motion; 0: nothing moved
 } push;
 
 // How far (in pixels, per axis) a reprojected point may sit from the pixel's own centre and still
@@ -70,7 +75,11 @@ void main() {
     vec3 history_moments = vec3(0.0);  // m1, m2, n
     float weights = 0.0;
     bool still = false;
-    vec4 clip = push.previous_view_projection * vec4(p.xyz, 1.0);
+    // Where the point was: a moving object's history is found where it was, and the test below
+    // (the tap on the point's previous tangent plane) rejects what now stands there instead. The
+    // motion is exactly 0 where nothing moved: those pixels reproject as with the camera alone.
+    vec3 was = push.has_motion != 0u ? p.xyz + imageLoad(motion, pixel).xyz : p.xyz;
+    vec4 clip = push.previous_view_projection * vec4(was, 1.0);
     if (push.has_history != 0u && clip.w > 0.0) {
         // Pixel centres at integers: pixel i covers NDC [2i / W - 1, 2(i + 1) / W - 1].
         vec2 at = (clip.xy / clip.w * 0.5 + 0.5) * vec2(size) - 0.5;
@@ -89,7 +98,7 @@ void main() {
             }
             vec4 pq = imageLoad(previous_position, q);
             vec3 nq = imageLoad(previous_normal, q).xyz;
-            if (pq.w <= 0.5 || abs(dot(n.xyz, pq.xyz - p.xyz)) > push.max_plane_distance ||
+            if (pq.w <= 0.5 || abs(dot(n.xyz, pq.xyz - was)) > push.max_plane_distance ||
                 dot(n.xyz, nq) < push.min_normal_cos) {
                 continue;
             }

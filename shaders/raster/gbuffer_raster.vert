@@ -8,10 +8,18 @@
 #define VPLKIT_SCENE_INDICES_BINDING 1
 #include "vplkit/raster_scene.glsl"
 
+// The pose the previous frame was drawn with (scene::Vertex[], the same triangles), read only
+// when push.has_motion is 1 (else the binding holds the current vertices as a placeholder).
+// Binding 7: 2 to 6 are the fragment stage's material buffer and textures.
+layout(scalar, set = 0, binding = 7) readonly buffer PreviousVertexBuffer {
+    SceneVertex items[];
+} previous_vertices;
+
 layout(push_constant) uniform GbufferPush {
     mat4 view_projection;  // world -> Vulkan clip space (y down, depth 0 near .. 1 far)
     vec3 viewer_position;  // the camera's world position
     uint material;         // index into the material buffer (one per draw)
+    uint has_motion;       // 1: previous_vertices holds the previous frame's pose
 } push;
 
 layout(location = 0) out vec3 world_position;
@@ -22,6 +30,7 @@ layout(location = 4) flat out vec3 face_normal;
 layout(location = 5) out vec4 vertex_color;
 layout(location = 6) out vec2 uv1;
 layout(location = 7) flat out float coordinate_magnitude;  // largest |coordinate| of the triangle's corners
+layout(location = 8) out vec3 motion;  // previous position - position: exactly 0 where the vertex did not move
 
 void main() {
     uint triangle = uint(gl_VertexIndex) / 3u;
@@ -36,5 +45,9 @@ void main() {
     vec3 m = max(abs(scene_triangle_vertex(triangle, 0u).position),
                  max(abs(scene_triangle_vertex(triangle, 1u).position), abs(scene_triangle_vertex(triangle, 2u).position)));
     coordinate_magnitude = max(m.x, max(m.y, m.z));
+    motion = vec3(0.0);
+    if (push.has_motion != 0u) {
+        motion = previous_vertices.items[scene_indices.items[gl_VertexIndex]].position - v.position;
+    }
     gl_Position = push.view_projection * vec4(v.position, 1.0);
 }

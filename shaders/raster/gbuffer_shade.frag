@@ -12,6 +12,7 @@ layout(push_constant) uniform GbufferPush {
     mat4 view_projection;
     vec3 viewer_position;
     uint material;
+    uint has_motion;
 } push;
 
 layout(location = 0) in vec3 world_position;
@@ -22,12 +23,14 @@ layout(location = 4) flat in vec3 face_normal;
 layout(location = 5) in vec4 vertex_color;
 layout(location = 6) in vec2 uv1;
 layout(location = 7) flat in float coordinate_magnitude;
+layout(location = 8) in vec3 motion;
 
 layout(location = 0) out vec4 out_position;
 layout(location = 1) out vec4 out_normal;
 layout(location = 2) out vec4 out_geometric_normal;
 layout(location = 3) out vec4 out_albedo;
 layout(location = 4) out vec4 out_emission;
+layout(location = 5) out vec4 out_motion;
 
 // 2^-16: the least distance the stored position moves toward the viewer, relative to the
 // magnitude of the coordinates (the same 128 to 256 float ulps as bvh.glsl's kBvhOriginOffset).
@@ -78,4 +81,5 @@ void main() {
     out_geometric_normal = vec4(s.geometric_normal, s.metallic);
     out_albedo = vec4(s.albedo, 1.0);
     out_emission = vec4(s.emission, 0.0);
+    out_motion = vec4(motion, 0.0);
 }

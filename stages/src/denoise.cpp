@@ -147,8 +147,10 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
                                   const ImageView& position, const ImageView& normal, const DenoiseHistory& previous,
                                   const DenoiseHistory& next, const ImageView& accumulated, const ImageView& moments,
                                   const glm::mat4& previous_view_projection, bool has_history,
-                                  const DenoiseOptions& options) {
+                                  const DenoiseOptions& options, const ImageView& motion) {
     validate(options);
+    const bool moved = bool(motion);
+    if (moved) validate_images("denoise temporal", {{&position, kFloat4}, {&motion, kGbufferMotionFormat}});
     validate_images("denoise temporal", {{&accumulated, kFloat4},
                                          {&moments, kFloat4},
                                          {&irradiance, kFloat4},
@@ -173,6 +175,9 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
     b.moments = moments.descriptor();
     b.history_position = next.position.descriptor();
     b.history_normal = next.normal.descriptor();
+    // Without motion the position stands in for it (never read: has_motion 0).
+    const ImageView& motion_or_position = moved ? motion : position;
+    b.motion = motion_or_position.descriptor();
     shaders::temporal_accumulate::Push push{};
     static_assert(sizeof(push.previous_view_projection) == sizeof(glm::mat4));
     std::memcpy(&push.previous_view_projection, &previous_view_projection, sizeof(glm::mat4));
@@ -181,10 +186,11 @@ void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageV
     push.max_history = options.max_history;
     push.has_history = has_history ? 1u : 0u;
     push.static_max_history = options.static_max_history;
+    push.has_motion = moved ? 1u : 0u;
     add_dispatch<shaders::temporal_accumulate::Module>(
         passes, "denoise temporal", pipeline, b, push, {accumulated.width, accumulated.height},
         {irradiance, position, normal, previous.position, previous.normal, previous.color, previous.moments,
-         accumulated, moments, next.position, next.normal});
+         accumulated, moments, next.position, next.normal, motion_or_position});
 }
 
 void add_variance_estimate_pass(Device& device, StepList& passes, const ImageView& accumulated,

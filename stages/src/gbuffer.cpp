@@ -19,8 +19,8 @@ namespace frag = shaders::gbuffer_shade;
 struct GbufferPipelineDescription {
     static RasterState state() {
         RasterState s;
-        s.color_formats = {kGbufferPositionFormat, kGbufferNormalFormat, kGbufferGeometricNormalFormat,
-                           kGbufferAlbedoFormat, kGbufferEmissionFormat};
+        s.color_formats = {kGbufferPositionFormat, kGbufferNormalFormat,   kGbufferGeometricNormalFormat,
+                           kGbufferAlbedoFormat,   kGbufferEmissionFormat, kGbufferMotionFormat};
         s.depth_format = kGbufferDepthFormat;
         s.cull_mode = VK_CULL_MODE_NONE;  // both sides of every triangle: no holes for GI
         s.depth_compare = VK_COMPARE_OP_LESS;
@@ -86,28 +86,39 @@ void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scen
                         ", but the scene has textures for " + std::to_string(scene.textures.size()));
         }
     }
+    if (!images.motion) throw Error("gbuffer: the motion image is missing (gbuffer_views.hpp)");
+    const bool moved = bool(scene.previous_vertices);
+    if (moved && scene.previous_vertices.size != scene.vertices.size) {
+        throw Error("gbuffer: the previous pose's vertices (" + std::to_string(scene.previous_vertices.size) +
+                    " bytes) are not the scene's (" + std::to_string(scene.vertices.size) + ")");
+    }
     const GraphicsPipeline& pipeline = device.pipeline<GbufferPipeline>().pipeline;
     frag::Push push{};
+    push.has_motion = moved ? 1u : 0u;
     std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
     push.viewer_position = {view.position.x, view.position.y, view.position.z};
+    // Without a previous pose the current vertices stand in for it (never read: has_motion 0).
+    const BufferView& previous = moved ? scene.previous_vertices : scene.vertices;
     passes.add("gbuffer",
                {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
-                Use::read(scene.materials, Stage::fragment), Use::color_attachment(images.position),
-                Use::color_attachment(images.normal), Use::color_attachment(images.geometric_normal),
-                Use::color_attachment(images.albedo), Use::color_attachment(images.emission),
+                Use::read(previous, Stage::vertex), Use::read(scene.materials, Stage::fragment),
+                Use::color_attachment(images.position), Use::color_attachment(images.normal),
+                Use::color_attachment(images.geometric_normal), Use::color_attachment(images.albedo),
+                Use::color_attachment(images.emission), Use::color_attachment(images.motion),
                 Use::depth_attachment(images.depth)},
                // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-               [&pipeline, scene, images, push](VkCommandBuffer cmd) mutable {
+               [&pipeline, scene, previous, images, push](VkCommandBuffer cmd) mutable {
                    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
-                   begin_rendering(
-                       cmd, {{images.position, images.normal, images.geometric_normal, images.albedo, images.emission},
-                             {zero, zero, zero, zero, zero},
-                             images.depth,
-                             1.0f});
+                   begin_rendering(cmd, {{images.position, images.normal, images.geometric_normal, images.albedo,
+                                          images.emission, images.motion},
+                                         {zero, zero, zero, zero, zero, zero},
+                                         images.depth,
+                                         1.0f});
                    pipeline.bind(cmd);
                    vert::Bindings geometry;
                    geometry.scene_vertices = scene.vertices.descriptor();
                    geometry.scene_indices = scene.indices.descriptor();
+                   geometry.previous_vertices = previous.descriptor();
                    uint32_t bound_material = UINT32_MAX;
                    for (const GpuDraw& draw : scene.draws) {
                        if (draw.material != bound_material) {

@@ -30,7 +30,7 @@ void add_svgf_passes(Device& device, StepList& passes, const GbufferViews& gbuff
     const ImageView& accumulated = spatial ? accumulated_image : next.color;
     add_temporal_accumulate_pass(device, passes, irradiance, gbuffer.position, gbuffer.normal, previous, next,
                                  accumulated, next.moments, frame.previous_view_projection, frame.index > 0,
-                                 temporal_options);
+                                 temporal_options, gbuffer.motion);
     // The clamp shapes what is filtered and shown; the history keeps the unclamped mean.
     ImageView result = accumulated;
     if (options.firefly_k_sigma > 0.0f) {

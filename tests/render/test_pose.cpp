@@ -187,8 +187,9 @@ TEST_CASE("pose: the plan after update_pose remakes what moved, says why, and re
     const vplkit::FramePlan moved_geometry = frame(4);
     CHECK(noted(moved_geometry, "BVH built on the GPU"));
     CHECK(reason(moved_geometry, FrameStage::vpl_paths).find("geometry and lights moved") != std::string::npos);
-    CHECK(moved_geometry.drop_denoise_history);
-    CHECK(reason(moved_geometry, FrameStage::denoise).find("history dropped: geometry moved") != std::string::npos);
+    // The denoiser follows the moved geometry with the G-buffer's motion: its history is kept.
+    CHECK(!moved_geometry.drop_denoise_history);
+    CHECK(reason(moved_geometry, FrameStage::denoise).find("its history found where it was") != std::string::npos);
 
     // A second move refits the GPU tree.
     const auto second_move = renderer.update_pose(posable.pose(1.2));

@@ -21,6 +21,7 @@ struct GbufferImages {
     Image albedo;
     Image emission;
     Image depth;
+    Image motion;
 
     // Throws vplkit::Error for a zero size.
     static GbufferImages create(Context& context, uint32_t width, uint32_t height);
@@ -28,7 +29,7 @@ struct GbufferImages {
     uint32_t height() const { return position.height(); }
 
     // As the stages take it; layouts stay tracked in these Images.
-    operator stages::GbufferViews() { return {position, normal, geometric_normal, albedo, emission, depth}; }
+    operator stages::GbufferViews() { return {position, normal, geometric_normal, albedo, emission, depth, motion}; }
 };
 
 }  // namespace vplkit

@@ -96,9 +96,15 @@ public:
     GpuScene& operator=(const GpuScene&) = delete;
     ~GpuScene();
 
-    // A pose's new vertices (vplkit/scene_pose.hpp: the same triangles, moved): uploaded over the
-    // old ones, bounds() recomputed. Throws Error for a scene of another vertex count.
+    // A pose's new vertices (vplkit/scene_pose.hpp: the same triangles, moved): uploaded, bounds()
+    // recomputed. The pose drawn last stays as the previous pose (the G-buffer's motion: a second
+    // buffer, made at the first pose, the two swapped after that: no copy) until settle_motion.
+    // Throws Error for a scene of another vertex count.
     void update_vertices(const scene::Scene& scene);
+    // A frame was drawn with the current pose: it is the previous pose from now on (no motion
+    // until the next update_vertices).
+    void settle_motion() { motion_ = false; }
+    bool has_motion() const { return motion_; }
 
     // scene::Vertex[] (48 bytes each; storage and vertex-buffer usage).
     const Buffer& vertices() const { return vertices_; }
@@ -111,7 +117,11 @@ public:
     const MaterialTextures& textures(uint32_t material) const { return material_textures_.at(material); }
 
     // As the raster stages take it (the draws and textures stay in this object).
-    operator stages::SceneBuffers() const { return {vertices_, indices_, materials_, draws_, material_textures_}; }
+    // previous_vertices only while a pose has not been drawn (has_motion).
+    operator stages::SceneBuffers() const {
+        const BufferView previous = motion_ ? BufferView(previous_vertices_) : BufferView{};
+        return {vertices_, indices_, materials_, draws_, material_textures_, previous};
+    }
 
     const scene::Bounds& bounds() const { return bounds_; }
     uint32_t triangle_count() const { return triangle_count_; }
@@ -125,6 +135,8 @@ private:
 
     Context* context_ = nullptr;
     Buffer vertices_;
+    Buffer previous_vertices_;  // the pose drawn last, once the scene was posed
+    bool motion_ = false;       // vertices_ moved since previous_vertices_ was drawn
     Buffer indices_;
     Buffer materials_;
     std::vector<GpuDraw> draws_;

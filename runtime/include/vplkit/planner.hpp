@@ -92,8 +92,9 @@ struct FramePlan {
     bool reuse_trees = false;                            // and its trees
     // The direct light tree is built this frame (first use, or the lights or emitters moved).
     bool build_direct_tree = false;
-    // The denoiser's history is dropped: the geometry moved, and its reprojection follows only
-    // the camera (a moved object would leave a trail). Lights moving keep it.
+    // The denoiser's history is dropped: the geometry moved and RenderSettings::denoise_motion is
+    // drop. Lights moving keep it; geometry moving too with follow (the default: the G-buffer's
+    // motion finds each point's history) and camera_only (for comparisons: it leaves a trail).
     bool drop_denoise_history = false;
     std::string vpl_key;             // this frame's VPL set
     std::string tree_key;            // this frame's tree settings

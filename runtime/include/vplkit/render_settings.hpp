@@ -72,6 +72,13 @@ enum class DenoiseMode {
 // "off", "temporal", "svgf".
 const char* denoise_mode_name(DenoiseMode mode);
 
+// How the denoiser's history meets geometry that moved (RenderSettings::denoise_motion).
+enum class DenoiseMotion {
+    follow,       // reprojected with the G-buffer's motion: each point's history where it was
+    camera_only,  // reprojected with the camera alone (a moved object drags its old light along)
+    drop,         // dropped whenever geometry moved (no trail, and no averaging while it moves)
+};
+
 // The glossy branch of sst, rtslc and hybrid (stages/glossy_lobe.hpp, the SST paper sec. 4.2): a glossy
 // receiver picks the diffuse or the glossy lobe per sample. automatic: the planner turns it on
 // when a material of the scene can be smoother than stages::kGlossyMaxRoughness.
@@ -154,6 +161,11 @@ struct RenderSettings {
     // before compose; the history lives in the Renderer from frame to frame.
     DenoiseMode denoise = DenoiseMode::off;
     stages::DenoiseOptions denoise_options;  // scene_scale is the renderer's (the BVH's)
+    // How the denoiser's history meets geometry that update_pose moved: follow reprojects it with
+    // the G-buffer's motion (each point's history where it was in the previous frame's pose);
+    // camera_only with the camera alone (a moved object drags its old light along: for
+    // comparisons); drop starts the history again whenever geometry moved (no trail, no averaging).
+    DenoiseMotion denoise_motion = DenoiseMotion::follow;
     // Generate the VPLs (by vpl_source, whatever the method), return them in RenderedImage::vpls
     // with the G-buffer's positions, and compute no indirect light: for looking at the VPLs.
     bool vpls_only = false;

@@ -85,8 +85,10 @@ struct RenderedImage {
     // With RenderSettings::read_back_aovs, rows top to bottom: the G-buffer's linear base colour
     // and unit shading normal (3 floats per pixel; 0 where no surface was drawn), the distance
     // along the camera's forward axis (1 float; +infinity where no surface was drawn) and, when
-    // the denoiser ran, its luminance variance of the demodulated indirect light (1 float).
-    std::vector<float> albedo, normal, depth, indirect_variance;
+    // the denoiser ran, its luminance variance of the demodulated indirect light (1 float); the
+    // G-buffer's motion (3 floats: where the point was in the previous frame's pose less where
+    // it is, world space; 0 where nothing moved or no surface was drawn).
+    std::vector<float> albedo, normal, depth, indirect_variance, motion;
 };
 
 // How update_pose brought the BVH to the new pose.

@@ -13,6 +13,9 @@
 //   albedo            RGBA16F  rgb linear base colour (factor x texture); a = 1
 //   emission          RGBA16F  rgb emitted radiance (factor x strength x texture); a = 0
 //   depth             D32      the raster depth (1 = far plane, cleared)
+//   motion            RGBA32F  xyz the point's position in the previous frame's pose less its
+//                              position now (world space: a camera move is not in it); exactly 0
+//                              where nothing moved; w = 0. Read by temporal accumulation only
 
 struct GbufferSample {
     vec3 position;

@@ -102,11 +102,14 @@ void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& i
 // touched: the caller points `accumulated` / `moments` at them, or at the a-trous input).
 // has_history false: every pixel starts over (n = 1), the previous images are not read. A pixel
 // that reprojects onto its own centre reads that one pixel and is capped by static_max_history.
+// `motion` (the G-buffer's, gbuffer_views.hpp; optional): each pixel is looked up where its point
+// was (position + motion) and its history taps tested against that previous position, so a
+// moving object keeps its own history and what it uncovers starts over; empty: nothing moved.
 void add_temporal_accumulate_pass(Device& device, StepList& passes, const ImageView& irradiance,
                                   const ImageView& position, const ImageView& normal, const DenoiseHistory& previous,
                                   const DenoiseHistory& next, const ImageView& accumulated, const ImageView& moments,
                                   const glm::mat4& previous_view_projection, bool has_history,
-                                  const DenoiseOptions& options);
+                                  const DenoiseOptions& options, const ImageView& motion = {});
 
 // "denoise variance": estimated = accumulated, with a = the 7 x 7 spatial variance where
 // moments' n < min_temporal_history.

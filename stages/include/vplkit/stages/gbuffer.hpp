@@ -41,10 +41,12 @@ glm::mat4 vulkan_perspective(float yfov, float aspect, float znear, float zfar);
 glm::mat4 vulkan_orthographic(float ymag, float aspect, float znear, float zfar);
 
 // Adds the pass "gbuffer": reads `scene`, clears every image of `images` (position, normals,
-// albedo, emission to 0, depth to 1; colour/depth attachment usage, the formats of
+// albedo, emission, motion to 0, depth to 1; colour/depth attachment usage, the formats of
 // gbuffer_views.hpp) and draws every GpuDraw with its material's textures into them. The
 // scene's draw and texture arrays must stay alive until the steps are recorded; the pipeline
-// is created on first use and kept by `device`. Throws Error for a draw whose material has no textures.
+// is created on first use and kept by `device`. The motion image gets each point's move from
+// scene.previous_vertices (0 without them). Throws Error for a draw whose material has no
+// textures, a missing motion image, or previous vertices of another size than the scene's.
 void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
                       const GbufferViews& images);
 

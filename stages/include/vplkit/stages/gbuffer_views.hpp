@@ -17,6 +17,7 @@ inline constexpr VkFormat kGbufferGeometricNormalFormat = VK_FORMAT_R32G32B32A32
 inline constexpr VkFormat kGbufferAlbedoFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kGbufferEmissionFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kGbufferDepthFormat = VK_FORMAT_D32_SFLOAT;
+inline constexpr VkFormat kGbufferMotionFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct GbufferViews {
     ImageView position;
@@ -25,6 +26,10 @@ struct GbufferViews {
     ImageView albedo;
     ImageView emission;  // read by direct light and compose only
     ImageView depth;     // written by the raster pass only
+    // xyz: where the surface point was in the previous frame's pose less where it is (world
+    // space), w = 0; written by the raster pass, read by temporal accumulation (empty there:
+    // nothing moved). Exactly 0 where nothing moved, so a still scene reprojects as without it.
+    ImageView motion;
 
     uint32_t width() const { return position.width; }
     uint32_t height() const { return position.height; }

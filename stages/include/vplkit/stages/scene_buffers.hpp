@@ -45,6 +45,9 @@ struct SceneBuffers {
     BufferView materials;  // shaders::SceneMaterial[], one per material, read by the fragment shaders
     std::span<const GpuDraw> draws;
     std::span<const MaterialTextures> textures;  // one per material, indexed by GpuDraw::material
+    // Optional: scene::Vertex[] of the pose the previous frame was drawn with (the same triangles,
+    // moved), for the G-buffer's motion; empty: nothing moved since (motion 0).
+    BufferView previous_vertices;
 };
 
 }  // namespace vplkit::stages
