@@ -13,13 +13,18 @@
 //                          hybrid-lightcuts 0.9994 / 0.0295 (1.9x) / 1.02
 //   after (one blended cut per pixel, substitutes only far from their cluster, defensive child
 //   probabilities): hybrid 1.0048 / 0.0316 (2.0x) / 0.97, hybrid-lightcuts 0.9992 / 0.0224
-//   (1.4x) / 0.88.
+//   (1.4x) / 0.88;
+//   a suitable node evaluated by one of its VPLs drawn by intensity instead of the Gaussian
+//   substitute (hybrid_gi.comp, hybrid_add_cluster_sample): hybrid 1.0002 / 0.0250 (1.6x) / 0.94.
+// At 256 frames (the second test): rtslc 1.0002 / 0.0103; hybrid with the substitute 1.0036 /
+// 0.0204 (1.97x rtslc's), with the VPL drawn by intensity 0.9999 / 0.0125 (1.21x);
+// hybrid-lightcuts 1.0014 / 0.0124 (1.19x).
 // The bounds: the mean within 1% (the DESIGN's energy rule at this noise: rtslc's is 0.07% off);
 // hybrid's block error within 2.5x rtslc's and hybrid-lightcuts' within 1.6x (the fixes' values
 // with room for the 64 frames' spread, and below the values before), the brightest pixel within
-// 1.1x rtslc's or exact's. Issue 26's targets (1.25x and 1.1x) are not met here yet: what
-// remains in hybrid is the substitutes' blur of the ceiling clusters, in hybrid-lightcuts the
-// cut (chosen at the block's centre pixel by expected contribution, where rtslc draws its
+// 1.1x rtslc's or exact's. At 64 frames both block errors are still mostly noise (hybrid's
+// 1.6x falls to 1.2x by 256 frames); what remains in hybrid-lightcuts (and hybrid) at 256 frames
+// is the cut (chosen at the block's centre pixel by expected contribution, where rtslc draws its
 // representative pixel each frame and splits by bound).
 
 #include "sampling_setup.hpp"
@@ -127,5 +132,29 @@ TEST_CASE("hybrid: many frames' mean against exact, per 4x4 block and brightest 
     CHECK(lightcuts.mean == doctest::Approx(1.0).epsilon(0.01));
     CHECK(hybrid.block <= 2.5 * rtslc.block);
     CHECK(lightcuts.block <= 1.6 * rtslc.block);
+    CHECK(hybrid.brightest <= std::max(rtslc.brightest, 1.0) * 1.1);
+}
+
+// The converged residue itself: 256 frames, where the Gaussian substitute left hybrid's block
+// error at 1.97x rtslc's (a bias: the substitute's position lit through the visibility of an
+// independently drawn VPL; 1.55x even when substitutes were used only 3 extents from x) and the
+// VPL drawn by intensity leaves 1.21x, hybrid-lightcuts' 1.19x (issue 26's target for hybrid:
+// 1.25x). Bound 1.35x: the measured value with room for the frames' spread, below the substitute's.
+TEST_CASE("hybrid: 256 frames' mean against exact, per 4x4 block, within 1.35x rtslc's block error") {
+    const Scene scene = room(32, 24, 256);
+    const auto truth = exact(scene, true);
+    constexpr uint32_t kFrames = 256;
+    RunOptions options;
+    options.samples_per_pixel = 8;
+    options.block_size = 8;
+    options.method = Method::rtslc;
+    const Residue rtslc = residue(scene, average(scene, options, kFrames), truth, 4);
+    options.method = Method::hybrid;
+    const Residue hybrid = residue(scene, average(scene, options, kFrames), truth, 4);
+    MESSAGE(kFrames << " frames of 8 spp, 4x4 blocks: rtslc mean " << rtslc.mean << " block " << rtslc.block
+                    << "; hybrid mean " << hybrid.mean << " block " << hybrid.block << " ("
+                    << hybrid.block / rtslc.block << "x) brightest " << hybrid.brightest);
+    CHECK(hybrid.mean == doctest::Approx(1.0).epsilon(0.005));
+    CHECK(hybrid.block <= 1.35 * rtslc.block);
     CHECK(hybrid.brightest <= std::max(rtslc.brightest, 1.0) * 1.1);
 }

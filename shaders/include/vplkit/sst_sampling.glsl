@@ -269,9 +269,26 @@ float sst_node_intensity(uint node, uint leaf_count, uint count) {
     return leaf < count ? sst_intensity(sst_leaves.items[leaf].flux) : 0.0;
 }
 
+// A leaf below `node` drawn with probability its intensity / the node's: a descent by the stored
+// intensities alone (no shading-point weights, so it is cheap). Both children dark: the left
+// one (always real when its parent is: padding fills the end); the node's light is about 0 then.
+uint sst_leaf_by_intensity(uint node, uint leaf_count, uint count, inout Rng rng) {
+    for (uint level = 0u; level < kSstMaxLevels; ++level) {
+        if (sst_is_leaf(node, leaf_count)) {
+            break;
+        }
+        uint left = sst_left_child(node), right = sst_right_child(node);
+        float i_left = sst_node_intensity(left, leaf_count, count);
+        float i_right = sst_node_intensity(right, leaf_count, count);
+        float sum = i_left + i_right;
+        bool go_left = !(sum > 0.0) || rng_next_float(rng) * sum < i_left;
+        node = go_left ? left : right;
+    }
+    return node;
+}
+
 // Where the shadow ray of a traversal's end goes: a real VPL of the node reached, drawn with
-// probability intensity / node intensity (a descent by the stored intensities alone, no
-// shading-point weights, so it is cheap), or the leaf's own VPL.
+// probability intensity / node intensity (sst_leaf_by_intensity), or the leaf's own VPL.
 //
 // Why not the substitute position itself (the thesis sec. 5.3, the SST paper sec. 4.2 shoot the ray
 // there): that point lies on the cluster's plane, spread by its variances and clamped to its
@@ -288,21 +305,8 @@ float sst_node_intensity(uint node, uint leaf_count, uint count) {
 // position, direction and distance terms (the papers' bias, which spreads light, never loses it).
 void sst_shadow_target(SstSample s, uint leaf_count, uint count, inout Rng rng, out vec3 position,
                        out vec3 normal) {
-    uint node = s.node;
-    for (uint level = 0u; level < kSstMaxLevels; ++level) {
-        if (sst_is_leaf(node, leaf_count)) {
-            break;
-        }
-        uint left = sst_left_child(node), right = sst_right_child(node);
-        float i_left = sst_node_intensity(left, leaf_count, count);
-        float i_right = sst_node_intensity(right, leaf_count, count);
-        // Both dark: the left child (always real when its parent is: padding fills the end), and
-        // the node's light is about 0 anyway.
-        float sum = i_left + i_right;
-        bool go_left = !(sum > 0.0) || rng_next_float(rng) * sum < i_left;
-        node = go_left ? left : right;
-    }
-    Vpl vpl = sst_leaves.items[leaf_count == 1u ? 0u : sst_leaf_index(node, leaf_count)];
+    uint leaf = sst_leaf_by_intensity(s.node, leaf_count, count, rng);
+    Vpl vpl = sst_leaves.items[leaf_count == 1u ? 0u : sst_leaf_index(leaf, leaf_count)];
     position = vpl.position;
     normal = vpl.normal;
 }
