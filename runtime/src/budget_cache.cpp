@@ -13,7 +13,8 @@
 namespace vplkit::detail {
 namespace {
 
-constexpr const char* kFormat = "vplkit-budget-cache 3";  // 2: slopes >= 0; 3: noise exponents
+constexpr const char* kFormat =
+    "vplkit-budget-cache 4";  // 2: slopes >= 0; 3: noise exponents; 4: no first-dispatch compiles in the times
 
 }  // namespace
 

@@ -51,6 +51,14 @@ RenderSettings frame_settings(const RenderSettings& base, const CalibrationFrame
     return s;
 }
 
+// Two frames run the same shaders at the same size (so the second compiles nothing and
+// allocates nothing anew).
+bool same_pipelines(const CalibrationFrame& a, const CalibrationFrame& b) {
+    return a.config.method == b.config.method && a.config.half_resolution == b.config.half_resolution &&
+           a.config.denoise == b.config.denoise && a.config.block_size == b.config.block_size && a.width == b.width &&
+           a.height == b.height;
+}
+
 std::vector<uint32_t> blocks_of(GiMethod method, const BudgetSpace& space) {
     // sst builds no cuts: one block size stands for all.
     if (method == GiMethod::sst) return {space.block_sizes.front()};
@@ -191,19 +199,31 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
         }
     }
 
-    // The untimed first frame: shader compiles, and the exposure every timed frame then keeps
-    // (so the noise is on the tonemap's scale the user sees, not a per-frame automatic one).
-    const uint32_t total = uint32_t(frames.size()) + 1;
+    // Untimed frames: the first fixes the exposure every timed frame then keeps (so the noise is
+    // on the tonemap's scale the user sees, not a per-frame automatic one); one more before every
+    // frame whose pipelines or size differ from the frame before it, since lavapipe compiles a
+    // shader at its first dispatch and that time lands in the pass's GPU timestamps (a first
+    // frame's G-buffer 16x, svgf's firefly spread 60x its later ones at 96x54), which would
+    // otherwise be fitted as a fixed cost of every frame.
+    std::vector<bool> warm_first(frames.size(), false);
+    for (size_t i = 1; i < frames.size(); ++i) warm_first[i] = !same_pipelines(frames[i - 1], frames[i]);
+    const uint32_t total =
+        uint32_t(frames.size()) + 1 + uint32_t(std::count(warm_first.begin(), warm_first.end(), true));
+    uint32_t done = 0;
     {
         const RenderedImage first = renderer.render(camera, frame_settings(base, frames.front(), source));
         base.exposure = first.exposure;
         base.auto_exposure = false;
     }
-    if (options.progress) options.progress(1, total);
+    if (options.progress) options.progress(++done, total);
 
     std::vector<RenderedImage> images(frames.size());
     for (size_t i = 0; i < frames.size(); ++i) {
         const RenderSettings s = frame_settings(base, frames[i], source);
+        if (warm_first[i]) {
+            renderer.render(camera, s);
+            if (options.progress) options.progress(++done, total);
+        }
         RenderedImage image = renderer.render(camera, s);
         const CostPoint point = cost_point(s, source);
         result.model.cost.add_frame(image.timings, point);
@@ -217,7 +237,7 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
         // Keep only what the noise needs (the images of the pairs and the VPL frame).
         image.timings.clear();
         images[i] = std::move(image);
-        if (options.progress) options.progress(uint32_t(i) + 2, total);
+        if (options.progress) options.progress(++done, total);
     }
     result.model.cost.fit();
 
@@ -252,7 +272,7 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
         result.model.error.vpl_measured = v0;
         result.model.error.vpl_variance = std::max(0.0, both - sampling);
     }
-    result.frames = uint32_t(frames.size()) + 1;
+    result.frames = total;
     result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     if (!result.cache_file.empty()) detail::write_budget_cache(result.cache_file, result.key, result.model);
     return result;
