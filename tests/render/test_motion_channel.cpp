@@ -2,7 +2,8 @@
 // turns about Y): posed at t0, drawn, posed at t1, drawn; each pixel's motion against a CPU
 // computation from the two poses (the triangle under the pixel's point in the t1 pose, the same
 // barycentric point in the t0 pose, less the point), exactly 0 on everything that did not move,
-// and 0 everywhere once the pose was drawn (the next frame's previous pose is this one).
+// and 0 everywhere once the pose was drawn (the next frame's previous pose is this one); a still
+// scene filters to the same bits with the motion bound as without it.
 
 #include "vplkit/camera_view.hpp"
 #include "vplkit/context.hpp"
@@ -177,4 +178,30 @@ TEST_CASE("motion channel: the renderer draws the previous frame's pose, and non
     }
     CHECK(moving_pixels(one_step) > 100);
     CHECK(worst < 1e-5);
+}
+
+TEST_CASE("motion channel: a still scene's filtered frames are bit-identical with the motion bound or not") {
+    // The motion of a scene never posed is exactly 0, and position + 0 is the position: the
+    // filter's arithmetic is the camera-only one's to the bit (what keeps still scenes' images).
+    auto& ctx = vplkit::test::context();
+    const vplkit::scene::Scene scene =
+        vplkit::scene::load_gltf(std::string(VPLKIT_SOURCE_DIR) + "/scenes/cornell_point/cornell_point.gltf");
+    vplkit::RenderSettings settings;
+    settings.width = settings.height = kSize;
+    settings.method = vplkit::GiMethod::hybrid;
+    settings.vpl_source = vplkit::VplSource::ir;
+    settings.vpl_paths = 256;
+    settings.samples_per_pixel = 4;
+    settings.denoise = vplkit::DenoiseMode::svgf;
+    std::vector<float> images[2];
+    for (int camera_only = 0; camera_only < 2; ++camera_only) {
+        vplkit::Renderer renderer(ctx, scene);
+        settings.denoise_motion = camera_only ? vplkit::DenoiseMotion::camera_only : vplkit::DenoiseMotion::follow;
+        for (uint32_t f = 0; f < 3; ++f) {
+            settings.frame = f;
+            images[camera_only] = renderer.render(scene.camera(), settings).radiance;
+        }
+    }
+    REQUIRE(images[0].size() == 3 * kSize * kSize);
+    CHECK(images[0] == images[1]);
 }
