@@ -111,6 +111,42 @@ float min_neighbour_distance2(float scene_scale) {
     return d * d;
 }
 
+// The pipeline of an SMC shader, specialised for the BVH when it traces rays.
+template <class Pipeline>
+const Pipeline& smc_pipeline(Device& device, const BvhBuffers& bvh) {
+    if constexpr (requires(typename Pipeline::Spec spec) { spec.kBvhAlphaTest; }) {
+        return device.pipeline<Pipeline>(bvh_spec<typename Pipeline::Spec>(bvh));
+    } else {
+        return device.pipeline<Pipeline>();
+    }
+}
+
+// The bindings an SMC shader shares with the others, by name: the BVH, the scene's sources and
+// the buffers of SmcBuffers. The caller binds the rest (bindings named otherwise than the buffer).
+template <class Bindings>
+Bindings smc_bindings(const SmcScene& scene, const SmcBuffers& buffers) {
+    Bindings b;
+    if constexpr (requires { b.bvh_nodes; }) bind_bvh(b, scene.bvh);
+    if constexpr (requires { b.lights; }) b.lights = scene.sources.lights.descriptor();
+    if constexpr (requires { b.emissive; }) b.emissive = scene.sources.emissive.descriptor();
+    if constexpr (requires { b.emitter_cdf; }) b.emitter_cdf = scene.sources.emitter_cdf.descriptor();
+    if constexpr (requires { b.albedo; }) b.albedo = scene.sources.triangle_albedo.descriptor();
+    if constexpr (requires { b.state; }) b.state = buffers.state.descriptor();
+    if constexpr (requires { b.valid; }) b.valid = buffers.valid.descriptor();
+    if constexpr (requires { b.invalid_list; }) b.invalid_list = buffers.invalid_list.descriptor();
+    if constexpr (requires { b.hits; }) b.hits = buffers.hits.descriptor();
+    if constexpr (requires { b.candidates; }) b.candidates = buffers.candidates.descriptor();
+    if constexpr (requires { b.candidate_density; }) b.candidate_density = buffers.candidate_density.descriptor();
+    if constexpr (requires { b.vpl_keys; }) b.vpl_keys = buffers.vpl_keys.descriptor();
+    if constexpr (requires { b.vpl_values; }) b.vpl_values = buffers.vpl_values.descriptor();
+    if constexpr (requires { b.candidate_keys; }) b.candidate_keys = buffers.candidate_keys.descriptor();
+    if constexpr (requires { b.candidate_values; }) b.candidate_values = buffers.candidate_values.descriptor();
+    if constexpr (requires { b.moves; }) b.moves = buffers.moves.descriptor();
+    if constexpr (requires { b.counters; }) b.counters = buffers.counters.descriptor();
+    if constexpr (requires { b.vpls; }) b.vpls = buffers.vpls.descriptor();
+    return b;
+}
+
 // One step of a shader whose only push constant is the VPL budget.
 template <class Module, class Pipeline>
 void add_budget_dispatch(StepList& passes, std::string name, const Pipeline& pipeline,
@@ -191,17 +227,9 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
 
     // Line 7 over the candidates, line 18 over the VPLs that entered Y (their own seeds).
     auto add_radiosity_pass = [&](const BufferView& records, bool moved_only) {
-        const auto& pipeline =
-            device.pipeline<shaders::smc_radiosity::Pipeline>(bvh_spec<shaders::smc_radiosity::Spec>(bvh));
-        shaders::smc_radiosity::Bindings b;
-        bind_bvh(b, bvh);
-        b.lights = sources.lights.descriptor();
-        b.emissive = sources.emissive.descriptor();
-        b.emitter_cdf = sources.emitter_cdf.descriptor();
-        b.albedo = sources.triangle_albedo.descriptor();
+        const auto& pipeline = smc_pipeline<shaders::smc_radiosity::Pipeline>(device, bvh);
+        auto b = smc_bindings<shaders::smc_radiosity::Bindings>(scene, buffers);
         b.records = records.descriptor();
-        b.counters = buffers.counters.descriptor();
-        b.moves = buffers.moves.descriptor();
         shaders::smc_radiosity::Push push{};
         push.budget = budget;
         push.samples = options.radiosity_samples;
@@ -224,17 +252,12 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
     });
 
     {
-        const auto& pipeline =
-            device.pipeline<shaders::smc_camera_rays::Pipeline>(bvh_spec<shaders::smc_camera_rays::Spec>(bvh));
-        shaders::smc_camera_rays::Bindings b;
-        bind_bvh(b, bvh);
+        const auto& pipeline = smc_pipeline<shaders::smc_camera_rays::Pipeline>(device, bvh);
+        auto b = smc_bindings<shaders::smc_camera_rays::Bindings>(scene, buffers);
         b.gbuffer_position = gbuffer.position.descriptor();
         b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();
-        b.albedo = sources.triangle_albedo.descriptor();
-        b.hits = buffers.hits.descriptor();
         b.keys = buffers.pool_keys.descriptor();
         b.values = buffers.pool_values.descriptor();
-        b.counters = counters.descriptor();
         shaders::smc_camera_rays::Push push{};
         push.ray_count = pool;
         push.seed = options.seed;
@@ -244,13 +267,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
                                                        {gbuffer.position, gbuffer.geometric_normal});
     }
     {
-        const auto& pipeline =
-            device.pipeline<shaders::smc_validate::Pipeline>(bvh_spec<shaders::smc_validate::Spec>(bvh));
-        shaders::smc_validate::Bindings b;
-        bind_bvh(b, bvh);
-        b.state = buffers.state.descriptor();
-        b.valid = buffers.valid.descriptor();
-        b.counters = counters.descriptor();
+        const auto& pipeline = smc_pipeline<shaders::smc_validate::Pipeline>(device, bvh);
+        const auto b = smc_bindings<shaders::smc_validate::Bindings>(scene, buffers);
         shaders::smc_validate::Push push{};
         std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
         push.camera_position = {view.position.x, view.position.y, view.position.z};
@@ -259,24 +277,14 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
     }
     {
         // The invalid VPLs in index order: which ones revalidate draws then depends on the seed alone.
-        const auto& pipeline = device.pipeline<shaders::smc_invalid_list::Pipeline>();
-        shaders::smc_invalid_list::Bindings b;
-        b.valid = buffers.valid.descriptor();
-        b.invalid_list = buffers.invalid_list.descriptor();
-        b.counters = counters.descriptor();
-        add_budget_dispatch<shaders::smc_invalid_list::Module>(passes, "smc invalid list", pipeline, b, budget,
-                                                               pipeline.workgroup_size[0]);  // one workgroup
+        const auto& pipeline = smc_pipeline<shaders::smc_invalid_list::Pipeline>(device, bvh);
+        add_budget_dispatch<shaders::smc_invalid_list::Module>(
+            passes, "smc invalid list", pipeline, smc_bindings<shaders::smc_invalid_list::Bindings>(scene, buffers),
+            budget, pipeline.workgroup_size[0]);  // one workgroup
     }
     for (uint32_t round = 0; round < options.visibility_rounds && options.visibility_tries > 0; ++round) {
-        const auto& pipeline =
-            device.pipeline<shaders::smc_revalidate::Pipeline>(bvh_spec<shaders::smc_revalidate::Spec>(bvh));
-        shaders::smc_revalidate::Bindings b;
-        bind_bvh(b, bvh);
-        b.hits = buffers.hits.descriptor();
-        b.state = buffers.state.descriptor();
-        b.valid = buffers.valid.descriptor();
-        b.invalid_list = buffers.invalid_list.descriptor();
-        b.counters = counters.descriptor();
+        const auto& pipeline = smc_pipeline<shaders::smc_revalidate::Pipeline>(device, bvh);
+        const auto b = smc_bindings<shaders::smc_revalidate::Bindings>(scene, buffers);
         shaders::smc_revalidate::Push push{};
         push.point_count = std::min(budget, pool);
         push.tries = options.visibility_tries;
@@ -285,25 +293,17 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.round = round;
         add_dispatch<shaders::smc_revalidate::Module>(passes, "smc revalidate", pipeline, b, push, push.point_count);
         // The round's winning claims become anchors before the next round reads valid[].
-        shaders::smc_revalidate_claims::Bindings cb;
-        cb.hits = buffers.hits.descriptor();
-        cb.state = buffers.state.descriptor();
-        cb.valid = buffers.valid.descriptor();
-        cb.counters = counters.descriptor();
         add_budget_dispatch<shaders::smc_revalidate_claims::Module>(
-            passes, "smc revalidate claims", device.pipeline<shaders::smc_revalidate_claims::Pipeline>(), cb, budget,
-            budget);
+            passes, "smc revalidate claims", smc_pipeline<shaders::smc_revalidate_claims::Pipeline>(device, bvh),
+            smc_bindings<shaders::smc_revalidate_claims::Bindings>(scene, buffers), budget, budget);
     }
 
     sorter.add_pass(passes, buffers.pool_keys, buffers.pool_values, pool, "smc resample sort");
     {
-        const auto& pipeline = device.pipeline<shaders::smc_gather_candidates::Pipeline>();
-        shaders::smc_gather_candidates::Bindings b;
+        const auto& pipeline = smc_pipeline<shaders::smc_gather_candidates::Pipeline>(device, bvh);
+        auto b = smc_bindings<shaders::smc_gather_candidates::Bindings>(scene, buffers);
         b.keys = buffers.pool_keys.descriptor();
         b.values = buffers.pool_values.descriptor();
-        b.hits = buffers.hits.descriptor();
-        b.candidates = buffers.candidates.descriptor();
-        b.counters = counters.descriptor();
         shaders::smc_gather_candidates::Push push{};
         push.budget = budget;
         push.pool_count = pool;
@@ -316,29 +316,15 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
     add_smc_density_pass(device, passes, bvh, buffers.state, buffers.candidates, buffers.candidate_density, counters,
                          budget, 1, false, 0);
     {
-        shaders::smc_selection_keys::Bindings b;
-        b.state = buffers.state.descriptor();
-        b.candidate_density = buffers.candidate_density.descriptor();
-        b.vpl_keys = buffers.vpl_keys.descriptor();
-        b.vpl_values = buffers.vpl_values.descriptor();
-        b.candidate_keys = buffers.candidate_keys.descriptor();
-        b.candidate_values = buffers.candidate_values.descriptor();
-        b.counters = counters.descriptor();
         add_budget_dispatch<shaders::smc_selection_keys::Module>(
-            passes, "smc selection keys", device.pipeline<shaders::smc_selection_keys::Pipeline>(), b, budget, budget);
+            passes, "smc selection keys", smc_pipeline<shaders::smc_selection_keys::Pipeline>(device, bvh),
+            smc_bindings<shaders::smc_selection_keys::Bindings>(scene, buffers), budget, budget);
     }
     sorter.add_pass(passes, buffers.vpl_keys, buffers.vpl_values, budget, "smc vpl intensity sort");
     sorter.add_pass(passes, buffers.candidate_keys, buffers.candidate_values, budget, "smc candidate intensity sort");
     {
-        const auto& pipeline = device.pipeline<shaders::smc_select::Pipeline>();
-        shaders::smc_select::Bindings b;
-        b.vpl_keys = buffers.vpl_keys.descriptor();
-        b.vpl_values = buffers.vpl_values.descriptor();
-        b.candidate_keys = buffers.candidate_keys.descriptor();
-        b.candidate_values = buffers.candidate_values.descriptor();
-        b.valid = buffers.valid.descriptor();
-        b.moves = buffers.moves.descriptor();
-        b.counters = counters.descriptor();
+        const auto& pipeline = smc_pipeline<shaders::smc_select::Pipeline>(device, bvh);
+        const auto b = smc_bindings<shaders::smc_select::Bindings>(scene, buffers);
         shaders::smc_select::Push push{};
         push.budget = budget;
         push.max_moves = options.max_moves;
@@ -346,26 +332,18 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         add_dispatch<shaders::smc_select::Module>(passes, "smc select", pipeline, b, push, 1u);
     }
     {
-        shaders::smc_replace::Bindings b;
-        b.candidates = buffers.candidates.descriptor();
-        b.moves = buffers.moves.descriptor();
-        b.state = buffers.state.descriptor();
-        b.valid = buffers.valid.descriptor();
-        b.counters = counters.descriptor();
         add_budget_dispatch<shaders::smc_replace::Module>(
-            passes, "smc replace", device.pipeline<shaders::smc_replace::Pipeline>(), b, budget, budget);
+            passes, "smc replace", smc_pipeline<shaders::smc_replace::Pipeline>(device, bvh),
+            smc_bindings<shaders::smc_replace::Bindings>(scene, buffers), budget, budget);
     }
     add_radiosity_pass(buffers.state, true);
     add_smc_density_pass(device, passes, bvh, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
                          smc_render_neighbours(budget), true, options.surface_samples);
     {
-        shaders::smc_vpls::Bindings b;
-        b.state = buffers.state.descriptor();
+        auto b = smc_bindings<shaders::smc_vpls::Bindings>(scene, buffers);
         b.density = buffers.vpl_density.descriptor();
-        b.vpls = buffers.vpls.descriptor();
-        b.counters = counters.descriptor();
         add_budget_dispatch<shaders::smc_vpls::Module>(
-            passes, "smc vpls", device.pipeline<shaders::smc_vpls::Pipeline>(), b, budget, budget);
+            passes, "smc vpls", smc_pipeline<shaders::smc_vpls::Pipeline>(device, bvh), b, budget, budget);
     }
 }
 
