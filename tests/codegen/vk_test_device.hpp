@@ -1,6 +1,6 @@
 // A minimal raw-Vulkan device for the codegen round trip: lavapipe, the validation layer
 // with a messenger that records every warning and error, VK_KHR_push_descriptor,
-// shaderInt64 and scalarBlockLayout. Deliberately independent of vplkit_runtime: the
+// shaderInt64, scalarBlockLayout and bufferDeviceAddress. Deliberately independent of vplkit_runtime: the
 // generated headers must work with nothing but vulkan.h.
 #pragma once
 
@@ -31,7 +31,8 @@ public:
 
     VkDevice device() const { return device_; }
 
-    HostBuffer create_buffer(VkDeviceSize size);  // storage + uniform usage
+    HostBuffer create_buffer(VkDeviceSize size);  // storage + uniform + device-address usage
+    VkDeviceAddress address(const HostBuffer& buffer) const;
     void destroy(HostBuffer& buffer);
 
     // Records with `record` into a fresh command buffer, submits it and waits; a compute->host
