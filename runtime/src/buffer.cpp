@@ -46,7 +46,8 @@ Buffer Buffer::create(Context& context, VkDeviceSize size, VkBufferUsageFlags us
     }
     VkMemoryRequirements requirements{};
     vkGetBufferMemoryRequirements(context.device(), buffer.buffer_, &requirements);
-    const auto allocation = detail::allocate(context, requirements, memory, label(buffer.name_));
+    const bool device_address = (usage & VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT) != 0;
+    const auto allocation = detail::allocate(context, requirements, memory, label(buffer.name_), device_address);
     buffer.memory_ = allocation.memory;
     VPLKIT_CHECK(vkBindBufferMemory(context.device(), buffer.buffer_, buffer.memory_, 0));
 
@@ -92,6 +93,12 @@ void Buffer::release() {
     memory_ = VK_NULL_HANDLE;
     mapped_ = nullptr;
     context_ = nullptr;
+}
+
+VkDeviceAddress Buffer::device_address() const {
+    VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    info.buffer = buffer_;
+    return vkGetBufferDeviceAddress(context_->device(), &info);
 }
 
 void Buffer::upload(const void* data, VkDeviceSize bytes, VkDeviceSize offset) {

@@ -24,7 +24,8 @@ uint32_t find_type(const VkPhysicalDeviceMemoryProperties& props, uint32_t allow
 
 }  // namespace
 
-Allocation allocate(Context& context, const VkMemoryRequirements& requirements, MemoryUse use, std::string_view what) {
+Allocation allocate(Context& context, const VkMemoryRequirements& requirements, MemoryUse use, std::string_view what,
+                    bool device_address) {
     VkMemoryPropertyFlags required = 0;
     VkMemoryPropertyFlags preferred = 0;
     switch (use) {
@@ -50,6 +51,9 @@ Allocation allocate(Context& context, const VkMemoryRequirements& requirements, 
     VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     info.allocationSize = requirements.size;
     info.memoryTypeIndex = type;
+    VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    if (device_address) info.pNext = &flags;
     Allocation allocation;
     const VkResult result = vkAllocateMemory(context.device(), &info, nullptr, &allocation.memory);
     if (result != VK_SUCCESS) {

@@ -18,8 +18,10 @@ struct Allocation {
     VkMemoryPropertyFlags properties = 0;
 };
 
-// Allocates memory for `requirements` suited to `use`; throws Error naming `what` when no
-// memory type fits or the allocation fails.
-Allocation allocate(Context& context, const VkMemoryRequirements& requirements, MemoryUse use, std::string_view what);
+// Allocates memory for `requirements` suited to `use` (with `device_address`, memory a buffer
+// with SHADER_DEVICE_ADDRESS usage can be bound to); throws Error naming `what` when no memory
+// type fits or the allocation fails.
+Allocation allocate(Context& context, const VkMemoryRequirements& requirements, MemoryUse use, std::string_view what,
+                    bool device_address = false);
 
 }  // namespace vplkit::detail

@@ -1,7 +1,7 @@
 // required_device_features and its check: one list of what the kit's shaders and recording use
-// (SPIR-V capabilities: Shader, Int64, ImageQuery; scalar block layout; synchronization2 barriers;
-// dynamic rendering in the raster stages; push descriptors), so README, headers and samples cite
-// one function instead of three lists.
+// (SPIR-V capabilities: Shader, Int64, ImageQuery, PhysicalStorageBufferAddresses; scalar block layout;
+// synchronization2 barriers; dynamic rendering in the raster stages; push descriptors), so README, headers and samples
+// cite one function instead of three lists.
 
 #include "vplkit/stages/device_requirements.hpp"
 
@@ -21,6 +21,7 @@ DeviceRequirements required_device_features() {
     needs.extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME};
     needs.features.features.shaderInt64 = VK_TRUE;
     needs.features12.scalarBlockLayout = VK_TRUE;
+    needs.features12.bufferDeviceAddress = VK_TRUE;
     needs.features13.synchronization2 = VK_TRUE;
     needs.features13.dynamicRendering = VK_TRUE;
     needs.chain();
@@ -68,6 +69,7 @@ std::vector<std::string> missing_device_features(const DeviceSupport& support, c
     // Every flag that required_device_features() sets.
     check(needs.features.features.shaderInt64, support.features.shaderInt64, "shaderInt64", "1.0");
     check(needs.features12.scalarBlockLayout, support.features12.scalarBlockLayout, "scalarBlockLayout", "1.2");
+    check(needs.features12.bufferDeviceAddress, support.features12.bufferDeviceAddress, "bufferDeviceAddress", "1.2");
     check(needs.features13.synchronization2, support.features13.synchronization2, "synchronization2", "1.3");
     check(needs.features13.dynamicRendering, support.features13.dynamicRendering, "dynamicRendering", "1.3");
     return missing;

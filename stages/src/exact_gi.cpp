@@ -45,9 +45,7 @@ void add_chunk(Device& device, StepList& passes, const GbufferViews& gbuffer, co
     spec.kExactMinDistanceFraction = min_distance_fraction;
     const auto& pipeline = device.pipeline<shaders::exact_gi::Pipeline>(spec);
     shaders::exact_gi::Bindings b;
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
-    b.bvh_alpha = bvh.alpha.descriptor();
+    bind_bvh(b, bvh);
     b.gbuffer_position = gbuffer.position.descriptor();
     b.gbuffer_normal = gbuffer.normal.descriptor();
     b.gbuffer_geometric_normal = gbuffer.geometric_normal.descriptor();

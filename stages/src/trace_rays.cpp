@@ -18,14 +18,11 @@ namespace {
 // The two trace shaders share their bindings but for the result buffer's name.
 template <typename Pipeline, typename Bindings, typename Push, auto ResultBinding, typename Spec>
 void record_trace(Device& device, StepList& passes, const char* name, std::vector<Use> uses, const Spec& spec,
-                  BufferView nodes, BufferView triangles, BufferView alpha, BufferView rays, BufferView results,
-                  uint32_t ray_count) {
+                  const BvhBuffers& bvh, BufferView rays, BufferView results, uint32_t ray_count) {
     const auto& pipeline = device.pipeline<Pipeline>(spec);
     check_dispatch_groups(pipeline, name, ray_count);  // past 65,535 workgroups the grid is folded
     Bindings bindings;
-    bindings.bvh_nodes = nodes.descriptor();
-    bindings.bvh_triangles = triangles.descriptor();
-    bindings.bvh_alpha = alpha.descriptor();
+    bind_bvh(bindings, bvh);
     bindings.rays = rays.descriptor();
     bindings.*ResultBinding = results.descriptor();
     Push push{};
@@ -59,13 +56,13 @@ void add_trace_rays_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     if (mode == TraceMode::closest_hit) {
         record_trace<shaders::trace_closest::Pipeline, shaders::trace_closest::Bindings, shaders::trace_closest::Push,
                      &shaders::trace_closest::Bindings::hits>(device, passes, name, std::move(uses),
-                                                              bvh_spec<shaders::trace_closest::Spec>(bvh), nodes,
-                                                              triangles, alpha, rays, results, ray_count);
+                                                              bvh_spec<shaders::trace_closest::Spec>(bvh), bvh, rays,
+                                                              results, ray_count);
     } else {
         record_trace<shaders::trace_occlusion::Pipeline, shaders::trace_occlusion::Bindings,
                      shaders::trace_occlusion::Push, &shaders::trace_occlusion::Bindings::occlusion>(
-            device, passes, name, std::move(uses), bvh_spec<shaders::trace_occlusion::Spec>(bvh), nodes, triangles,
-            alpha, rays, results, ray_count);
+            device, passes, name, std::move(uses), bvh_spec<shaders::trace_occlusion::Spec>(bvh), bvh, rays, results,
+            ray_count);
     }
 }
 

@@ -160,9 +160,7 @@ void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh
     // vpl_capacity refused max_bounces = 2^32 - 1: this does not wrap.
     push.step_limit = options.max_bounces + 1;
     shaders::trace_vpls::Bindings b;
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
-    b.bvh_alpha = bvh.alpha.descriptor();
+    bind_bvh(b, bvh);
     b.lights = bound.lights.descriptor();
     b.emissive = bound.emissive.descriptor();
     b.emitter_cdf = bound.emitter_cdf.descriptor();

@@ -164,7 +164,7 @@ glm::vec3 random_direction(std::mt19937& rng) {
     }
 }
 
-std::vector<BvhHit> trace_closest(const GpuBvh& bvh, std::span<const BvhRay> rays) {
+std::vector<BvhHit> trace_closest(const stages::BvhBuffers& bvh, std::span<const BvhRay> rays) {
     Context& ctx = test::context();
     const uint32_t count = uint32_t(rays.size());
     auto ray_buffer =
@@ -178,7 +178,7 @@ std::vector<BvhHit> trace_closest(const GpuBvh& bvh, std::span<const BvhRay> ray
     return hit_buffer.download<BvhHit>(count);
 }
 
-std::vector<uint32_t> trace_occlusion(const GpuBvh& bvh, std::span<const BvhRay> rays) {
+std::vector<uint32_t> trace_occlusion(const stages::BvhBuffers& bvh, std::span<const BvhRay> rays) {
     Context& ctx = test::context();
     const uint32_t count = uint32_t(rays.size());
     auto ray_buffer =

@@ -51,8 +51,8 @@ shaders::BvhRay make_ray(glm::vec3 origin, glm::vec3 direction, float tmin, floa
 glm::vec3 random_direction(std::mt19937& rng);
 
 // Traces on the test context through add_trace_rays_pass.
-std::vector<shaders::BvhHit> trace_closest(const GpuBvh& bvh, std::span<const shaders::BvhRay> rays);
-std::vector<uint32_t> trace_occlusion(const GpuBvh& bvh, std::span<const shaders::BvhRay> rays);
+std::vector<shaders::BvhHit> trace_closest(const stages::BvhBuffers& bvh, std::span<const shaders::BvhRay> rays);
+std::vector<uint32_t> trace_occlusion(const stages::BvhBuffers& bvh, std::span<const shaders::BvhRay> rays);
 
 struct Agreement {
     size_t rays = 0;

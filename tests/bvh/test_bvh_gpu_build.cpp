@@ -348,7 +348,10 @@ TEST_CASE("bvh gpu build: alpha-tested triangles in a subtree of their own - the
     // (1, 1, 1) tested but solid.
     const Triangles soup = vplkit::bvh_test::random_soup(2000, 83, 0.1f);
     vplkit::GpuBvhAlphaRecords alpha;
-    alpha.words = {0u, std::bit_cast<uint32_t>(0.5f), 0u, 0u, 0u, 0u};
+    // The header's words, then the material record.
+    alpha.words.assign(vplkit::kBvhHeaderWords, 0u);
+    const uint32_t material = uint32_t(alpha.words.size());
+    alpha.words.insert(alpha.words.end(), {std::bit_cast<uint32_t>(0.5f), 0u, 0u, 0u, 0u});
     std::vector<uint8_t> masked;
     for (uint32_t t = 0; t < 2000; ++t) {
         if (t % 4 == 0) {
@@ -362,7 +365,7 @@ TEST_CASE("bvh gpu build: alpha-tested triangles in a subtree of their own - the
         masked.push_back(1);
         alpha.words.insert(alpha.words.end(), 6, 0u);  // UVs: no texture
         for (int k = 0; k < 3; ++k) alpha.words.push_back(std::bit_cast<uint32_t>(corner[k]));
-        alpha.words.push_back(1u);  // the material record
+        alpha.words.push_back(material);
     }
     const GpuBvhBuild build(vplkit::test::context(), soup, {}, {}, &alpha);
     const auto& gpu = build.bvh();

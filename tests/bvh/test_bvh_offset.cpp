@@ -53,9 +53,7 @@ std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh,
                 vplkit::Use::read(query_buffer), vplkit::Use::write(result_buffer)},
                [&](VkCommandBuffer cmd) {
                    ts::surface_rays::Bindings bindings;
-                   bindings.bvh_nodes = bvh.nodes.descriptor();
-                   bindings.bvh_triangles = bvh.triangles.descriptor();
-                   bindings.bvh_alpha = bvh.alpha.descriptor();
+                   vplkit::stages::bind_bvh(bindings, bvh);
                    bindings.queries = query_buffer.descriptor();
                    bindings.results = result_buffer.descriptor();
                    ts::surface_rays::Push push{};
@@ -82,9 +80,7 @@ std::vector<uint32_t> run_segments(const vplkit::GpuBvh& bvh, const std::vector<
                 vplkit::Use::read(query_buffer), vplkit::Use::write(result_buffer)},
                [&](VkCommandBuffer cmd) {
                    ts::segment_visibility::Bindings bindings;
-                   bindings.bvh_nodes = bvh.nodes.descriptor();
-                   bindings.bvh_triangles = bvh.triangles.descriptor();
-                   bindings.bvh_alpha = bvh.alpha.descriptor();
+                   vplkit::stages::bind_bvh(bindings, bvh);
                    bindings.queries = query_buffer.descriptor();
                    bindings.occluded = result_buffer.descriptor();
                    ts::segment_visibility::Push push{};

@@ -20,6 +20,7 @@ vplkit::stages::DeviceSupport complete_device() {
     support.extensions = {VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME, "VK_KHR_something_else"};
     support.features.shaderInt64 = VK_TRUE;
     support.features12.scalarBlockLayout = VK_TRUE;
+    support.features12.bufferDeviceAddress = VK_TRUE;
     support.features13.synchronization2 = VK_TRUE;
     support.features13.dynamicRendering = VK_TRUE;
     return support;
@@ -27,13 +28,14 @@ vplkit::stages::DeviceSupport complete_device() {
 
 }  // namespace
 
-TEST_CASE("device requirements: the list is Vulkan 1.3, push descriptors and four features") {
+TEST_CASE("device requirements: the list is Vulkan 1.3, push descriptors and five features") {
     vplkit::stages::DeviceRequirements needs = vplkit::stages::required_device_features();
     CHECK(needs.api_version == VK_API_VERSION_1_3);
     REQUIRE(needs.extensions.size() == 1);
     CHECK(std::string(needs.extensions[0]) == VK_KHR_PUSH_DESCRIPTOR_EXTENSION_NAME);
     CHECK(needs.features.features.shaderInt64 == VK_TRUE);
     CHECK(needs.features12.scalarBlockLayout == VK_TRUE);
+    CHECK(needs.features12.bufferDeviceAddress == VK_TRUE);
     CHECK(needs.features12.shaderBufferInt64Atomics == VK_FALSE);  // no shader uses 64-bit atomics
     CHECK(needs.features13.synchronization2 == VK_TRUE);
     // The chain links the three structs, ready for VkDeviceCreateInfo::pNext.

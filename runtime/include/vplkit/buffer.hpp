@@ -25,7 +25,8 @@ enum class MemoryUse {
 
 class Buffer {
 public:
-    // `usage` gets TRANSFER_SRC and TRANSFER_DST added so upload()/download() always work.
+    // `usage` gets TRANSFER_SRC and TRANSFER_DST added so upload()/download() always work; with
+    // SHADER_DEVICE_ADDRESS its memory is allocated for device addresses (device_address()).
     // Throws Error for size 0 (Vulkan has no empty buffers) and when no memory type fits.
     static Buffer create(Context& context, VkDeviceSize size, VkBufferUsageFlags usage,
                          MemoryUse memory = MemoryUse::device, std::string_view name = {});
@@ -42,6 +43,8 @@ public:
     VkDeviceSize size() const { return size_; }
     MemoryUse memory_use() const { return memory_use_; }
     const std::string& name() const { return name_; }
+    // The buffer's device address (it must have been made with SHADER_DEVICE_ADDRESS usage).
+    VkDeviceAddress device_address() const;
     // Non-null when the memory is mapped (host-visible and coherent): upload/download are memcpy.
     void* mapped() const { return mapped_; }
 

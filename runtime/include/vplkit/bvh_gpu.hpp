@@ -1,11 +1,8 @@
 #pragma once
 // A Bvh (vplkit/bvh.hpp) on the GPU. The batch ray-query stage over it is in the stage library
-// (stages/trace_rays.hpp, included here for its callers). Other stages bind the two buffers
-// themselves: their shaders include vplkit/bvh.glsl, which declares `bvh_nodes` and
-// `bvh_triangles`, so their generated Bindings have fields of those names:
-//     bindings.bvh_nodes = gpu_bvh.nodes.descriptor();
-//     bindings.bvh_triangles = gpu_bvh.triangles.descriptor();
-//     bindings.bvh_alpha = gpu_bvh.alpha.descriptor();
+// (stages/trace_rays.hpp, included here for its callers). Other stages bind the buffers with
+// stages::bind_bvh: their shaders include vplkit/bvh.glsl, which declares `bvh_nodes`,
+// `bvh_triangles` and `bvh_alpha`, so their generated Bindings have fields of those names.
 
 #include "vplkit/buffer.hpp"
 #include "vplkit/bvh.hpp"
@@ -22,8 +19,12 @@ class Context;
 // stages take). upload_bvh and GpuBvhBuild fill every field.
 struct GpuBvh : stages::BvhSet<Buffer> {};
 
-// Device-local buffers with the BVH's nodes and triangles. Throws Error when a buffer would
-// exceed the device's maxStorageBufferRange (naming both sizes).
+// Device-local buffers with the BVH's nodes and triangles, and the alpha buffer with the header
+// that says where they are. Nodes or triangles past maxStorageBufferRange make the GpuBvh
+// `addressed` (read at their device addresses), so device memory is the limit.
+// Throws Error naming the buffer and its size when it exceeds the device's largest buffer or
+// allocation, or does not fit in the device memory left; and when the alpha-test records
+// exceed maxStorageBufferRange (they are bound as a descriptor).
 GpuBvh upload_bvh(Context& context, const Bvh& bvh);
 
 // The ray-query stage under the names its callers use (it takes a GpuBvh: GpuBvh converts).

@@ -39,8 +39,9 @@ struct GpuBvhBuildStats {
     double gpu_ms = 0.0;         // GPU time of the last build or refit (every pass)
 };
 
-// Alpha-test records for the GPU build: bvh.glsl's bvh_alpha words (word 0 is the build's to
-// write) and, per input triangle, the offset of its triangle record in them (0: opaque).
+// Alpha-test records for the GPU build: bvh.glsl's bvh_alpha words (the build writes the first
+// kBvhHeaderWords, the header: Bvh::alpha as add_alpha_tests makes it fits) and, per input
+// triangle, the offset of its triangle record in them (0: opaque).
 struct GpuBvhAlphaRecords {
     std::vector<uint32_t> words;
     std::vector<uint32_t> triangle_records;

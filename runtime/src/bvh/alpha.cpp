@@ -86,7 +86,8 @@ AlphaTestStats add_alpha_tests(Bvh& bvh, const scene::Scene& scene) {
     // Material records, for the materials that may cut something out; 0 = opaque.
     std::vector<uint32_t> material_record(scene.materials.size(), 0);
     std::vector<float> cutoffs(scene.materials.size(), 0.0f);
-    std::vector<uint32_t> words = {0};  // word 0: no record starts there
+    // The header's words (bvh.glsl): no record starts there; the upload fills all but word 0.
+    std::vector<uint32_t> words(kBvhHeaderWords, 0u);
     std::vector<int32_t> texture_data(scene.images.size(), -1);
     for (size_t m = 0; m < scene.materials.size(); ++m) {
         const scene::Material& material = scene.materials[m];

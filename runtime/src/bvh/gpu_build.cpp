@@ -2,6 +2,8 @@
 
 #include "vplkit/bvh_gpu_build.hpp"
 
+#include "device_buffers.hpp"
+
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 
@@ -78,10 +80,10 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
         throw Error("GPU BVH build: " + std::to_string(triangle_ids.size()) + " triangle ids for " +
                     std::to_string(triangle_count) + " triangles");
     }
-    if (alpha && (alpha->triangle_records.size() != triangle_count || alpha->words.empty())) {
+    if (alpha && (alpha->triangle_records.size() != triangle_count || alpha->words.size() < kBvhHeaderWords)) {
         throw Error("GPU BVH build: " + std::to_string(alpha->triangle_records.size()) + " alpha records for " +
                     std::to_string(triangle_count) + " triangles (and " + std::to_string(alpha->words.size()) +
-                    " words: word 0 at least)");
+                    " words: the " + std::to_string(kBvhHeaderWords) + " of the header at least)");
     }
     stats_.input_triangles = uint32_t(triangle_count);
     for (size_t t = 0; t < triangle_count; ++t) {
@@ -112,12 +114,14 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
     }
     const uint32_t count = uint32_t(kept_.size());
     const stages::BvhGpuBuildSizes sizes = stages::bvh_gpu_build_sizes(count);
-    bvh_.nodes = storage(context, sizes.nodes, "bvh nodes");
-    bvh_.triangles = storage(context, sizes.triangles, "bvh triangles");
-    const std::vector<uint32_t> opaque = {0u};
-    const std::vector<uint32_t>& words = alpha ? alpha->words : opaque;
-    bvh_.alpha = storage(context, words.size() * sizeof(uint32_t), "bvh alpha");
-    bvh_.alpha.upload(words);
+    // The build writes nodes and triangles through descriptors: their range limits them here.
+    check_range(context, sizes.nodes, "bvh nodes");
+    check_range(context, sizes.triangles, "bvh triangles");
+    bvh_.nodes = create_bvh_buffer(context, sizes.nodes, "nodes", "GPU BVH build");
+    bvh_.triangles = create_bvh_buffer(context, sizes.triangles, "triangles", "GPU BVH build");
+    bvh_.alpha = upload_bvh_alpha(context, bvh_.nodes, bvh_.triangles,
+                                  alpha ? std::span<const uint32_t>(alpha->words) : std::span<const uint32_t>{},
+                                  "GPU BVH build");
     bvh_.alpha_tests = alpha != nullptr;
     bvh_.triangle_count = count;
     input_ = storage(context, sizes.input, "bvh build input");

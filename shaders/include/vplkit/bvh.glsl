@@ -15,7 +15,27 @@
 //     #define VPLKIT_BVH_ALPHA_BINDING 4
 //     #include "vplkit/bvh.glsl"
 // which declares `bvh_nodes`, `bvh_triangles` and `bvh_alpha` (generated Bindings fields of the
-// same names).
+// same names; stages::bind_bvh fills them).
+//
+// Where the nodes and triangles are read: through the `bvh_nodes` and `bvh_triangles` bindings,
+// or, for a BVH larger than a binding's range (maxStorageBufferRange: 128 MiB on lavapipe, 4.2M
+// nodes or 2.8M triangles), at their buffer device addresses (GL_EXT_buffer_reference), which
+// the header in words 0-7 of `bvh_alpha` holds; the specialization constant kBvhAddressed
+// (stages::bvh_spec, from BvhBuffers::addressed) picks one, so each pipeline has one path and
+// pays nothing for the other. Why not always the addresses: lavapipe (Mesa 22) loads through a
+// pointer one component at a time for each lane, where a binding's load fetches a lane's whole
+// record at once: tracing took about 2x as long. With kBvhAddressed the bindings stay bound
+// (bind_bvh: one record's range) so that a step list still sees which buffers a step reads and
+// orders it after the passes that write them.
+// Header (vplkit::kBvhHeaderWords words; stages::bvh_header writes it; words 1-7 are read only
+// with kBvhAddressed):
+//   word 0     the masked subtree's root of a split BVH, 0 for one tree (bvh_masked_root)
+//   word 1     0
+//   words 2-3  the device address of BvhNode[0] (low word first)
+//   words 4-5  the device address of BvhTriangle[0]
+//   word 6     how many nodes the node buffer holds, word 7 how many triangles: indices are
+//              clamped below them, so a malformed tree reads wrong records, never outside the
+//              buffers (as a binding's range keeps it inside).
 //
 // Alpha-tested triangles (glTF MASK materials, and BLEND ones, which the G-buffer draws where
 // alpha >= 0.5): a ray passes through a triangle where alpha = base colour factor alpha x COLOR_0
@@ -23,8 +43,8 @@
 // rays, light paths and VPL visibility see the surface the camera sees. A triangle's `alpha` is
 // 0 when it is opaque (the test is skipped: a triangle hit in an opaque scene costs one compare
 // of a word already loaded); else the offset of its record in `bvh_alpha` (a plain uint array,
-// written by vplkit::add_alpha_tests, runtime/include/vplkit/bvh_alpha.hpp; word 0 holds no
-// record but the masked subtree's root of a split BVH, 0 for one tree: bvh_masked_root):
+// written by vplkit::add_alpha_tests, runtime/include/vplkit/bvh_alpha.hpp; words 0-7 hold no
+// record but the header above):
 //   triangle record (10 words): the base colour texture's UVs at v0, v1, v2 (texture transform
 //     and texCoord set applied; 6 floats), alpha factor x COLOR_0 alpha at v0, v1, v2 (3 floats),
 //     the offset of its material record;
@@ -74,6 +94,9 @@
 // Self-intersection (origins on surfaces): offset_ray_origin below, after Wachter and Binder,
 // "A Fast and Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, 2019, ch. 6).
 
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
 #if !defined(VPLKIT_BVH_NODES_BINDING) || !defined(VPLKIT_BVH_TRIANGLES_BINDING) || !defined(VPLKIT_BVH_ALPHA_BINDING)
 #error "define VPLKIT_BVH_NODES_BINDING, VPLKIT_BVH_TRIANGLES_BINDING and VPLKIT_BVH_ALPHA_BINDING before including vplkit/bvh.glsl"
 #endif
@@ -104,6 +127,15 @@ layout(std430, set = 0, binding = VPLKIT_BVH_TRIANGLES_BINDING) readonly buffer 
 layout(std430, set = 0, binding = VPLKIT_BVH_ALPHA_BINDING) readonly buffer BvhAlphaBuffer {
     uint words[];
 } bvh_alpha;
+
+// The same records at the addresses in the header (kBvhAddressed).
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhNodeArray {
+    BvhNode items[];
+};
+
+layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhTriangleArray {
+    BvhTriangle items[];
+};
 
 // Equals vplkit::kBvhMaxDepth: the host builds no leaf deeper than this, and the traversal
 // pushes at most one node per level of the path it is on, so the stack never overflows for a
@@ -334,25 +366,68 @@ BvhHit bvh_no_hit(float tmax) {
     return hit;
 }
 
-// The nearest hit in the subtree at `root` with tmin < t < hit.t, into `hit`. `alpha_tests` is
-// a constant at every call: after inlining, the alpha test is compiled out of the loops that do
-// not need it (see bvh_closest_hit).
-void bvh_closest_hit_in(BvhRayState ray, uint root, float tmin, bool alpha_tests, inout BvhHit hit) {
+// Whether nodes and triangles are read at the header's addresses instead of through their
+// bindings (see the top of this file); stages::bvh_spec sets it from BvhBuffers::addressed.
+layout(constant_id = 24) const uint kBvhAddressed = 0u;
+
+// The header's addresses and record counts, read once per ray (only with kBvhAddressed).
+struct BvhArrays {
+    BvhNodeArray nodes;
+    BvhTriangleArray triangles;
+    uint last_node;  // the last node and triangle the buffers hold
+    uint last_triangle;
+};
+
+BvhArrays bvh_arrays() {
+    BvhArrays arrays;
+    if (kBvhAddressed != 0u) {
+        arrays.nodes = BvhNodeArray(uvec2(bvh_alpha.words[2], bvh_alpha.words[3]));
+        arrays.triangles = BvhTriangleArray(uvec2(bvh_alpha.words[4], bvh_alpha.words[5]));
+        arrays.last_node = max(bvh_alpha.words[6], 1u) - 1u;
+        arrays.last_triangle = max(bvh_alpha.words[7], 1u) - 1u;
+    }
+    return arrays;
+}
+
+BvhNode bvh_node(BvhArrays arrays, uint index) {
+    if (kBvhAddressed != 0u) {
+        return arrays.nodes.items[min(index, arrays.last_node)];
+    }
+    return bvh_nodes.items[index];
+}
+
+BvhTriangle bvh_triangle(BvhArrays arrays, uint index) {
+    if (kBvhAddressed != 0u) {
+        return arrays.triangles.items[min(index, arrays.last_triangle)];
+    }
+    return bvh_triangles.items[index];
+}
+
+// Hits with tmin < t < hit.t in the subtree at `root`. Closest hit (any_hit false): the nearest
+// goes into `hit`, hit.t shrinking as hits are found so that boxes behind them are skipped.
+// Any hit (a shadow ray): returns true at the first hit found, in no particular order; false
+// means none. `alpha_tests` and `any_hit` are constants at every call: after inlining, the code
+// of the other case is compiled out of the loop (a runtime flag would cost every iteration:
+// lavapipe runs both sides of a branch when its lanes disagree).
+bool bvh_traverse(BvhRayState ray, uint root, float tmin, bool alpha_tests, bool any_hit, inout BvhHit hit) {
+    BvhArrays arrays = bvh_arrays();
     uint stack[kBvhStackSize];
     uint depth = 0u;
     uint node_index = root;
     while (true) {
-        BvhNode node = bvh_nodes.items[node_index];
-        // hit.t shrinks as hits are found: boxes behind the nearest hit so far are skipped.
+        BvhNode node = bvh_node(arrays, node_index);
         if (bvh_box_hit(ray, node.lo, node.hi, tmin, hit.t)) {
             if ((node.meta & kBvhLeafFlag) != 0u) {
                 uint end = node.index + (node.meta & kBvhCountMask);
                 for (uint i = node.index; i < end; ++i) {
                     float t;
                     vec2 barycentrics;
-                    BvhTriangle tri = bvh_triangles.items[i];
+                    BvhTriangle tri = bvh_triangle(arrays, i);
                     if (bvh_intersect_triangle(ray, tri, tmin, hit.t, t, barycentrics) &&
                         (!alpha_tests || bvh_alpha_passes(tri, barycentrics))) {
+                        if (any_hit) {
+                            return true;
+                        }
                         hit.t = t;
                         hit.id = tri.id;
                         hit.barycentrics = barycentrics;
@@ -360,7 +435,8 @@ void bvh_closest_hit_in(BvhRayState ray, uint root, float tmin, bool alpha_tests
                     }
                 }
             } else {
-                // Near child first, so hit.t shrinks early and prunes the far one.
+                // Near child first, so that a closest-hit ray's hit.t shrinks early and prunes
+                // the far one.
                 uint first = node_index + 1u;
                 uint second = node.index;
                 bool backwards = ray.direction[node.meta] < 0.0;
@@ -376,11 +452,12 @@ void bvh_closest_hit_in(BvhRayState ray, uint root, float tmin, bool alpha_tests
         }
         node_index = stack[--depth];
     }
+    return false;
 }
 
 // The root of the masked subtree of a split BVH (vplkit/bvh.hpp: node 1 is then the root of the
-// opaque subtree, whose triangles have no alpha record), or 0 when the tree is not split. Word 0
-// of bvh_alpha holds no record (see above), so it carries this; read only with kBvhAlphaTest.
+// opaque subtree, whose triangles have no alpha record), or 0 when the tree is not split. It is word 0
+// of bvh_alpha's header (see the top of this file); read only with kBvhAlphaTest.
 uint bvh_masked_root() {
     return bvh_alpha.words[0];
 }
@@ -401,12 +478,12 @@ BvhHit bvh_closest_hit(vec3 origin, vec3 direction, float tmin, float tmax) {
     if (bvh_has_alpha_tests()) {
         uint masked_root = bvh_masked_root();
         if (masked_root != 0u) {
-            bvh_closest_hit_in(ray, 1u, tmin, false, hit);
+            bvh_traverse(ray, 1u, tmin, false, false, hit);
         }
         // Not split: the whole tree from node 0, every triangle with a record tested.
-        bvh_closest_hit_in(ray, masked_root, tmin, true, hit);
+        bvh_traverse(ray, masked_root, tmin, true, false, hit);
     } else {
-        bvh_closest_hit_in(ray, 0u, tmin, false, hit);
+        bvh_traverse(ray, 0u, tmin, false, false, hit);
     }
     return hit;
 }
@@ -416,42 +493,10 @@ BvhHit bvh_closest_hit(BvhRay ray) {
 }
 
 // Whether the subtree at `root` has a hit with tmin < t < tmax. `alpha_tests`: as in
-// bvh_closest_hit_in.
+// bvh_traverse.
 bool bvh_occluded_in(BvhRayState ray, uint root, float tmin, float tmax, bool alpha_tests) {
-    uint stack[kBvhStackSize];
-    uint depth = 0u;
-    uint node_index = root;
-    while (true) {
-        BvhNode node = bvh_nodes.items[node_index];
-        if (bvh_box_hit(ray, node.lo, node.hi, tmin, tmax)) {
-            if ((node.meta & kBvhLeafFlag) != 0u) {
-                uint end = node.index + (node.meta & kBvhCountMask);
-                for (uint i = node.index; i < end; ++i) {
-                    float t;
-                    vec2 barycentrics;
-                    BvhTriangle tri = bvh_triangles.items[i];
-                    if (bvh_intersect_triangle(ray, tri, tmin, tmax, t, barycentrics) &&
-                        (!alpha_tests || bvh_alpha_passes(tri, barycentrics))) {
-                        return true;
-                    }
-                }
-            } else {
-                uint first = node_index + 1u;
-                uint second = node.index;
-                bool backwards = ray.direction[node.meta] < 0.0;
-                if (depth < kBvhStackSize) {
-                    stack[depth++] = backwards ? first : second;
-                }
-                node_index = backwards ? second : first;
-                continue;
-            }
-        }
-        if (depth == 0u) {
-            break;
-        }
-        node_index = stack[--depth];
-    }
-    return false;
+    BvhHit hit = bvh_no_hit(tmax);
+    return bvh_traverse(ray, root, tmin, alpha_tests, true, hit);
 }
 
 // Whether anything lies between tmin and tmax (exclusive) on the ray: a shadow ray. Stops at
@@ -480,7 +525,7 @@ bool bvh_occluded(BvhRay ray) {
 // The scene scale: the largest coordinate magnitude of the root box, which bounds every vertex
 // and so every distance an intersection's rounding is relative to.
 float bvh_scene_scale() {
-    BvhNode root = bvh_nodes.items[0];
+    BvhNode root = bvh_node(bvh_arrays(), 0u);
     vec3 m = max(abs(root.lo), abs(root.hi));
     return max(max(m.x, m.y), max(m.z, kBvhMinScale));
 }
@@ -488,14 +533,14 @@ float bvh_scene_scale() {
 // Geometric normal of a triangle (unnormalized: twice its area; the winding v0 -> v1 -> v2 is
 // counter-clockwise seen from the side it points to).
 vec3 bvh_triangle_normal(uint triangle) {
-    BvhTriangle tri = bvh_triangles.items[triangle];
+    BvhTriangle tri = bvh_triangle(bvh_arrays(), triangle);
     return cross(tri.v1 - tri.v0, tri.v2 - tri.v0);
 }
 
 // The hit point from the barycentrics: accurate to a few ulps of the vertex coordinates, where
 // origin + t * direction carries the error of t times the ray length (Wachter and Binder sec. 6.2).
 vec3 bvh_hit_position(BvhHit hit) {
-    BvhTriangle tri = bvh_triangles.items[hit.triangle];
+    BvhTriangle tri = bvh_triangle(bvh_arrays(), hit.triangle);
     return (1.0 - hit.barycentrics.x - hit.barycentrics.y) * tri.v0 + hit.barycentrics.x * tri.v1 +
            hit.barycentrics.y * tri.v2;
 }

@@ -81,6 +81,9 @@ inline constexpr float kBvhBoxPadding = 1.0f / 1048576.0f;  // 2^-20
 inline constexpr float kBvhOriginOffset = 1.0f / 65536.0f;  // 2^-16
 // The scene scale never falls below this (empty scenes).
 inline constexpr float kBvhMinScale = 1e-30f;
+// Words at the start of the alpha buffer that hold the header bvh.glsl reads (where the nodes
+// and triangles are; stages::bvh_header), before any alpha-test record.
+inline constexpr uint32_t kBvhHeaderWords = 8;
 
 struct BvhBuildOptions {
     uint32_t bins = 32;                                  // 2..256 per axis
@@ -95,8 +98,10 @@ struct Bvh {
     std::vector<shaders::BvhNode> nodes;
     // In leaf order; empty for an empty scene (upload_bvh still makes a non-empty buffer).
     std::vector<shaders::BvhTriangle> triangles;
-    // The alpha-test records of bvh.glsl (BvhTriangle::alpha points into them); empty when every
-    // triangle is opaque (build_bvh leaves it so; vplkit::add_alpha_tests fills it).
+    // The alpha-test records of bvh.glsl (BvhTriangle::alpha points into them) after
+    // kBvhHeaderWords words of header (of which the host sets word 0, the masked subtree's root;
+    // the upload the rest); empty when every triangle is opaque (build_bvh leaves it so;
+    // vplkit::add_alpha_tests fills it).
     std::vector<uint32_t> alpha;
 
     uint32_t input_triangles = 0;       // triangles given to build_bvh

@@ -1,11 +1,24 @@
 #pragma once
 // The BVH every ray-casting stage reads (shaders/include/vplkit/bvh.glsl): BvhNode[node_count]
 // and BvhTriangle[max(triangle_count, 1)], as built by vplkit::build_bvh (runtime: bvh.hpp) and
-// uploaded by the caller, and the alpha-test records (Bvh::alpha). Shaders that include bvh.glsl
-// bind them as `bvh_nodes`, `bvh_triangles` and `bvh_alpha`.
+// uploaded by the caller, and the header and alpha-test records (Bvh::alpha). Shaders that
+// include bvh.glsl bind them as `bvh_nodes`, `bvh_triangles` and `bvh_alpha` (bind_bvh).
+//
+// A BVH larger than a storage binding's range (maxStorageBufferRange) is read at its device
+// addresses instead (`addressed`), which the header in the first kBvhHeaderWords words of
+// `alpha` holds (bvh_header): make nodes and triangles with
+// VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT, their memory with
+// VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT (bufferDeviceAddress is one of
+// required_device_features()). Then device memory is the limit.
 
+#include "vplkit/bvh.hpp"
+#include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/views.hpp"
 
+#include <vulkan/vulkan.h>
+
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <type_traits>
 
@@ -20,33 +33,50 @@ struct BvhSet {
     uint32_t node_count = 0;
     uint32_t triangle_count = 0;  // 0 for an empty scene (triangles then holds one unused record)
     float scene_scale = 1e-30f;   // Bvh::scene_scale: the largest coordinate magnitude, for ray-origin offsets
-    // Bvh::alpha (at least one word: a zero when every triangle is opaque). Its word 0 is the
-    // masked subtree's root of a split tree (vplkit/bvh.hpp), else 0: a foreign renderer's own
-    // records keep word 0 at 0 unless it builds that layout.
+    // The header (bvh_header: where nodes and triangles are; word 0 the masked subtree's root of a
+    // split tree, vplkit/bvh.hpp, else 0), then Bvh::alpha's records, if any.
     BufferT alpha;
     // Whether some triangle has an alpha-test record: false compiles the test out of the
     // traversal (bvh_spec), so opaque scenes trace as fast as without alpha tests.
     bool alpha_tests = true;
+    // Read nodes and triangles at the header's addresses, not through their bindings (bvh_spec):
+    // for buffers past maxStorageBufferRange. Not the default: on lavapipe, tracing through the
+    // addresses takes about 2x as long (bvh.glsl).
+    bool addressed = false;
 
     operator BvhSet<BufferView>() const requires(!std::is_same_v<BufferT, BufferView>) {
-        return {nodes, triangles, node_count, triangle_count, scene_scale, alpha, alpha_tests};
+        return {nodes, triangles, node_count, triangle_count, scene_scale, alpha, alpha_tests, addressed};
     }
 };
 using BvhBuffers = BvhSet<BufferView>;
 
-// A shader's specialization with bvh.glsl's kBvhAlphaTest set from `bvh` (the shader must include
-// bvh.glsl and call its traversal, else its Spec has no such member).
+// A shader's specialization with bvh.glsl's kBvhAlphaTest and kBvhAddressed set from `bvh` (the
+// shader must include bvh.glsl and call its traversal, else its Spec has no such members).
 template <typename Spec>
 Spec bvh_spec(const BvhBuffers& bvh, Spec spec = {}) {
     spec.kBvhAlphaTest = bvh.alpha_tests ? 1u : 0u;
+    spec.kBvhAddressed = bvh.addressed ? 1u : 0u;
     return spec;
 }
 
-// Binds `bvh` to a shader's bvh.glsl bindings (`bvh_nodes`, `bvh_triangles`, `bvh_alpha`).
+// The header bvh.glsl reads from the first words of BvhSet::alpha (its layout: bvh.glsl): the
+// device addresses of `nodes` and `triangles` and how many records each view holds, and the
+// masked subtree's root (0 for one tree). Upload it over words [0, kBvhHeaderWords) of the alpha
+// buffer before tracing an `addressed` BVH (otherwise only word 0 is read). Throws Error for a
+// view without a buffer or without a whole record.
+std::array<uint32_t, kBvhHeaderWords> bvh_header(VkDevice device, const BufferView& nodes, const BufferView& triangles,
+                                                 uint32_t masked_root = 0);
+
+// Binds `bvh` to a shader's bvh.glsl bindings (`bvh_nodes`, `bvh_triangles`, `bvh_alpha`). An
+// `addressed` BVH's nodes and triangles are read at the header's addresses; their bindings
+// still name the buffers (one record's range, within any device's maxStorageBufferRange; node 0
+// is all that is read through it) so that the step's uses include them.
 template <typename Bindings>
 void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
-    b.bvh_nodes = bvh.nodes.descriptor();
-    b.bvh_triangles = bvh.triangles.descriptor();
+    const VkDeviceSize node_range = bvh.addressed ? sizeof(shaders::BvhNode) : bvh.nodes.size;
+    const VkDeviceSize triangle_range = bvh.addressed ? sizeof(shaders::BvhTriangle) : bvh.triangles.size;
+    b.bvh_nodes = bvh.nodes.descriptor(0, std::min(bvh.nodes.size, node_range));
+    b.bvh_triangles = bvh.triangles.descriptor(0, std::min(bvh.triangles.size, triangle_range));
     b.bvh_alpha = bvh.alpha.descriptor();
 }
 

@@ -69,7 +69,8 @@ struct BvhGpuBuildBuffers {
     BufferView keys;         // uint64_t[count]: the sort keys, then each node's level word; a refit reads it
     BufferView order;        // uint32_t[count]: the input triangle at each leaf-order position; a refit reads it
     // Optional: the caller's alpha-test records (bvh.glsl's bvh_alpha) that the input's alpha
-    // fields point into; the build writes word 0 (the masked subtree's root, or 0).
+    // fields point into; the build writes word 0 (the masked subtree's root, or 0). The rest of
+    // the header (stages::bvh_header: where nodes and triangles are) is the caller's to write.
     BufferView alpha;
 };
 

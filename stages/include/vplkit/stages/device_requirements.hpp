@@ -3,6 +3,8 @@
 // VK_KHR_push_descriptor (every kit pipeline pushes its descriptors) and these features:
 //   shaderInt64        (Vulkan 1.0)  64-bit sort keys and Morton codes (int64 arithmetic)
 //   scalarBlockLayout  (Vulkan 1.2)  vec3 arrays in the shared GLSL structs
+//   bufferDeviceAddress (Vulkan 1.2, required by 1.3)  the BVH's nodes and triangles, read at
+//                      their addresses (bvh_buffers.hpp)
 //   synchronization2   (Vulkan 1.3)  the barriers StepList::record inserts
 //   dynamicRendering   (Vulkan 1.3)  the raster stages (G-buffer, shadow maps, FLC splats)
 // Nothing else: no 64-bit atomics, float atomics or shaderFloat64 (the runtime's Context turns
