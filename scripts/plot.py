@@ -281,12 +281,42 @@ def with_base(run, method, sweep, key):
     return sorted(points, key=lambda p: number(p[key]))
 
 
+def budget_check(run, folder, wrote):
+    """The budget chooser's check (report.md's table): the choice's measured RMSE and the best
+    measured within each budget B; the choice's measured and predicted time against B."""
+    rows = run.get("budget_check") or []
+    if not isinstance(rows, list) or not rows:
+        return
+    for i, r in enumerate(rows):
+        if not isinstance(r, dict) or not all(k in r for k in ["budget_ms", "measured_ms", "predicted_ms",
+                                                                "measured_rmse", "best_rmse"]):
+            raise InputError(f"points.json: budget_check row {i} lacks a budget_ms, measured_ms, predicted_ms, "
+                             f"measured_rmse or best_rmse")
+    scene = short_name(run["scene"])
+    size = f"{run['width']}x{run['height']}"
+    budgets = [number(r["budget_ms"]) for r in rows]
+    with_best = [r for r in rows if r["best_rmse"] is not None]
+    line_plot(os.path.join(folder, "budget_rmse.png"), f"{scene}: the budget's choice vs the best within B ({size})",
+              "budget B (ms, GPU)", "RMSE (tonemapped)",
+              [("chosen, measured", budgets, [number(r["measured_rmse"]) for r in rows]),
+               ("chosen, predicted", budgets, [number(r.get("predicted_rmse")) for r in rows]),
+               ("best measured within B", [number(r["budget_ms"]) for r in with_best],
+                [number(r["best_rmse"]) for r in with_best])], False, True, wrote)
+    line_plot(os.path.join(folder, "budget_time.png"), f"{scene}: the budget's choice, frame time ({size})",
+              "budget B (ms, GPU)", "frame time (ms, GPU)",
+              [("chosen, measured", budgets, [number(r["measured_ms"]) for r in rows]),
+               ("chosen, predicted", budgets, [number(r["predicted_ms"]) for r in rows]),
+               ("B", budgets, budgets),
+               ("1.15 B", budgets, [1.15 * b for b in budgets])], False, False, wrote)
+
+
 def bench_gi(folder, args):
     run = read_bench_gi(folder)
     scene = short_name(run["scene"])
     wrote = []
     rmse_vs_time(run, folder, False, wrote)
     rmse_vs_time(run, folder, True, wrote)
+    budget_check(run, folder, wrote)
     levels = [(c["name"], [number(p["spp"]) for p in select(run, c["name"], "spp")],
                [number(p["levels_per_traversal"]) for p in select(run, c["name"], "spp")])
               for c in run["curves"] if c["samples"]]

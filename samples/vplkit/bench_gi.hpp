@@ -46,6 +46,19 @@ struct BenchPoint {
     std::string label() const;  // e.g. "hybrid 8 spp k8 half"
 };
 
+// The budget chooser checked (bench_gi_budget.hpp): for a budget B, what `--budget-ms B` chose,
+// that choice measured like a point, and the best measured point within B.
+struct BudgetCheckRow {
+    double fraction = 0;   // of the comparable points' time range: B = min + fraction (max - min)
+    double budget_ms = 0;  // B
+    std::string chosen;    // "rtslc 64 spp k8 half svgf, 1024 vpls"
+    double predicted_ms = 0, predicted_rmse = 0;
+    bool over_budget = false;  // the model predicted no configuration within B
+    double measured_ms = 0, measured_rmse = 0;
+    std::string best;  // the best measured point within B ("" when none is)
+    double best_ms = 0, best_rmse = 0;
+};
+
 struct BenchRun {
     std::string scene;   // set-up name
     std::string device;  // name and type
@@ -59,6 +72,8 @@ struct BenchRun {
     std::vector<BenchPoint> points;
     double target_ms = 0;              // the equal-time target (frame time)
     std::vector<std::string> skipped;  // points the device could not run, with the reason
+    std::vector<BudgetCheckRow> budget_check;
+    std::string budget_note;  // how the model was made, its time scale on this run; or why no check ran
 };
 
 // A tonemapped RGBA8 frame as RGB values in [0, 1] (sRGB codes / 255): what the metrics compare.

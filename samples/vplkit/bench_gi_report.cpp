@@ -5,6 +5,7 @@
 // front, levels per traversal, block size, VPL count vs build time).
 
 #include "bench_gi.hpp"
+#include "bench_gi_budget.hpp"
 #include "bench_timing.hpp"
 #include "plot_script.hpp"
 #include "stats_json.hpp"
@@ -185,7 +186,9 @@ nlohmann::json points_json(const BenchRun& run) {
             {"curves", curve_list},
             {"vpl_count_curve", vpl_count_curve()},
             {"pareto_front", front},
-            {"points", points}};
+            {"points", points},
+            {"budget_note", run.budget_note},
+            {"budget_check", budget_check_json(run)}};
 }
 
 // Each method's point closest to the target frame time (among its spp sweep and its half-res,
@@ -352,6 +355,7 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
         md << "\n## Skipped points\n\n";
         for (const std::string& s : run.skipped) md << "- " << s << "\n";
     }
+    if (!run.budget_note.empty()) md << budget_check_markdown(run);
     md << "\nEvery point: points.csv, points.json; every frame: images/.\n";
     write_file(folder / "report.md", md.str());
     // Last: the data and the report are on disk whatever the plotting does.

@@ -6,10 +6,10 @@
 // is). Writes DIR/points.csv, a frame of each (PNG), DIR/report.md with the equal-time comparison
 // and two plots (PNG, scripts/plot.py).
 
+#include "bench_options.hpp"
 #include "camera_flags.hpp"
 #include "cli.hpp"
 #include "cli_checks.hpp"
-#include "device_options.hpp"
 #include "commands.hpp"
 #include "plot_script.hpp"
 #include "scene_warnings.hpp"
@@ -63,12 +63,6 @@ double direct_ms(const RenderedImage& image) {
     return ms;
 }
 
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 void progress(size_t done, size_t total, const std::string& what) {
     static const bool terminal = isatty(fileno(stderr));
     std::fprintf(stderr, terminal ? "\r[bench direct] %zu/%zu %-40s" : "[bench direct] %zu/%zu %s\n", done, total,
@@ -110,31 +104,34 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 
 namespace {
 
-struct BenchDirectOptions {
-    ContextOptions context;
-    std::string scene;
-    bool quick = false, strict = false;
-    std::optional<uint32_t> width, height, frames, reference_frames;
-    std::optional<std::string> out;
-    CameraFlags camera_flags;
+struct BenchDirectOptions : BenchSceneOptions {
+    std::optional<uint32_t> reference_frames;
 };
+
+const BenchDefaults& direct_defaults() {
+    static const BenchDefaults d{"out/bench-direct",
+                                 32,
+                                 32,
+                                 128,
+                                 128,
+                                 512,
+                                 512,
+                                 2,
+                                 "frames per point (default 3, 2 with --quick; the first is not timed)",
+                                 "a smoke test: 32x32, 1 and 4 spp, 2 frames, a 2-frame reference of 16 spp"};
+    return d;
+}
 
 int run_bench_direct(const BenchDirectOptions& o) {
     if (o.scene.empty()) throw UsageError("bench direct needs --scene NAME");
     check_camera_flags(o.camera_flags);
     const std::string& scene_name = o.scene;
-    const ContextOptions& context_options = o.context;
     const bool quick = o.quick;
-    const bool strict = o.strict;
-    const std::optional<uint32_t>& width = o.width;
-    const std::optional<uint32_t>& height = o.height;
     const uint32_t frames = o.frames.value_or(quick ? 2 : 3);
     const uint32_t reference_frames = o.reference_frames.value_or(quick ? 2 : 16);
-    const bool is_file =
-        scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") || scene_name.ends_with(".glb");
-    const std::string out_name = is_file ? std::filesystem::path(scene_name).stem().string() : scene_name;
-    const std::filesystem::path out = o.out.value_or("out/bench-direct/" + out_name);
-    const CameraFlags& camera_flags = o.camera_flags;
+    const bool is_file = names_scene_file(scene_name);
+    const std::string out_name = bench_scene_name(scene_name);
+    const std::filesystem::path out = bench_out_folder(o, direct_defaults());
 
     scene::Setup setup;
     scene::Scene scene;
@@ -145,17 +142,16 @@ int run_bench_direct(const BenchDirectOptions& o) {
         setup = scene::load_setups(VPLKIT_SETUPS_FILE).find(scene_name);
         scene = scene::load_setup_scene(setup, {});
     }
-    apply_camera_flags(camera_flags, scene, scene.bounds.center());
-    report_scene_warnings(scene, strict);
+    apply_camera_flags(o.camera_flags, scene, scene.bounds.center());
+    report_scene_warnings(scene, o.strict);
 
-    auto context = Context::create(context_options);
+    auto context = Context::create(o.context);
     const DeviceInfo& device = context->info();
     std::printf("device: %s (%s): %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
-    const bool cpu =
-        device.type_name.find("CPU") != std::string::npos || device.type_name.find("cpu") != std::string::npos;
     RenderSettings base;
-    base.width = width.value_or(quick ? 32 : cpu ? 128 : 512);
-    base.height = height.value_or(quick ? 32 : cpu ? 128 : 512);
+    const BenchSize size = bench_frame_size(o, direct_defaults(), device);
+    base.width = size.width;
+    base.height = size.height;
     Renderer renderer(*context, scene);
     const uint32_t pixels = base.width * base.height;
     std::filesystem::create_directories(out);
@@ -205,7 +201,7 @@ int run_bench_direct(const BenchDirectOptions& o) {
                 }
                 progress(++done, total, std::string(direct_sampler_name(sampler)) + " " + std::to_string(spp) + " spp");
             }
-            point.direct_ms = median(times);
+            point.direct_ms = median_of(times);
             double e = 0.0;
             for (double x : errors) e += x;
             point.relative_rmse = e / errors.size();
@@ -277,33 +273,12 @@ void add_bench_direct(CLI::App& bench, Runners& runners) {
         "over frames 2..F. Writes DIR/points.csv, plots, a frame of each sampler and DIR/report.md with the tree / "
         "flat RMSE ratio at equal time.");
     auto o = std::make_shared<BenchDirectOptions>();
-    add_device_options(*direct, o->context, false);
-    direct->add_option("--scene", o->scene, "required: a standard set-up (scenes/setups.txt) or a .gltf/.glb file")
-        ->option_text("NAME|FILE");
-    add_camera_options(*direct, o->camera_flags);
-    direct
-        ->add_option_function<std::string>(
-            "--out", [o](const std::string& v) { o->out = v; }, "output folder (default out/bench-direct/NAME)")
-        ->option_text("DIR");
-    whole_number(direct->add_option_function<uint32_t>(
-                     "--width", [o](uint32_t v) { o->width = v; },
-                     "image width (default 128 on a CPU device, 512 on a GPU, 32 with --quick)"),
-                 "W", 1, 16384);
-    whole_number(direct->add_option_function<uint32_t>(
-                     "--height", [o](uint32_t v) { o->height = v; },
-                     "image height (default 128 on a CPU device, 512 on a GPU, 32 with --quick)"),
-                 "H", 1, 16384);
-    whole_number(direct->add_option_function<uint32_t>(
-                     "--frames", [o](uint32_t v) { o->frames = v; },
-                     "frames per point (default 3, 2 with --quick; the first is not timed)"),
-                 "F", 2, 100);
+    add_bench_scene_options(*direct, *o, "required: a standard set-up (scenes/setups.txt) or a .gltf/.glb file");
+    add_bench_output_options(*direct, *o, direct_defaults());
     whole_number(direct->add_option_function<uint32_t>(
                      "--reference-frames", [o](uint32_t v) { o->reference_frames = v; },
                      "frames averaged for the reference (default 16, 2 with --quick)"),
                  "R", 1, 100000);
-    direct->add_flag("--quick", o->quick, "a smoke test: 32x32, 1 and 4 spp, 2 frames, a 2-frame reference of 16 spp");
-    direct->add_flag("--strict", o->strict,
-                     "fail when the scene has a warning (a feature of the file vplkit skips or approximates)");
     runners.push_back({direct, [o] { return run_bench_direct(*o); }});
 }
 

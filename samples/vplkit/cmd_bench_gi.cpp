@@ -3,10 +3,12 @@
 // with the exact ground truth (cached on disk); bench_gi_report.cpp writes the results.
 
 #include "bench_gi.hpp"
+#include "bench_gi_budget.hpp"
+#include "bench_gi_measure.hpp"
+#include "bench_options.hpp"
 #include "camera_flags.hpp"
 #include "cli.hpp"
 #include "cli_checks.hpp"
-#include "device_options.hpp"
 #include "render_request.hpp"
 #include "commands.hpp"
 #include "scene_warnings.hpp"
@@ -166,31 +168,6 @@ std::vector<BenchPoint> plan_points(bool quick, unsigned vpl_budget, const std::
     return points;
 }
 
-// Which group of the frame a pass belongs to, by the planner's stage of the pass.
-bool owned_by(const PassTiming& pass, std::initializer_list<FrameStage> stages) {
-    for (FrameStage stage : stages) {
-        if (stage_owns_pass(stage, pass)) return true;
-    }
-    return false;
-}
-
-bool is_gi_pass(const PassTiming& pass) {
-    return owned_by(pass, {FrameStage::gi_downsample, FrameStage::gi_exact, FrameStage::gi_sst, FrameStage::gi_rtslc,
-                           FrameStage::gi_hybrid, FrameStage::gi_flc, FrameStage::gi_upsample});
-}
-bool is_tree_pass(const PassTiming& pass) {
-    return owned_by(pass, {FrameStage::vpl_sort, FrameStage::light_tree, FrameStage::sst});
-}
-bool is_vpl_pass(const PassTiming& pass) {
-    return owned_by(pass, {FrameStage::vpl_paths, FrameStage::brsm_vpls, FrameStage::flc_vpls});
-}
-
-double median(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    const size_t n = v.size();
-    return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 class Progress {
 public:
     explicit Progress(size_t total) : total_(total), terminal_(isatty(fileno(stderr))) {}
@@ -240,17 +217,29 @@ std::vector<GiBenchCurveOf> chosen_curves(const std::optional<std::string>& text
     return out;
 }
 
-struct BenchGiOptions {
-    ContextOptions context;
-    std::string scene;
-    bool quick = false, strict = false;
-    std::optional<uint32_t> width, height, frames, vpls, camera, target_ms;
-    std::optional<std::string> vpl_source, out, sweeps, methods;
+struct BenchGiOptions : BenchSceneOptions {
+    bool no_budget_check = false;
+    std::optional<uint32_t> vpls, camera, target_ms;
+    std::optional<std::string> vpl_source, sweeps, methods;
     uint32_t seed = 0;
     std::string cache = "out/bench-cache";
-    CameraFlags camera_flags;
     std::vector<std::string> suns, points;
 };
+
+const BenchDefaults& gi_defaults() {
+    static const BenchDefaults d{"out/bench",
+                                 48,
+                                 27,
+                                 320,
+                                 180,
+                                 1280,
+                                 720,
+                                 1,
+                                 "frames per point (default 3, 2 with --quick; the first is not timed when F > 1)",
+                                 "a smoke test: 48x27 (unless sized), 256 VPLs, 128^2 shadow maps, a few points, 2 "
+                                 "frames"};
+    return d;
+}
 
 }  // namespace
 
@@ -275,7 +264,8 @@ std::string BenchPoint::label() const {
     if (half) s += " half";
     if (!mock_cuts) s += " no-mock";
     if (denoised) s += " svgf";
-    if (sweep == "vpls") s += " " + std::to_string(vpls) + " vpls";
+    if (sweep == "vpls" || sweep == "budget") s += " " + std::to_string(vpls) + " vpls";
+    if (sweep == "budget") s += " (budget)";
     return s;
 }
 
@@ -285,11 +275,7 @@ int run_bench_gi(const BenchGiOptions& o) {
     if (o.scene.empty()) throw UsageError("bench gi needs --scene NAME");
     check_camera_flags(o.camera_flags);
     const std::string& scene_name = o.scene;
-    const ContextOptions& context_options = o.context;
     const bool quick = o.quick;
-    const bool strict = o.strict;
-    const std::optional<uint32_t>& width = o.width;
-    const std::optional<uint32_t>& height = o.height;
     const uint32_t frames = o.frames.value_or(quick ? 2 : 3);
     const std::optional<std::string>& source = o.vpl_source;
     const uint32_t vpl_budget = o.vpls.value_or(quick ? 256 : 4096);
@@ -297,15 +283,14 @@ int run_bench_gi(const BenchGiOptions& o) {
     const double target_ms = o.target_ms.value_or(0);
     // --scene takes a set-up name or a .gltf/.glb file, as render does; a file brings its own
     // camera (--camera N) and lights, plus --sun and --point.
-    const bool is_file =
-        scene_name.find('/') != std::string::npos || scene_name.ends_with(".gltf") || scene_name.ends_with(".glb");
+    const bool is_file = names_scene_file(scene_name);
     const std::optional<uint32_t>& camera = o.camera;
     const CameraFlags& camera_flags = o.camera_flags;
     std::vector<scene::Light> extra_lights;
     for (const std::string& spec : o.suns) extra_lights.push_back(scene::parse_sun(spec));
     for (const std::string& spec : o.points) extra_lights.push_back(scene::parse_point(spec));
-    const std::string out_name = is_file ? std::filesystem::path(scene_name).stem().string() : scene_name;
-    const std::filesystem::path out = o.out.value_or("out/bench/" + out_name);
+    const std::string out_name = bench_scene_name(scene_name);
+    const std::filesystem::path out = bench_out_folder(o, gi_defaults());
     const std::filesystem::path cache = o.cache;
     // --sweeps spp,resolution,...: only those sweeps (a shorter run, e.g. scripts/gpu_report.sh).
     const std::vector<std::string> sweeps = o.sweeps ? split_names(*o.sweeps) : std::vector<std::string>{};
@@ -325,18 +310,17 @@ int run_bench_gi(const BenchGiOptions& o) {
     }
     scene.lights.insert(scene.lights.end(), extra_lights.begin(), extra_lights.end());
     apply_camera_flags(camera_flags, scene, scene.bounds.center());  // the exact frames' cache key has the camera
-    report_scene_warnings(scene, strict);
+    report_scene_warnings(scene, o.strict);
     std::filesystem::create_directories(out / "images");
     std::filesystem::create_directories(cache);
 
-    auto context = Context::create(context_options);
+    auto context = Context::create(o.context);
     const DeviceInfo& device = context->info();
     std::printf("device: %s (%s): %s\n", device.name.c_str(), device.type_name.c_str(), device.reason.c_str());
-    const bool cpu =
-        device.type_name.find("CPU") != std::string::npos || device.type_name.find("cpu") != std::string::npos;
     RenderSettings base;
-    base.width = width.value_or(quick ? 48 : cpu ? 320 : 1280);
-    base.height = height.value_or(quick ? 27 : cpu ? 180 : 720);
+    const BenchSize size = bench_frame_size(o, gi_defaults(), device);
+    base.width = size.width;
+    base.height = size.height;
     base.seed = seed;
     base.vpl_source = source ? (*source == "brsm" ? VplSource::brsm : VplSource::ir)
                              : (scene.lights.empty() ? VplSource::ir : VplSource::brsm);
@@ -425,78 +409,30 @@ int run_bench_gi(const BenchGiOptions& o) {
         s.vpl_paths =
             base.vpl_source == VplSource::ir && p.sweep == "vpls" ? std::max(1u, p.vpls / base.vpl_bounces) : p.vpls;
         s.brsm.vpl_count = p.vpls;
-        std::vector<double> frame_ms, gi_ms, trees_ms, vpls_ms;
-        std::vector<std::string> stage_names;
-        std::map<std::string, std::vector<double>> stage_ms;
-        RenderedImage image;
         std::string failure;
-        for (uint32_t f = 0; f < frames && failure.empty(); ++f) {
-            try {
-                if (p.denoised) s.frame = f;  // new samples each frame; frame 0 restarts the history
-                image = renderer.render(scene.camera(), s);
-            } catch (const Error& e) {
-                // A point the device cannot run (e.g. a tree beyond its storage-buffer range) is
-                // reported and skipped; the rest of the sweep goes on.
-                failure = e.what();
-                break;
-            }
-            if (f == 0 && frames > 1) continue;  // shader compiles at first dispatch
-            double total = 0, gi = 0, trees = 0, vpls = 0;
-            std::map<std::string, double> this_frame;
-            for (const PassTiming& t : image.timings) {
-                if (this_frame.count(t.name) == 0 && stage_ms.count(t.name) == 0) stage_names.push_back(t.name);
-                this_frame[t.name] += t.gpu_ms;
-                total += t.gpu_ms;
-                if (is_gi_pass(t))
-                    gi += t.gpu_ms;
-                else if (is_tree_pass(t))
-                    trees += t.gpu_ms;
-                else if (is_vpl_pass(t))
-                    vpls += t.gpu_ms;
-            }
-            for (const auto& [name, ms] : this_frame) stage_ms[name].push_back(ms);
-            frame_ms.push_back(total);
-            gi_ms.push_back(gi);
-            trees_ms.push_back(trees);
-            vpls_ms.push_back(vpls);
-        }
-        if (!failure.empty()) {
+        if (!measure_bench_point(renderer, scene.camera(), s, frames, truth.rgb, truth.radiance, out, p, failure)) {
             std::fprintf(stderr, "\n[bench] %s skipped: %s\n", p.label().c_str(), failure.c_str());
             run.skipped.push_back(p.label() + ": " + failure);
-            p.frames = 0;
-            continue;
         }
-        if (image.non_finite_pixels > 0) throw Error("bench: " + p.label() + " gave non-finite pixels");
-        p.frames = uint32_t(frame_ms.size());
-        p.frame_ms = median(frame_ms);
-        p.frame_min_ms = *std::min_element(frame_ms.begin(), frame_ms.end());
-        p.frame_max_ms = *std::max_element(frame_ms.begin(), frame_ms.end());
-        p.gi_ms = median(gi_ms);
-        p.trees_ms = median(trees_ms);
-        p.vpls_ms = median(vpls_ms);
-        for (const std::string& name : stage_names) {
-            const std::vector<double>& v = stage_ms[name];
-            p.stages.push_back(
-                {name, median(v), *std::min_element(v.begin(), v.end()), *std::max_element(v.begin(), v.end())});
-        }
-        p.vpls = image.vpl_count;
-        const std::vector<float> rgb = unit_rgb(image.rgba8);
-        p.rmse = rmse(rgb, truth.rgb);
-        p.ssim = ssim(rgb, truth.rgb, image.width, image.height);
-        p.relmse = relative_mse(image.radiance, truth.radiance);
-        p.levels_per_traversal = image.gi_counts.levels_per_traversal();
-        p.mock_cut_pixels = image.gi_counts.mock_cut_pixels;
-        p.dropped_samples = image.gi_counts.dropped_samples;
-        std::string file = p.label();
-        std::replace(file.begin(), file.end(), ' ', '_');
-        p.image = "images/" + file + ".png";
-        write_png(out / p.image, image.width, image.height, image.rgba8);
     }
     progress.show(points.size(), "done");
 
     points.erase(std::remove_if(points.begin(), points.end(), [](const BenchPoint& p) { return p.frames == 0; }),
                  points.end());
     run.points = std::move(points);
+    if (!o.no_budget_check) {
+        BudgetCheckInputs check;
+        check.base = &base;
+        check.frames = frames;
+        check.fractions =
+            quick ? std::vector<double>{0.25, 0.5, 0.75} : std::vector<double>{0.1, 0.25, 0.4, 0.5, 0.6, 0.75, 0.9};
+        check.truth_rgb = &truth.rgb;
+        check.truth_radiance = &truth.radiance;
+        check.out = out;
+        check.cache_dir = cache / "budget";
+        check.scene_id = setup.name + " (" + setup.scene.string() + ")";
+        check_budget_chooser(renderer, device, scene, check, run);
+    }
     run.target_ms = target_ms;
     if (run.target_ms <= 0) {
         for (const BenchPoint& p : run.points) {
@@ -521,6 +457,7 @@ int run_bench_gi(const BenchGiOptions& o) {
             std::printf("  %-16s no point within the target\n", m.c_str());
         }
     }
+    if (!run.budget_note.empty()) print_budget_check(run);
     std::printf("wrote %s (points.csv, points.json, plots, images)\n", (out / "report.md").string().c_str());
     return 0;
 }
@@ -540,34 +477,14 @@ void add_bench_gi(CLI::App& bench, Runners& runners) {
         "the tonemapped frame against the ground truth, relMSE of the linear radiance. Writes DIR/points.csv, "
         "points.json, plots, equal-time images with x10 difference pictures, and DIR/report.md.");
     auto o = std::make_shared<BenchGiOptions>();
-    add_device_options(*gi, o->context, false);
-    gi->add_option("--scene", o->scene,
-                   "required: a standard set-up (scenes/setups.txt) or a .gltf/.glb file, with its own camera "
-                   "(--camera N) and lights plus --sun and --point, as render takes them")
-        ->option_text("NAME|FILE");
+    add_bench_scene_options(*gi, *o,
+                            "required: a standard set-up (scenes/setups.txt) or a .gltf/.glb file, with its own camera "
+                            "(--camera N) and lights plus --sun and --point, as render takes them");
     whole_number(gi->add_option_function<uint32_t>(
                      "--camera", [o](uint32_t v) { o->camera = v; }, "the file's camera N"),
                  "N", 0, 1u << 20);
-    add_camera_options(*gi, o->camera_flags);
     add_light_options(*gi, o->suns, o->points);
-    gi->add_option_function<std::string>(
-          "--out", [o](const std::string& v) { o->out = v; },
-          "output folder (default out/bench/NAME, NAME the set-up or the file's stem)")
-        ->option_text("DIR");
-    whole_number(gi->add_option_function<uint32_t>(
-                     "--width", [o](uint32_t v) { o->width = v; },
-                     "image width (default 320 on a CPU device, 1280 on a GPU, 48 with --quick)"),
-                 "W", 1, 16384);
-    whole_number(gi->add_option_function<uint32_t>(
-                     "--height", [o](uint32_t v) { o->height = v; },
-                     "image height (default 180 on a CPU device, 720 on a GPU, 27 with --quick)"),
-                 "H", 1, 16384);
-    whole_number(gi->add_option_function<uint32_t>(
-                     "--frames", [o](uint32_t v) { o->frames = v; },
-                     "frames per point (default 3, 2 with --quick; the first is not timed when F > 1)"),
-                 "F", 1, 100);
-    gi->add_flag("--quick", o->quick,
-                 "a smoke test: 48x27 (unless sized), 256 VPLs, 128^2 shadow maps, a few points, 2 frames");
+    add_bench_output_options(*gi, *o, gi_defaults());
     one_of(gi->add_option_function<std::string>(
                "--vpl-source", [o](const std::string& v) { o->vpl_source = v; },
                "default brsm when the scene has punctual lights, else ir"),
@@ -590,8 +507,10 @@ void add_bench_gi(CLI::App& bench, Runners& runners) {
                   "--methods", [o](const std::string& v) { o->methods = v; },
                   "only these methods' curves, comma-separated (default: all)"),
               curve_names());
-    gi->add_flag("--strict", o->strict,
-                 "fail when the scene has a warning (a feature of the file vplkit skips or approximates)");
+    gi->add_flag("--no-budget-check", o->no_budget_check,
+                 "skip the check of --budget-ms's chooser (a calibration of about 30 frames, cached in --cache, then "
+                 "the choice for budgets across the time range of the points in its space, each measured like a "
+                 "point against the best measured within the budget)");
     runners.push_back({gi, [o] { return run_bench_gi(*o); }});
 }
 

@@ -18,7 +18,8 @@ if(NOT second_output MATCHES "ground truth: cached")
   message(FATAL_ERROR "the second run did not take the ground truth from the cache:\n${second_output}")
 endif()
 # The plots come from scripts/plot.py, when a python3 with matplotlib is there (tests/plot checks both ways).
-set(plots rmse_vs_time.png rmse_vs_gi_time.png levels.png block_size_rmse.png block_size_time.png vpl_count_build_time.png)
+set(plots rmse_vs_time.png rmse_vs_gi_time.png levels.png block_size_rmse.png block_size_time.png vpl_count_build_time.png
+  budget_rmse.png budget_time.png)
 if(first_output MATCHES "plots skipped: python3-matplotlib is missing")
   set(plots "")
 endif()
@@ -41,8 +42,20 @@ if(count LESS 10)
   message(FATAL_ERROR "points.csv has ${count} lines; expected a header and at least 9 points")
 endif()
 file(READ "${OUT}/report/report.md" report)
-foreach(section "Equal time" "RMSE vs frame time" "Tree levels per traversal" "Cut block size" "Mock cuts" "Upsampling")
+foreach(section "Equal time" "RMSE vs frame time" "Tree levels per traversal" "Cut block size" "Mock cuts" "Upsampling"
+        "The budget chooser")
   if(NOT report MATCHES "${section}")
     message(FATAL_ERROR "report.md has no '${section}' section")
   endif()
 endforeach()
+# The budget chooser's check: a row for each of the quick run's budgets (25, 50, 75% of the range),
+# the choice measured, and the same on the terminal.
+string(REGEX MATCHALL "\n\\| (25|50|75)% \\| [0-9.]+ \\| (sst|rtslc|hybrid) [0-9]+ spp[^|]* \\| [0-9.]+ \\| [0-9.]+ \\([0-9.]+\\) \\| 0\\.[0-9]+ \\|"
+       budget_rows "${report}")
+list(LENGTH budget_rows budget_count)
+if(NOT budget_count EQUAL 3)
+  message(FATAL_ERROR "report.md's budget table has ${budget_count} rows of the three budgets:\n${report}")
+endif()
+if(NOT first_output MATCHES "budget chooser: model calibrated \\([0-9]+ frames\\)" OR NOT second_output MATCHES "budget chooser: model read from")
+  message(FATAL_ERROR "bench gi did not calibrate the budget's model once and read it back:\n${first_output}\n${second_output}")
+endif()
