@@ -8,6 +8,8 @@
 #   scripts/gi_methods.sh SCENE [OUT] [WIDTHxHEIGHT] [SPP list] [extra render options...]
 # e.g. scripts/gi_methods.sh sponza-sun out/gi 320x180 "4 8 16 32" --vpl-source brsm --vpls 4096
 # The exact frame is rendered once per scene and size (the slow part) and reused if present.
+# VPLKIT=PATH: the vplkit binary (default build/release/samples/vplkit; a copy lets the tree
+# rebuild meanwhile).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=$1
@@ -18,7 +20,7 @@ shift $(( $# < 4 ? $# : 4 ))
 extra=("$@")
 width=${size%x*}
 height=${size#*x}
-vplkit=build/release/samples/vplkit
+vplkit=${VPLKIT:-build/release/samples/vplkit}
 mkdir -p "$out"
 base="$out/$scene-${width}x$height"
 if [[ ! -f "$base-exact.png" ]]; then
