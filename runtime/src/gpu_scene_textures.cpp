@@ -1,6 +1,7 @@
 // TextureImage: RGBA8 textures with mip chains and sRGB / UNORM views (gpu_scene.hpp).
 
 #include "memory.hpp"
+#include "vplkit/barriers.hpp"
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -10,6 +11,7 @@
 #include <bit>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace vplkit {
@@ -17,24 +19,12 @@ namespace {
 
 constexpr VkImageLayout kReadLayout = VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
 
+// Layout transition of mip levels [first_level, first_level + level_count).
 void level_barrier(VkCommandBuffer cmd, VkImage image, uint32_t first_level, uint32_t level_count,
                    VkImageLayout old_layout, VkImageLayout new_layout, VkPipelineStageFlags2 src_stages,
                    VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access) {
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
-    barrier.srcStageMask = src_stages;
-    barrier.srcAccessMask = src_access;
-    barrier.dstStageMask = dst_stages;
-    barrier.dstAccessMask = dst_access;
-    barrier.oldLayout = old_layout;
-    barrier.newLayout = new_layout;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, first_level, level_count, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    image_barrier(cmd, image, old_layout, new_layout, src_stages, src_access, dst_stages, dst_access,
+                  {VK_IMAGE_ASPECT_COLOR_BIT, first_level, level_count, 0, 1});
 }
 
 bool can_blit_linear(const Context& context, VkFormat format) {
@@ -177,24 +167,22 @@ TextureImage::~TextureImage() {
 }
 
 TextureImage::TextureImage(TextureImage&& other) noexcept {
-    *this = std::move(other);
+    swap(other);
 }
 
 TextureImage& TextureImage::operator=(TextureImage&& other) noexcept {
-    if (this != &other) {
-        release();
-        context_ = std::exchange(other.context_, nullptr);
-        image_ = std::exchange(other.image_, VK_NULL_HANDLE);
-        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
-        srgb_view_ = std::exchange(other.srgb_view_, VK_NULL_HANDLE);
-        unorm_view_ = std::exchange(other.unorm_view_, VK_NULL_HANDLE);
-        format_ = std::exchange(other.format_, VK_FORMAT_UNDEFINED);
-        width_ = std::exchange(other.width_, 0);
-        height_ = std::exchange(other.height_, 0);
-        mip_levels_ = std::exchange(other.mip_levels_, 0);
-        name_ = std::move(other.name_);
-    }
+    TextureImage(std::move(other)).swap(*this);  // the temporary frees what this one held
     return *this;
+}
+
+void TextureImage::swap(TextureImage& other) noexcept {
+    // Every field, once; a default-constructed TextureImage holds nothing.
+    auto fields = [](TextureImage& x) {
+        return std::tie(x.context_, x.image_, x.memory_, x.srgb_view_, x.unorm_view_, x.format_, x.width_, x.height_,
+                        x.mip_levels_, x.name_);
+    };
+    auto mine = fields(*this), theirs = fields(other);
+    mine.swap(theirs);
 }
 
 void TextureImage::release() {

@@ -2,6 +2,7 @@
 
 #include "formats.hpp"
 #include "memory.hpp"
+#include "vplkit/barriers.hpp"
 #include "vplkit/buffer.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
@@ -9,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace vplkit {
@@ -25,23 +27,10 @@ constexpr VkImageUsageFlags kViewUsages =
 
 void layout_barrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect, VkImageLayout old_layout,
                     VkImageLayout new_layout, VkPipelineStageFlags2 dst_stages, VkAccessFlags2 dst_access) {
-    VkImageMemoryBarrier2 barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
     // Earlier submissions ended with a full memory barrier; this orders against the commands
     // recorded before it in the same command buffer.
-    barrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    barrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    barrier.dstStageMask = dst_stages;
-    barrier.dstAccessMask = dst_access;
-    barrier.oldLayout = old_layout;
-    barrier.newLayout = new_layout;
-    barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-    barrier.image = image;
-    barrier.subresourceRange = {aspect, 0, 1, 0, 1};
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.imageMemoryBarrierCount = 1;
-    dependency.pImageMemoryBarriers = &barrier;
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    image_barrier(cmd, image, old_layout, new_layout, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                  VK_ACCESS_2_MEMORY_WRITE_BIT, dst_stages, dst_access, {aspect, 0, 1, 0, 1});
 }
 
 }  // namespace
@@ -123,26 +112,22 @@ Image::~Image() {
 }
 
 Image::Image(Image&& other) noexcept {
-    *this = std::move(other);
+    swap(other);
 }
 
 Image& Image::operator=(Image&& other) noexcept {
-    if (this != &other) {
-        release();
-        context_ = std::exchange(other.context_, nullptr);
-        image_ = std::exchange(other.image_, VK_NULL_HANDLE);
-        view_ = std::exchange(other.view_, VK_NULL_HANDLE);
-        memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
-        format_ = std::exchange(other.format_, VK_FORMAT_UNDEFINED);
-        usage_ = std::exchange(other.usage_, 0);
-        aspect_ = std::exchange(other.aspect_, 0);
-        width_ = std::exchange(other.width_, 0);
-        height_ = std::exchange(other.height_, 0);
-        texel_bytes_ = std::exchange(other.texel_bytes_, 0);
-        layout_ = std::exchange(other.layout_, VK_IMAGE_LAYOUT_UNDEFINED);
-        name_ = std::move(other.name_);
-    }
+    Image(std::move(other)).swap(*this);  // the temporary frees what this one held
     return *this;
+}
+
+void Image::swap(Image& other) noexcept {
+    // Every field, once; a default-constructed Image holds nothing.
+    auto fields = [](Image& x) {
+        return std::tie(x.context_, x.image_, x.view_, x.memory_, x.format_, x.usage_, x.aspect_, x.width_, x.height_,
+                        x.texel_bytes_, x.layout_, x.name_);
+    };
+    auto mine = fields(*this), theirs = fields(other);
+    mine.swap(theirs);
 }
 
 void Image::release() {

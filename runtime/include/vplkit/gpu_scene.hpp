@@ -46,6 +46,8 @@ public:
     TextureImage& operator=(TextureImage&& other) noexcept;
     TextureImage(const TextureImage&) = delete;
     TextureImage& operator=(const TextureImage&) = delete;
+    // Exchanges everything the two hold; the moves are built on it (a moved-from texture is empty).
+    void swap(TextureImage& other) noexcept;
 
     VkImage handle() const { return image_; }
     VkFormat format() const { return format_; }

@@ -32,6 +32,8 @@ public:
     Image& operator=(Image&& other) noexcept;
     Image(const Image&) = delete;
     Image& operator=(const Image&) = delete;
+    // Exchanges everything the two hold; the moves are built on it (a moved-from Image is empty).
+    void swap(Image& other) noexcept;
 
     explicit operator bool() const { return image_ != VK_NULL_HANDLE; }
     VkImage handle() const { return image_; }
