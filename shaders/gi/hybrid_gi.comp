@@ -41,6 +41,7 @@
 #include "vplkit/rtslc.glsl"
 #include "vplkit/sst_lightcuts_traversal.glsl"
 #include "vplkit/cut_blending.glsl"
+#include "vplkit/hybrid_traversal.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -90,20 +91,21 @@ layout(constant_id = 0) const uint kTraversal = kHybridTraversalSubstitute;
 // substitute, 1.55x with it only 3 extents away from x, 1.17x at 3 extents without shadows;
 // 1.21x this way, as hybrid-lightcuts' 1.19x). Evaluating the substitute at the drawn VPL with
 // the node's summed colour instead keeps the colour blur: 1.37x (the VPLs' colours differ).
-void hybrid_add_cluster_sample(GiPoint p, SstSample s, uint lobe, float min_distance, float scale, inout Rng rng,
+void hybrid_add_cluster_sample(GiPoint p, HybridSample s, uint lobe, float min_distance, float scale, inout Rng rng,
                                inout vec3 total, inout uint dropped) {
+    Vpl light;
     if (sst_is_leaf(s.node, push.leaf_count)) {
-        sst_add_sample(p, s, lobe, push.leaf_count, push.vpl_count, min_distance, scale, push.visibility != 0u, rng,
-                       total, dropped);
-        return;
+        light = sst_leaves.items[push.leaf_count == 1u ? 0u : sst_leaf_index(s.node, push.leaf_count)];
+        light.flux /= s.probability;
+    } else {
+        uint leaf = sst_leaf_by_intensity(s.node, push.leaf_count, push.vpl_count, rng);
+        light = sst_leaves.items[sst_leaf_index(leaf, push.leaf_count)];
+        float intensity = sst_intensity(light.flux);
+        if (!(intensity > 0.0)) {
+            return;  // drawn only when the whole node is dark (both children 0): no light
+        }
+        light.flux *= s.intensity / (intensity * s.probability);
     }
-    uint leaf = sst_leaf_by_intensity(s.node, push.leaf_count, push.vpl_count, rng);
-    Vpl light = sst_leaves.items[sst_leaf_index(leaf, push.leaf_count)];
-    float intensity = sst_intensity(light.flux);
-    if (!(intensity > 0.0)) {
-        return;  // drawn only when the whole node is dark (both children 0): no light
-    }
-    light.flux *= s.data.intensity / (intensity * s.probability);
     gi_add_sample(p.position, p.normal, p.geometric_normal, p.wo, p.albedo, p.roughness, p.metallic, lobe, light,
                   light.position, light.normal, min_distance, scale, push.visibility != 0u, total, dropped);
 }
@@ -190,10 +192,16 @@ void main() {
             continue;  // a padding node of the mock cut (a blended cut holds none)
         }
         GiLobe lobe = gi_choose_lobe(p.normal, p.wo, p.albedo, p.roughness, p.metallic, rng);
-        SstSample s = kTraversal == kHybridTraversalLightcuts
-                          ? sst_traverse_lightcuts(p, start, push.leaf_count, push.vpl_count, lobe, min_distance, rng)
-                          : sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected, lobe,
-                                         min_distance, rng);
+        HybridSample s;
+        if (kTraversal == kHybridTraversalLightcuts) {
+            s = hybrid_sample_of(
+                sst_traverse_lightcuts(p, start, push.leaf_count, push.vpl_count, lobe, min_distance, rng));
+        } else if (lobe.kind == kBrdfLobeGlossy) {
+            s = hybrid_sample_of(sst_traverse(p, start, push.leaf_count, push.vpl_count, kSstWeightExpected, lobe,
+                                              min_distance, rng));
+        } else {
+            s = hybrid_traverse(p, start, push.leaf_count, push.vpl_count, lobe, min_distance, rng);
+        }
         ++traversals;
         levels += s.levels;
         if (s.dead) {

@@ -68,25 +68,29 @@ SstNode sst_fetch(uint node, uint leaf_count, uint count) {
 // The material term is that of the sample's lobe (`lobe`: brdf.glsl's kBrdfLobe*, or
 // kGiWeightGlossyAtMean): the whole BRDF, the diffuse lobe or the glossy lobe towards the node's
 // mean, or for kBrdfLobeGlossy in gi_glossy_direction's direction into its box (gi_lobe.glsl).
-float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, uint lobe, float min_distance, out float d2) {
-    vec3 to_mean = node.mean - p.position;
+float sst_weight_numerator(GiPoint p, vec3 mean, float intensity, uint leaf_count, vec3 box_lo, vec3 box_hi,
+                           uint weight_kind, uint lobe, float min_distance, out float d2) {
+    vec3 to_mean = mean - p.position;
     d2 = max(dot(to_mean, to_mean), min_distance * min_distance);
-    if (node.leaf_count == 0u || !(node.intensity > 0.0)) {
+    if (leaf_count == 0u || !(intensity > 0.0)) {
         return 0.0;
     }
-    float cosine = weight_kind == kSstWeightExpected
-                       ? gi_average_corner_cosine(p.position, p.normal, node.box_lo, node.box_hi)
-                       : gi_box_cosine_bound(p.position, p.normal, node.box_lo, node.box_hi);
+    float cosine = weight_kind == kSstWeightExpected ? gi_average_corner_cosine(p.position, p.normal, box_lo, box_hi)
+                                                     : gi_box_cosine_bound(p.position, p.normal, box_lo, box_hi);
     if (cosine == 0.0) {
         return 0.0;  // the whole box lies behind the surface
     }
     float len2 = dot(to_mean, to_mean);
     vec3 wi = len2 > 0.0 ? to_mean * inversesqrt(len2) : p.normal;
     if (lobe == kBrdfLobeGlossy) {
-        wi = gi_glossy_direction(p.position, p.normal, p.wo, node.box_lo, node.box_hi);
+        wi = gi_glossy_direction(p.position, p.normal, p.wo, box_lo, box_hi);
     }
-    return gi_lobe_material_weight(p.normal, p.wo, wi, p.albedo, p.roughness, p.metallic, lobe) * cosine *
-           node.intensity;
+    return gi_lobe_material_weight(p.normal, p.wo, wi, p.albedo, p.roughness, p.metallic, lobe) * cosine * intensity;
+}
+
+float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, uint lobe, float min_distance, out float d2) {
+    return sst_weight_numerator(p, node.mean, node.intensity, node.leaf_count, node.box_lo, node.box_hi, weight_kind,
+                                lobe, min_distance, d2);
 }
 
 // The whole BRDF's weight (cut selection, and every sample without the glossy branch).
@@ -105,17 +109,23 @@ float sst_weight_numerator(GiPoint p, SstNode node, uint weight_kind, float min_
 // read 2052x in another measurement). Alone, the box distance is far worse (see
 // sst_weight_numerator); mixed half and half, each probability is at least half of either
 // strategy's. Unbiased either way: the sample is divided by the probability it was drawn with.
-float sst_defensive_probability(GiPoint p, SstNode l, SstNode r, uint weight_kind, float a_left, float d2_left,
-                                float a_right, float d2_right, float min_distance) {
+float sst_defensive_probability(GiPoint p, vec3 l_lo, vec3 l_hi, vec3 r_lo, vec3 r_hi, uint weight_kind, float a_left,
+                                float d2_left, float a_right, float d2_right, float min_distance) {
     float p_mean = gi_child_probability(a_left, d2_left, a_right, d2_right);
     if (weight_kind != kSstWeightExpected || !(a_left > 0.0 && a_right > 0.0)) {
         return p_mean;  // dead, or one child without light: 0, 1 or < 0 exactly
     }
     float floor2 = min_distance * min_distance;
-    float box_left = max(gi_box_distance2_min(p.position, l.box_lo, l.box_hi), floor2);
-    float box_right = max(gi_box_distance2_min(p.position, r.box_lo, r.box_hi), floor2);
+    float box_left = max(gi_box_distance2_min(p.position, l_lo, l_hi), floor2);
+    float box_right = max(gi_box_distance2_min(p.position, r_lo, r_hi), floor2);
     float p_box = gi_left_probability(a_left, box_left, a_right, box_right);
     return gi_grid_probability(0.5 * (p_mean + p_box));
+}
+
+float sst_defensive_probability(GiPoint p, SstNode l, SstNode r, uint weight_kind, float a_left, float d2_left,
+                                float a_right, float d2_right, float min_distance) {
+    return sst_defensive_probability(p, l.box_lo, l.box_hi, r.box_lo, r.box_hi, weight_kind, a_left, d2_left, a_right,
+                                     d2_right, min_distance);
 }
 
 // The end of one traversal: the node reached and the probability of the path to it.
