@@ -21,6 +21,7 @@
 
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 namespace {
@@ -35,60 +36,44 @@ glm::dvec3 to_dvec(const V& v) {
     return {v.x, v.y, v.z};
 }
 
-std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh,
-                                                const std::vector<ts::SurfaceQuery>& queries) {
+// Runs one of the test shaders (its Pipeline) once per query; its results are in the binding
+// `ResultBinding`, one Result each.
+template <class Pipeline, auto ResultBinding, class Result, class Query>
+std::vector<Result> run_queries(const vplkit::GpuBvh& bvh, const std::vector<Query>& queries, const std::string& name) {
     vplkit::Context& ctx = vplkit::test::context();
     const uint32_t count = uint32_t(queries.size());
-    auto query_buffer =
-        vplkit::Buffer::create(ctx, count * sizeof(ts::SurfaceQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               vplkit::MemoryUse::device, "surface queries");
-    auto result_buffer =
-        vplkit::Buffer::create(ctx, count * sizeof(ts::SurfaceResult), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               vplkit::MemoryUse::device, "surface results");
+    auto query_buffer = vplkit::Buffer::create(ctx, count * sizeof(Query), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                               vplkit::MemoryUse::device, name + " queries");
+    auto result_buffer = vplkit::Buffer::create(ctx, count * sizeof(Result), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                                vplkit::MemoryUse::device, name + " results");
     query_buffer.upload(queries);
-    const auto& pipeline = ctx.pipeline<ts::surface_rays::Pipeline>();
-    vplkit::PassList passes("surface rays test");
-    passes.add("surface rays",
+    const auto& pipeline = ctx.pipeline<Pipeline>();
+    vplkit::PassList passes(name + " test");
+    passes.add(name,
                {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(bvh.alpha),
                 vplkit::Use::read(query_buffer), vplkit::Use::write(result_buffer)},
                [&](VkCommandBuffer cmd) {
-                   ts::surface_rays::Bindings bindings;
+                   typename Pipeline::Bindings bindings;
                    vplkit::stages::bind_bvh(bindings, bvh);
                    bindings.queries = query_buffer.descriptor();
-                   bindings.results = result_buffer.descriptor();
-                   ts::surface_rays::Push push{};
+                   bindings.*ResultBinding = result_buffer.descriptor();
+                   typename Pipeline::Push push{};
                    push.count = count;
                    pipeline.dispatch(cmd, bindings, push, count);
                });
     passes.run(ctx);
-    return result_buffer.download<ts::SurfaceResult>(count);
+    return result_buffer.download<Result>(count);
+}
+
+std::vector<ts::SurfaceResult> run_surface_rays(const vplkit::GpuBvh& bvh,
+                                                const std::vector<ts::SurfaceQuery>& queries) {
+    return run_queries<ts::surface_rays::Pipeline, &ts::surface_rays::Bindings::results, ts::SurfaceResult>(
+        bvh, queries, "surface rays");
 }
 
 std::vector<uint32_t> run_segments(const vplkit::GpuBvh& bvh, const std::vector<ts::SegmentQuery>& queries) {
-    vplkit::Context& ctx = vplkit::test::context();
-    const uint32_t count = uint32_t(queries.size());
-    auto query_buffer =
-        vplkit::Buffer::create(ctx, count * sizeof(ts::SegmentQuery), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               vplkit::MemoryUse::device, "segment queries");
-    auto result_buffer = vplkit::Buffer::create(ctx, count * sizeof(uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                                                vplkit::MemoryUse::device, "segment occlusion");
-    query_buffer.upload(queries);
-    const auto& pipeline = ctx.pipeline<ts::segment_visibility::Pipeline>();
-    vplkit::PassList passes("segment visibility test");
-    passes.add("segment visibility",
-               {vplkit::Use::read(bvh.nodes), vplkit::Use::read(bvh.triangles), vplkit::Use::read(bvh.alpha),
-                vplkit::Use::read(query_buffer), vplkit::Use::write(result_buffer)},
-               [&](VkCommandBuffer cmd) {
-                   ts::segment_visibility::Bindings bindings;
-                   vplkit::stages::bind_bvh(bindings, bvh);
-                   bindings.queries = query_buffer.descriptor();
-                   bindings.occluded = result_buffer.descriptor();
-                   ts::segment_visibility::Push push{};
-                   push.count = count;
-                   pipeline.dispatch(cmd, bindings, push, count);
-               });
-    passes.run(ctx);
-    return result_buffer.download<uint32_t>(count);
+    return run_queries<ts::segment_visibility::Pipeline, &ts::segment_visibility::Bindings::occluded, uint32_t>(
+        bvh, queries, "segment visibility");
 }
 
 // Points to start from on a triangle: its corners, edge midpoints and random interior points.
