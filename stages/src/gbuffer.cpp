@@ -1,5 +1,6 @@
 #include "vplkit/stages/gbuffer.hpp"
 
+#include "scene_draws.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/graphics_pipeline.hpp"
 #include "vplkit/shaders/gbuffer_raster.hpp"
@@ -80,12 +81,7 @@ glm::mat4 vulkan_orthographic(float ymag, float aspect, float znear, float zfar)
 
 void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
                       const GbufferViews& images) {
-    for (const GpuDraw& draw : scene.draws) {
-        if (draw.material >= scene.textures.size()) {
-            throw Error("gbuffer: a draw uses material " + std::to_string(draw.material) +
-                        ", but the scene has textures for " + std::to_string(scene.textures.size()));
-        }
-    }
+    check_draw_materials(scene, "gbuffer");
     if (!images.motion) throw Error("gbuffer: the motion image is missing (gbuffer_views.hpp)");
     const bool moved = bool(scene.previous_vertices);
     if (moved && scene.previous_vertices.size != scene.vertices.size) {
@@ -107,7 +103,7 @@ void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scen
                 Use::color_attachment(images.emission), Use::color_attachment(images.motion),
                 Use::depth_attachment(images.depth)},
                // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-               [&pipeline, scene, previous, images, push](VkCommandBuffer cmd) mutable {
+               [&pipeline, scene, previous, images, push](VkCommandBuffer cmd) {
                    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
                    begin_rendering(cmd, {{images.position, images.normal, images.geometric_normal, images.albedo,
                                           images.emission, images.motion},
@@ -119,23 +115,7 @@ void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scen
                    geometry.scene_vertices = scene.vertices.descriptor();
                    geometry.scene_indices = scene.indices.descriptor();
                    geometry.previous_vertices = previous.descriptor();
-                   uint32_t bound_material = UINT32_MAX;
-                   for (const GpuDraw& draw : scene.draws) {
-                       if (draw.material != bound_material) {
-                           const MaterialTextures& textures = scene.textures[draw.material];
-                           frag::Bindings material;
-                           material.scene_materials = scene.materials.descriptor();
-                           material.base_color_texture = textures.base_color;
-                           material.metallic_roughness_texture = textures.metallic_roughness;
-                           material.normal_texture = textures.normal;
-                           material.emissive_texture = textures.emissive;
-                           pipeline.push_descriptors<vert::Module, frag::Module>(cmd, geometry, material);
-                           push.material = draw.material;
-                           pipeline.push_constants(cmd, push);
-                           bound_material = draw.material;
-                       }
-                       vkCmdDraw(cmd, 3 * draw.triangle_count, 1, 3 * draw.first_triangle, 0);
-                   }
+                   draw_scene<vert::Module, frag::Module>(cmd, pipeline, scene, geometry, {}, push);
                    end_rendering(cmd);
                });
 }

@@ -1,5 +1,6 @@
 #include "vplkit/stages/shadow_maps.hpp"
 
+#include "scene_draws.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/graphics_pipeline.hpp"
 #include "vplkit/shaders/rsm_raster.hpp"
@@ -30,12 +31,7 @@ using RsmPipeline = RasterPipeline<vert::Module, frag::Module, RsmPipelineDescri
 
 void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& scene, const ShadowMapViews& map,
                          uint32_t index) {
-    for (const GpuDraw& draw : scene.draws) {
-        if (draw.material >= scene.textures.size()) {
-            throw Error("shadow map: a draw uses material " + std::to_string(draw.material) +
-                        ", but the scene has textures for " + std::to_string(scene.textures.size()));
-        }
-    }
+    check_draw_materials(scene, "shadow map");
     const GraphicsPipeline& pipeline = device.pipeline<RsmPipeline>().pipeline;
     passes.add("shadow map " + std::to_string(index),
                {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
@@ -50,6 +46,8 @@ void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& s
                    vert::Bindings geometry;
                    geometry.scene_vertices = scene.vertices.descriptor();
                    geometry.scene_indices = scene.indices.descriptor();
+                   frag::Bindings material;
+                   material.light = map.light_uniform.descriptor();
                    for (const ShadowFace& face : map.faces) {
                        const VkViewport viewport = {float(face.rect.offset.x),
                                                     float(face.rect.offset.y),
@@ -62,24 +60,7 @@ void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& s
                        frag::Push push{};
                        std::memcpy(&push.view_projection, &face.view_projection, sizeof(push.view_projection));
                        push.face_origin = {float(face.rect.offset.x), float(face.rect.offset.y)};
-                       uint32_t bound_material = UINT32_MAX;
-                       for (const GpuDraw& draw : scene.draws) {
-                           if (draw.material != bound_material) {
-                               const MaterialTextures& textures = scene.textures[draw.material];
-                               frag::Bindings material;
-                               material.scene_materials = scene.materials.descriptor();
-                               material.base_color_texture = textures.base_color;
-                               material.metallic_roughness_texture = textures.metallic_roughness;
-                               material.normal_texture = textures.normal;
-                               material.emissive_texture = textures.emissive;
-                               material.light = map.light_uniform.descriptor();
-                               pipeline.push_descriptors<vert::Module, frag::Module>(cmd, geometry, material);
-                               push.material = draw.material;
-                               pipeline.push_constants(cmd, push);
-                               bound_material = draw.material;
-                           }
-                           vkCmdDraw(cmd, 3 * draw.triangle_count, 1, 3 * draw.first_triangle, 0);
-                       }
+                       draw_scene<vert::Module, frag::Module>(cmd, pipeline, scene, geometry, material, push);
                    }
                    end_rendering(cmd);
                });
