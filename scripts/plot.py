@@ -294,20 +294,26 @@ def budget_check(run, folder, wrote):
                              f"measured_rmse or best_rmse")
     scene = short_name(run["scene"])
     size = f"{run['width']}x{run['height']}"
-    budgets = [number(r["budget_ms"]) for r in rows]
-    with_best = [r for r in rows if r["best_rmse"] is not None]
+    # The rows as calibrated (scale 1) and with the drift's correction (another scale).
+    models = [("calibrated", [r for r in rows if number(r.get("scale", 1)) == 1]),
+              ("drift-scaled", [r for r in rows if number(r.get("scale", 1)) != 1])]
+    models = [(name, chosen) for name, chosen in models if chosen]
+    budgets = [number(r["budget_ms"]) for r in models[0][1]]
+    with_best = [r for r in models[0][1] if r["best_rmse"] is not None]
+    rmse_series, time_series = [], []
+    for name, chosen in models:
+        xs = [number(r["budget_ms"]) for r in chosen]
+        rmse_series.append((f"chosen ({name}), measured", xs, [number(r["measured_rmse"]) for r in chosen]))
+        time_series += [(f"chosen ({name}), measured", xs, [number(r["measured_ms"]) for r in chosen]),
+                        (f"chosen ({name}), predicted", xs, [number(r["predicted_ms"]) for r in chosen])]
     line_plot(os.path.join(folder, "budget_rmse.png"), f"{scene}: the budget's choice vs the best within B ({size})",
               "budget B (ms, GPU)", "RMSE (tonemapped)",
-              [("chosen, measured", budgets, [number(r["measured_rmse"]) for r in rows]),
-               ("chosen, predicted", budgets, [number(r.get("predicted_rmse")) for r in rows]),
-               ("best measured within B", [number(r["budget_ms"]) for r in with_best],
-                [number(r["best_rmse"]) for r in with_best])], False, True, wrote)
+              rmse_series + [("best measured within B", [number(r["budget_ms"]) for r in with_best],
+                              [number(r["best_rmse"]) for r in with_best])], False, True, wrote)
     line_plot(os.path.join(folder, "budget_time.png"), f"{scene}: the budget's choice, frame time ({size})",
               "budget B (ms, GPU)", "frame time (ms, GPU)",
-              [("chosen, measured", budgets, [number(r["measured_ms"]) for r in rows]),
-               ("chosen, predicted", budgets, [number(r["predicted_ms"]) for r in rows]),
-               ("B", budgets, budgets),
-               ("1.15 B", budgets, [1.15 * b for b in budgets])], False, False, wrote)
+              time_series + [("B", budgets, budgets), ("1.15 B", budgets, [1.15 * b for b in budgets])],
+              False, False, wrote)
 
 
 def bench_gi(folder, args):

@@ -49,6 +49,7 @@ struct BenchPoint {
 // The budget chooser checked (bench_gi_budget.hpp): for a budget B, what `--budget-ms B` chose,
 // that choice measured like a point, and the best measured point within B.
 struct BudgetCheckRow {
+    double scale = 1;      // the model's times x scale (1: as calibrated; else the drift's correction)
     double fraction = 0;   // of the comparable points' time range: B = min + fraction (max - min)
     double budget_ms = 0;  // B
     std::string chosen;    // "rtslc 64 spp k8 half svgf, 1024 vpls"

@@ -44,6 +44,12 @@ bool same_config(const BudgetConfig& a, const BudgetConfig& b) {
            a.vpls == b.vpls && (a.method == GiMethod::sst || a.block_size == b.block_size);
 }
 
+std::string fixed2(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.2f", v);
+    return text;
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
@@ -63,10 +69,10 @@ bool rmse_ok(const BudgetCheckRow& r) {
 void print_budget_check(const BenchRun& run) {
     std::printf("budget chooser: %s\n", run.budget_note.c_str());
     for (const BudgetCheckRow& r : run.budget_check) {
-        std::printf("  %3.0f%%: B %.1f ms: %s%s, predicted %.1f ms; measured %.1f ms (%.2f B, %s), RMSE %.4f",
-                    100.0 * r.fraction, r.budget_ms, r.chosen.c_str(),
-                    r.over_budget ? " (nothing predicted within B)" : "", r.predicted_ms, r.measured_ms,
-                    r.measured_ms / r.budget_ms, time_ok(r) ? "ok" : "over 1.15 B", r.measured_rmse);
+        std::printf("  %s %3.0f%%: B %.1f ms: %s%s, predicted %.1f ms; measured %.1f ms (%.2f B, %s), RMSE %.4f",
+                    r.scale == 1.0 ? "calibrated" : ("x" + fixed2(r.scale)).c_str(), 100.0 * r.fraction, r.budget_ms,
+                    r.chosen.c_str(), r.over_budget ? " (nothing predicted within B)" : "", r.predicted_ms,
+                    r.measured_ms, r.measured_ms / r.budget_ms, time_ok(r) ? "ok" : "over 1.15 B", r.measured_rmse);
         if (r.best.empty()) {
             std::printf("; nothing measured within B\n");
         } else {
@@ -87,11 +93,14 @@ std::string budget_check_markdown(const BenchRun& run) {
        << kBudgetTimeSlack << " B, RMSE <= " << kBudgetRmseSlack << "x the best within B. " << run.budget_note
        << ".\n\n";
     if (run.budget_check.empty()) return md.str();
-    md << "| B (% of range) | B ms | chosen | predicted ms | measured ms (/ B) | RMSE | best within B | its ms | its "
-          "RMSE | RMSE / best | ok |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
+    md << "| model | B (% of range) | B ms | chosen | predicted ms | measured ms (/ B) | RMSE | best within B | its ms "
+          "| its "
+          "RMSE | RMSE / best | ok |\n| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
     for (const BudgetCheckRow& r : run.budget_check) {
+        md.precision(2);
+        md << "| " << (r.scale == 1.0 ? std::string("calibrated") : "times x" + fixed2(r.scale)) << " | ";
         md.precision(0);
-        md << "| " << 100.0 * r.fraction << "% | ";
+        md << 100.0 * r.fraction << "% | ";
         md.precision(1);
         md << r.budget_ms << " | " << r.chosen << (r.over_budget ? " (none predicted within B)" : "") << " | "
            << r.predicted_ms << " | " << r.measured_ms;
@@ -119,7 +128,8 @@ std::string budget_check_markdown(const BenchRun& run) {
 nlohmann::ordered_json budget_check_json(const BenchRun& run) {
     nlohmann::ordered_json rows = nlohmann::ordered_json::array();
     for (const BudgetCheckRow& r : run.budget_check) {
-        rows.push_back({{"fraction", json_number(r.fraction)},
+        rows.push_back({{"scale", json_number(r.scale)},
+                        {"fraction", json_number(r.fraction)},
                         {"budget_ms", json_number(r.budget_ms)},
                         {"chosen", r.chosen},
                         {"predicted_ms", json_number(r.predicted_ms)},
@@ -195,60 +205,68 @@ void check_budget_chooser(Renderer& renderer, const DeviceInfo& device, const sc
 
     std::vector<BenchPoint> measured;  // each distinct choice once
     std::vector<BudgetConfig> measured_configs;
-    for (double fraction : in.fractions) {
-        BudgetCheckRow row;
-        row.fraction = fraction;
-        row.budget_ms = lo + fraction * (hi - lo);
-        const BudgetChoice choice = choose_for_budget(candidates, row.budget_ms);
-        const BudgetConfig& c = choice.chosen.config;
-        row.chosen = short_config(c);
-        row.predicted_ms = choice.chosen.predicted_ms;
-        row.predicted_rmse = choice.chosen.predicted_rmse;
-        row.over_budget = choice.over_budget;
-        size_t index = 0;
-        while (index < measured_configs.size() && !same_config(measured_configs[index], c)) ++index;
-        if (index == measured_configs.size()) {
-            BenchPoint p;
-            p.method = gi_method_name(c.method);
-            p.sweep = "budget";
-            p.spp = c.spp;
-            p.block = c.block_size;
-            p.half = c.half_resolution;
-            p.denoised = c.denoise == DenoiseMode::svgf;
-            p.vpls = c.vpls;
-            std::fprintf(stderr, "[bench] budget %.1f ms: measuring %s\n", row.budget_ms, row.chosen.c_str());
-            std::string failure;
-            if (!measure_bench_point(renderer, scene.camera(), apply_budget_config(base, c, source), in.frames,
-                                     *in.truth_rgb, *in.truth_radiance, in.out, p, failure)) {
-                run.skipped.push_back("budget choice " + row.chosen + ": " + failure);
-                continue;
+    // Twice: the model as calibrated (what `render --budget-ms` does), and its times scaled by the
+    // median measured / predicted ratio (what a sequence's BudgetDrift re-plans to after its
+    // first frames: the machine's load at the calibration is not the load now).
+    const double drift = ratios.empty() ? 1.0 : median(ratios);
+    for (double scale : {1.0, drift}) {
+        const std::vector<BudgetCandidate> scaled = scaled_candidates(candidates, scale);
+        for (double fraction : in.fractions) {
+            BudgetCheckRow row;
+            row.fraction = fraction;
+            row.scale = scale;
+            row.budget_ms = lo + fraction * (hi - lo);
+            const BudgetChoice choice = choose_for_budget(scaled, row.budget_ms);
+            const BudgetConfig& c = choice.chosen.config;
+            row.chosen = short_config(c);
+            row.predicted_ms = choice.chosen.predicted_ms;
+            row.predicted_rmse = choice.chosen.predicted_rmse;
+            row.over_budget = choice.over_budget;
+            size_t index = 0;
+            while (index < measured_configs.size() && !same_config(measured_configs[index], c)) ++index;
+            if (index == measured_configs.size()) {
+                BenchPoint p;
+                p.method = gi_method_name(c.method);
+                p.sweep = "budget";
+                p.spp = c.spp;
+                p.block = c.block_size;
+                p.half = c.half_resolution;
+                p.denoised = c.denoise == DenoiseMode::svgf;
+                p.vpls = c.vpls;
+                std::fprintf(stderr, "[bench] budget %.1f ms: measuring %s\n", row.budget_ms, row.chosen.c_str());
+                std::string failure;
+                if (!measure_bench_point(renderer, scene.camera(), apply_budget_config(base, c, source), in.frames,
+                                         *in.truth_rgb, *in.truth_radiance, in.out, p, failure)) {
+                    run.skipped.push_back("budget choice " + row.chosen + ": " + failure);
+                    continue;
+                }
+                measured.push_back(p);
+                measured_configs.push_back(c);
             }
-            measured.push_back(p);
-            measured_configs.push_back(c);
-        }
-        row.measured_ms = measured[index].frame_ms;
-        row.measured_rmse = measured[index].rmse;
-        // The best measured within B: the sweep's comparable points and the choices measured.
-        const BenchPoint* best = nullptr;
-        std::string best_name;
-        for (const BenchPoint* p : comparable) {
-            if (p->frame_ms <= row.budget_ms && (!best || p->rmse < best->rmse)) {
-                best = p;
-                best_name = p->label();
+            row.measured_ms = measured[index].frame_ms;
+            row.measured_rmse = measured[index].rmse;
+            // The best measured within B: the sweep's comparable points and the choices measured.
+            const BenchPoint* best = nullptr;
+            std::string best_name;
+            for (const BenchPoint* p : comparable) {
+                if (p->frame_ms <= row.budget_ms && (!best || p->rmse < best->rmse)) {
+                    best = p;
+                    best_name = p->label();
+                }
             }
-        }
-        for (size_t i = 0; i < measured.size(); ++i) {
-            if (measured[i].frame_ms <= row.budget_ms && (!best || measured[i].rmse < best->rmse)) {
-                best = &measured[i];
-                best_name = short_config(measured_configs[i]) + " (a choice)";
+            for (size_t i = 0; i < measured.size(); ++i) {
+                if (measured[i].frame_ms <= row.budget_ms && (!best || measured[i].rmse < best->rmse)) {
+                    best = &measured[i];
+                    best_name = short_config(measured_configs[i]) + " (a choice)";
+                }
             }
+            if (best) {
+                row.best = best_name;
+                row.best_ms = best->frame_ms;
+                row.best_rmse = best->rmse;
+            }
+            run.budget_check.push_back(row);
         }
-        if (best) {
-            row.best = best_name;
-            row.best_ms = best->frame_ms;
-            row.best_rmse = best->rmse;
-        }
-        run.budget_check.push_back(row);
     }
 }
 
