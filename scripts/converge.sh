@@ -40,7 +40,9 @@ for method in $methods; do
   for f in "${frames[@]}"; do
     name="$method-$f"
     echo "== $name" >&2
-    "$vplkit" render "${common[@]}" "${options[@]}" --spp "${SPP:-8}" --denoise temporal --frames "$f" \
+    # --no-antialias: every frame at the pixel centres, as exact's one frame (with the sub-pixel
+    # offsets the mean is the pixel's area average, which is not what exact computes).
+    "$vplkit" render "${common[@]}" "${options[@]}" --spp "${SPP:-8}" --denoise temporal --frames "$f" --no-antialias \
       "${extra[@]}" --out "$out/$name.png" --out-indirect "$out/$name.pfm" > "$out/$name.log" 2> "$out/$name.err"
     grep -h "firefly clamp" "$out/$name.log" >&2 || true
     images+=("$out/$name.pfm")

@@ -42,9 +42,11 @@ for variant in sst rtslc hybrid hybrid-half hybrid-lightcuts; do
   for spp in $spps; do
     name="$base-$variant-$spp"
     echo "[$scene] $variant, $spp spp" >&2
-    # 3 frames: the times are the medians of frames 2 and 3 (the first compiles the shaders).
+    # 3 frames: the times are the medians of frames 2 and 3 (the first compiles the shaders);
+    # --no-antialias keeps every frame at the pixel centres with the same samples, so the image is
+    # one frame at $spp, as exact's (several frames would be averaged, at sub-pixel offsets).
     "$vplkit" render --scene "$scene" --method "$method" --spp "$spp" --width "$width" --height "$height" \
-      --gi-resolution "$resolution" --frames 3 --no-reuse "${variant_options[@]}" "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
+      --gi-resolution "$resolution" --frames 3 --no-antialias --no-reuse "${variant_options[@]}" "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
     gi_ms=$(awk '/^  (sst gi|rtslc cuts|rtslc gi|hybrid cuts|hybrid gi|gbuffer downsample|upsample)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     tree_ms=$(awk '/^  (vpl bounds|morton keys|sort|gather leaves|light tree|sst clear|build sst)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     levels=$(sed -n 's/.* \([0-9.]*\) tree levels per traversal.*/\1/p' "$name.log")
