@@ -123,6 +123,8 @@ PoseUpdate Renderer::update_pose(const scene::PoseChange& change) {
         // The VPL tracer's copy of the lights and emitters; the mean of a still camera's frames.
         vpl_sources_.reset();
         accumulator_ = FrameAccumulator{};
+        // An SMC set lives on: its next update drops VPLs the geometry left and estimates the rest again.
+        if (smc_) smc_->scene_moved(update.geometry, update.lights);
     }
     update.summary = summary.empty() ? "" : "pose: " + summary;
     pose_note_ = update.summary;

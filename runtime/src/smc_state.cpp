@@ -54,7 +54,8 @@ stages::SmcBuffers SmcState::views() const {
 
 void SmcState::add_update(Context& context, StepList& passes, const stages::GbufferViews& gbuffer,
                           const stages::CameraView& view, const stages::SmcScene& scene) {
-    add_smc_update_passes(context, passes, gbuffer, view, scene, sorter_, views(), options_, updates_);
+    add_smc_update_passes(context, passes, gbuffer, view, scene, sorter_, views(), options_, updates_, change_);
+    change_ = {};
     ++updates_;
 }
 

@@ -11,6 +11,9 @@
 
 const uint kSmcCovered = 1u;  // the anchor is a camera point (a covered pixel)
 const uint kSmcHit = 2u;      // the position is a surface hit
+// The surface under the VPL moved away (smc_validate.comp after the geometry moved): it renders
+// nothing, no ray revalidates it, and it leaves Y first.
+const uint kSmcDead = 4u;
 
 struct SmcVpl {
     vec3 position;

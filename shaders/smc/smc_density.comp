@@ -123,6 +123,9 @@ void main() {
                 continue;
             }
             SmcVpl other = state.items[j];
+            if ((other.flags & kSmcDead) != 0u) {
+                continue;  // no surface under it: it stands for none
+            }
             vec3 d = other.position - query.position;
             float d2 = dot(d, d);
             if (!(d2 < best[k - 1u])) {

@@ -9,9 +9,12 @@
 // (smc_replace.comp), so its estimate for rendering is independent of the one that chose it:
 // with the same numbers, the candidates that won by a lucky high estimate would keep it (the
 // strongest are chosen), and the Cornell box's two-bounce light came out 1.5x the reference.
-// While it lives a VPL keeps its seed, so re-estimating it would give the same number (lights
-// and geometry are static for a renderer): survivors are not re-estimated. The first estimate
-// stays as choice_radiosity and ranks the VPL (see smc.glsl).
+// While it lives a VPL keeps its seed, so re-estimating it would give the same number while lights
+// and geometry stay still: survivors are then not re-estimated. The first estimate stays as
+// choice_radiosity and ranks the VPL (see smc.glsl). After a light or the geometry moved, every
+// VPL of Y is estimated again (mode kEveryVpl, the paper's line 18 every frame): from its own
+// seed (the same paths, so its light changes only as the scene did) for rendering, and from a
+// second stream for ranking, so the two stay independent. Dead VPLs (smc.glsl) stay at zero.
 //
 // Estimator. At a vertex p with normal n, one emitter i with probability pmf_i:
 //   punctual: E_i = irradiance(p) <n, wi> V / pmf_i
@@ -62,8 +65,12 @@ layout(push_constant) uniform SmcRadiosityPush {
     uint emitter_count;
     uint triangle_count;
     uint sample_limit;  // samples + 1, likewise
-    uint moved_only;    // 1: records is Y, estimate the slots moves[0..move_count) name; 0: candidates
+    uint mode;          // kCandidates, kMovedVpls or kEveryVpl: which records are estimated
 } push;
+
+const uint kCandidates = 0u;  // the candidates (line 7): both estimates, one number
+const uint kMovedVpls = 1u;   // records is Y: the slots moves[0..move_count) name (line 18)
+const uint kEveryVpl = 2u;    // records is Y: all of it, after the scene moved (line 18 every frame)
 
 uint sample_emitter(float u) {
     uint lo = 0u;
@@ -128,26 +135,12 @@ vec3 direct_irradiance(vec3 p, vec3 n, float scale, inout Rng rng) {
     return tri.radiance * (cos_p * cos_q / max(d2, min_distance * min_distance) * tri.area / pmf);
 }
 
-void main() {
-    uint m = linear_thread_index();
-    uint count = push.moved_only != 0u ? counters.c.move_count : counters.c.candidate_count;
-    if (m >= push.budget || m >= count) {
-        return;
-    }
-    uint c = push.moved_only != 0u ? moves.items[m].x : m;
-    SmcVpl v = records.items[c];
-    vec3 rho_y = v.triangle < push.triangle_count ? albedo.items[v.triangle].rgb : vec3(0.0);
-    if (push.emitter_count == 0u || all(equal(rho_y, vec3(0.0)))) {
-        records.items[c].radiosity = vec3(0.0);
-        if (push.moved_only == 0u) {
-            records.items[c].choice_radiosity = vec3(0.0);
-        }
-        return;
-    }
+// The radiosity estimate at v from the random stream `stream`; `completed` false when the
+// driver ended a loop early.
+vec3 estimate_radiosity(SmcVpl v, vec3 rho_y, uint stream, inout bool completed) {
     float scale = bvh_scene_scale();
-    Rng rng = rng_create(v.seed, 0x9e3779b9u);  // the seed alone: the stream moves with the VPL
+    Rng rng = rng_create(stream, 0x9e3779b9u);
     vec3 irradiance = vec3(0.0);
-    bool completed = true;
     bool samples_completed = false;
     for (uint s = 0u; s < push.sample_limit; ++s) {
         if (s == push.samples) {
@@ -192,13 +185,40 @@ void main() {
         }
         completed = completed && path_completed;
     }
-    if (!completed || !samples_completed) {
-        atomicAdd(counters.c.cut_short, 1u);
-    }
+    completed = completed && samples_completed;
     vec3 radiosity = rho_y * irradiance / float(max(push.samples, 1u));
-    radiosity = bvh_finite(radiosity) ? radiosity : vec3(0.0);
+    return bvh_finite(radiosity) ? radiosity : vec3(0.0);
+}
+
+void main() {
+    uint m = linear_thread_index();
+    uint count = push.mode == kCandidates ? counters.c.candidate_count
+                 : push.mode == kMovedVpls ? counters.c.move_count
+                                           : counters.c.vpl_count;
+    if (m >= push.budget || m >= count) {
+        return;
+    }
+    uint c = push.mode == kMovedVpls ? moves.items[m].x : m;
+    SmcVpl v = records.items[c];
+    bool ranks_too = push.mode != kMovedVpls;  // choice_radiosity written as well
+    vec3 rho_y = v.triangle < push.triangle_count ? albedo.items[v.triangle].rgb : vec3(0.0);
+    if (push.emitter_count == 0u || all(equal(rho_y, vec3(0.0))) || (v.flags & kSmcDead) != 0u) {
+        records.items[c].radiosity = vec3(0.0);
+        if (ranks_too) {
+            records.items[c].choice_radiosity = vec3(0.0);
+        }
+        return;
+    }
+    // The seed alone: the stream moves with the VPL.
+    bool completed = true;
+    vec3 radiosity = estimate_radiosity(v, rho_y, v.seed, completed);
     records.items[c].radiosity = radiosity;
-    if (push.moved_only == 0u) {
+    if (push.mode == kCandidates) {
         records.items[c].choice_radiosity = radiosity;  // a candidate: the estimate that ranks it
+    } else if (push.mode == kEveryVpl) {
+        records.items[c].choice_radiosity = estimate_radiosity(v, rho_y, pcg_hash(v.seed ^ 0x2545f491u), completed);
+    }
+    if (!completed) {
+        atomicAdd(counters.c.cut_short, 1u);
     }
 }

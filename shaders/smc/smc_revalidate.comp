@@ -54,6 +54,9 @@ void main() {
             continue;
         }
         SmcVpl v = state.items[i];
+        if ((v.flags & kSmcDead) != 0u) {
+            continue;  // its surface moved away: no point sees it
+        }
         vec3 d = v.position - point.anchor;
         if (!(dot(point.anchor_normal, d) > 0.0) || !(dot(v.normal, -d) > 0.0)) {
             continue;

@@ -189,7 +189,7 @@ void add_smc_density_pass(Device& device, StepList& passes, const BvhBuffers& bv
 
 void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
                            const SmcScene& scene, KeyValueSorter& sorter, const SmcBuffers& buffers,
-                           const SmcOptions& options, uint32_t iteration) {
+                           const SmcOptions& options, uint32_t iteration, const SmcSceneChange& change) {
     validate(options);
     const SmcRequirements needed = smc_requirements(options);
     check_buffers(buffers, needed);
@@ -225,8 +225,9 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
                   buffers.vpls});
     const uint32_t pool = needed.pool;
 
-    // Line 7 over the candidates, line 18 over the VPLs that entered Y (their own seeds).
-    auto add_radiosity_pass = [&](const BufferView& records, bool moved_only) {
+    // Line 7 over the candidates, line 18 over the VPLs that entered Y or, after the scene moved, all of Y.
+    enum class RadiosityOf : uint32_t { candidates = 0, moved_vpls = 1, every_vpl = 2 };  // the shader's modes
+    auto add_radiosity_pass = [&](const BufferView& records, RadiosityOf of) {
         const auto& pipeline = smc_pipeline<shaders::smc_radiosity::Pipeline>(device, bvh);
         auto b = smc_bindings<shaders::smc_radiosity::Bindings>(scene, buffers);
         b.records = records.descriptor();
@@ -239,9 +240,11 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.punctual_count = sources.punctual_count;
         push.emitter_count = sources.emitter_count;
         push.triangle_count = sources.triangle_count;
-        push.moved_only = moved_only ? 1u : 0u;
-        add_dispatch<shaders::smc_radiosity::Module>(passes, moved_only ? "smc radiosity of new vpls" : "smc radiosity",
-                                                     pipeline, b, push, push.budget);
+        push.mode = uint32_t(of);
+        const char* name = of == RadiosityOf::candidates   ? "smc radiosity"
+                           : of == RadiosityOf::moved_vpls ? "smc radiosity of new vpls"
+                                                           : "smc radiosity of every vpl";
+        add_dispatch<shaders::smc_radiosity::Module>(passes, name, pipeline, b, push, push.budget);
     };
 
     // Everything but |Y| (the first word) starts each update at zero.
@@ -273,6 +276,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
         push.camera_position = {view.position.x, view.position.y, view.position.z};
         push.budget = budget;
+        push.surfaces_moved = change.geometry ? 1u : 0u;
         add_dispatch<shaders::smc_validate::Module>(passes, "smc validate", pipeline, b, push, push.budget);
     }
     {
@@ -312,7 +316,8 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         add_dispatch<shaders::smc_gather_candidates::Module>(passes, "smc gather candidates", pipeline, b, push,
                                                              push.budget);
     }
-    add_radiosity_pass(buffers.candidates, false);
+    if (change.geometry || change.lights) add_radiosity_pass(buffers.state, RadiosityOf::every_vpl);
+    add_radiosity_pass(buffers.candidates, RadiosityOf::candidates);
     add_smc_density_pass(device, passes, bvh, buffers.state, buffers.candidates, buffers.candidate_density, counters,
                          budget, 1, false, 0);
     {
@@ -336,7 +341,7 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
             passes, "smc replace", smc_pipeline<shaders::smc_replace::Pipeline>(device, bvh),
             smc_bindings<shaders::smc_replace::Bindings>(scene, buffers), budget, budget);
     }
-    add_radiosity_pass(buffers.state, true);
+    add_radiosity_pass(buffers.state, RadiosityOf::moved_vpls);
     add_smc_density_pass(device, passes, bvh, buffers.state, buffers.state, buffers.vpl_density, counters, budget,
                          smc_render_neighbours(budget), true, options.surface_samples);
     {

@@ -5,8 +5,11 @@
 //   within 1e-5 relative (float rounding of a few products), and exactly 0 in the occluder's
 //   shadow, for a black triangle and for a record without a triangle. Fails on a wrong cosine,
 //   falloff, albedo, pmf or shadow ray.
-// - moved_only (line 18): only the slots the moves name are estimated, and their choosing
+// - moved VPLs (line 18): only the slots the moves name are estimated, and their choosing
 //   estimate (choice_radiosity) is kept; fails if another slot is touched.
+// - every VPL (line 18 after the light moved): each of the first |Y| gets the closed form for the
+//   light where it is now, in both estimates; a dead VPL (its surface moved away) gets zero in
+//   both; slots past |Y| stay. Fails if a survivor keeps the old light's radiosity.
 // - Two bounces, floor and ceiling with the light between: the mean over n records (each its
 //   own seed) against rho_f (E_direct + rho_c integral of E_c cos cos / (pi d^2) over the
 //   ceiling) by a 400 x 400 midpoint quadrature in double (error ~1e-5 relative), within 4
@@ -99,9 +102,10 @@ struct Estimated {
     uint32_t cut_short = 0;
 };
 
-// Runs smc_radiosity over `records`: the first `count` (moves empty), or the slots `moves` name.
+// Runs smc_radiosity over `records`: the first `count` as candidates (moves empty), or the slots
+// `moves` name, or with every_vpl the first `count` as the VPLs of Y.
 Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count, uint32_t samples, uint32_t bounces,
-              const std::vector<std::array<uint32_t, 2>>& moves = {}) {
+              const std::vector<std::array<uint32_t, 2>>& moves = {}, bool every_vpl = false) {
     vplkit::Context& ctx = vplkit::test::context();
     const uint32_t budget = uint32_t(records.size());
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(s.triangles));
@@ -126,7 +130,7 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     padded.resize(budget, {0u, 0u});
     move_buffer.upload(padded);
     SmcCounters counters{};
-    (moves.empty() ? counters.candidate_count : counters.move_count) = count;
+    (every_vpl ? counters.vpl_count : moves.empty() ? counters.candidate_count : counters.move_count) = count;
     auto counter_buffer = make(sizeof(SmcCounters), "counters");
     counter_buffer.upload(std::vector<SmcCounters>{counters});
 
@@ -150,7 +154,7 @@ Estimated run(const Setup& s, const std::vector<SmcVpl>& records, uint32_t count
     push.punctual_count = 1;
     push.emitter_count = s.emitter ? 2 : 1;
     push.triangle_count = uint32_t(s.albedo.size());
-    push.moved_only = moves.empty() ? 0u : 1u;
+    push.mode = every_vpl ? 2u : moves.empty() ? 0u : 1u;  // the shader's kEveryVpl, kCandidates, kMovedVpls
     vplkit::PassList passes("smc radiosity test");
     passes.add("smc radiosity", vplkit::stages::binding_uses<shader::Module>(b, {}),
                [&](VkCommandBuffer cmd) { pipeline.dispatch(cmd, b, push, budget); });
@@ -229,6 +233,35 @@ TEST_CASE("smc radiosity: line 18 estimates only the slots the moves name and ke
                                                          glm::dvec3(s.light), glm::dvec3(s.intensity), triangles);
         CHECK(e.records[i].radiosity.x == doctest::Approx(expected.x).epsilon(1e-5));
         CHECK(e.records[i].radiosity.z == doctest::Approx(expected.z).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("smc radiosity: after the light moved every VPL of Y is estimated again, both estimates") {
+    Setup s = occluder_setup();
+    s.light = {-1.0f, 0.5f, 1.5f};  // moved from (0, 0, 2)
+    const auto triangles = reference_triangles(s.triangles);
+    const glm::vec3 up{0.0f, 0.0f, 1.0f};
+    std::vector<SmcVpl> y;
+    for (uint32_t i = 0; i < 6; ++i) y.push_back(record({-2.0f + 0.5f * i, -1.5f + 0.2f * i, 0.0f}, up, 0, 20 + i));
+    y[4].flags = 4u;  // kSmcDead: its surface moved away
+    const uint32_t count = 5;
+    const Estimated e = run(s, y, count, 4, 1, {}, true);
+    CHECK(e.cut_short == 0);
+    for (uint32_t i = 0; i < y.size(); ++i) {
+        CAPTURE(i);
+        if (i >= count) {
+            CHECK(e.records[i].radiosity.x == -1.0f);
+            CHECK(e.records[i].choice_radiosity.x == -2.0f);
+            continue;
+        }
+        const glm::dvec3 expected = i == 4 ? glm::dvec3(0.0)
+                                           : vplkit::reference::smc_point_light_radiosity(
+                                                 d3(y[i].position), d3(y[i].normal), glm::dvec3(s.albedo[0]),
+                                                 glm::dvec3(s.light), glm::dvec3(s.intensity), triangles);
+        if (i != 4) CHECK(expected.x > 0.0);
+        for (const auto& got : {d3(e.records[i].radiosity), d3(e.records[i].choice_radiosity)}) {
+            for (int c = 0; c < 3; ++c) CHECK(std::abs(got[c] - expected[c]) <= 1e-5 * expected[c]);
+        }
     }
 }
 

@@ -7,6 +7,10 @@
 //   smc_invalid_list.comp's list hold exactly the invalid VPLs in index order. Fails on a wrong frustum, facing or
 //   shadow test, a lost, doubled or misordered list entry, or a slot past |Y| touched. Hard cases: every VPL invalid
 //   (over several chunks of the compaction), |Y| = 0.
+//   After the geometry moved (surfaces_moved): a VPL no longer on its own triangle (lifted off the
+//   floor, or the floor under it another triangle now) is dead (flag set, both radiosities zero)
+//   and invalid, a VPL its anchor no longer sees (the plate between them) invalid but not dead,
+//   one on its surface and seen valid; without the flag the mailbox alone decides (all valid).
 // - smc_revalidate.comp: each camera point draws `tries` entries of the invalid list from its own
 //   stream (replayed here) and claims a drawn VPL it sees, each facing the other. The VPLs it
 //   validates (smc_revalidate_claims.comp after each round) must be exactly those some point drew and saw (the
@@ -97,12 +101,14 @@ struct ValidateScene {
 };
 
 struct Validated {
+    std::vector<SmcVpl> state;
     std::vector<uint32_t> valid;
     std::vector<uint32_t> invalid_list;
     SmcCounters counters{};
 };
 
-Validated run_validate(const ValidateScene& s, const std::vector<SmcVpl>& state, uint32_t vpl_count) {
+Validated run_validate(const ValidateScene& s, const std::vector<SmcVpl>& state, uint32_t vpl_count,
+                       bool surfaces_moved = false) {
     vplkit::Context& ctx = vplkit::test::context();
     const uint32_t budget = uint32_t(state.size());
     const auto bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(s.triangles));
@@ -128,6 +134,7 @@ Validated run_validate(const ValidateScene& s, const std::vector<SmcVpl>& state,
     std::memcpy(&push.view_projection, &s.view_projection, sizeof(push.view_projection));
     push.camera_position = {s.camera.x, s.camera.y, s.camera.z};
     push.budget = budget;
+    push.surfaces_moved = surfaces_moved ? 1u : 0u;
     namespace list_shader = vplkit::shaders::smc_invalid_list;
     const auto& list_pipeline = ctx.pipeline<list_shader::Pipeline>();
     list_shader::Bindings lb;
@@ -144,6 +151,7 @@ Validated run_validate(const ValidateScene& s, const std::vector<SmcVpl>& state,
     });
     passes.run(ctx);
     Validated v;
+    v.state = state_buffer.download<SmcVpl>(budget);
     v.valid = valid.download<uint32_t>(budget);
     v.counters = counter_buffer.download<SmcCounters>(1)[0];
     v.invalid_list = invalid_list.download<uint32_t>(budget);
@@ -353,6 +361,37 @@ TEST_CASE("smc validate: an anchor the camera sees keeps its VPL valid, the othe
     state.push_back(with_anchor({0.6, 0.5, 0.0}, up));
     const uint32_t invalid = check_validate(state, count);
     CHECK(invalid == 6);
+}
+
+TEST_CASE("smc validate: after the geometry moved, VPLs off their triangle are dead and occluded ones invalid") {
+    const ValidateScene s;  // floor triangles 0 (x > y) and 1, the plate (2, 3) at z = 2
+    auto vpl = [](glm::vec3 p, uint32_t triangle, glm::dvec3 anchor) {
+        SmcVpl v = with_anchor(anchor, {0.0, 0.0, 1.0});
+        v.position = {p.x, p.y, p.z};
+        v.normal = {0.0f, 0.0f, 1.0f};
+        v.triangle = triangle;
+        v.radiosity = v.choice_radiosity = {1.0f, 2.0f, 3.0f};
+        return v;
+    };
+    const std::vector<SmcVpl> state = {
+        vpl({1.0f, -1.0f, 0.0f}, 0, {2.0, 1.0, 0.0}),  // on its triangle, seen: valid
+        vpl({1.0f, -1.0f, 0.5f}, 0, {2.0, 1.0, 0.0}),  // its surface left it (now 0.5 below): dead
+        vpl({1.5f, -0.5f, 0.0f}, 1, {2.0, 1.0, 0.0}),  // triangle 1 is not under it any more: dead
+        vpl({0.3f, -0.2f, 0.0f}, 0, {0.0, 0.0, 2.0}),  // its anchor on the plate, the plate between
+    };
+    const Validated still = run_validate(s, state, 4, false);
+    CHECK(still.valid == std::vector<uint32_t>{1u, 1u, 1u, 1u});  // every anchor seen: the mailbox alone
+    for (const SmcVpl& v : still.state) CHECK(v.flags == 0u);
+    const Validated moved = run_validate(s, state, 4, true);
+    CHECK(moved.valid == std::vector<uint32_t>{1u, 0u, 0u, 0u});
+    CHECK(moved.invalid_list == std::vector<uint32_t>{1u, 2u, 3u});
+    for (uint32_t i = 0; i < 4; ++i) {
+        CAPTURE(i);
+        const bool dead = i == 1 || i == 2;
+        CHECK(moved.state[i].flags == (dead ? 4u : 0u));  // kSmcDead
+        CHECK(moved.state[i].radiosity.x == (dead ? 0.0f : 1.0f));
+        CHECK(moved.state[i].choice_radiosity.z == (dead ? 0.0f : 3.0f));
+    }
 }
 
 TEST_CASE("smc validate: every VPL invalid, and an empty set") {

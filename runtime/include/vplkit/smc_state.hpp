@@ -40,6 +40,13 @@ public:
     uint32_t updates() const { return updates_; }
     bool empty() const { return updates_ == 0; }
 
+    // The scene was posed: the next update checks the VPLs against the moved geometry and
+    // estimates every VPL's radiosity again (stages::SmcSceneChange). Moves add up until then.
+    void scene_moved(bool geometry, bool lights) {
+        change_.geometry = change_.geometry || geometry;
+        change_.lights = change_.lights || lights;
+    }
+
     // Adds one update (stages::add_smc_update_passes) for the frame of `gbuffer` and `view`.
     void add_update(Context& context, StepList& passes, const stages::GbufferViews& gbuffer,
                     const stages::CameraView& view, const stages::SmcScene& scene);
@@ -64,6 +71,7 @@ private:
     stages::SmcOptions options_;
     stages::KeyValueSorter sorter_;
     uint32_t updates_ = 0;
+    stages::SmcSceneChange change_;  // since the last update
     Buffer state_, valid_, invalid_list_, hits_, pool_keys_, pool_values_, candidates_, candidate_density_,
         vpl_density_, vpl_keys_, vpl_values_, candidate_keys_, candidate_values_, moves_, counters_, vpls_;
 };

@@ -25,8 +25,9 @@
 //
 // Radiosity is estimated twice per VPL: as a candidate (to choose it) and when it enters Y, from
 // a seed of its own (to render it: an estimate that won the choice is biased high). A VPL keeps
-// its seed for its life and lights and geometry are static, so re-estimating a survivor (line
-// 18) would give the same number: only the densities (line 19) are redone for every VPL.
+// its seed for its life, so while lights and geometry stay still re-estimating a survivor (line
+// 18) would give the same number: only the densities (line 19) are redone for every VPL. When
+// they moved (SmcSceneChange), every survivor's radiosity is estimated again as well.
 
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/device.hpp"
@@ -119,13 +120,22 @@ struct SmcScene {
     VplSourceBuffers sources;
 };
 
+// What moved in the scene since the last update (a posed frame). geometry: each VPL is checked
+// against its own triangle (a VPL whose surface left it is dead: no light, out first) and its
+// anchor's view of it is traced again; geometry or lights: every VPL's radiosity is estimated
+// again (both its estimates) before the selection.
+struct SmcSceneChange {
+    bool geometry = false;
+    bool lights = false;
+};
+
 // Adds one update of Y for the frame seen by `view` through `gbuffer` (position and geometric
 // normal read). `iteration` numbers the updates (each draws new random numbers); `sorter` must
 // sort at least smc_pool_size(options) pairs with key_bits >= 32. Throws vplkit::Error for bad
 // options, buffers smaller than smc_requirements, or a sorter too small.
 void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const CameraView& view,
                            const SmcScene& scene, KeyValueSorter& sorter, const SmcBuffers& buffers,
-                           const SmcOptions& options, uint32_t iteration);
+                           const SmcOptions& options, uint32_t iteration, const SmcSceneChange& change = {});
 
 // One kNN density pass alone (smc_density.comp), for tests: the densities of `queries` (the
 // first counters.candidate_count, or with queries_are_vpls the VPLs of `state` themselves, each
