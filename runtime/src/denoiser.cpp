@@ -63,8 +63,8 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
     // light anyway, shapes only what is shown and filtered.
     clamped_this_frame_ = options.firefly_k_sigma > 0.0f;
     if (clamped_this_frame_) {
-        stages::add_firefly_clamp_pass(context, passes, accumulated, next.moments, gbuffer.albedo, gbuffer.position,
-                                       clamped_, excess_, spread_, options);
+        stages::add_firefly_clamp_passes(context, passes, accumulated, next.moments, gbuffer.albedo, gbuffer.position,
+                                         clamped_, excess_, spread_, options);
         result = spread_;
     }
     if (spatial) {
@@ -76,8 +76,8 @@ void Denoiser::add_passes(Context& context, StepList& passes, DenoiseMode mode, 
         const stages::AtrousScratch scratch{irradiance_, accumulated_};
         for (uint32_t i = 0; i < options.atrous_iterations; ++i) {
             ImageView target = i == 0 ? ImageView(next.color) : (i % 2 == 1 ? ImageView(ping_) : ImageView(pong_));
-            stages::add_atrous_pass(context, passes, source, gbuffer.position, gbuffer.normal, scratch, target, 1 << i,
-                                    options);
+            stages::add_atrous_passes(context, passes, source, gbuffer.position, gbuffer.normal, scratch, target,
+                                      1 << i, options);
             source = target;
         }
         result = source;

@@ -165,7 +165,7 @@ Renderer::GeneratedVpls Renderer::generate_vpls(VplSource source, const stages::
         const stages::VplTracingOptions tracing{settings.vpl_paths, settings.vpl_bounces, settings.seed};
         auto& output = frame.hold(VplTracingOutput::create(context_, tracing));
         passes.set_tag(stage_tag(FrameStage::vpl_paths));
-        stages::add_trace_vpls_pass(context_, passes, gpu_bvh(), sources, tracing, output);
+        stages::add_trace_vpls_passes(context_, passes, gpu_bvh(), sources, tracing, output);
         generated.capacity = output.capacity;
         generated.count_word = offsetof(shaders::VplCountBuffer, count) / sizeof(uint32_t);
         generated.vpls = std::move(output.vpls);  // the frame's scratch stays held until it ran

@@ -133,8 +133,8 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
         }
         switch (settings.method) {
             case GiMethod::sst:
-                stages::add_sst_gi_passes(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
-                                          counters, sst_options);
+                stages::add_sst_gi_pass(context_, passes, gi_gbuffer, gpu_bvh(), trees, view.position, gi_target,
+                                        counters, sst_options);
                 break;
             case GiMethod::rtslc: {
                 auto& scratch = frame.hold(RtslcScratch::create(context_, w, h, rtslc_options));
@@ -187,8 +187,8 @@ bool Renderer::render_indirect(const FramePlan& plan, const stages::CameraView& 
     stages::add_demodulate_pass(context_, passes, *half_indirect, half_gbuffer->albedo, half_gbuffer->position,
                                 half_irradiance, modulation);
     Image& upsampled = denoised ? indirect : *full_irradiance;
-    stages::add_upsample_pass(context_, passes, gbuffer, *half_gbuffer, half_irradiance, upsampled, counters,
-                              stages::upsample_options_for_scene(gpu_bvh().scene_scale));
+    stages::add_upsample_passes(context_, passes, gbuffer, *half_gbuffer, half_irradiance, upsampled, counters,
+                                stages::upsample_options_for_scene(gpu_bvh().scene_scale));
     if (!denoised) stages::add_remodulate_pass(context_, passes, upsampled, gbuffer.albedo, indirect, modulation);
     frame.after_run([&out, &counters] { out.upsample_counts = read_upsample_counters(counters); });
     return denoised;

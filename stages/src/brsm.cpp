@@ -127,8 +127,8 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
                   Use::read(light.flux_mips), Use::write(light.contribution_mips)},
                  filter, filter_bindings, filter_push, {filter_push.map_size, filter_push.map_size});
 
-    add_importance_mip_levels_pass(device, passes, light.contribution_mips, size);
-    add_importance_mip_levels_pass(device, passes, light.flux_mips, size);
+    add_importance_mip_levels_passes(device, passes, light.contribution_mips, size);
+    add_importance_mip_levels_passes(device, passes, light.flux_mips, size);
 
     const auto& importance = device.pipeline<shaders::brsm_importance::Pipeline>();
     shaders::brsm_importance::Push importance_push{};
@@ -142,7 +142,7 @@ void add_light_passes(Device& device, StepList& passes, const GbufferViews& gbuf
     add_dispatch(passes, "brsm importance",
                  {Use::read(light.contribution_mips), Use::read(light.flux_mips), Use::write(light.importance_mips)},
                  importance, importance_bindings, importance_push, importance_push.texel_count);
-    add_importance_mip_levels_pass(device, passes, light.importance_mips, size);
+    add_importance_mip_levels_passes(device, passes, light.importance_mips, size);
     add_warp_samples_pass(device, passes, light.importance_mips, light.samples, light.warp_count, size, light.vpl_share,
                           seed);
 

@@ -103,9 +103,9 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
                                               {radiance.width, radiance.height}, {irradiance, albedo, radiance});
 }
 
-void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
-                            const ImageView& albedo, const ImageView& position, const ImageView& clamped,
-                            const ImageView& excess, const ImageView& spread, const DenoiseOptions& options) {
+void add_firefly_clamp_passes(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
+                              const ImageView& albedo, const ImageView& position, const ImageView& clamped,
+                              const ImageView& excess, const ImageView& spread, const DenoiseOptions& options) {
     validate(options);
     validate_images("denoise firefly clamp", {{&clamped, kFloat4},
                                               {&irradiance, kFloat4},
@@ -218,9 +218,9 @@ void add_variance_estimate_pass(Device& device, StepList& passes, const ImageVie
                                                      {accumulated, moments, position, normal, estimated});
 }
 
-void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
-                     const ImageView& normal, const AtrousScratch& scratch, const ImageView& filtered, int step,
-                     const DenoiseOptions& options) {
+void add_atrous_passes(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
+                       const ImageView& normal, const AtrousScratch& scratch, const ImageView& filtered, int step,
+                       const DenoiseOptions& options) {
     validate(options);
     check(step >= 1, "a-trous step " + std::to_string(step) + " must be at least 1");
     validate_images("denoise a-trous", {{&filtered, kFloat4},

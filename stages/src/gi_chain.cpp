@@ -159,7 +159,7 @@ void GiChain::add_gi_passes(StepList& steps, const GiChainInputs& inputs, const 
     scene_scale_ = inputs.bvh.scene_scale;
     VplTracingOptions tracing = options_.tracing;
     tracing.seed += frame.index;  // other VPLs every frame
-    add_trace_vpls_pass(device, steps, inputs.bvh, inputs.sources, tracing, tracing_);
+    add_trace_vpls_passes(device, steps, inputs.bvh, inputs.sources, tracing, tracing_);
     // The count the tracer wrote, read on the GPU: everything after is sized by the capacity.
     const ElementCount count = ElementCount::on_gpu(tracing_.count, 0, trees_.count);
     add_vpl_key_passes(device, steps, keys_, count);

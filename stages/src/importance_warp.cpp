@@ -44,8 +44,8 @@ uint64_t importance_top_offset(uint32_t size) {
     return importance_mip_floats(size) - 1;
 }
 
-void add_importance_mips_pass(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
-                              uint32_t size) {
+void add_importance_mips_passes(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
+                                uint32_t size) {
     const uint64_t floats = importance_mip_floats(size);
     const uint64_t level0_bytes = uint64_t(size) * size * sizeof(float);
     check_bytes(importance, level0_bytes, "importance");
@@ -58,10 +58,10 @@ void add_importance_mips_pass(Device& device, StepList& passes, const BufferView
                    vkCmdCopyBuffer(cmd, importance.buffer, mips.buffer, 1, &region);
                });
 
-    add_importance_mip_levels_pass(device, passes, mips, size);
+    add_importance_mip_levels_passes(device, passes, mips, size);
 }
 
-void add_importance_mip_levels_pass(Device& device, StepList& passes, const BufferView& mips, uint32_t size) {
+void add_importance_mip_levels_passes(Device& device, StepList& passes, const BufferView& mips, uint32_t size) {
     check_bytes(mips, importance_mip_floats(size) * sizeof(float), "mip");
     const auto& pipeline = device.pipeline<shaders::importance_mips::Pipeline>();
     uint32_t src_offset = 0;

@@ -89,8 +89,8 @@ uint32_t light_tree_dispatch_count(uint32_t count, uint32_t group_levels) {
     return dispatches;
 }
 
-void add_light_tree_level_passes(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
-                                 const LightTreeOptions& options) {
+void add_light_tree_levels_pass(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
+                                const LightTreeOptions& options) {
     check(device, count, options);
     passes.name(nodes);  // report the caller's name, not the binding's
     const uint32_t leaf_count = light_tree_leaf_count(count);
@@ -157,7 +157,7 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
     leaf_push.count_word = element_count.push_word();
     add_dispatch<shaders::light_tree_leaves::Module>(passes, "light tree leaves", leaves_pipeline, leaf_bindings,
                                                      leaf_push, leaf_count);
-    add_light_tree_level_passes(device, passes, nodes, count, options);
+    add_light_tree_levels_pass(device, passes, nodes, count, options);
 }
 
 }  // namespace vplkit::stages

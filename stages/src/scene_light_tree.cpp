@@ -69,7 +69,7 @@ void add_scene_light_tree_passes(Device& device, StepList& passes, const SceneLi
     push.triangle_count = sources.triangle_count;
     add_dispatch<shaders::light_tree_scene_leaves::Module>(passes, "light tree scene leaves", pipeline, b, push,
                                                            tree.leaf_count);
-    add_light_tree_level_passes(device, passes, tree.nodes, count, options);
+    add_light_tree_levels_pass(device, passes, tree.nodes, count, options);
 }
 
 }  // namespace vplkit::stages

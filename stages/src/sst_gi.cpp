@@ -18,9 +18,9 @@ void validate(const SstGiOptions& options) {
     validate(options.glossy, "sst gi");
 }
 
-void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                       const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
-                       const BufferView& counters, const SstGiOptions& options) {
+void add_sst_gi_pass(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                     const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                     const BufferView& counters, const SstGiOptions& options) {
     validate(options);
     check_gbuffer_target("sst gi", gbuffer, indirect);
     add_gi_counters_clear(passes, counters, "gi counters clear");

@@ -34,8 +34,8 @@ void add_svgf_passes(Device& device, StepList& passes, const GbufferViews& gbuff
     // The clamp shapes what is filtered and shown; the history keeps the unclamped mean.
     ImageView result = accumulated;
     if (options.firefly_k_sigma > 0.0f) {
-        add_firefly_clamp_pass(device, passes, accumulated, next.moments, gbuffer.albedo, gbuffer.position, clamped,
-                               excess, spread, options);
+        add_firefly_clamp_passes(device, passes, accumulated, next.moments, gbuffer.albedo, gbuffer.position, clamped,
+                                 excess, spread, options);
         result = spread;
     }
     if (spatial) {
@@ -47,7 +47,8 @@ void add_svgf_passes(Device& device, StepList& passes, const GbufferViews& gbuff
         const AtrousScratch scratch{irradiance, accumulated_image};
         for (uint32_t i = 0; i < options.atrous_iterations; ++i) {
             const ImageView& target = i == 0 ? next.color : (i % 2 == 1 ? ping : pong);
-            add_atrous_pass(device, passes, result, gbuffer.position, gbuffer.normal, scratch, target, 1 << i, options);
+            add_atrous_passes(device, passes, result, gbuffer.position, gbuffer.normal, scratch, target, 1 << i,
+                              options);
             result = target;
         }
     }

@@ -108,9 +108,9 @@ UpsampleOptions upsample_options_for_scene(float scene_scale) {
     return options;
 }
 
-void add_upsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half,
-                       const ImageView& half_indirect, const ImageView& full_indirect, const BufferView& counters,
-                       const UpsampleOptions& options) {
+void add_upsample_passes(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half,
+                         const ImageView& half_indirect, const ImageView& full_indirect, const BufferView& counters,
+                         const UpsampleOptions& options) {
     validate_options(options);
     validate_half_gbuffer("upsample", full, half);
     validate_indirect(half_indirect, half.width(), half.height(), "half");

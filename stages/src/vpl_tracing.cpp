@@ -134,8 +134,8 @@ void add_pack_vpls_passes(Device& device, StepList& passes, const VplTracingOpti
     }
 }
 
-void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
-                         const VplTracingOptions& options, const VplTracingBuffers& output) {
+void add_trace_vpls_passes(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
+                           const VplTracingOptions& options, const VplTracingBuffers& output) {
     const uint32_t capacity = require_buffers(options, output);
     const VplSourceBuffers bound = bound_sources(sources);
     const auto& pipeline = device.pipeline<shaders::trace_vpls::Pipeline>(bvh_spec<shaders::trace_vpls::Spec>(bvh));

@@ -52,7 +52,8 @@ DenoiseImage run_atrous(const DenoiseImage& source, const DenoiseGeometry& g, in
     auto scratch_variance = float4_image(ctx, kSize, kSize, "scratch variance");
     auto scratch_weights = float4_image(ctx, kSize, kSize, "scratch weights");
     PassList passes("a-trous test");
-    stages::add_atrous_pass(ctx, passes, in, position, normal, {scratch_variance, scratch_weights}, out, step, options);
+    stages::add_atrous_passes(ctx, passes, in, position, normal, {scratch_variance, scratch_weights}, out, step,
+                              options);
     passes.run(ctx);
     return download_image(out);
 }

@@ -86,7 +86,8 @@ FireflyImages run_firefly_clamp(const DenoiseImage& irradiance, const DenoiseIma
     auto excess = float4_image(ctx, kSize, kSize, "excess");
     auto spread = float4_image(ctx, kSize, kSize, "spread");
     PassList passes("firefly test");
-    stages::add_firefly_clamp_pass(ctx, passes, in, moments_image, albedo_image, pos, clamped, excess, spread, options);
+    stages::add_firefly_clamp_passes(ctx, passes, in, moments_image, albedo_image, pos, clamped, excess, spread,
+                                     options);
     passes.run(ctx);
     return {download_image(clamped), download_image(excess), download_image(spread)};
 }
@@ -220,14 +221,14 @@ TEST_CASE("denoise options: bad values are refused by name") {
     PassList passes;
     stages::DenoiseOptions options;
     options.max_history = 0;
-    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, a, a, b, a, b, a, options),
+    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_passes(ctx, passes, a, a, a, b, a, b, a, options),
                          doctest::Contains("max_history"), Error);
-    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_pass(ctx, passes, a, a, a, small, b, a, b, {}),
+    CHECK_THROWS_WITH_AS(stages::add_firefly_clamp_passes(ctx, passes, a, a, a, small, b, a, b, {}),
                          doctest::Contains("'small'"), Error);
     auto c = float4_image(ctx, 4, 4, "c");
     auto d = float4_image(ctx, 4, 4, "d");
-    CHECK_THROWS_WITH_AS(stages::add_atrous_pass(ctx, passes, a, a, a, {c, d}, b, 0, {}), doctest::Contains("step"),
+    CHECK_THROWS_WITH_AS(stages::add_atrous_passes(ctx, passes, a, a, a, {c, d}, b, 0, {}), doctest::Contains("step"),
                          Error);
-    CHECK_THROWS_WITH_AS(stages::add_atrous_pass(ctx, passes, a, a, a, {c, b}, b, 1, {}),
+    CHECK_THROWS_WITH_AS(stages::add_atrous_passes(ctx, passes, a, a, a, {c, b}, b, 1, {}),
                          doctest::Contains("scratch image 'b' is also its source or output"), Error);
 }

@@ -129,7 +129,7 @@ Rendered render(const Scene& scene, const RunOptions& options) {
         o.seed = options.seed;
         o.visibility = options.visibility;
         o.glossy = options.glossy;
-        stages::add_sst_gi_passes(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o);
+        stages::add_sst_gi_pass(ctx, passes, gbuffer, bvh, trees, scene.camera, indirect, counters, o);
         passes.run(ctx);
     } else if (options.method == Method::rtslc) {
         stages::RtslcOptions o;

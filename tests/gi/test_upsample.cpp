@@ -180,7 +180,7 @@ GpuRun run_gpu(const Scene& scene, const std::vector<Texel>& half_radiance, int 
     options.max_distance = kMaxDistance;
     vplkit::PassList passes("upsample test");
     stages::add_gbuffer_downsample_pass(ctx, passes, full, half);
-    stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, options);
+    stages::add_upsample_passes(ctx, passes, full, half, half_indirect, full_indirect, counters, options);
     REQUIRE(passes.size() == 3);
     for (int i = 0; i < runs; ++i) passes.run(ctx);
     CHECK(passes.timings()[0].name == "gbuffer downsample");
@@ -427,7 +427,7 @@ TEST_CASE("upsample: bad options and mismatched sizes are refused") {
         stages::UpsampleOptions o = good;
         o.min_cos = min_cos;
         CHECK_THROWS_WITH_AS(
-            stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
+            stages::add_upsample_passes(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
             doctest::Contains("min_cos"), vplkit::Error);
     }
     // The default max_distance (0) must be replaced by a scene-relative one.
@@ -436,21 +436,22 @@ TEST_CASE("upsample: bad options and mismatched sizes are refused") {
         stages::UpsampleOptions o = good;
         o.max_distance = max_distance;
         CHECK_THROWS_WITH_AS(
-            stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
+            stages::add_upsample_passes(ctx, passes, full, half, half_indirect, full_indirect, counters, o),
             doctest::Contains("max_distance"), vplkit::Error);
     }
     CHECK_THROWS_WITH_AS(
-        stages::add_upsample_pass(ctx, passes, full, wrong_half, half_indirect, full_indirect, counters, good),
+        stages::add_upsample_passes(ctx, passes, full, wrong_half, half_indirect, full_indirect, counters, good),
         doctest::Contains("half G-buffer is 8x7"), vplkit::Error);
     auto wrong_size = make_indirect(8, 5, "small half");
-    CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, wrong_size, full_indirect, counters, good),
-                         doctest::Contains("'small half' (8x5"), vplkit::Error);
+    CHECK_THROWS_WITH_AS(
+        stages::add_upsample_passes(ctx, passes, full, half, wrong_size, full_indirect, counters, good),
+        doctest::Contains("'small half' (8x5"), vplkit::Error);
     auto wrong_format = make_indirect(16, 12, "half-float full", VK_FORMAT_R16G16B16A16_SFLOAT);
     CHECK_THROWS_WITH_AS(
-        stages::add_upsample_pass(ctx, passes, full, half, half_indirect, wrong_format, counters, good),
+        stages::add_upsample_passes(ctx, passes, full, half, half_indirect, wrong_format, counters, good),
         doctest::Contains("'half-float full'"), vplkit::Error);
     auto tiny = vplkit::Buffer::create(ctx, 4, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "tiny");
-    CHECK_THROWS_WITH_AS(stages::add_upsample_pass(ctx, passes, full, half, half_indirect, full_indirect, tiny, good),
+    CHECK_THROWS_WITH_AS(stages::add_upsample_passes(ctx, passes, full, half, half_indirect, full_indirect, tiny, good),
                          doctest::Contains("'tiny' is too small"), vplkit::Error);
     CHECK(passes.size() == 0);  // nothing half-added
 

@@ -34,7 +34,7 @@ int main(int argc, char** argv) {
         std::vector<double> copy_ms, mip_ms, warp_ms;
         for (int run = 0; run < 5; ++run) {
             vplkit::PassList passes("importance warp timing");
-            vplkit::stages::add_importance_mips_pass(*ctx, passes, importance, mips, size);
+            vplkit::stages::add_importance_mips_passes(*ctx, passes, importance, mips, size);
             vplkit::stages::add_warp_samples_pass(*ctx, passes, mips, samples, count, size, n, run);
             passes.run(*ctx);
             double c = 0, m = 0, w = 0;

@@ -49,7 +49,7 @@ WarpResult run_warp(const std::vector<float>& map, uint32_t size, uint32_t n, ui
     // A sentinel in the samples shows which ones the shader wrote.
     samples.upload(std::vector<WarpedSample>(n, WarpedSample{0xffffffffu, -1.0f}));
     vplkit::PassList passes("importance warp test");
-    vplkit::stages::add_importance_mips_pass(ctx, passes, importance, mips, size);
+    vplkit::stages::add_importance_mips_passes(ctx, passes, importance, mips, size);
     vplkit::stages::add_warp_samples_pass(ctx, passes, mips, samples, count, size, n, seed);
     passes.run(ctx);
     WarpResult out;
@@ -281,7 +281,7 @@ TEST_CASE("importance warp: bad sizes and zero samples are refused") {
     auto buffer =
         vplkit::Buffer::create(ctx, 1 << 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, vplkit::MemoryUse::device, "any");
     vplkit::PassList passes("refusals");
-    CHECK_THROWS_AS(vplkit::stages::add_importance_mips_pass(ctx, passes, buffer, buffer, 24), vplkit::Error);
+    CHECK_THROWS_AS(vplkit::stages::add_importance_mips_passes(ctx, passes, buffer, buffer, 24), vplkit::Error);
     CHECK_THROWS_AS(vplkit::stages::add_warp_samples_pass(ctx, passes, buffer, buffer, buffer, 16, 0, 1),
                     vplkit::Error);
 }

@@ -120,7 +120,7 @@ Traced trace(const vplkit::GpuBvh& bvh, const vplkit::stages::VplSourceBuffers& 
     vplkit::Context& ctx = vplkit::test::context();
     auto output = vplkit::VplTracingOutput::create(ctx, kOptions);
     vplkit::PassList passes("renderer vpl sources test");
-    vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh, sources, kOptions, output);
+    vplkit::stages::add_trace_vpls_passes(ctx, passes, bvh, sources, kOptions, output);
     passes.run(ctx);
     const uint32_t count = vplkit::download_vpl_count(output);
     Traced t;
@@ -294,6 +294,6 @@ TEST_CASE("renderer VPL sources: bad input is refused with its reason") {
     const vplkit::GpuBvh bvh = vplkit::upload_bvh(ctx, vplkit::build_bvh(triangles));
     auto output = vplkit::VplTracingOutput::create(ctx, kOptions);
     vplkit::PassList passes;
-    CHECK_THROWS_WITH_AS(vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh, views, kOptions, output),
+    CHECK_THROWS_WITH_AS(vplkit::stages::add_trace_vpls_passes(ctx, passes, bvh, views, kOptions, output),
                          doctest::Contains("lights buffer '' holds fewer than 3 records"), vplkit::Error);
 }

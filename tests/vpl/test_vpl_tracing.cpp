@@ -337,7 +337,7 @@ TEST_CASE("vpl tracing: paths a driver cuts short are counted and refused never 
     const VplTracingOptions options{16, 20000, 1};
     auto output = vplkit::VplTracingOutput::create(ctx, options);
     vplkit::PassList passes("vpl tracing cut short");
-    vplkit::stages::add_trace_vpls_pass(ctx, passes, tracer.bvh(), tracer.sources(), options, output);
+    vplkit::stages::add_trace_vpls_passes(ctx, passes, tracer.bvh(), tracer.sources(), options, output);
     passes.run(ctx);
     const auto counts = vplkit::download_vpl_counts(output);
     MESSAGE("cut short: " << counts.cut_short << " of 16 paths, " << counts.vpls << " VPLs");

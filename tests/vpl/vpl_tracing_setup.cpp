@@ -68,7 +68,7 @@ Traced Tracer::run(const VplTracingOptions& options) {
     vplkit::Context& ctx = vplkit::test::context();
     auto output = vplkit::VplTracingOutput::create(ctx, options);
     vplkit::PassList passes("vpl tracing test");
-    vplkit::stages::add_trace_vpls_pass(ctx, passes, bvh_, sources_, options, output);
+    vplkit::stages::add_trace_vpls_passes(ctx, passes, bvh_, sources_, options, output);
     passes.run(ctx);
     const auto counts = vplkit::download_vpl_counts(output);
     // Short paths stay far below lavapipe's loop limit: none may be reported cut.

@@ -67,7 +67,7 @@ int main(int argc, char** argv) {
         for (uint32_t r = 0; r < runs; ++r) {
             vplkit::PassList passes("vpl tracing timing");
             options.seed = 1 + r;
-            vplkit::stages::add_trace_vpls_pass(*ctx, passes, bvh, sources, options, output);
+            vplkit::stages::add_trace_vpls_passes(*ctx, passes, bvh, sources, options, output);
             passes.run(*ctx);
             const auto timings = passes.timings();
             ms.push_back(timings[1].gpu_ms);

@@ -11,7 +11,7 @@ class Context;
 
 namespace vplkit {
 
-// A device buffer of kUpsampleCountersBytes (add_upsample_pass clears it), and reading it back.
+// A device buffer of kUpsampleCountersBytes (add_upsample_passes clears it), and reading it back.
 Buffer create_upsample_counters(Context& context);
 stages::UpsampleCounts read_upsample_counters(const Buffer& counters);
 

@@ -6,11 +6,11 @@
 //   add_demodulate_pass(...)            radiance / albedo -> irradiance (before any upsampling)
 //   ... upsample the irradiance to full size if GI ran at half ...
 //   add_temporal_accumulate_pass(...)   reprojected history, running mean, moments -> variance
-//   add_firefly_clamp_pass(...)         on the accumulated image (the history keeps the unclamped
+//   add_firefly_clamp_passes(...)         on the accumulated image (the history keeps the unclamped
 //                                       mean): luminance above the neighbours' mean + k sigma
 //                                       spread over them
 //   add_variance_estimate_pass(...)     spatial variance where the history is short
-//   add_atrous_pass(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history;
+//   add_atrous_passes(..., step 1, 2, 4, 8, ...)   the first iteration's output is the next history;
 //                                       symmetric, mass-preserving weights: the light is kept
 //   add_remodulate_pass(...)            irradiance x albedo -> radiance, then compose as before
 //
@@ -92,9 +92,9 @@ void add_remodulate_pass(Device& device, StepList& passes, const ImageView& irra
 // a = the input's a. `moments` (m1, m2, n: the temporal pass's): where n >= min_temporal_history
 // the pixel is pulled down by at most k_sigma standard errors of its own mean,
 // sqrt((m2 - m1^2) / n), so the clamp fades as the mean converges.
-void add_firefly_clamp_pass(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
-                            const ImageView& albedo, const ImageView& position, const ImageView& clamped,
-                            const ImageView& excess, const ImageView& spread, const DenoiseOptions& options);
+void add_firefly_clamp_passes(Device& device, StepList& passes, const ImageView& irradiance, const ImageView& moments,
+                              const ImageView& albedo, const ImageView& position, const ImageView& clamped,
+                              const ImageView& excess, const ImageView& spread, const DenoiseOptions& options);
 
 // "denoise temporal": accumulated (rgb, a = variance) and moments (m1, m2, n) from `irradiance`
 // and the `previous` history reprojected with previous_view_projection; writes this frame's
@@ -128,8 +128,8 @@ struct AtrousScratch {
 // variance <step>", "denoise a-trous weights <step>", "denoise a-trous <step>". Its weights are
 // symmetric and normalized so that the filter keeps both a constant image and the image's sum
 // (atrous.comp). `scratch`'s images must differ from `source` and `filtered`.
-void add_atrous_pass(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
-                     const ImageView& normal, const AtrousScratch& scratch, const ImageView& filtered, int step,
-                     const DenoiseOptions& options);
+void add_atrous_passes(Device& device, StepList& passes, const ImageView& source, const ImageView& position,
+                       const ImageView& normal, const AtrousScratch& scratch, const ImageView& filtered, int step,
+                       const DenoiseOptions& options);
 
 }  // namespace vplkit::stages

@@ -27,15 +27,15 @@ uint64_t importance_top_offset(uint32_t size);
 // Adds "importance copy" (the map, size x size floats read from `importance`, into level 0 of
 // `mips`) and one pass "importance mips" per coarser level (`mips` read and written). Throws
 // vplkit::Error for a bad size or buffers too small.
-void add_importance_mips_pass(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
-                              uint32_t size);
+void add_importance_mips_passes(Device& device, StepList& passes, const BufferView& importance, const BufferView& mips,
+                                uint32_t size);
 
 // The same chain for a map already in level 0 of `mips` (a stage wrote it there): one pass
 // "importance mips" per coarser level, none for size 1.
-void add_importance_mip_levels_pass(Device& device, StepList& passes, const BufferView& mips, uint32_t size);
+void add_importance_mip_levels_passes(Device& device, StepList& passes, const BufferView& mips, uint32_t size);
 
 // Adds "warp samples": sample_count points of the Hammersley set rotated by `seed`, warped down
-// `mips` (read; built by add_importance_mips_pass for the same size) into `samples` and `count`
+// `mips` (read; built by add_importance_mips_passes for the same size) into `samples` and `count`
 // (both written). Throws vplkit::Error for a bad size, sample_count 0 or buffers too small.
 void add_warp_samples_pass(Device& device, StepList& passes, const BufferView& mips, const BufferView& samples,
                            const BufferView& count, uint32_t size, uint32_t sample_count, uint32_t seed);

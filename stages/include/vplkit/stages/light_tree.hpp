@@ -63,7 +63,7 @@ void add_light_tree_passes(Device& device, StepList& passes, const BufferView& l
 // level someone else wrote into `nodes` (light_tree_node_count(count) nodes; the leaves at
 // leaf_count - 1 + i). add_light_tree_passes is the leaves pass followed by this one; the tree over
 // a scene's lights (scene_light_tree.hpp) writes its own leaves. Throws as add_light_tree_passes.
-void add_light_tree_level_passes(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
-                                 const LightTreeOptions& options = {});
+void add_light_tree_levels_pass(Device& device, StepList& passes, const BufferView& nodes, uint32_t count,
+                                const LightTreeOptions& options = {});
 
 }  // namespace vplkit::stages

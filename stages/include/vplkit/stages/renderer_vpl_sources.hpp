@@ -8,7 +8,7 @@
 //   auto sources = vplkit::stages::vpl_sources_from_renderer(lights, {}, {triangles, {}, glm::vec3(0.6f)});
 //   // a buffer of sources.bytes() with storage usage, then:
 //   sources.write(mapped);                          // or a staging copy of the same bytes
-//   vplkit::stages::add_trace_vpls_pass(kit, steps, bvh, sources.views(my_buffer_view), options, out);
+//   vplkit::stages::add_trace_vpls_passes(kit, steps, bvh, sources.views(my_buffer_view), options, out);
 //
 // A kind that is absent (no punctual light, no emissive triangle, no emitter at all) has no
 // record and no view; the tracer traces no path when nothing emits.
@@ -68,7 +68,7 @@ struct VplSourceData {
     uint64_t bytes() const;
     // Writes the block to `destination` (bytes() of them).
     void write(void* destination) const;
-    // The views add_trace_vpls_pass takes, into `block`: a buffer holding write()'s bytes at
+    // The views add_trace_vpls_passes takes, into `block`: a buffer holding write()'s bytes at
     // block.offset (which must be a multiple of the device's minStorageBufferOffsetAlignment).
     // An empty array gets an empty view. Throws Error when `block` is smaller than bytes().
     VplSourceBuffers views(const BufferView& block) const;

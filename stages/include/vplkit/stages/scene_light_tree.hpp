@@ -3,7 +3,7 @@
 // triangles and point and spot lights), built by the VPL tree's passes: the keys (vpl_keys.hpp:
 // Morton code of each light's proxy position, normal code, id), the key sort (sort.hpp), then
 // tree/light_tree_scene_leaves.comp for the leaf level and light_tree_levels.comp for the rest
-// (light_tree.hpp: add_light_tree_level_passes). Directional lights have no position and are
+// (light_tree.hpp: add_light_tree_levels_pass). Directional lights have no position and are
 // not in it (direct_light.comp adds them).
 //
 // A light's leaf: box = its extent (a triangle's three corners, a point or spot light's

@@ -38,8 +38,8 @@ void validate(const SstGiOptions& options);
 
 // Adds "gi counters clear" and "sst gi". Throws vplkit::Error for bad options or an `indirect`
 // of the wrong format or size.
-void add_sst_gi_passes(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
-                       const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
-                       const BufferView& counters, const SstGiOptions& options);
+void add_sst_gi_pass(Device& device, StepList& passes, const GbufferViews& gbuffer, const BvhBuffers& bvh,
+                     const VplTreeBuffers& trees, glm::vec3 camera_position, const ImageView& indirect,
+                     const BufferView& counters, const SstGiOptions& options);
 
 }  // namespace vplkit::stages

@@ -8,7 +8,7 @@
 //   half: a G-buffer of half_resolution(w) x half_resolution(h) (the runtime: GbufferImages::create)
 //   add_gbuffer_downsample_pass(device, passes, gbuffer, half);
 //   ... GI stage on `half` into half_indirect (RGBA32F, half size) ...
-//   add_upsample_pass(device, passes, gbuffer, half, half_indirect, indirect, counters,
+//   add_upsample_passes(device, passes, gbuffer, half, half_indirect, indirect, counters,
 //                     upsample_options_for_scene(bvh.scene_scale));
 
 #include "vplkit/stages/device.hpp"
@@ -74,8 +74,8 @@ struct UpsampleCounts {
 // kUpsampleCountersBytes. Throws vplkit::Error for bad options (not finite, min_cos outside
 // [-1, 1), max_distance not > 0), a half G-buffer that is not half of full, an image of the
 // wrong format or size, naming it, or a counters buffer too small.
-void add_upsample_pass(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half,
-                       const ImageView& half_indirect, const ImageView& full_indirect, const BufferView& counters,
-                       const UpsampleOptions& options);
+void add_upsample_passes(Device& device, StepList& passes, const GbufferViews& full, const GbufferViews& half,
+                         const ImageView& half_indirect, const ImageView& full_indirect, const BufferView& counters,
+                         const UpsampleOptions& options);
 
 }  // namespace vplkit::stages

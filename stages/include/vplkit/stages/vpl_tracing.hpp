@@ -7,7 +7,7 @@
 //   auto sources = vplkit::stages::upload_vpl_sources(context, scene);     // runtime: vpl_tracing_buffers.hpp
 //   auto out = vplkit::stages::VplTracingOutput::create(context, options);  // runtime: vpl_tracing_buffers.hpp
 //   vplkit::PassList passes;
-//   vplkit::stages::add_trace_vpls_pass(context, passes, bvh, sources, options, out);
+//   vplkit::stages::add_trace_vpls_passes(context, passes, bvh, sources, options, out);
 //   passes.run(context);
 //   uint32_t count = vplkit::stages::download_vpl_count(out);   // VPLs 0..count-1 of out.vpls
 //
@@ -108,10 +108,10 @@ VplTracingRequirements vpl_tracing_requirements(const VplTracingOptions& options
 // triangle_count must be >= 1 (Error otherwise); paths must fit one dispatch (Error). The VPL
 // count is word 0 of output.count: ElementCount::on_gpu(output.count, 0, capacity) hands it to
 // the key, leaf and tree passes without a read-back.
-void add_trace_vpls_pass(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
-                         const VplTracingOptions& options, const VplTracingBuffers& output);
+void add_trace_vpls_passes(Device& device, StepList& passes, const BvhBuffers& bvh, const VplSourceBuffers& sources,
+                           const VplTracingOptions& options, const VplTracingBuffers& output);
 
-// The packing alone (add_trace_vpls_pass records it after "trace vpls"): "vpl block counts",
+// The packing alone (add_trace_vpls_passes records it after "trace vpls"): "vpl block counts",
 // "vpl block offsets", "compact vpls". Reads output.path_vpls (path p's k-th VPL at slot
 // p x max_bounces + k) and output.path_counts, writes output.vpls and output.bounces in path
 // order, then bounce, and output.count's VPL count (its cut_short is left as it is).
