@@ -10,7 +10,7 @@
 # SIZE (96x54), SPP (8), VPLS (4096), BLOCK (6), METHODS ("rtslc hybrid hybrid-lightcuts"),
 # EXTRA (more render options for every method, e.g. "--firefly-sigma 0"), COMMON (options for
 # every render, exact included, e.g. "--brdf lambert").
-# Issue 26's set-up: scripts/converge.sh out/converge 64 256
+# The flagship-image measurement's set-up: scripts/converge.sh out/converge 64 256
 set -euo pipefail
 out=${1:-out/converge}
 shift $(( $# < 1 ? $# : 1 ))

@@ -81,7 +81,7 @@ void main() {
         Vpl vpl = vpls.items[i];
         vec3 c = vpl_contribution(g.position, g.normal, g.geometric_normal, wo, g.albedo, g.roughness, g.metallic, vpl,
                                   min_distance);
-        // Issue 6: the per-pixel result is finite or the sample is counted as dropped. A
+        // Bad data never reaches the image: the per-pixel result is finite or the sample is counted as dropped. A
         // non-finite contribution (bad VPL data), or one that would overflow the total, is left
         // out and counted; it is never traced, whatever its visibility.
         vec3 next = total + c;

@@ -143,7 +143,7 @@ void main() {
         Vpl vpl = leaves.items[light_tree_node_leaf(push.leaf_count, node)];
         vec3 c = vpl_contribution_lobe(g.position, g.normal, g.geometric_normal, s.wo, g.albedo, g.roughness,
                                        g.metallic, vpl, min_distance, lobe_mis ? kBrdfLobeBoth : lobe.kind);
-        // Issue 6: the per-pixel result is finite or the sample is counted as dropped. The
+        // Bad data never reaches the image: the per-pixel result is finite or the sample is counted as dropped. The
         // division comes first, so a NaN path probability (from a NaN intensity in the tree) or
         // one that underflowed to 0 drops the sample even where the VPL gives 0; a dropped
         // sample is never traced.

@@ -138,7 +138,7 @@ TEST_CASE("hybrid: many frames' mean against exact, per 4x4 block and brightest 
 // The converged residue itself: 256 frames, where the Gaussian substitute left hybrid's block
 // error at 1.97x rtslc's (a bias: the substitute's position lit through the visibility of an
 // independently drawn VPL; 1.55x even when substitutes were used only 3 extents from x) and the
-// VPL drawn by intensity leaves 1.21x, hybrid-lightcuts' 1.19x (issue 26's target for hybrid:
+// VPL drawn by intensity leaves 1.21x, hybrid-lightcuts' 1.19x (the target for hybrid:
 // 1.25x). Bound 1.35x: the measured value with room for the frames' spread, below the substitute's.
 TEST_CASE("hybrid: 256 frames' mean against exact, per 4x4 block, within 1.35x rtslc's block error") {
     const Scene scene = room(32, 24, 256);

@@ -1,4 +1,4 @@
-// Issue 15's heavy tail, reduced to two lights: the light tree's node holds no orientation (the RTSLC paper
+// The many-lights heavy tail, reduced to two lights: the light tree's node holds no orientation (the RTSLC paper
 // sec. 4), so a small one-sided lamp 1 cm above the floor, facing up (it lights no floor point),
 // gets the largest weight the distance clamp allows at the floor points next to it (cosine bound
 // 1, d_min and d_max a few cm), and the lamp 30 cm above that does light them gets a tiny share of

@@ -5,7 +5,7 @@
 // point, with one shadow ray, added to the pixel's total or counted as dropped. Include
 // vplkit/bvh.glsl, vplkit/brdf.glsl, vplkit/vpl.glsl, vplkit/vpl_eval.glsl first.
 
-// Adds `light`'s contribution at x to `total`. Issue 6's rule: a sample whose contribution is
+// Adds `light`'s contribution at x to `total`. The kit's rule for bad data: a sample whose contribution is
 // not finite (a path probability that underflowed, bad VPL data), or that would overflow the
 // total, is left out and counted in `dropped`, never added and never traced. `visibility`
 // false skips the shadow ray (the unbiasedness tests compare with an unshadowed sum). The
