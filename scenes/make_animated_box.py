@@ -25,15 +25,11 @@ Layout (metres, Y up, the open side faces +Z where the camera is), the box of ma
 Both animations last 4 s and end where they start, so `--loop` plays them without a jump.
 """
 
-import base64
-import json
 import math
 import struct
-from pathlib import Path
 
-from make_cornell import Builder, material, unit_cube, walls, y_rotation
+from make_cornell import FRONT_CAMERA, buffer_parts, write_scene, Builder, material, unit_cube, walls, y_rotation
 
-HERE = Path(__file__).resolve().parent
 
 WHITE, RED, GREEN = 0, 1, 2
 PERIOD = 4.0
@@ -117,20 +113,13 @@ def build():
         "meshes": b.meshes,
         "materials": materials,
         "animations": animations,
-        "cameras": [{"name": "front", "type": "perspective",
-                     "perspective": {"yfov": math.radians(45.0), "aspectRatio": 1.0, "znear": 0.05, "zfar": 20.0}}],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
+        "cameras": [FRONT_CAMERA],
+        **buffer_parts(b),
     }
 
 
 def main():
-    path = HERE / "animated_box" / "animated_box.gltf"
-    path.parent.mkdir(exist_ok=True)
-    path.write_text(json.dumps(build(), indent=1) + "\n")
-    print("wrote", path)
+    write_scene("animated_box", build())
 
 
 if __name__ == "__main__":

@@ -125,6 +125,29 @@ def material(name, rgb, emissive=None, strength=None):
     return m
 
 
+# The camera every box scene has: at (0, 1, 3.4) on its node, looking down -Z.
+FRONT_CAMERA = {"name": "front", "type": "perspective",
+                "perspective": {"yfov": math.radians(45.0), "aspectRatio": 1.0, "znear": 0.05, "zfar": 20.0}}
+
+
+def buffer_parts(b):
+    """A Builder's accessors and views and its data as the file's one embedded buffer."""
+    return {
+        "accessors": b.accessors,
+        "bufferViews": b.views,
+        "buffers": [{"byteLength": len(b.data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
+    }
+
+
+def write_scene(name, gltf):
+    """Writes scenes/NAME/NAME.gltf."""
+    path = HERE / name / (name + ".gltf")
+    path.parent.mkdir(exist_ok=True)
+    path.write_text(json.dumps(gltf, indent=1) + "\n")
+    print("wrote", path)
+
+
 def build(emissive):
     b = Builder()
     wall_material = {"floor": WHITE, "ceiling": WHITE, "back_wall": WHITE, "left_wall": RED, "right_wall": GREEN}
@@ -162,22 +185,15 @@ def build(emissive):
         "nodes": nodes,
         "meshes": b.meshes,
         "materials": materials,
-        "cameras": [{"name": "front", "type": "perspective",
-                     "perspective": {"yfov": math.radians(45.0), "aspectRatio": 1.0, "znear": 0.05, "zfar": 20.0}}],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
+        "cameras": [FRONT_CAMERA],
+        **buffer_parts(b),
     })
     return gltf
 
 
 def main():
     for name, emissive in (("cornell_point", False), ("cornell_emissive", True)):
-        path = HERE / name / (name + ".gltf")
-        path.parent.mkdir(exist_ok=True)
-        path.write_text(json.dumps(build(emissive), indent=1) + "\n")
-        print("wrote", path)
+        write_scene(name, build(emissive))
 
 
 if __name__ == "__main__":

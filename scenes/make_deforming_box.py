@@ -23,16 +23,12 @@ its point light and its short block:
   camera  at (0, 1, 3.4) looking down -Z, vertical field of view 45 degrees.
 """
 
-import base64
-import json
 import math
 import struct
-from pathlib import Path
 
 from make_animated_box import AnimationWriter, axis_rotation
-from make_cornell import Builder, material, unit_cube, walls, y_rotation
+from make_cornell import FRONT_CAMERA, buffer_parts, write_scene, Builder, material, unit_cube, walls, y_rotation
 
-HERE = Path(__file__).resolve().parent
 
 WHITE, RED, GREEN, BLUE, YELLOW = 0, 1, 2, 3, 4
 PERIOD = 4.0
@@ -142,7 +138,6 @@ def build():
     view = float_view(b, inverse_binds, "<16f", None)
     del b.views[view]["target"]
     ibm = add_accessor(b, view, 5126, 3, "MAT4")
-    reed = len(nodes)
     nodes.append({"name": "reed", "mesh": reed_mesh, "skin": 0})
 
     # The panel: a morph target, weight animated.
@@ -192,20 +187,13 @@ def build():
                    "skeleton": joint0}],
         "materials": materials,
         "animations": [sway, breathe],
-        "cameras": [{"name": "front", "type": "perspective",
-                     "perspective": {"yfov": math.radians(45.0), "aspectRatio": 1.0, "znear": 0.05, "zfar": 20.0}}],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
+        "cameras": [FRONT_CAMERA],
+        **buffer_parts(b),
     }
 
 
 def main():
-    path = HERE / "deforming_box" / "deforming_box.gltf"
-    path.parent.mkdir(exist_ok=True)
-    path.write_text(json.dumps(build(), indent=1) + "\n")
-    print("wrote", path)
+    write_scene("deforming_box", build())
 
 
 if __name__ == "__main__":

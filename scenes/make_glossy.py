@@ -22,14 +22,9 @@ Layout (metres, Y up, the open side faces +Z where the camera is), the box of ma
              seen at ~15 degrees above grazing at its back, where the reflections are brightest
 """
 
-import base64
-import json
 import math
-from pathlib import Path
 
-from make_cornell import Builder, unit_cube, walls, y_rotation
-
-HERE = Path(__file__).resolve().parent
+from make_cornell import FRONT_CAMERA, buffer_parts, write_scene, Builder, unit_cube, walls, y_rotation
 
 
 def material(name, rgb, roughness=1.0, metallic=0.0):
@@ -80,20 +75,13 @@ def build():
         "nodes": nodes,
         "meshes": b.meshes,
         "materials": materials,
-        "cameras": [{"name": "front", "type": "perspective",
-                     "perspective": {"yfov": math.radians(45.0), "aspectRatio": 1.0, "znear": 0.05, "zfar": 20.0}}],
-        "accessors": b.accessors,
-        "bufferViews": b.views,
-        "buffers": [{"byteLength": len(b.data),
-                     "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(b.data)).decode()}],
+        "cameras": [FRONT_CAMERA],
+        **buffer_parts(b),
     }
 
 
 def main():
-    path = HERE / "glossy_floor" / "glossy_floor.gltf"
-    path.parent.mkdir(exist_ok=True)
-    path.write_text(json.dumps(build(), indent=1) + "\n")
-    print("wrote", path)
+    write_scene("glossy_floor", build())
 
 
 if __name__ == "__main__":
