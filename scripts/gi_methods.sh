@@ -25,7 +25,10 @@ mkdir -p "$out"
 base="$out/$scene-${width}x$height"
 if [[ ! -f "$base-exact.png" ]]; then
   echo "[$scene] exact ground truth (every VPL at every pixel; minutes on lavapipe)" >&2
-  "$vplkit" render --scene "$scene" --method exact --width "$width" --height "$height" "${extra[@]}" \
+  # --exposure 1 here and below: every PNG of a scene at one fixed exposure, as the RMSE column
+  # compares them (the automatic exposure differs by about 1% between methods' images, and in
+  # Sponza it scales the image 3.8x, which doubles every RMSE against the thesis' protocol).
+  "$vplkit" render --scene "$scene" --method exact --width "$width" --height "$height" --exposure 1 "${extra[@]}" \
     --out "$base-exact.png" --out-indirect "$base-exact.pfm" > "$base-exact.log"
 fi
 csv="$out/$scene-${width}x$height.csv"
@@ -46,7 +49,7 @@ for variant in sst rtslc hybrid hybrid-half hybrid-lightcuts; do
     # --no-antialias keeps every frame at the pixel centres with the same samples, so the image is
     # one frame at $spp, as exact's (several frames would be averaged, at sub-pixel offsets).
     "$vplkit" render --scene "$scene" --method "$method" --spp "$spp" --width "$width" --height "$height" \
-      --gi-resolution "$resolution" --frames 3 --no-antialias --no-reuse "${variant_options[@]}" "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
+      --gi-resolution "$resolution" --frames 3 --no-antialias --no-reuse --exposure 1 "${variant_options[@]}" "${extra[@]}" --out "$name.png" --out-indirect "$name.pfm" > "$name.log" 2>/dev/null
     gi_ms=$(awk '/^  (sst gi|rtslc cuts|rtslc gi|hybrid cuts|hybrid gi|gbuffer downsample|upsample)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     tree_ms=$(awk '/^  (vpl bounds|morton keys|sort|gather leaves|light tree|sst clear|build sst)/ { sum += $(NF-1) } END { printf "%.1f", sum }' "$name.log")
     levels=$(sed -n 's/.* \([0-9.]*\) tree levels per traversal.*/\1/p' "$name.log")
