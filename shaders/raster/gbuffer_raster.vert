@@ -9,7 +9,8 @@
 #include "vplkit/raster_scene.glsl"
 
 // The pose the previous frame was drawn with (scene::Vertex[], the same triangles), read only
-// when push.has_motion is 1 (else the binding holds the current vertices as a placeholder).
+// when push.has_motion is 1; a still scene binds its current vertices here, never read, because
+// a descriptor set must have every binding filled.
 // Binding 7: 2 to 6 are the fragment stage's material buffer and textures.
 layout(scalar, set = 0, binding = 7) readonly buffer PreviousVertexBuffer {
     SceneVertex items[];

@@ -109,21 +109,27 @@ Residue residue(const Scene& scene, const Image& image, const std::vector<ref::V
     return {sum_a / sum_b, std::sqrt(err / values) / mean_b, max_a / max_b};
 }
 
+// The residue of `frames` frames at 8 spp in 8 x 8 blocks, per 4 x 4 block.
+Residue converged_residue(const Scene& scene, const std::vector<ref::Vec3>& truth, Method method, uint32_t frames,
+                          vplkit::stages::HybridTraversal traversal = RunOptions{}.traversal) {
+    RunOptions options;
+    options.samples_per_pixel = 8;
+    options.block_size = 8;
+    options.method = method;
+    options.traversal = traversal;
+    return residue(scene, average(scene, options, frames), truth, 4);
+}
+
 }  // namespace
 
 TEST_CASE("hybrid: many frames' mean against exact, per 4x4 block and brightest pixel, within bounds from rtslc's") {
     const Scene scene = room(32, 24, 256);
     const auto truth = exact(scene, true);
     constexpr uint32_t kFrames = 64;
-    RunOptions options;
-    options.samples_per_pixel = 8;
-    options.block_size = 8;
-    options.method = Method::rtslc;
-    const Residue rtslc = residue(scene, average(scene, options, kFrames), truth, 4);
-    options.method = Method::hybrid;
-    const Residue hybrid = residue(scene, average(scene, options, kFrames), truth, 4);
-    options.traversal = vplkit::stages::HybridTraversal::lightcuts;
-    const Residue lightcuts = residue(scene, average(scene, options, kFrames), truth, 4);
+    const Residue rtslc = converged_residue(scene, truth, Method::rtslc, kFrames);
+    const Residue hybrid = converged_residue(scene, truth, Method::hybrid, kFrames);
+    const Residue lightcuts =
+        converged_residue(scene, truth, Method::hybrid, kFrames, vplkit::stages::HybridTraversal::lightcuts);
     MESSAGE(kFrames << " frames of 8 spp, 4x4 blocks: rtslc mean " << rtslc.mean << " block " << rtslc.block
                     << " brightest " << rtslc.brightest << "; hybrid mean " << hybrid.mean << " block " << hybrid.block
                     << " brightest " << hybrid.brightest << "; hybrid-lightcuts mean " << lightcuts.mean << " block "
@@ -144,13 +150,8 @@ TEST_CASE("hybrid: 256 frames' mean against exact, per 4x4 block, within 1.35x r
     const Scene scene = room(32, 24, 256);
     const auto truth = exact(scene, true);
     constexpr uint32_t kFrames = 256;
-    RunOptions options;
-    options.samples_per_pixel = 8;
-    options.block_size = 8;
-    options.method = Method::rtslc;
-    const Residue rtslc = residue(scene, average(scene, options, kFrames), truth, 4);
-    options.method = Method::hybrid;
-    const Residue hybrid = residue(scene, average(scene, options, kFrames), truth, 4);
+    const Residue rtslc = converged_residue(scene, truth, Method::rtslc, kFrames);
+    const Residue hybrid = converged_residue(scene, truth, Method::hybrid, kFrames);
     MESSAGE(kFrames << " frames of 8 spp, 4x4 blocks: rtslc mean " << rtslc.mean << " block " << rtslc.block
                     << "; hybrid mean " << hybrid.mean << " block " << hybrid.block << " ("
                     << hybrid.block / rtslc.block << "x) brightest " << hybrid.brightest);

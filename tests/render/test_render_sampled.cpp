@@ -146,9 +146,9 @@ TEST_CASE("render with sst, rtslc and hybrid: finite, counted, timed, and the se
 TEST_CASE("render: sst, rtslc and hybrid agree with exact on the image's total indirect light") {
     // Per seed, every method renders that seed's VPL set (the tracer's: the same for all four)
     // and its image total is divided by exact's; the ratios are averaged over 8 seeds. rtslc is
-    // unbiased for a given VPL set, so only its noise remains; sst and hybrid are biased by
-    // design (a substitute position stands for a cluster; hybrid's blended cuts need not
-    // partition the tree and its traversals stop early), so theirs bounds that bias here.
+    // unbiased for a given VPL set, so only its noise remains; sst is biased by design (a
+    // substitute position stands for a cluster) and hybrid's blended cuts need not partition the
+    // tree, so their tolerance also bounds a bias here.
     // Measured on lavapipe (64 x 48, 348 VPLs at seed 3, 8 spp, 8 x 8 blocks), mean ratio
     // (sd of one seed's): sst 0.9972 (0.024), rtslc 1.0015 (0.015), hybrid 1.0026 (0.017); one
     // seed's ratio ranged over 0.963..1.030 (sst), 0.976..1.028 (rtslc), 0.980..1.022 (hybrid).
