@@ -28,6 +28,9 @@ static_assert(offsetof(scene::Vertex, uv0) == offsetof(vs::SceneVertex, uv0));
 static_assert(offsetof(scene::Vertex, uv1) == offsetof(vs::SceneVertex, uv1));
 static_assert(offsetof(scene::Vertex, color) == offsetof(vs::SceneVertex, color));
 
+constexpr VkBufferUsageFlags kVertexUsage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
 // raster_material.glsl's flag bits.
 constexpr uint32_t kAlphaTest = 1u;
 constexpr uint32_t kNormalTexture = 2u;
@@ -146,12 +149,17 @@ GpuScene GpuScene::create(Context& context, const scene::Scene& scene, const Gpu
         g.bounds_.max = glm::max(g.bounds_.max, scene.vertices[index].position);
     }
 
-    g.vertices_ = Buffer::create(context, scene.vertices.size() * sizeof(scene::Vertex),
-                                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                 MemoryUse::device, "scene vertices");
+    // Device addresses for buffers past a binding's range (raster_scene.glsl; slower on lavapipe,
+    // so only then); the usage is there either way, for a caller that forces the path.
+    const uint64_t vertex_bytes = uint64_t(scene.vertices.size()) * sizeof(scene::Vertex);
+    const uint64_t index_bytes = uint64_t(scene.indices.size()) * sizeof(uint32_t);
+    const uint64_t range = context.info().max_storage_buffer_range;
+    g.addressed_ = vertex_bytes > range || index_bytes > range;
+    g.vertices_ = Buffer::create(context, vertex_bytes, kVertexUsage, MemoryUse::device, "scene vertices");
     g.vertices_.upload(scene.vertices);
-    g.indices_ = Buffer::create(context, scene.indices.size() * sizeof(uint32_t),
-                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT,
+    g.indices_ = Buffer::create(context, index_bytes,
+                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDEX_BUFFER_BIT |
+                                    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                                 MemoryUse::device, "scene indices");
     g.indices_.upload(scene.indices);
 
@@ -252,6 +260,7 @@ GpuScene& GpuScene::operator=(GpuScene&& other) noexcept {
         vertices_ = std::move(other.vertices_);
         previous_vertices_ = std::move(other.previous_vertices_);
         motion_ = std::exchange(other.motion_, false);
+        addressed_ = std::exchange(other.addressed_, false);
         indices_ = std::move(other.indices_);
         materials_ = std::move(other.materials_);
         draws_ = std::move(other.draws_);
@@ -287,9 +296,8 @@ void GpuScene::update_vertices(const scene::Scene& scene) {
     // The pose drawn last becomes the previous one; a second pose before any frame keeps it.
     if (!motion_) {
         if (!previous_vertices_) {
-            previous_vertices_ = Buffer::create(*context_, vertices_.size(),
-                                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
-                                                MemoryUse::device, "scene previous vertices");
+            previous_vertices_ =
+                Buffer::create(*context_, vertices_.size(), kVertexUsage, MemoryUse::device, "scene previous vertices");
         }
         std::swap(vertices_, previous_vertices_);
         motion_ = true;

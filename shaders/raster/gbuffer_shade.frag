@@ -8,11 +8,17 @@
 #define VPLKIT_SCENE_TEXTURES_BINDING 3
 #include "vplkit/raster_material.glsl"
 
+// gbuffer_raster.vert's block (one push range for both stages); the addresses are its alone.
 layout(push_constant) uniform GbufferPush {
     mat4 view_projection;
     vec3 viewer_position;
     uint material;
     uint has_motion;
+    uvec2 scene_vertex_address;
+    uvec2 scene_index_address;
+    uint scene_vertex_count;
+    uint scene_index_count;
+    uvec2 previous_vertex_address;
 } push;
 
 layout(location = 0) in vec3 world_position;

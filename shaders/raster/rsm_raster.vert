@@ -4,15 +4,22 @@
 // Shadow map + reflective shadow map pass, vertex stage: the scene seen from one face of a
 // light's shadow map (see vplkit/raster_scene.glsl for the non-indexed vertex pulling).
 
-#define VPLKIT_SCENE_VERTICES_BINDING 0
-#define VPLKIT_SCENE_INDICES_BINDING 1
-#include "vplkit/raster_scene.glsl"
-
+// The same block as rsm_shade.frag's (one push range for both stages).
 layout(push_constant) uniform RsmPush {
     mat4 view_projection;  // world -> the face's Vulkan clip space
     vec2 face_origin;      // the face's top-left texel in the atlas (0 for a single-face map)
     uint material;
+    // raster_scene.glsl's addresses (read only with kSceneAddressed)
+    uvec2 scene_vertex_address;
+    uvec2 scene_index_address;
+    uint scene_vertex_count;
+    uint scene_index_count;
 } push;
+
+#define VPLKIT_SCENE_VERTICES_BINDING 0
+#define VPLKIT_SCENE_INDICES_BINDING 1
+#define VPLKIT_SCENE_PUSH push
+#include "vplkit/raster_scene.glsl"
 
 layout(location = 0) out vec3 world_position;
 layout(location = 1) out vec3 world_normal;

@@ -11,10 +11,15 @@
 #include "vplkit/lights.glsl"
 #include "vplkit/raster_material.glsl"
 
+// rsm_raster.vert's block (one push range for both stages); the addresses are its alone.
 layout(push_constant) uniform RsmPush {
     mat4 view_projection;
     vec2 face_origin;
     uint material;
+    uvec2 scene_vertex_address;
+    uvec2 scene_index_address;
+    uint scene_vertex_count;
+    uint scene_index_count;
 } push;
 
 layout(std140, set = 0, binding = 7) uniform RsmLight {

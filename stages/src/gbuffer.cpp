@@ -28,7 +28,7 @@ struct GbufferPipelineDescription {
         return s;
     }
 };
-using GbufferPipeline = RasterPipeline<vert::Module, frag::Module, GbufferPipelineDescription>;
+using GbufferPipeline = ScenePipeline<vert::Module, frag::Module, GbufferPipelineDescription>;
 
 }  // namespace
 
@@ -82,19 +82,31 @@ glm::mat4 vulkan_orthographic(float ymag, float aspect, float znear, float zfar)
 void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scene, const CameraView& view,
                       const GbufferViews& images) {
     check_draw_materials(scene, "gbuffer");
+    check_scene_range(scene, device.limits().max_storage_buffer_range, "gbuffer");
     if (!images.motion) throw Error("gbuffer: the motion image is missing (gbuffer_views.hpp)");
     const bool moved = bool(scene.previous_vertices);
     if (moved && scene.previous_vertices.size != scene.vertices.size) {
         throw Error("gbuffer: the previous pose's vertices (" + std::to_string(scene.previous_vertices.size) +
                     " bytes) are not the scene's (" + std::to_string(scene.vertices.size) + ")");
     }
-    const GraphicsPipeline& pipeline = device.pipeline<GbufferPipeline>().pipeline;
+    vert::Spec spec{};
+    spec.kSceneAddressed = scene.addressed;
+    const GraphicsPipeline& pipeline = device.pipeline<GbufferPipeline>(spec).pipeline;
     frag::Push push{};
     push.has_motion = moved ? 1u : 0u;
     std::memcpy(&push.view_projection, &view.view_projection, sizeof(push.view_projection));
     push.viewer_position = {view.position.x, view.position.y, view.position.z};
     // Without a previous pose the current vertices stand in for it (never read: has_motion 0).
     const BufferView& previous = moved ? scene.previous_vertices : scene.vertices;
+    vert::Bindings geometry;
+    bind_scene(device.device(), scene, push, geometry);
+    if (scene.addressed) {
+        const VkDeviceAddress address = view_address(device.device(), previous);
+        push.previous_vertex_address = {uint32_t(address), uint32_t(address >> 32)};
+        geometry.previous_vertices = unread_binding(previous, sizeof(shaders::SceneVertex));
+    } else {
+        geometry.previous_vertices = previous.descriptor();
+    }
     passes.add("gbuffer",
                {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
                 Use::read(previous, Stage::vertex), Use::read(scene.materials, Stage::fragment),
@@ -103,7 +115,7 @@ void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scen
                 Use::color_attachment(images.emission), Use::color_attachment(images.motion),
                 Use::depth_attachment(images.depth)},
                // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-               [&pipeline, scene, previous, images, push](VkCommandBuffer cmd) {
+               [&pipeline, scene, geometry, images, push](VkCommandBuffer cmd) {
                    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
                    begin_rendering(cmd, {{images.position, images.normal, images.geometric_normal, images.albedo,
                                           images.emission, images.motion},
@@ -111,10 +123,6 @@ void add_gbuffer_pass(Device& device, StepList& passes, const SceneBuffers& scen
                                          images.depth,
                                          1.0f});
                    pipeline.bind(cmd);
-                   vert::Bindings geometry;
-                   geometry.scene_vertices = scene.vertices.descriptor();
-                   geometry.scene_indices = scene.indices.descriptor();
-                   geometry.previous_vertices = previous.descriptor();
                    draw_scene<vert::Module, frag::Module>(cmd, pipeline, scene, geometry, {}, push);
                    end_rendering(cmd);
                });

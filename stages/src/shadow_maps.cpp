@@ -25,27 +25,30 @@ struct RsmPipelineDescription {
         return s;
     }
 };
-using RsmPipeline = RasterPipeline<vert::Module, frag::Module, RsmPipelineDescription>;
+using RsmPipeline = ScenePipeline<vert::Module, frag::Module, RsmPipelineDescription>;
 
 }  // namespace
 
 void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& scene, const ShadowMapViews& map,
                          uint32_t index) {
     check_draw_materials(scene, "shadow map");
-    const GraphicsPipeline& pipeline = device.pipeline<RsmPipeline>().pipeline;
+    check_scene_range(scene, device.limits().max_storage_buffer_range, "shadow map");
+    vert::Spec spec{};
+    spec.kSceneAddressed = scene.addressed;
+    const GraphicsPipeline& pipeline = device.pipeline<RsmPipeline>(spec).pipeline;
+    frag::Push scene_push{};
+    vert::Bindings geometry;
+    bind_scene(device.device(), scene, scene_push, geometry);
     passes.add("shadow map " + std::to_string(index),
                {Use::read(scene.vertices, Stage::vertex), Use::read(scene.indices, Stage::vertex),
                 Use::read(scene.materials, Stage::fragment), Use::read(map.light_uniform, Stage::fragment),
                 Use::color_attachment(map.position), Use::color_attachment(map.normal), Use::color_attachment(map.flux),
                 Use::depth_attachment(map.depth)},
                // Views by value: the caller's may be temporaries that are gone when the steps are recorded.
-               [&pipeline, scene, map](VkCommandBuffer cmd) {
+               [&pipeline, scene, map, geometry, scene_push](VkCommandBuffer cmd) {
                    const VkClearColorValue zero{{0.0f, 0.0f, 0.0f, 0.0f}};
                    begin_rendering(cmd, {{map.position, map.normal, map.flux}, {zero, zero, zero}, map.depth, 1.0f});
                    pipeline.bind(cmd);
-                   vert::Bindings geometry;
-                   geometry.scene_vertices = scene.vertices.descriptor();
-                   geometry.scene_indices = scene.indices.descriptor();
                    frag::Bindings material;
                    material.light = map.light_uniform.descriptor();
                    for (const ShadowFace& face : map.faces) {
@@ -57,7 +60,7 @@ void add_shadow_map_pass(Device& device, StepList& passes, const SceneBuffers& s
                                                     1.0f};
                        vkCmdSetViewport(cmd, 0, 1, &viewport);
                        vkCmdSetScissor(cmd, 0, 1, &face.rect);
-                       frag::Push push{};
+                       frag::Push push = scene_push;
                        std::memcpy(&push.view_projection, &face.view_projection, sizeof(push.view_projection));
                        push.face_origin = {float(face.rect.offset.x), float(face.rect.offset.y)};
                        draw_scene<vert::Module, frag::Module>(cmd, pipeline, scene, geometry, material, push);

@@ -2,6 +2,11 @@
 // test: timings are never asserted). Prints the median over runs of each pass's timestamp time.
 //
 //   raster_timing SCENE.gltf|SETUP [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] [--runs K] [--dump DIR]
+//                 [--addressed 0|1]
+//
+// --addressed 1 reads vertices and indices at their device addresses (SceneBuffers::addressed)
+// even where they fit a binding, 0 through bindings even where they do not (the default: the
+// GpuScene's choice).
 //
 // --dump writes PNGs of the G-buffer's albedo and normal and the RSM's flux (normalized to its
 // brightest texel) and normal into DIR, to look at.
@@ -40,7 +45,7 @@ int main(int argc, char** argv) {
         if (argc < 2) {
             std::fprintf(stderr,
                          "usage: raster_timing SCENE.gltf|SETUP [--size WxH] [--rsm N] [--sun DX,DY,DZ,R,G,B,I] "
-                         "[--runs K] [--dump DIR]\n");
+                         "[--runs K] [--dump DIR] [--addressed 0|1]\n");
             return 2;
         }
         const std::string target = argv[1];
@@ -48,6 +53,7 @@ int main(int argc, char** argv) {
         std::string sun = "0.3,-1,-0.15,1,0.95,0.85,5";
         bool sun_given = false;
         std::string dump;
+        int addressed = -1;
         for (int i = 2; i + 1 < argc; i += 2) {
             const std::string key = argv[i], value = argv[i + 1];
             if (key == "--size") {
@@ -60,6 +66,8 @@ int main(int argc, char** argv) {
                 sun_given = true;
             } else if (key == "--dump") {
                 dump = value;
+            } else if (key == "--addressed") {
+                addressed = std::stoi(value) != 0;
             } else if (key == "--runs") {
                 runs = std::max(1u, uint32_t(std::stoul(value)));
             } else {
@@ -100,9 +108,12 @@ int main(int argc, char** argv) {
         auto images = vplkit::GbufferImages::create(*ctx, width, height);
         const auto view = vplkit::camera_view(camera, width, height);
         auto map = vplkit::ShadowMap::create(*ctx, light, gpu.bounds(), rsm);
+        vplkit::stages::SceneBuffers buffers = gpu;
+        if (addressed >= 0) buffers.addressed = addressed != 0;
+        std::printf("vertices and indices read %s\n", buffers.addressed ? "at device addresses" : "through bindings");
         vplkit::PassList passes("raster timing");
-        vplkit::stages::add_gbuffer_pass(*ctx, passes, gpu, view, images);
-        vplkit::stages::add_shadow_map_pass(*ctx, passes, gpu, map);
+        vplkit::stages::add_gbuffer_pass(*ctx, passes, buffers, view, images);
+        vplkit::stages::add_shadow_map_pass(*ctx, passes, buffers, map);
         std::vector<double> gbuffer_ms, rsm_ms;
         for (uint32_t run = 0; run < runs + 1; ++run) {
             passes.run(*ctx);

@@ -108,9 +108,9 @@ public:
     void settle_motion() { motion_ = false; }
     bool has_motion() const { return motion_; }
 
-    // scene::Vertex[] (48 bytes each; storage and vertex-buffer usage).
+    // scene::Vertex[] (72 bytes each; storage, vertex-buffer and device-address usage).
     const Buffer& vertices() const { return vertices_; }
-    // uint32 x 3 per triangle, global vertex indices (storage and index-buffer usage).
+    // uint32 x 3 per triangle, global vertex indices (storage, index-buffer and device-address usage).
     const Buffer& indices() const { return indices_; }
     // shaders::SceneMaterial[], one per scene material (storage usage).
     const Buffer& materials() const { return materials_; }
@@ -122,8 +122,11 @@ public:
     // previous_vertices only while a pose has not been drawn (has_motion).
     operator stages::SceneBuffers() const {
         const BufferView previous = motion_ ? BufferView(previous_vertices_) : BufferView{};
-        return {vertices_, indices_, materials_, draws_, material_textures_, previous};
+        return {vertices_, indices_, materials_, draws_, material_textures_, previous, addressed_};
     }
+    // Whether the raster stages read vertices and indices at their device addresses
+    // (SceneBuffers::addressed): only when a buffer is larger than maxStorageBufferRange.
+    bool addressed() const { return addressed_; }
 
     const scene::Bounds& bounds() const { return bounds_; }
     uint32_t triangle_count() const { return triangle_count_; }
@@ -139,6 +142,7 @@ private:
     Buffer vertices_;
     Buffer previous_vertices_;  // the pose drawn last, once the scene was posed
     bool motion_ = false;       // vertices_ moved since previous_vertices_ was drawn
+    bool addressed_ = false;
     Buffer indices_;
     Buffer materials_;
     std::vector<GpuDraw> draws_;

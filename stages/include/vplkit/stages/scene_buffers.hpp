@@ -48,6 +48,12 @@ struct SceneBuffers {
     // Optional: scene::Vertex[] of the pose the previous frame was drawn with (the same triangles,
     // moved), for the G-buffer's motion; empty: nothing moved since (motion 0).
     BufferView previous_vertices;
+    // Read vertices, indices and previous vertices at their device addresses, not through
+    // bindings (raster_scene.glsl's kSceneAddressed): required when one of them is larger than
+    // maxStorageBufferRange (the stages throw otherwise); their buffers then need
+    // VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT. Not the default: lavapipe loads through the
+    // addresses more slowly. GpuScene sets it when its buffers need it.
+    bool addressed = false;
 };
 
 }  // namespace vplkit::stages
