@@ -10,11 +10,17 @@
 //   for (frame ...) renderer.update_pose(posable.pose(frame / fps)), renderer.render(...);
 
 #include "vplkit/scene.hpp"
+#include "vplkit/scene_vertex_pose.hpp"
 
 #include <filesystem>
 #include <memory>
+#include <string>
 
 namespace vplkit::scene {
+
+namespace detail {
+struct VertexPoseSetup;
+}
 
 // What a pose changed, so that a renderer updates only that (Renderer::update_pose).
 struct PoseChange {
@@ -46,8 +52,25 @@ public:
     // load the file at that time instead. On a throw the scene is unchanged.
     PoseChange pose(double time);
 
+    // The moving vertices posed on the GPU instead (vplkit/scene_vertex_pose.hpp). Why the GPU
+    // pass cannot pose this scene as pose() does (one line naming the instance), else empty.
+    const std::string& vertex_pose_refusal() const;
+    // What the GPU pose keeps: the moving instances' rest vertices, joints, weights and morph
+    // displacements (made on first use).
+    const VertexPoseRest& vertex_pose_rest() const;
+    // pose(time) without the vertices: the file's lights and cameras, Scene::time and the
+    // animations applied as pose() sets them, and `frame` the moving instances' matrices and
+    // morph weights at `time`. PoseChange::vertices says whether those changed since the last
+    // pose_nodes (the first: since the pose the scene had when the GPU pose was first asked
+    // for). Scene::vertices and Scene::bounds stay as they were: the GPU pass writes the vertices.
+    // Throws Error for a non-finite time and when vertex_pose_refusal() is not empty.
+    PoseChange pose_nodes(double time, VertexPoseFrame& frame);
+
+    struct State;  // the implementation's
+
 private:
-    struct State;
+    const detail::VertexPoseSetup& vertex_pose_setup() const;
+
     std::unique_ptr<State> state_;
 };
 

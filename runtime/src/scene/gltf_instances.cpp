@@ -13,7 +13,7 @@
 namespace vplkit::scene::detail {
 
 bool append_node_instances(const GltfSource& source, std::span<const Material> materials, uint32_t default_material,
-                           DecodedMeshes& decoded, Scene& scene) {
+                           DecodedMeshes& decoded, Scene& scene, bool primitives) {
     const tinygltf::Model& model = source.model;
     decoded.resize(model.meshes.size());
     bool default_material_used = false;
@@ -35,7 +35,7 @@ bool append_node_instances(const GltfSource& source, std::span<const Material> m
             check_index(source, light, model.lights, "light", node_label);
             scene.lights.push_back(convert_light(source, light, instance.world, node_label));
         }
-        if (node.mesh < 0) continue;
+        if (node.mesh < 0 || !primitives) continue;
         check_index(source, node.mesh, model.meshes, "mesh", node_label);
         auto& primitives = decoded[size_t(node.mesh)];
         const tinygltf::Mesh& mesh = model.meshes[size_t(node.mesh)];

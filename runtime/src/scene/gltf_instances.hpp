@@ -27,8 +27,9 @@ using DecodedMeshes = std::vector<std::optional<std::vector<std::optional<Primit
 // model's nodes as they stand (posed by pose_animations). `materials` are the file's (without the
 // default one, whose index is `default_material`). Returns whether some primitive uses the
 // default material. Fails naming the node for a bad camera, light, mesh or morph weight count.
+// Without `primitives`, only cameras and lights are appended (a pose whose vertices the GPU poses).
 bool append_node_instances(const GltfSource& source, std::span<const Material> materials, uint32_t default_material,
-                           DecodedMeshes& decoded, Scene& scene);
+                           DecodedMeshes& decoded, Scene& scene, bool primitives = true);
 
 // load_gltf after reading the file: `model` is posed in place (its nodes take the animations'
 // values at options.time), `decoded` keeps the decoded primitives for a later pose.

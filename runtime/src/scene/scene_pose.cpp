@@ -6,11 +6,13 @@
 #include "scene/gltf_animation.hpp"
 #include "scene/gltf_file.hpp"
 #include "scene/gltf_instances.hpp"
+#include "scene/gltf_vertex_pose.hpp"
 #include "vplkit/error.hpp"
 
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,9 @@ struct PosableScene::State {
     size_t file_lights = 0;
     size_t file_cameras = 0;
     Scene scene;
+    // The GPU pose's inputs, made on first use, and the frame pose_nodes gave last.
+    std::optional<detail::VertexPoseSetup> vertex_pose;
+    VertexPoseFrame vertex_pose_frame;
 };
 
 PosableScene::PosableScene(const std::filesystem::path& path, const LoadOptions& options)
@@ -81,10 +86,11 @@ const Scene& PosableScene::scene() const {
     return state_->scene;
 }
 
-PoseChange PosableScene::pose(double time) {
-    State& s = *state_;
-    const std::string file = s.path.string();
-    const detail::GltfSource source{s.model, file};
+namespace {
+
+// The model's nodes at `time` (rest transforms restored, the animations' values written) and
+// the scene they flatten to: cameras, lights and, with `primitives`, the posed vertices.
+Scene posed_nodes(PosableScene::State& s, const detail::GltfSource& source, double time, bool primitives) {
     if (!std::isfinite(time)) source.fail("the time to pose the scene at is not finite");
     for (size_t n = 0; n < s.rest.size(); ++n) {
         tinygltf::Node& node = s.model.nodes[n];
@@ -98,36 +104,13 @@ PoseChange PosableScene::pose(double time) {
     Scene posed;  // the flattened nodes only: what a pose can change
     posed.animations = detail::pose_animations(source, s.model, options, posed.time, posed.warnings);
     detail::append_node_instances(source, std::span<const Material>(s.file_materials).first(s.default_material),
-                                  s.default_material, s.decoded, posed);
+                                  s.default_material, s.decoded, posed, primitives);
+    return posed;
+}
 
+// The file's lights and cameras, the time and the animations applied, from `posed` into the scene.
+void take_nodes(PosableScene::State& s, const Scene& posed, PoseChange& change) {
     Scene& scene = s.scene;
-    if (posed.indices != scene.indices || posed.triangle_materials != scene.triangle_materials ||
-        posed.vertices.size() != scene.vertices.size()) {
-        source.fail("posed at t = " + std::to_string(time) + ", the scene has " +
-                    std::to_string(posed.triangle_count()) + " triangles over " +
-                    std::to_string(posed.vertices.size()) + " vertices, where it had " +
-                    std::to_string(scene.triangle_count()) + " over " + std::to_string(scene.vertices.size()) +
-                    (posed.triangle_count() == scene.triangle_count() ? " (some wound the other way)" : "") +
-                    ": a pose moves vertices, it does not change triangles; load the file at that time instead");
-    }
-
-    PoseChange change;
-    for (size_t v = 0; v < scene.vertices.size() && !change.vertices; ++v) {
-        change.vertices = !same_vertex_pose(scene.vertices[v], posed.vertices[v]);
-    }
-    if (change.vertices) {
-        for (size_t v = 0; v < scene.vertices.size(); ++v) {
-            scene.vertices[v].position = posed.vertices[v].position;
-            scene.vertices[v].normal = posed.vertices[v].normal;
-            scene.vertices[v].tangent = posed.vertices[v].tangent;
-        }
-        scene.bounds.min = glm::vec3(std::numeric_limits<float>::max());
-        scene.bounds.max = glm::vec3(std::numeric_limits<float>::lowest());
-        for (uint32_t i : scene.indices) {
-            scene.bounds.min = glm::min(scene.bounds.min, scene.vertices[i].position);
-            scene.bounds.max = glm::max(scene.bounds.max, scene.vertices[i].position);
-        }
-    }
     // The file's lights, in the order load_gltf put them (first, before any the caller added).
     size_t kept_file_lights = 0;
     for (const Light& light : scene.lights) kept_file_lights += light.origin == LightOrigin::file ? 1 : 0;
@@ -160,6 +143,81 @@ PoseChange PosableScene::pose(double time) {
     for (size_t a = 0; a < scene.animations.size() && a < posed.animations.size(); ++a) {
         scene.animations[a].applied = posed.animations[a].applied;
     }
+}
+
+}  // namespace
+
+PoseChange PosableScene::pose(double time) {
+    State& s = *state_;
+    const std::string file = s.path.string();
+    const detail::GltfSource source{s.model, file};
+    const Scene posed = posed_nodes(s, source, time, true);
+
+    Scene& scene = s.scene;
+    if (posed.indices != scene.indices || posed.triangle_materials != scene.triangle_materials ||
+        posed.vertices.size() != scene.vertices.size()) {
+        source.fail("posed at t = " + std::to_string(time) + ", the scene has " +
+                    std::to_string(posed.triangle_count()) + " triangles over " +
+                    std::to_string(posed.vertices.size()) + " vertices, where it had " +
+                    std::to_string(scene.triangle_count()) + " over " + std::to_string(scene.vertices.size()) +
+                    (posed.triangle_count() == scene.triangle_count() ? " (some wound the other way)" : "") +
+                    ": a pose moves vertices, it does not change triangles; load the file at that time instead");
+    }
+
+    PoseChange change;
+    for (size_t v = 0; v < scene.vertices.size() && !change.vertices; ++v) {
+        change.vertices = !same_vertex_pose(scene.vertices[v], posed.vertices[v]);
+    }
+    if (change.vertices) {
+        for (size_t v = 0; v < scene.vertices.size(); ++v) {
+            scene.vertices[v].position = posed.vertices[v].position;
+            scene.vertices[v].normal = posed.vertices[v].normal;
+            scene.vertices[v].tangent = posed.vertices[v].tangent;
+        }
+        scene.bounds.min = glm::vec3(std::numeric_limits<float>::max());
+        scene.bounds.max = glm::vec3(std::numeric_limits<float>::lowest());
+        for (uint32_t i : scene.indices) {
+            scene.bounds.min = glm::min(scene.bounds.min, scene.vertices[i].position);
+            scene.bounds.max = glm::max(scene.bounds.max, scene.vertices[i].position);
+        }
+    }
+    take_nodes(s, posed, change);
+    return change;
+}
+
+const detail::VertexPoseSetup& PosableScene::vertex_pose_setup() const {
+    State& s = *state_;
+    if (!s.vertex_pose) {
+        const std::string file = s.path.string();
+        const detail::GltfSource source{s.model, file};
+        s.vertex_pose = detail::vertex_pose_setup(source, s.decoded, s.scene);
+        // The nodes stand as last posed (or loaded): the scene's vertices are this frame's pose.
+        if (s.vertex_pose->refusal.empty()) s.vertex_pose_frame = detail::vertex_pose_frame(source, *s.vertex_pose);
+    }
+    return *s.vertex_pose;
+}
+
+const VertexPoseRest& PosableScene::vertex_pose_rest() const {
+    return vertex_pose_setup().rest;
+}
+
+const std::string& PosableScene::vertex_pose_refusal() const {
+    return vertex_pose_setup().refusal;
+}
+
+PoseChange PosableScene::pose_nodes(double time, VertexPoseFrame& frame) {
+    State& s = *state_;
+    const std::string file = s.path.string();
+    const detail::GltfSource source{s.model, file};
+    const detail::VertexPoseSetup& setup = vertex_pose_setup();
+    if (!setup.refusal.empty()) source.fail("the GPU cannot pose this scene's vertices: " + setup.refusal);
+    const Scene posed = posed_nodes(s, source, time, false);
+    VertexPoseFrame posed_frame = detail::vertex_pose_frame(source, setup);
+    PoseChange change;
+    change.vertices = posed_frame != s.vertex_pose_frame;
+    s.vertex_pose_frame = posed_frame;
+    frame = std::move(posed_frame);
+    take_nodes(s, posed, change);
     return change;
 }
 
