@@ -17,7 +17,10 @@ layout(std430, set = 0, binding = 1) buffer BvhBuildInfoBuffer { BvhBuildInfo va
 
 layout(push_constant) uniform BvhBuildBoundsPush {
     uint triangle_count;
+    uvec2 input_triangles_address;  // with kBvhBuildAddressed (bvh_build.glsl)
 } push;
+
+BVH_BUILD_GETTER(BvhTriangle, input_triangles, BvhBuildTriangleArray)
 
 shared uint shared_lo[3];
 shared uint shared_hi[3];
@@ -36,7 +39,7 @@ void main() {
     uint i = linear_thread_index();
     if (i < push.triangle_count) {
         vec3 lo, hi;
-        bvh_build_triangle_box(input_triangles.items[i], lo, hi);
+        bvh_build_triangle_box(input_triangles_get(i), lo, hi);
         // As the host build: the centroid is the box centre.
         vec3 center = 0.5 * (lo + hi);
         for (int axis = 0; axis < 3; ++axis) {

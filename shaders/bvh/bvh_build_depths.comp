@@ -20,7 +20,10 @@ layout(push_constant) uniform BvhBuildDepthsPush {
     uint triangle_count;
     uint max_leaf_triangles;
     uint max_depth;
+    uvec2 links_address;  // with kBvhBuildAddressed (bvh_build.glsl)
 } push;
+
+BVH_BUILD_GETTER(BvhBuildLink, links, BvhBuildLinkArray)
 
 shared uint shared_lbvh_depth;
 shared uint shared_depth;
@@ -43,19 +46,19 @@ void main() {
     if (slot < 2u * n - 1u) {
         uint depth = 0u;
         uint node = slot;
-        uint parent = links.items[slot].parent;
+        uint parent = links_get(slot).parent;
         while (parent != kBvhBuildNone && depth < kBvhBuildMaxWalk) {
             node = parent;
-            parent = links.items[node].parent;
+            parent = links_get(node).parent;
             ++depth;
         }
-        uint count = links.items[slot].count;
-        uint above = links.items[slot].parent;
-        uint above_count = above == kBvhBuildNone ? 0xffffffffu : links.items[above].count;
+        uint count = links_get(slot).count;
+        uint above = links_get(slot).parent;
+        uint above_count = above == kBvhBuildNone ? 0xffffffffu : links_get(above).count;
         bool kept = depth <= push.max_depth && above_count > push.max_leaf_triangles;
         bool leaf = kept && (count <= push.max_leaf_triangles || depth == push.max_depth);
-        links.items[slot].depth = depth;
-        links.items[slot].kind = leaf ? kBvhBuildLeaf : (kept ? kBvhBuildInterior : kBvhBuildHidden);
+        BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .depth, depth);
+        BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .kind, leaf ? kBvhBuildLeaf : (kept ? kBvhBuildInterior : kBvhBuildHidden));
         levels.items[slot] = kept && !leaf ? depth : kBvhBuildNone;
         if (slot >= n - 1u) {
             atomicMax(shared_lbvh_depth, depth);

@@ -18,6 +18,8 @@ layout(std430, set = 0, binding = 2) writeonly buffer BvhBuildLinkBuffer { BvhBu
 
 layout(push_constant) uniform BvhBuildHierarchyPush {
     uint triangle_count;
+    uvec2 nodes_address;  // with kBvhBuildAddressed (bvh_build.glsl)
+    uvec2 links_address;
 } push;
 
 // Karras 2012's delta(i, j): the length of the common prefix of sorted keys i and j, each
@@ -43,13 +45,13 @@ void main() {
     uint leaf_base = n - 1u;
     if (slot >= leaf_base) {
         // The leaf of sorted triangle k (its parent is written by the parent's thread).
-        links.items[slot].first = slot - leaf_base;
-        links.items[slot].count = 1u;
-        links.items[slot].axis = 0u;
-        nodes.items[slot].left = kBvhBuildNone;
-        nodes.items[slot].right = kBvhBuildNone;
+        BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .first, slot - leaf_base);
+        BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .count, 1u);
+        BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .axis, 0u);
+        BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .left, kBvhBuildNone);
+        BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .right, kBvhBuildNone);
         if (slot == 0u) {
-            links.items[slot].parent = kBvhBuildNone;  // n = 1: the leaf is the root
+            BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .parent, kBvhBuildNone);  // n = 1: the leaf is the root
         }
         return;
     }
@@ -86,10 +88,10 @@ void main() {
     uint last = uint(max(i, j));
     uint left = first == uint(gamma) ? leaf_base + uint(gamma) : uint(gamma);
     uint right = last == uint(gamma + 1) ? leaf_base + uint(gamma + 1) : uint(gamma + 1);
-    nodes.items[slot].left = left;
-    nodes.items[slot].right = right;
-    links.items[slot].first = first;
-    links.items[slot].count = last - first + 1u;
+    BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .left, left);
+    BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .right, right);
+    BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .first, first);
+    BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .count, last - first + 1u);
     // The split bit: x in the highest bit of each Morton triple, then y, then z (morton.glsl);
     // the left child holds the 0s, the lower coordinates along that axis. Positions only (equal
     // codes) or the masked bit: any axis.
@@ -99,11 +101,11 @@ void main() {
         split_bit = uint(31 - delta_node);
         axis = 2u - split_bit % 3u;
     }
-    links.items[slot].axis = axis;
-    links.items[slot].split_bit = split_bit;
-    links.items[left].parent = slot;
-    links.items[right].parent = slot;
+    BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .axis, axis);
+    BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .split_bit, split_bit);
+    BVH_BUILD_SET(links, BvhBuildLinkArray, left, .parent, slot);
+    BVH_BUILD_SET(links, BvhBuildLinkArray, right, .parent, slot);
     if (slot == 0u) {
-        links.items[slot].parent = kBvhBuildNone;
+        BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .parent, kBvhBuildNone);
     }
 }

@@ -19,7 +19,10 @@ layout(std430, set = 0, binding = 3) writeonly buffer BvhBuildOrderBuffer { uint
 
 layout(push_constant) uniform BvhBuildKeysPush {
     uint triangle_count;
+    uvec2 input_triangles_address;  // with kBvhBuildAddressed (bvh_build.glsl)
 } push;
+
+BVH_BUILD_GETTER(BvhTriangle, input_triangles, BvhBuildTriangleArray)
 
 void main() {
     uint i = linear_thread_index();
@@ -30,7 +33,7 @@ void main() {
                    ordered_to_float(info.value.centroid_lo[2]));
     vec3 hi = vec3(ordered_to_float(info.value.centroid_hi[0]), ordered_to_float(info.value.centroid_hi[1]),
                    ordered_to_float(info.value.centroid_hi[2]));
-    BvhTriangle tri = input_triangles.items[i];
+    BvhTriangle tri = input_triangles_get(i);
     vec3 box_lo, box_hi;
     bvh_build_triangle_box(tri, box_lo, box_hi);
     vec3 center = 0.5 * (box_lo + box_hi);

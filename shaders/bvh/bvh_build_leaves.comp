@@ -16,26 +16,33 @@ layout(std430, set = 0, binding = 4) writeonly buffer BvhBuildTriangleBuffer { B
 
 layout(push_constant) uniform BvhBuildLeavesPush {
     uint triangle_count;
+    uvec2 input_triangles_address;  // with kBvhBuildAddressed (bvh_build.glsl)
+    uvec2 nodes_address;
+    uvec2 links_address;
+    uvec2 triangles_address;
 } push;
+
+BVH_BUILD_GETTER(BvhTriangle, input_triangles, BvhBuildTriangleArray)
+BVH_BUILD_GETTER(BvhBuildLink, links, BvhBuildLinkArray)
 
 void main() {
     uint slot = linear_thread_index();
-    if (slot >= 2u * push.triangle_count - 1u || links.items[slot].kind != kBvhBuildLeaf) {
+    if (slot >= 2u * push.triangle_count - 1u || links_get(slot).kind != kBvhBuildLeaf) {
         return;
     }
-    uint first = links.items[slot].first;
-    uint end = first + links.items[slot].count;
+    uint first = links_get(slot).first;
+    uint end = first + links_get(slot).count;
     vec3 lo = vec3(3.4028234663852886e38);
     vec3 hi = vec3(-3.4028234663852886e38);
     for (uint k = first; k < end; ++k) {
-        BvhTriangle tri = input_triangles.items[order.items[k]];
-        triangles.items[k] = tri;
+        BvhTriangle tri = input_triangles_get(order.items[k]);
+        BVH_BUILD_SET(triangles, BvhBuildTriangleArray, k, , tri);
         vec3 tri_lo, tri_hi;
         bvh_build_triangle_box(tri, tri_lo, tri_hi);
         lo = min(lo, tri_lo);
         hi = max(hi, tri_hi);
     }
-    nodes.items[slot].lo = lo;
-    nodes.items[slot].hi = hi;
-    links.items[slot].size = 1u;
+    BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .lo, lo);
+    BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .hi, hi);
+    BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .size, 1u);
 }

@@ -18,17 +18,25 @@ layout(std430, set = 0, binding = 2) readonly buffer BvhBuildLevelBuffer { uint 
 layout(push_constant) uniform BvhBuildLevelPush {
     uint internal_count;  // triangle count - 1: only internal slots can be interior nodes
     uint depth;
+    uvec2 nodes_address;  // with kBvhBuildAddressed (bvh_build.glsl)
+    uvec2 links_address;
 } push;
+
+BVH_BUILD_GETTER(BvhBuildLink, links, BvhBuildLinkArray)
+BVH_BUILD_GETTER(BvhBuildNode, nodes, BvhBuildNodeArray)
 
 void main() {
     uint slot = linear_thread_index();
     if (slot >= push.internal_count || levels.items[slot] != push.depth) {
         return;
     }
-    BvhBuildNode node = nodes.items[slot];
-    BvhBuildNode left = nodes.items[node.left];
-    BvhBuildNode right = nodes.items[node.right];
-    nodes.items[slot].lo = min(left.lo, right.lo);
-    nodes.items[slot].hi = max(left.hi, right.hi);
-    links.items[slot].size = 1u + links.items[node.left].size + links.items[node.right].size;
+    BvhBuildNode node = nodes_get(slot);
+    BvhBuildNode left = nodes_get(node.left);
+    BvhBuildNode right = nodes_get(node.right);
+    vec3 lo = min(left.lo, right.lo);
+    vec3 hi = max(left.hi, right.hi);
+    BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .lo, lo);
+    BVH_BUILD_SET(nodes, BvhBuildNodeArray, slot, .hi, hi);
+    uint size = 1u + links_get(node.left).size + links_get(node.right).size;
+    BVH_BUILD_SET(links, BvhBuildLinkArray, slot, .size, size);
 }

@@ -17,6 +17,10 @@ struct BvhNode {
     uint meta;
 };
 
+layout(buffer_reference, std430, buffer_reference_align = 4) writeonly buffer BvhNodeArray {
+    BvhNode items[];
+};
+
 layout(std430, set = 0, binding = 0) readonly buffer BvhBuildNodeBuffer { BvhBuildNode items[]; } nodes;
 layout(std430, set = 0, binding = 1) readonly buffer BvhBuildLinkBuffer { BvhBuildLink items[]; } links;
 layout(std430, set = 0, binding = 2) buffer BvhBuildInfoBuffer { BvhBuildInfo value; } info;
@@ -24,28 +28,34 @@ layout(std430, set = 0, binding = 3) writeonly buffer BvhNodeBuffer { BvhNode it
 
 layout(push_constant) uniform BvhBuildWritePush {
     uint triangle_count;
+    uvec2 nodes_address;  // with kBvhBuildAddressed (bvh_build.glsl)
+    uvec2 links_address;
+    uvec2 bvh_nodes_address;
 } push;
+
+BVH_BUILD_GETTER(BvhBuildLink, links, BvhBuildLinkArray)
+BVH_BUILD_GETTER(BvhBuildNode, nodes, BvhBuildNodeArray)
 
 void main() {
     uint slot = linear_thread_index();
     if (slot >= 2u * push.triangle_count - 1u) {
         return;
     }
-    BvhBuildLink link = links.items[slot];
+    BvhBuildLink link = links_get(slot);
     if (link.kind == kBvhBuildHidden) {
         return;
     }
     uint position = 0u;
     uint node = slot;
     for (uint step = 0u; step < kBvhBuildMaxWalk && node != 0u; ++step) {
-        uint parent = links.items[node].parent;
-        uint left = nodes.items[parent].left;
-        position += left == node ? 1u : 1u + links.items[left].size;
+        uint parent = links_get(node).parent;
+        uint left = nodes_get(parent).left;
+        position += left == node ? 1u : 1u + links_get(left).size;
         node = parent;
     }
 
     float padding = uintBitsToFloat(info.value.scale) * kBvhBuildBoxPadding;
-    BvhBuildNode box = nodes.items[slot];
+    BvhBuildNode box = nodes_get(slot);
     BvhNode out_node;
     out_node.lo = box.lo - vec3(padding);
     out_node.hi = box.hi + vec3(padding);
@@ -53,10 +63,10 @@ void main() {
         out_node.index = link.first;
         out_node.meta = kBvhBuildLeafFlag | link.count;
     } else {
-        out_node.index = position + 1u + links.items[box.left].size;
+        out_node.index = position + 1u + links_get(box.left).size;
         out_node.meta = link.axis;
     }
-    bvh_nodes.items[position] = out_node;
+    BVH_BUILD_SET(bvh_nodes, BvhNodeArray, position, , out_node);
     if (slot == 0u) {
         info.value.node_count = link.size;
         vec3 m = max(abs(out_node.lo), abs(out_node.hi));

@@ -12,6 +12,7 @@
 #include "vplkit/shaders/bvh_build_write.hpp"
 #include "vplkit/stages/binding_uses.hpp"
 
+#include <algorithm>
 #include <cstddef>
 #include <string>
 
@@ -40,6 +41,53 @@ void check_size(const BufferView& view, VkDeviceSize bytes, const char* what) {
                     std::to_string(view ? view.size : 0) + " bytes, needs " + std::to_string(bytes));
     }
 }
+
+// A view that is bound (not read at its address) must fit a binding's range.
+void check_range(const BufferView& view, uint64_t range, const char* what, const char* remedy) {
+    if (view.size > range) {
+        throw Error(std::string("GPU BVH build: buffer '") + view.name + "' (" + what + ", " +
+                    std::to_string(view.size) + " bytes) is larger than a storage binding may be on this device " +
+                    "(maxStorageBufferRange " + std::to_string(range) + "): " + remedy);
+    }
+}
+
+void check_ranges(const BvhGpuBuildBuffers& b, uint64_t range) {
+    if (!b.addressed) {
+        const char* remedy = "read it at its device address (BvhGpuBuildBuffers::addressed)";
+        check_range(b.input, range, "input triangles", remedy);
+        check_range(b.nodes, range, "nodes", remedy);
+        check_range(b.triangles, range, "triangles", remedy);
+        check_range(b.build_nodes, range, "build nodes", remedy);
+        check_range(b.build_links, range, "build links", remedy);
+    }
+    const char* bound = "the sort binds it: too many triangles for this device";
+    check_range(b.keys, range, "keys", bound);
+    check_range(b.order, range, "order", bound);
+}
+
+// A per-triangle or per-slot buffer as its shader takes it: the whole view bound, or, addressed,
+// its device address (into `address`) and a binding of one record at the buffer's start, which
+// nothing reads but which names the buffer among the step's uses (and needs no offset alignment).
+VkDescriptorBufferInfo big_buffer(VkDevice device, const BvhGpuBuildBuffers& b, const BufferView& view,
+                                  VkDeviceSize record, shaders::uvec2& address) {
+    if (!b.addressed) return view.descriptor();
+    VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    info.buffer = view.buffer;
+    const VkDeviceAddress at = vkGetBufferDeviceAddress(device, &info) + view.offset;
+    address = {uint32_t(at), uint32_t(at >> 32)};
+    return {view.buffer, 0, std::min(view.offset + view.size, record)};
+}
+
+template <class Pipeline>
+const Pipeline& build_pipeline(Device& device, const BvhGpuBuildBuffers& b) {
+    typename Pipeline::Spec spec{};
+    spec.kBvhBuildAddressed = b.addressed;
+    return device.pipeline<Pipeline>(spec);
+}
+
+constexpr VkDeviceSize kTriangle = sizeof(shaders::BvhTriangle);
+constexpr VkDeviceSize kBuildNode = sizeof(shaders::BvhBuildNode);
+constexpr VkDeviceSize kBuildLink = sizeof(shaders::BvhBuildLink);
 
 void check_buffers(const BvhGpuBuildBuffers& b, uint32_t count) {
     const BvhGpuBuildSizes s = bvh_gpu_build_sizes(count);
@@ -75,12 +123,12 @@ void add_clear(StepList& passes, const BufferView& info, bool statistics) {
 }
 
 void add_bounds(Device& device, StepList& passes, const BvhGpuBuildBuffers& b, uint32_t count) {
-    const auto& pipeline = device.pipeline<shaders::bvh_build_bounds::Pipeline>();
-    shaders::bvh_build_bounds::Bindings bindings;
-    bindings.input_triangles = b.input.descriptor();
-    bindings.info = b.info.descriptor();
+    const auto& pipeline = build_pipeline<shaders::bvh_build_bounds::Pipeline>(device, b);
     shaders::bvh_build_bounds::Push push{};
     push.triangle_count = count;
+    shaders::bvh_build_bounds::Bindings bindings;
+    bindings.input_triangles = big_buffer(device.device(), b, b.input, kTriangle, push.input_triangles_address);
+    bindings.info = b.info.descriptor();
     add_dispatch<shaders::bvh_build_bounds::Module>(passes, "bvh build bounds", pipeline, bindings, push, count);
 }
 
@@ -88,42 +136,43 @@ void add_bounds(Device& device, StepList& passes, const BvhGpuBuildBuffers& b, u
 void add_boxes_and_write(Device& device, StepList& passes, const BvhGpuBuildBuffers& b, uint32_t count,
                          const BvhGpuBuildOptions& options) {
     const uint32_t slots = 2 * count - 1;
-    const auto& leaves = device.pipeline<shaders::bvh_build_leaves::Pipeline>();
-    shaders::bvh_build_leaves::Bindings leaf_bindings;
-    leaf_bindings.input_triangles = b.input.descriptor();
-    leaf_bindings.order = b.order.descriptor();
-    leaf_bindings.nodes = b.build_nodes.descriptor();
-    leaf_bindings.links = b.build_links.descriptor();
-    leaf_bindings.triangles = b.triangles.descriptor();
+    const VkDevice vk = device.device();
+    const auto& leaves = build_pipeline<shaders::bvh_build_leaves::Pipeline>(device, b);
     shaders::bvh_build_leaves::Push leaf_push{};
     leaf_push.triangle_count = count;
+    shaders::bvh_build_leaves::Bindings leaf_bindings;
+    leaf_bindings.input_triangles = big_buffer(vk, b, b.input, kTriangle, leaf_push.input_triangles_address);
+    leaf_bindings.order = b.order.descriptor();
+    leaf_bindings.nodes = big_buffer(vk, b, b.build_nodes, kBuildNode, leaf_push.nodes_address);
+    leaf_bindings.links = big_buffer(vk, b, b.build_links, kBuildLink, leaf_push.links_address);
+    leaf_bindings.triangles = big_buffer(vk, b, b.triangles, kTriangle, leaf_push.triangles_address);
     add_dispatch<shaders::bvh_build_leaves::Module>(passes, "bvh build leaves", leaves, leaf_bindings, leaf_push,
                                                     slots);
 
     // Interior nodes lie above max_depth (a node there is a leaf); none exist for one triangle.
     if (count > 1) {
-        const auto& level = device.pipeline<shaders::bvh_build_level::Pipeline>();
+        const auto& level = build_pipeline<shaders::bvh_build_level::Pipeline>(device, b);
+        shaders::bvh_build_level::Push level_push{};
+        level_push.internal_count = count - 1;
         shaders::bvh_build_level::Bindings level_bindings;
-        level_bindings.nodes = b.build_nodes.descriptor();
-        level_bindings.links = b.build_links.descriptor();
+        level_bindings.nodes = big_buffer(vk, b, b.build_nodes, kBuildNode, level_push.nodes_address);
+        level_bindings.links = big_buffer(vk, b, b.build_links, kBuildLink, level_push.links_address);
         level_bindings.levels = b.keys.descriptor();
         for (uint32_t depth = options.max_depth; depth-- > 0;) {
-            shaders::bvh_build_level::Push level_push{};
-            level_push.internal_count = count - 1;
             level_push.depth = depth;
             add_dispatch<shaders::bvh_build_level::Module>(passes, "bvh build level " + std::to_string(depth), level,
                                                            level_bindings, level_push, count - 1);
         }
     }
 
-    const auto& write = device.pipeline<shaders::bvh_build_write::Pipeline>();
-    shaders::bvh_build_write::Bindings write_bindings;
-    write_bindings.nodes = b.build_nodes.descriptor();
-    write_bindings.links = b.build_links.descriptor();
-    write_bindings.info = b.info.descriptor();
-    write_bindings.bvh_nodes = b.nodes.descriptor();
+    const auto& write = build_pipeline<shaders::bvh_build_write::Pipeline>(device, b);
     shaders::bvh_build_write::Push write_push{};
     write_push.triangle_count = count;
+    shaders::bvh_build_write::Bindings write_bindings;
+    write_bindings.nodes = big_buffer(vk, b, b.build_nodes, kBuildNode, write_push.nodes_address);
+    write_bindings.links = big_buffer(vk, b, b.build_links, kBuildLink, write_push.links_address);
+    write_bindings.info = b.info.descriptor();
+    write_bindings.bvh_nodes = big_buffer(vk, b, b.nodes, sizeof(shaders::BvhNode), write_push.bvh_nodes_address);
     add_dispatch<shaders::bvh_build_write::Module>(passes, "bvh build write", write, write_bindings, write_push, slots);
 }
 
@@ -148,6 +197,7 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
                               uint32_t count, const BvhGpuBuildOptions& options) {
     validate(options, count);
     check_buffers(b, count);
+    check_ranges(b, device.limits().max_storage_buffer_range);
     name_views(passes, b);
     if (sorter.options().key_bits < kBvhBuildKeyBits || sorter.max_count() < count) {
         throw Error("GPU BVH build: the sorter orders " + std::to_string(sorter.options().key_bits) +
@@ -159,37 +209,38 @@ void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sor
     add_clear(passes, b.info, true);
     add_bounds(device, passes, b, count);
 
-    const auto& keys = device.pipeline<shaders::bvh_build_keys::Pipeline>();
+    const VkDevice vk = device.device();
+    const auto& keys = build_pipeline<shaders::bvh_build_keys::Pipeline>(device, b);
+    shaders::bvh_build_keys::Push key_push{};
+    key_push.triangle_count = count;
     shaders::bvh_build_keys::Bindings key_bindings;
-    key_bindings.input_triangles = b.input.descriptor();
+    key_bindings.input_triangles = big_buffer(vk, b, b.input, kTriangle, key_push.input_triangles_address);
     key_bindings.info = b.info.descriptor();
     key_bindings.keys = b.keys.descriptor();
     key_bindings.order = b.order.descriptor();
-    shaders::bvh_build_keys::Push key_push{};
-    key_push.triangle_count = count;
     add_dispatch<shaders::bvh_build_keys::Module>(passes, "bvh build keys", keys, key_bindings, key_push, count);
 
     sorter.add_pass(passes, b.keys, b.order, count, "bvh build sort");
 
-    const auto& hierarchy = device.pipeline<shaders::bvh_build_hierarchy::Pipeline>();
-    shaders::bvh_build_hierarchy::Bindings hierarchy_bindings;
-    hierarchy_bindings.keys = b.keys.descriptor();
-    hierarchy_bindings.nodes = b.build_nodes.descriptor();
-    hierarchy_bindings.links = b.build_links.descriptor();
+    const auto& hierarchy = build_pipeline<shaders::bvh_build_hierarchy::Pipeline>(device, b);
     shaders::bvh_build_hierarchy::Push hierarchy_push{};
     hierarchy_push.triangle_count = count;
+    shaders::bvh_build_hierarchy::Bindings hierarchy_bindings;
+    hierarchy_bindings.keys = b.keys.descriptor();
+    hierarchy_bindings.nodes = big_buffer(vk, b, b.build_nodes, kBuildNode, hierarchy_push.nodes_address);
+    hierarchy_bindings.links = big_buffer(vk, b, b.build_links, kBuildLink, hierarchy_push.links_address);
     add_dispatch<shaders::bvh_build_hierarchy::Module>(passes, "bvh build hierarchy", hierarchy, hierarchy_bindings,
                                                        hierarchy_push, slots);
 
-    const auto& depths = device.pipeline<shaders::bvh_build_depths::Pipeline>();
-    shaders::bvh_build_depths::Bindings depth_bindings;
-    depth_bindings.links = b.build_links.descriptor();
-    depth_bindings.info = b.info.descriptor();
-    depth_bindings.levels = b.keys.descriptor();
+    const auto& depths = build_pipeline<shaders::bvh_build_depths::Pipeline>(device, b);
     shaders::bvh_build_depths::Push depth_push{};
     depth_push.triangle_count = count;
     depth_push.max_leaf_triangles = options.max_leaf_triangles;
     depth_push.max_depth = options.max_depth;
+    shaders::bvh_build_depths::Bindings depth_bindings;
+    depth_bindings.links = big_buffer(vk, b, b.build_links, kBuildLink, depth_push.links_address);
+    depth_bindings.info = b.info.descriptor();
+    depth_bindings.levels = b.keys.descriptor();
     add_dispatch<shaders::bvh_build_depths::Module>(passes, "bvh build depths", depths, depth_bindings, depth_push,
                                                     slots);
 
@@ -211,6 +262,7 @@ void add_bvh_gpu_refit_passes(Device& device, StepList& passes, const BvhGpuBuil
                               const BvhGpuBuildOptions& options) {
     validate(options, count);
     check_buffers(b, count);
+    check_ranges(b, device.limits().max_storage_buffer_range);
     name_views(passes, b);
     add_clear(passes, b.info, false);
     add_bounds(device, passes, b, count);

@@ -50,13 +50,18 @@ struct GpuBvhAlphaRecords {
 class GpuBvhBuild {
 public:
     // Builds the BVH of `vertices.size() / 3` triangles with `triangle_ids` (empty: a triangle's
-    // id is its index). Throws vplkit::Error for what build_bvh refuses (naming the triangle),
-    // and when a buffer would exceed the device's maxStorageBufferRange. Triangles of zero area
-    // are left out, as build_bvh leaves them out; a scene of none gives the empty leaf. With
-    // `alpha`, the triangles with a record go to a subtree of their own (the split layout) and
-    // bvh() traces with the alpha test; Error for a record count other than one per triangle.
+    // id is its index). Throws vplkit::Error for what build_bvh refuses (naming the triangle).
+    // Buffers past the device's maxStorageBufferRange are read and written at their device
+    // addresses (BvhGpuBuildBuffers::addressed; `addressed` forces that path for every size, to
+    // test it), so device memory is the limit, except for the sort's keys (8 bytes a triangle):
+    // Error naming the buffer, its size and the limit when one is past the range or does not fit
+    // in device memory. Triangles of zero area are left out, as build_bvh leaves them out; a
+    // scene of none gives the empty leaf. With `alpha`, the triangles with a record go to a
+    // subtree of their own (the split layout) and bvh() traces with the alpha test; Error for a
+    // record count other than one per triangle.
     GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids = {},
-                const stages::BvhGpuBuildOptions& options = {}, const GpuBvhAlphaRecords* alpha = nullptr);
+                const stages::BvhGpuBuildOptions& options = {}, const GpuBvhAlphaRecords* alpha = nullptr,
+                bool addressed = false);
 
     GpuBvhBuild(GpuBvhBuild&&) noexcept = default;
     GpuBvhBuild& operator=(GpuBvhBuild&&) noexcept = default;
@@ -92,6 +97,7 @@ private:
     std::vector<uint32_t> kept_;                 // input triangle of each built one
     std::vector<shaders::BvhTriangle> records_;  // the input records (ids kept across refits)
     Buffer input_, info_, build_nodes_, build_links_, keys_, order_;
+    bool addressed_ = false;                       // BvhGpuBuildBuffers::addressed
     std::unique_ptr<stages::RadixSorter> sorter_;  // at a fixed address while recording
 };
 

@@ -65,7 +65,7 @@ void set(shaders::vec3& out, const glm::vec3& v) {
 }  // namespace
 
 GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, std::span<const uint32_t> triangle_ids,
-                         const stages::BvhGpuBuildOptions& options, const GpuBvhAlphaRecords* alpha)
+                         const stages::BvhGpuBuildOptions& options, const GpuBvhAlphaRecords* alpha, bool addressed)
     : context_(&context), options_(options) {
     if (vertices.size() % 3 != 0) {
         throw Error("GPU BVH build: " + std::to_string(vertices.size()) +
@@ -114,9 +114,12 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
     }
     const uint32_t count = uint32_t(kept_.size());
     const stages::BvhGpuBuildSizes sizes = stages::bvh_gpu_build_sizes(count);
-    // The build writes nodes and triangles through descriptors: their range limits them here.
-    check_range(context, sizes.nodes, "bvh nodes");
-    check_range(context, sizes.triangles, "bvh triangles");
+    // Past a binding's range, the build reads and writes its per-triangle and per-slot buffers at
+    // their addresses (slower on lavapipe, so only then), and the traversal reads the BVH so.
+    const uint64_t range = context.info().max_storage_buffer_range;
+    bvh_.addressed = sizes.nodes > range || sizes.triangles > range;
+    addressed_ =
+        addressed || bvh_.addressed || sizes.input > range || sizes.build_nodes > range || sizes.build_links > range;
     bvh_.nodes = create_bvh_buffer(context, sizes.nodes, "nodes", "GPU BVH build");
     bvh_.triangles = create_bvh_buffer(context, sizes.triangles, "triangles", "GPU BVH build");
     bvh_.alpha = upload_bvh_alpha(context, bvh_.nodes, bvh_.triangles,
@@ -124,10 +127,10 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
                                   "GPU BVH build");
     bvh_.alpha_tests = alpha != nullptr;
     bvh_.triangle_count = count;
-    input_ = storage(context, sizes.input, "bvh build input");
+    input_ = create_bvh_buffer(context, sizes.input, "build input", "GPU BVH build");
     info_ = storage(context, sizes.info, "bvh build info");
-    build_nodes_ = storage(context, sizes.build_nodes, "bvh build nodes");
-    build_links_ = storage(context, sizes.build_links, "bvh build links");
+    build_nodes_ = create_bvh_buffer(context, sizes.build_nodes, "build nodes", "GPU BVH build");
+    build_links_ = create_bvh_buffer(context, sizes.build_links, "build links", "GPU BVH build");
     keys_ = storage(context, sizes.keys, "bvh build keys");
     order_ = storage(context, sizes.order, "bvh build order");
     stages::RadixSortOptions sort;
@@ -148,9 +151,10 @@ void GpuBvhBuild::upload_input(std::span<const glm::vec3> vertices) {
 }
 
 stages::BvhGpuBuildBuffers GpuBvhBuild::buffers() const {
-    return {input_, bvh_.nodes,   bvh_.triangles,
-            info_,  build_nodes_, build_links_,
-            keys_,  order_,       bvh_.alpha_tests ? BufferView(bvh_.alpha) : BufferView{}};
+    return {input_,    bvh_.nodes,   bvh_.triangles,
+            info_,     build_nodes_, build_links_,
+            keys_,     order_,       bvh_.alpha_tests ? BufferView(bvh_.alpha) : BufferView{},
+            addressed_};
 }
 
 void GpuBvhBuild::add_build_passes(StepList& passes) {

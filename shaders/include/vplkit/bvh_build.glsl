@@ -19,6 +19,37 @@
 // exactly between them: node 1 is the opaque subtree, the root's second child the masked one,
 // vplkit/bvh.hpp's split layout (BvhBuildInfo::masked_root, for word 0 of bvh_alpha).
 
+// Buffers past a binding's range (maxStorageBufferRange: 128 MiB on lavapipe, which the input
+// and output triangles pass at 2.8M triangles, the nodes and links at 2.1M): with the
+// specialization constant kBvhBuildAddressed (BvhGpuBuildBuffers::addressed) the per-triangle
+// and per-slot buffers (input and output triangles, build nodes and links, output nodes) are
+// read and written at the device addresses in the push block's `<binding name>_address` fields,
+// as bvh.glsl reads an addressed BVH: each pipeline has one path, and the bindings stay bound
+// (one record wide) so that a step's uses still name the buffers. Keys, order and levels (8
+// bytes a triangle at most, within the range up to 16.7M triangles) stay bound.
+// BVH_BUILD_GETTER(Type, name, Array) defines `Type name_get(uint i)`, record i of binding
+// `name` or of the Array at its address (a function, not a ?: of the two loads, whose struct
+// types glslang does not reconcile); BVH_BUILD_SET(name, Array, i, .member, value) writes one
+// member (value without a top-level comma: a macro argument; an empty member writes the record).
+#extension GL_EXT_buffer_reference : require
+#extension GL_EXT_buffer_reference_uvec2 : require
+
+layout(constant_id = 1) const bool kBvhBuildAddressed = false;
+
+#define BVH_BUILD_GETTER(Type, name, Array)                      \
+    Type name##_get(uint index) {                               \
+        if (kBvhBuildAddressed) {                               \
+            return Array(push.name##_address).items[index];     \
+        }                                                       \
+        return name.items[index];                               \
+    }
+#define BVH_BUILD_SET(name, Array, index, member, value)          \
+    if (kBvhBuildAddressed) {                                     \
+        Array(push.name##_address).items[index] member = (value); \
+    } else {                                                      \
+        name.items[index] member = (value);                       \
+    }
+
 // The caller's triangles (bvh.glsl's BvhTriangle, the same struct: the generated types.hpp
 // holds one of each name, and the two must agree).
 struct BvhTriangle {
@@ -64,6 +95,16 @@ struct BvhBuildInfo {
     float scene_scale;    // bvh_scene_scale() of the output tree (its padded root box)
     uint masked_root;     // the split layout's masked subtree root (vplkit/bvh.hpp), else 0
     uint unused;
+};
+
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer BvhBuildTriangleArray {
+    BvhTriangle items[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer BvhBuildNodeArray {
+    BvhBuildNode items[];
+};
+layout(buffer_reference, std430, buffer_reference_align = 4) buffer BvhBuildLinkArray {
+    BvhBuildLink items[];
 };
 
 const uint kBvhBuildNone = 0xffffffffu;

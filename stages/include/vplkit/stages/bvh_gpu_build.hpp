@@ -72,6 +72,13 @@ struct BvhGpuBuildBuffers {
     // fields point into; the build writes word 0 (the masked subtree's root, or 0). The rest of
     // the header (stages::bvh_header: where nodes and triangles are) is the caller's to write.
     BufferView alpha;
+    // Read and write input, nodes, triangles, build_nodes and build_links at their device
+    // addresses, not through bindings (bvh_build.glsl's kBvhBuildAddressed): required when one of
+    // them is larger than maxStorageBufferRange (the build throws otherwise); their buffers then
+    // need VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT. keys and order stay bound (the sort binds
+    // them), which limits the build to maxStorageBufferRange / 8 triangles (16.7M on lavapipe).
+    // Not the default: lavapipe loads through the addresses more slowly.
+    bool addressed = false;
 };
 
 // Bytes of each buffer for `count` triangles.
@@ -82,8 +89,8 @@ BvhGpuBuildSizes bvh_gpu_build_sizes(uint32_t count);
 
 // Adds the build of the BVH over `count` >= 1 triangles. `sorter` sorts with at least
 // kBvhBuildKeyBits key bits, holds count pairs, and outlives the recording. Throws Error for
-// bad options, a count of 0 or above kBvhCountMask, a buffer that is too small, or a sorter
-// that does not fit.
+// bad options, a count of 0 or above kBvhCountMask, a buffer that is too small, one past
+// maxStorageBufferRange that must be bound (see `addressed`), or a sorter that does not fit.
 void add_bvh_gpu_build_passes(Device& device, StepList& passes, RadixSorter& sorter, const BvhGpuBuildBuffers& buffers,
                               uint32_t count, const BvhGpuBuildOptions& options = {});
 
