@@ -5,6 +5,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/shaders/types.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -49,11 +50,16 @@ stages::SmcBuffers SmcState::views() const {
     return {state_,       valid_,          invalid_list_,      hits_,        pool_keys_,
             pool_values_, candidates_,     candidate_density_, vpl_density_, vpl_keys_,
             vpl_values_,  candidate_keys_, candidate_values_,  moves_,       counters_,
-            vpls_};
+            vpls_,        triangle_slots_};
 }
 
 void SmcState::add_update(Context& context, StepList& passes, const stages::GbufferViews& gbuffer,
                           const stages::CameraView& view, const stages::SmcScene& scene) {
+    // Where each scene triangle lies in the BVH, for the VPLs to follow their surfaces.
+    const uint64_t slot_bytes = uint64_t(std::max(scene.sources.triangle_count, 1u)) * sizeof(uint32_t);
+    if (change_.geometry && (!triangle_slots_ || triangle_slots_.size() < slot_bytes)) {
+        triangle_slots_ = storage(context, slot_bytes, "smc triangle slots");
+    }
     add_smc_update_passes(context, passes, gbuffer, view, scene, sorter_, views(), options_, updates_, change_);
     change_ = {};
     ++updates_;

@@ -14,6 +14,9 @@ const uint kSmcHit = 2u;      // the position is a surface hit
 // The surface under the VPL moved away (smc_validate.comp after the geometry moved): it renders
 // nothing, no ray revalidates it, and it leaves Y first.
 const uint kSmcDead = 4u;
+// The VPL's normal is its triangle's winding normal cross(v1 - v0, v2 - v0) negated (the ray that
+// found it met the back): smc_follow_surfaces.comp keeps the side when the triangle moves.
+const uint kSmcFlipped = 8u;
 
 struct SmcVpl {
     vec3 position;
@@ -25,13 +28,18 @@ struct SmcVpl {
     vec3 anchor;    // camera point that sees y (mailbox)
     float intensity;  // lum(B) / p (eq. 6) at the last estimate
     vec3 anchor_normal;  // its geometric normal, on the camera's side
-    uint flags;     // kSmcCovered | kSmcHit
+    uint flags;     // kSmcCovered | kSmcHit | kSmcDead | kSmcFlipped
     // The radiosity estimate that chose it (as a candidate), which also ranks it while it lives
     // (its intensity, eq. 6). `radiosity` above is a second, independent estimate it renders
     // with: ranked by the estimate it renders with, the VPLs whose estimate came out low would
     // be the first removed and the survivors' light biased high.
     vec3 choice_radiosity;
     uint pad;
+    // Where `position` lies on its triangle: the weights of its v1 and v2 (bvh.glsl's BvhHit), so
+    // that it moves with the triangle (smc_follow_surfaces.comp).
+    vec2 barycentrics;
+    uint pad1;
+    uint pad2;
 };
 
 // What one update counts (the first member persists: the size of the VPL set Y).

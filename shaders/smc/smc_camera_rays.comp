@@ -69,6 +69,9 @@ void main() {
     rec.flags = 0u;
     rec.choice_radiosity = vec3(0.0);
     rec.pad = 0u;
+    rec.barycentrics = vec2(0.0);
+    rec.pad1 = 0u;
+    rec.pad2 = 0u;
     uint key = kSmcNoKey;
     if (position.w > 0.5) {
         float scale = bvh_scene_scale();
@@ -83,7 +86,8 @@ void main() {
             vec3 rho = albedo.items[hit.id].rgb;
             vec3 y = bvh_hit_position(hit);
             vec3 ny = normalize(bvh_triangle_normal(hit.triangle));
-            if (dot(ny, direction) > 0.0) {
+            bool flipped = dot(ny, direction) > 0.0;
+            if (flipped) {
                 ny = -ny;
             }
             vec3 d = y - x;
@@ -97,7 +101,8 @@ void main() {
                 rec.position = y;
                 rec.normal = ny;
                 rec.triangle = hit.id;
-                rec.flags |= kSmcHit;
+                rec.barycentrics = hit.barycentrics;
+                rec.flags |= kSmcHit | (flipped ? kSmcFlipped : 0u);
                 key = min(floatBitsToUint(e * pdf_area), 0x7f7fffffu);  // finite: below kSmcNoKey
                 atomicAdd(counters.c.hit_count, 1u);
             }

@@ -4,6 +4,7 @@
 #include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/shaders/smc_camera_rays.hpp"
 #include "vplkit/shaders/smc_density.hpp"
+#include "vplkit/shaders/smc_follow_surfaces.hpp"
 #include "vplkit/shaders/smc_gather_candidates.hpp"
 #include "vplkit/shaders/smc_radiosity.hpp"
 #include "vplkit/shaders/smc_replace.hpp"
@@ -12,10 +13,12 @@
 #include "vplkit/shaders/smc_revalidate_claims.hpp"
 #include "vplkit/shaders/smc_select.hpp"
 #include "vplkit/shaders/smc_selection_keys.hpp"
+#include "vplkit/shaders/smc_triangle_slots.hpp"
 #include "vplkit/shaders/smc_validate.hpp"
 #include "vplkit/shaders/smc_vpls.hpp"
 #include "gi_inputs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -268,6 +271,30 @@ void add_smc_update_passes(Device& device, StepList& passes, const GbufferViews&
         push.triangle_count = sources.triangle_count;
         add_dispatch<shaders::smc_camera_rays::Module>(passes, "smc camera rays", pipeline, b, push, push.ray_count,
                                                        {gbuffer.position, gbuffer.geometric_normal});
+    }
+    if (change.geometry) {
+        // The VPLs move with their triangles: each triangle's BVH slot, then each VPL placed on it.
+        const uint32_t slot_count = std::max(sources.triangle_count, 1u);
+        check_size(buffers.triangle_slots, uint64_t(slot_count) * sizeof(uint32_t), "triangle slots");
+        {
+            const auto& pipeline = smc_pipeline<shaders::smc_triangle_slots::Pipeline>(device, bvh);
+            shaders::smc_triangle_slots::Bindings b;
+            bind_bvh(b, bvh);
+            b.slots = buffers.triangle_slots.descriptor();
+            shaders::smc_triangle_slots::Push push{};
+            push.triangle_count = bvh.triangle_count;
+            push.slot_count = slot_count;
+            add_dispatch<shaders::smc_triangle_slots::Module>(passes, "smc triangle slots", pipeline, b, push,
+                                                              std::max(bvh.triangle_count, 1u));
+        }
+        const auto& pipeline = smc_pipeline<shaders::smc_follow_surfaces::Pipeline>(device, bvh);
+        auto b = smc_bindings<shaders::smc_follow_surfaces::Bindings>(scene, buffers);
+        b.slots = buffers.triangle_slots.descriptor();
+        shaders::smc_follow_surfaces::Push push{};
+        push.budget = budget;
+        push.triangle_count = bvh.triangle_count;
+        push.slot_count = slot_count;
+        add_dispatch<shaders::smc_follow_surfaces::Module>(passes, "smc follow surfaces", pipeline, b, push, budget);
     }
     {
         const auto& pipeline = smc_pipeline<shaders::smc_validate::Pipeline>(device, bvh);

@@ -249,7 +249,8 @@ TEST_CASE("smc camera rays: each ray against the replayed stream and a double-pr
         const Triangle& t = triangles[hit.triangle];
         const glm::dvec3 v0{t.v0[0], t.v0[1], t.v0[2]}, v1{t.v1[0], t.v1[1], t.v1[2]}, v2{t.v2[0], t.v2[1], t.v2[2]};
         glm::dvec3 ny = glm::normalize(glm::cross(v1 - v0, v2 - v0));
-        if (glm::dot(ny, dir) > 0.0) ny = -ny;
+        const bool flipped = glm::dot(ny, dir) > 0.0;  // the back of the triangle: kSmcFlipped
+        if (flipped) ny = -ny;
         const double margin = std::min({hit.b1, hit.b2, 1.0 - hit.b1 - hit.b2});
         const double cos_hit = -glm::dot(ny, dir);
         if (margin < 1e-4 || cos_hit < 0.02) {
@@ -258,8 +259,10 @@ TEST_CASE("smc camera rays: each ray against the replayed stream and a double-pr
         }
         ++compared;
         const glm::dvec3 y = x + hit.t * dir;
-        CHECK(h.flags == 3u);
+        CHECK(h.flags == (flipped ? 11u : 3u));
         CHECK(h.triangle == hit.triangle);
+        CHECK(std::abs(h.barycentrics.x - hit.b1) < 1e-4);
+        CHECK(std::abs(h.barycentrics.y - hit.b2) < 1e-4);
         CHECK(glm::length(d3(h.position) - y) < 1e-4 + 2.0 * offset / cos_hit);
         CHECK(glm::length(d3(h.normal) - ny) < 1e-5);
         const double key =
@@ -290,7 +293,7 @@ TEST_CASE("smc camera rays: cosine-distributed directions in the normal's frame 
         std::vector<double> cos2(10, 0.0), azimuth(8, 0.0);
         double n = 0.0;
         for (const SmcVpl& h : r.hits) {
-            if (h.flags != 3u) continue;
+            if ((h.flags & 3u) != 3u) continue;
             const glm::dvec3 nx = d3(h.anchor_normal);
             const glm::dvec3 dir = glm::normalize(d3(h.position) - d3(h.anchor));
             const double c = std::clamp(glm::dot(nx, dir), 0.0, 1.0);

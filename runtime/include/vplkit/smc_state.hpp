@@ -74,6 +74,7 @@ private:
     stages::SmcSceneChange change_;  // since the last update
     Buffer state_, valid_, invalid_list_, hits_, pool_keys_, pool_values_, candidates_, candidate_density_,
         vpl_density_, vpl_keys_, vpl_values_, candidate_keys_, candidate_values_, moves_, counters_, vpls_;
+    Buffer triangle_slots_;  // made at the first move, for the scene's triangle count
 };
 
 }  // namespace vplkit

@@ -96,6 +96,9 @@ struct SmcBuffers {
     BufferView moves;     // uvec2[budget]
     BufferView counters;  // SmcCounters
     BufferView vpls;      // Vpl[budget]: what the gathers read (first counters.vpl_count)
+    // uint32[scene triangles]: each scene triangle's BVH slot. Needed only by an update after the
+    // geometry moved (SmcSceneChange::geometry); written and read within it.
+    BufferView triangle_slots;
 };
 
 struct SmcRequirements {
@@ -120,8 +123,9 @@ struct SmcScene {
     VplSourceBuffers sources;
 };
 
-// What moved in the scene since the last update (a posed frame). geometry: each VPL is checked
-// against its own triangle (a VPL whose surface left it is dead: no light, out first) and its
+// What moved in the scene since the last update (a posed frame). geometry: each VPL moves with
+// its triangle (the same barycentric point; dead if the BVH lost the triangle), is checked to lie
+// on open surface still (a VPL another surface now covers is dead: no light, out first) and its
 // anchor's view of it is traced again; geometry or lights: every VPL's radiosity is estimated
 // again (both its estimates) before the selection.
 struct SmcSceneChange {
