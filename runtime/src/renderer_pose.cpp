@@ -1,10 +1,12 @@
 // Renderer::update_pose: a new pose of the scene's vertices and lights uploaded, the BVH refitted
 // (or rebuilt) on the GPU, and the version the planner compares its caches' against moved on.
+// Renderer::pose: the scene posed first, its moving vertices on the host or on the GPU.
 
 #include "vplkit/renderer.hpp"
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gpu_pose.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -128,6 +130,56 @@ PoseUpdate Renderer::update_pose(const scene::PoseChange& change) {
     }
     update.summary = summary.empty() ? "" : "pose: " + summary;
     pose_note_ = update.summary;
+    return update;
+}
+
+PoseUpdate Renderer::pose(scene::PosableScene& posable, double time, PosePath path) {
+    if (&posable.scene() != &scene_source_) {
+        throw Error("Renderer::pose: the posable scene is not the one this renderer was made with");
+    }
+    bool on_gpu = path == PosePath::gpu;
+    if (path == PosePath::automatic) {
+        on_gpu = posable.vertex_pose_refusal().empty() &&
+                 posable.vertex_pose_rest().vertices.size() >= size_t(kGpuPoseMinVertices);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    if (!on_gpu) {
+        const scene::PoseChange change = posable.pose(time);
+        const double pose_ms = ms_since(start);
+        PoseUpdate update = update_pose(change);
+        update.pose_ms = pose_ms;
+        return update;
+    }
+    scene::VertexPoseFrame frame;
+    const scene::PoseChange change = posable.pose_nodes(time, frame);  // Error naming a refusal
+    double gpu_ms = 0.0;
+    if (change.vertices) {
+        const std::vector<scene::Vertex>& vertices = scene_source_.vertices;
+        if (!gpu_pose_) {
+            gpu_pose_.emplace(context_, posable.vertex_pose_rest());
+            gpu_posed_vertices_ =
+                Buffer::create(context_, vertices.size() * sizeof(scene::Vertex), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               MemoryUse::device, "gpu-posed vertices");
+            gpu_posed_vertices_.upload(vertices);  // what does not move stays as loaded
+        }
+        gpu_pose_->set_frame(frame);
+        PassList passes("gpu pose");
+        gpu_pose_->add_pose_pass(passes, gpu_posed_vertices_);
+        passes.run(context_);
+        gpu_ms = passes.total_gpu_ms();
+        // The host scene takes the pose, so the upload, the BVH and every host reader follow it.
+        posable.take_posed_vertices(gpu_posed_vertices_.download<scene::Vertex>(vertices.size()));
+    }
+    const double pose_ms = ms_since(start);
+    PoseUpdate update = update_pose(change);
+    update.pose_ms = pose_ms;
+    update.posed_on_gpu = true;
+    update.pose_gpu_ms = gpu_ms;
+    if (change.vertices) {
+        update.summary += " (posed on the GPU: " + std::to_string(gpu_pose_->vertex_count()) + " vertices, " +
+                          format_ms(pose_ms) + ")";
+        pose_note_ = update.summary;
+    }
     return update;
 }
 

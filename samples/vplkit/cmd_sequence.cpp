@@ -96,6 +96,7 @@ struct SequenceOptions {
     float orbit_degrees = 30.0f;
     bool pfm = false, fresh_vpls = false, reference = false;
     bool animate = false, loop = false;
+    std::string pose = "auto";  // --pose: where moving vertices are posed
     float fps = 24.0f;
     uint32_t reference_paths = 16384;
     std::string cache = "out/sequence-cache";
@@ -110,6 +111,7 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         throw UsageError("--orbit-degrees is for --path orbit");
     }
     if ((command.count("--fps") || o.loop) && !o.animate) throw UsageError("--fps and --loop need --animate");
+    if (command.count("--pose") && !o.animate) throw UsageError("--pose needs --animate");
     // An animated scene is watched from a still camera unless a turn is asked for.
     const float orbit_degrees = o.animate && !command.count("--orbit-degrees") ? 0.0f : o.orbit_degrees;
     const bool pfm = o.pfm;
@@ -236,9 +238,11 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         settings.frame = f;
         if (o.animate && f > 0) {
             // Only what moved is uploaded; the plan says what was made again and why.
-            const scene::PoseChange change = loaded.posable->pose(frame_time(f));
-            const PoseUpdate update = renderer.update_pose(change);
-            if (reference_renderer) reference_renderer->update_pose(change);
+            const PosePath pose_path = o.pose == "gpu"    ? PosePath::gpu
+                                       : o.pose == "host" ? PosePath::host
+                                                          : PosePath::automatic;
+            const PoseUpdate update = renderer.pose(*loaded.posable, frame_time(f), pose_path);
+            if (reference_renderer) reference_renderer->update_pose({update.geometry, update.lights, false});
             std::printf("frame %u: t = %.3f s: %s\n", f + 1, frame_time(f), update.summary.c_str());
         }
         if (fresh_vpls) settings.seed = base_seed + f;
@@ -440,6 +444,13 @@ void add_sequence(CLI::App& vplkit, Runners& runners) {
     number(
         sequence->add_option("--fps", o->fps, "--animate: frames per second of animation time")->capture_default_str(),
         "F", NumberRange::above(0.0))
+        ->group("sequence");
+    one_of(sequence
+               ->add_option("--pose", o->pose,
+                            "--animate: where skinned and morphed vertices are posed: gpu (a compute pass, then "
+                            "read back), host, or auto (the GPU from 2048 moving vertices, where the file allows)")
+               ->capture_default_str(),
+           {"auto", "gpu", "host"})
         ->group("sequence");
     sequence
         ->add_flag("--loop", o->loop,

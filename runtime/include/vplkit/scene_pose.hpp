@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 
 namespace vplkit::scene {
@@ -61,10 +62,15 @@ public:
     // pose(time) without the vertices: the file's lights and cameras, Scene::time and the
     // animations applied as pose() sets them, and `frame` the moving instances' matrices and
     // morph weights at `time`. PoseChange::vertices says whether those changed since the last
-    // pose_nodes (the first: since the pose the scene had when the GPU pose was first asked
-    // for). Scene::vertices and Scene::bounds stay as they were: the GPU pass writes the vertices.
+    // pose or pose_nodes (the first: since the pose the scene had when the GPU pose was first
+    // asked for). Scene::vertices and Scene::bounds stay as they were: the GPU pass writes the
+    // vertices (take_posed_vertices brings them back).
     // Throws Error for a non-finite time and when vertex_pose_refusal() is not empty.
     PoseChange pose_nodes(double time, VertexPoseFrame& frame);
+    // The vertices a GPU pose wrote (as many as the scene has, in its order) taken into the scene:
+    // positions, normals and tangents, and the bounds. Throws Error naming the first vertex whose
+    // position is not finite, or for another count; on a throw the scene is unchanged.
+    void take_posed_vertices(std::span<const Vertex> posed);
 
     struct State;  // the implementation's
 

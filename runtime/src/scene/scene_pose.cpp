@@ -35,6 +35,16 @@ bool same_camera(const Camera& a, const Camera& b) {
            a.ymag == b.ymag;
 }
 
+// Of every triangle's vertices, as the loader computes them.
+void update_bounds(Scene& scene) {
+    scene.bounds.min = glm::vec3(std::numeric_limits<float>::max());
+    scene.bounds.max = glm::vec3(std::numeric_limits<float>::lowest());
+    for (uint32_t i : scene.indices) {
+        scene.bounds.min = glm::min(scene.bounds.min, scene.vertices[i].position);
+        scene.bounds.max = glm::max(scene.bounds.max, scene.vertices[i].position);
+    }
+}
+
 bool same_vertex_pose(const Vertex& a, const Vertex& b) {
     return a.position == b.position && a.normal == b.normal && a.tangent == b.tangent;
 }
@@ -174,14 +184,13 @@ PoseChange PosableScene::pose(double time) {
             scene.vertices[v].normal = posed.vertices[v].normal;
             scene.vertices[v].tangent = posed.vertices[v].tangent;
         }
-        scene.bounds.min = glm::vec3(std::numeric_limits<float>::max());
-        scene.bounds.max = glm::vec3(std::numeric_limits<float>::lowest());
-        for (uint32_t i : scene.indices) {
-            scene.bounds.min = glm::min(scene.bounds.min, scene.vertices[i].position);
-            scene.bounds.max = glm::max(scene.bounds.max, scene.vertices[i].position);
-        }
+        update_bounds(scene);
     }
     take_nodes(s, posed, change);
+    // A later pose_nodes compares its frame with this pose's.
+    if (s.vertex_pose && s.vertex_pose->refusal.empty()) {
+        s.vertex_pose_frame = detail::vertex_pose_frame(source, *s.vertex_pose);
+    }
     return change;
 }
 
@@ -219,6 +228,29 @@ PoseChange PosableScene::pose_nodes(double time, VertexPoseFrame& frame) {
     frame = std::move(posed_frame);
     take_nodes(s, posed, change);
     return change;
+}
+
+void PosableScene::take_posed_vertices(std::span<const Vertex> posed) {
+    State& s = *state_;
+    const std::string file = s.path.string();
+    const detail::GltfSource source{s.model, file};
+    Scene& scene = s.scene;
+    if (posed.size() != scene.vertices.size()) {
+        source.fail("a GPU pose gave " + std::to_string(posed.size()) + " vertices, the scene has " +
+                    std::to_string(scene.vertices.size()));
+    }
+    for (size_t v = 0; v < posed.size(); ++v) {
+        const glm::vec3 p = posed[v].position;
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+            source.fail("posed on the GPU, vertex " + std::to_string(v) + " is not finite");
+        }
+    }
+    for (size_t v = 0; v < posed.size(); ++v) {
+        scene.vertices[v].position = posed[v].position;
+        scene.vertices[v].normal = posed[v].normal;
+        scene.vertices[v].tangent = posed[v].tangent;
+    }
+    update_bounds(scene);
 }
 
 }  // namespace vplkit::scene
