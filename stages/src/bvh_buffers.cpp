@@ -29,12 +29,19 @@ VkDeviceAddress address_of(VkDevice device, const BufferView& view, VkDeviceSize
 }  // namespace
 
 std::array<uint32_t, kBvhHeaderWords> bvh_header(VkDevice device, const BufferView& nodes, const BufferView& triangles,
-                                                 uint32_t masked_root) {
+                                                 uint32_t masked_root, const BufferView& alpha) {
     std::array<uint32_t, kBvhHeaderWords> header{};
     const VkDeviceAddress node_address = address_of(device, nodes, sizeof(shaders::BvhNode), "node", header[6]);
     const VkDeviceAddress triangle_address =
         address_of(device, triangles, sizeof(shaders::BvhTriangle), "triangle", header[7]);
     header[0] = masked_root;
+    if (alpha) {
+        uint32_t words = 0;
+        const VkDeviceAddress alpha_address = address_of(device, alpha, sizeof(uint32_t), "alpha", words);
+        header[1] = words;
+        header[8] = uint32_t(alpha_address);
+        header[9] = uint32_t(alpha_address >> 32);
+    }
     header[2] = uint32_t(node_address);
     header[3] = uint32_t(node_address >> 32);
     header[4] = uint32_t(triangle_address);

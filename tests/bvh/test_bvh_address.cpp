@@ -3,12 +3,15 @@
 // wide: what a BVH past maxStorageBufferRange takes, tested here without a 4M-triangle scene
 // by forcing the path on small ones. Nodes and triangles placed at offsets inside larger buffers
 // full of decoy records give the hits of the plain upload's binding path, bit for bit, and the
-// header's record counts keep a malformed tree's indices inside its buffers.
+// header's record counts keep a malformed tree's indices inside its buffers. Alpha-test records
+// read at the alpha buffer's own address (past the range, as nodes and triangles) cut out what
+// the binding's records cut out.
 
 #include "bvh_test_support.hpp"
 #include "vplkit/buffer.hpp"
 #include "vplkit/bvh.hpp"
 #include "vplkit/bvh_gpu.hpp"
+#include "vplkit/bvh_gpu_build.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit_test/context.hpp"
@@ -16,6 +19,7 @@
 #include <doctest/doctest.h>
 #include <glm/vec3.hpp>
 
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -150,4 +154,58 @@ TEST_CASE("bvh address: a malformed tree's indices stay inside its buffers") {
     }
     const std::vector<BvhHit> hits = vplkit::bvh_test::trace_closest(gpu, rays);
     for (const BvhHit& hit : hits) CHECK((hit.id == 0u || hit.id == vplkit::kBvhNoHit));
+}
+
+TEST_CASE("bvh address: alpha-test records at the header's address cut out what the binding's do") {
+    // Alpha-test records past the range are read at the alpha buffer's address (header words 1,
+    // 8-9): forced here on 2000 triangles, three of four with a record: corner alphas (1, 1, 0)
+    // (half cut out), (0, 0, 0) (cut out), and a 4 x 4 checker texture (its alpha bytes in the
+    // records too). The addressed traversal gives the bound one's hits and occlusion bit for bit.
+    vplkit::Context& ctx = vplkit::test::context();
+    const vplkit::bvh_test::Triangles soup = vplkit::bvh_test::random_soup(2000, 93, 0.2f);
+    vplkit::GpuBvhAlphaRecords alpha;
+    alpha.words.assign(vplkit::kBvhHeaderWords, 0u);
+    const uint32_t plain = uint32_t(alpha.words.size());
+    alpha.words.insert(alpha.words.end(), {std::bit_cast<uint32_t>(0.5f), 0u, 0u, 0u, 0u});
+    const uint32_t textured = uint32_t(alpha.words.size());
+    alpha.words.insert(alpha.words.end(), {std::bit_cast<uint32_t>(0.5f), 4u, 4u, 0u, 0u});
+    alpha.words.back() = uint32_t(alpha.words.size());  // the texture's bytes follow
+    for (uint32_t row = 0; row < 4; ++row) alpha.words.push_back(row % 2 ? 0x00ff00ffu : 0xff00ff00u);
+    for (uint32_t t = 0; t < 2000; ++t) {
+        if (t % 4 == 0) {
+            alpha.triangle_records.push_back(0);
+            continue;
+        }
+        alpha.triangle_records.push_back(uint32_t(alpha.words.size()));
+        const float uvs[6] = {0.0f, 0.0f, 1.0f, 0.0f, 0.0f, 1.0f};
+        for (float uv : uvs) alpha.words.push_back(std::bit_cast<uint32_t>(uv));
+        const float corners[3][3] = {{1, 1, 0}, {0, 0, 0}, {1, 1, 1}};
+        for (int k = 0; k < 3; ++k) alpha.words.push_back(std::bit_cast<uint32_t>(corners[t % 4 - 1][k]));
+        alpha.words.push_back(t % 4 == 3 ? textured : plain);
+    }
+    const vplkit::GpuBvhBuild build(ctx, soup, {}, {}, &alpha);
+    const vplkit::GpuBvh& gpu = build.bvh();
+    REQUIRE(gpu.alpha_tests);
+    REQUIRE_FALSE(gpu.addressed);
+    const std::vector<uint32_t> header = gpu.alpha.download<uint32_t>(vplkit::kBvhHeaderWords);
+    CHECK(header[1] == gpu.alpha.size() / sizeof(uint32_t));  // the records' address is in the header
+    vplkit::stages::BvhBuffers addressed = gpu;
+    addressed.addressed = true;
+
+    const std::vector<BvhRay> rays = random_rays(4096, 94);
+    const std::vector<BvhHit> expected = vplkit::bvh_test::trace_closest(gpu, rays);
+    const std::vector<BvhHit> hits = vplkit::bvh_test::trace_closest(addressed, rays);
+    const std::vector<uint32_t> expected_occlusion = vplkit::bvh_test::trace_occlusion(gpu, rays);
+    const std::vector<uint32_t> occlusion = vplkit::bvh_test::trace_occlusion(addressed, rays);
+    size_t masked_hits = 0, differ = 0;
+    for (size_t r = 0; r < rays.size(); ++r) {
+        const BvhHit& e = expected[r];
+        const BvhHit& h = hits[r];
+        masked_hits += e.id != vplkit::kBvhNoHit && e.id % 4 != 0;
+        differ += !(std::memcmp(&e.t, &h.t, sizeof(float)) == 0 && e.id == h.id && e.triangle == h.triangle &&
+                    expected_occlusion[r] == occlusion[r]);
+    }
+    MESSAGE(masked_hits << " of " << rays.size() << " rays hit a triangle with an alpha record");
+    CHECK(masked_hits > rays.size() / 16);  // the records are read
+    CHECK(differ == 0);
 }

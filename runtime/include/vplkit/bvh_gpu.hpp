@@ -20,11 +20,10 @@ class Context;
 struct GpuBvh : stages::BvhSet<Buffer> {};
 
 // Device-local buffers with the BVH's nodes and triangles, and the alpha buffer with the header
-// that says where they are. Nodes or triangles past maxStorageBufferRange make the GpuBvh
-// `addressed` (read at their device addresses), so device memory is the limit.
-// Throws Error naming the buffer and its size when it exceeds the device's largest buffer or
-// allocation, or does not fit in the device memory left; and when the alpha-test records
-// exceed maxStorageBufferRange (they are bound as a descriptor).
+// that says where they and the alpha-test records are. Nodes, triangles or alpha-test records
+// past maxStorageBufferRange make the GpuBvh `addressed` (read at their device addresses), so
+// device memory is the limit. Throws Error naming the buffer and its size when it exceeds the
+// device's largest buffer or allocation, or does not fit in the device memory left.
 GpuBvh upload_bvh(Context& context, const Bvh& bvh);
 
 // The ray-query stage under the names its callers use (it takes a GpuBvh: GpuBvh converts).

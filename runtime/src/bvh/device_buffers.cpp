@@ -58,15 +58,11 @@ Buffer upload_bvh_alpha(Context& context, const Buffer& nodes, const Buffer& tri
                     " words, fewer than the " + std::to_string(kBvhHeaderWords) + " of their header");
     }
     words.resize(std::max<size_t>(words.size(), kBvhHeaderWords), 0u);
-    const auto header = stages::bvh_header(context.device(), nodes, triangles, words[0]);
+    // At a device address, so that past a binding's range an addressed BVH reads the records there.
+    Buffer alpha =
+        create_bvh_buffer(context, uint64_t(words.size()) * sizeof(uint32_t), "alpha-test records", context_name);
+    const auto header = stages::bvh_header(context.device(), nodes, triangles, words[0], alpha);
     std::copy(header.begin(), header.end(), words.begin());
-    const uint64_t bytes = words.size() * sizeof(uint32_t);
-    const uint64_t limit = context.info().max_storage_buffer_range;
-    if (bytes > limit) {
-        throw Error(context_name + ": the alpha-test records need " + std::to_string(bytes) +
-                    " bytes, more than this device's maxStorageBufferRange of " + std::to_string(limit));
-    }
-    Buffer alpha = Buffer::create(context, bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, MemoryUse::device, "bvh alpha");
     alpha.upload(words);
     return alpha;
 }

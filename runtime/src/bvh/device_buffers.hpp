@@ -17,9 +17,10 @@ class Context;
 // runs out; `context_name` starts the message ("BVH upload").
 Buffer create_bvh_buffer(Context& context, uint64_t bytes, const char* what, const std::string& context_name);
 
-// The alpha buffer: the header (stages::bvh_header, where `nodes` and `triangles` are) over the
-// first kBvhHeaderWords words of `records` (Bvh::alpha, whose word 0 is the masked subtree's
-// root), or the header alone when `records` is empty.
+// The alpha buffer, at a device address: the header (stages::bvh_header, where `nodes`,
+// `triangles` and the alpha buffer itself are) over the first kBvhHeaderWords words of `records`
+// (Bvh::alpha, whose word 0 is the masked subtree's root), or the header alone when `records` is
+// empty. Past maxStorageBufferRange the BVH must be traced `addressed` (the caller sets it).
 Buffer upload_bvh_alpha(Context& context, const Buffer& nodes, const Buffer& triangles,
                         std::span<const uint32_t> records, const std::string& context_name);
 

@@ -7,6 +7,7 @@
 #include "vplkit/error.hpp"
 #include "vplkit/shaders/types.hpp"
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -28,7 +29,8 @@ GpuBvh upload_bvh(Context& context, const Bvh& bvh) {
     const uint64_t triangle_bytes = uint64_t(triangles.size()) * sizeof(shaders::BvhTriangle);
     // Past a binding's range, the traversal reads them at their addresses (slower on lavapipe).
     const uint64_t range = context.info().max_storage_buffer_range;
-    gpu.addressed = node_bytes > range || triangle_bytes > range;
+    const uint64_t alpha_bytes = uint64_t(std::max<size_t>(bvh.alpha.size(), kBvhHeaderWords)) * sizeof(uint32_t);
+    gpu.addressed = node_bytes > range || triangle_bytes > range || alpha_bytes > range;
     gpu.nodes = create_bvh_buffer(context, node_bytes, "nodes", "BVH upload");
     gpu.triangles = create_bvh_buffer(context, triangle_bytes, "triangles", "BVH upload");
     gpu.nodes.upload(bvh.nodes);

@@ -117,7 +117,8 @@ GpuBvhBuild::GpuBvhBuild(Context& context, std::span<const glm::vec3> vertices, 
     // Past a binding's range, the build reads and writes its per-triangle and per-slot buffers at
     // their addresses (slower on lavapipe, so only then), and the traversal reads the BVH so.
     const uint64_t range = context.info().max_storage_buffer_range;
-    bvh_.addressed = sizes.nodes > range || sizes.triangles > range;
+    const uint64_t alpha_bytes = alpha ? uint64_t(alpha->words.size()) * sizeof(uint32_t) : 0;
+    bvh_.addressed = sizes.nodes > range || sizes.triangles > range || alpha_bytes > range;
     addressed_ =
         addressed || bvh_.addressed || sizes.input > range || sizes.build_nodes > range || sizes.build_links > range;
     bvh_.nodes = create_bvh_buffer(context, sizes.nodes, "nodes", "GPU BVH build");

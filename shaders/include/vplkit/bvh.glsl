@@ -20,22 +20,26 @@
 // Where the nodes and triangles are read: through the `bvh_nodes` and `bvh_triangles` bindings,
 // or, for a BVH larger than a binding's range (maxStorageBufferRange: 128 MiB on lavapipe, 4.2M
 // nodes or 2.8M triangles), at their buffer device addresses (GL_EXT_buffer_reference), which
-// the header in words 0-7 of `bvh_alpha` holds; the specialization constant kBvhAddressed
+// the header in words 0-11 of `bvh_alpha` holds; the specialization constant kBvhAddressed
 // (stages::bvh_spec, from BvhBuffers::addressed) picks one, so each pipeline has one path and
 // pays nothing for the other. Why not always the addresses: lavapipe (Mesa 22) loads through a
 // pointer one component at a time for each lane, where a binding's load fetches a lane's whole
 // record at once: tracing took about 2x as long. With kBvhAddressed the bindings stay bound
 // (bind_bvh: one record's range) so that a step list still sees which buffers a step reads and
 // orders it after the passes that write them.
-// Header (vplkit::kBvhHeaderWords words; stages::bvh_header writes it; words 1-7 are read only
+// Header (vplkit::kBvhHeaderWords words; stages::bvh_header writes it; words 1-11 are read only
 // with kBvhAddressed):
 //   word 0     the masked subtree's root of a split BVH, 0 for one tree (bvh_masked_root)
-//   word 1     0
+//   word 1     how many words the alpha buffer holds, 0 when its address is not in words 8-9
+//              (the alpha-test records are then read through the binding)
 //   words 2-3  the device address of BvhNode[0] (low word first)
 //   words 4-5  the device address of BvhTriangle[0]
 //   word 6     how many nodes the node buffer holds, word 7 how many triangles: indices are
-//              clamped below them, so a malformed tree reads wrong records, never outside the
-//              buffers (as a binding's range keeps it inside).
+//              clamped below them (and alpha words below word 1), so a malformed tree reads
+//              wrong records, never outside the buffers (as a binding's range keeps it inside).
+//   words 8-9  the device address of the alpha buffer's word 0 (this header's first word): the
+//              alpha-test records past a binding's range are read there
+//   words 10-11 0
 //
 // Alpha-tested triangles (glTF MASK materials, and BLEND ones, which the G-buffer draws where
 // alpha >= 0.5): a ray passes through a triangle where alpha = base colour factor alpha x COLOR_0
@@ -43,7 +47,7 @@
 // rays, light paths and VPL visibility see the surface the camera sees. A triangle's `alpha` is
 // 0 when it is opaque (the test is skipped: a triangle hit in an opaque scene costs one compare
 // of a word already loaded); else the offset of its record in `bvh_alpha` (a plain uint array,
-// written by vplkit::add_alpha_tests, runtime/include/vplkit/bvh_alpha.hpp; words 0-7 hold no
+// written by vplkit::add_alpha_tests, runtime/include/vplkit/bvh_alpha.hpp; words 0-11 hold no
 // record but the header above):
 //   triangle record (10 words): the base colour texture's UVs at v0, v1, v2 (texture transform
 //     and texCoord set applied; 6 floats), alpha factor x COLOR_0 alpha at v0, v1, v2 (3 floats),
@@ -128,6 +132,11 @@ layout(std430, set = 0, binding = VPLKIT_BVH_ALPHA_BINDING) readonly buffer BvhA
     uint words[];
 } bvh_alpha;
 
+// Whether nodes and triangles (and alpha-test records, when word 1 says where) are read at the
+// header's addresses instead of through their bindings (see the top of this file);
+// stages::bvh_spec sets it from BvhBuffers::addressed.
+layout(constant_id = 24) const uint kBvhAddressed = 0u;
+
 // The same records at the addresses in the header (kBvhAddressed).
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhNodeArray {
     BvhNode items[];
@@ -136,6 +145,20 @@ layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer Bv
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer BvhTriangleArray {
     BvhTriangle items[];
 };
+
+layout(buffer_reference, std430, buffer_reference_align = 4) readonly buffer BvhAlphaWordArray {
+    uint words[];
+};
+
+// Word i of the alpha buffer: at the header's address with kBvhAddressed (when word 1 gives it;
+// clamped below it), else through the binding.
+uint bvh_alpha_word(uint i) {
+    if (kBvhAddressed != 0u && bvh_alpha.words[1] != 0u) {
+        BvhAlphaWordArray words = BvhAlphaWordArray(uvec2(bvh_alpha.words[8], bvh_alpha.words[9]));
+        return words.words[min(i, bvh_alpha.words[1] - 1u)];
+    }
+    return bvh_alpha.words[i];
+}
 
 // Equals vplkit::kBvhMaxDepth: the host builds no leaf deeper than this, and the traversal
 // pushes at most one node per level of the path it is on, so the stack never overflows for a
@@ -302,7 +325,7 @@ int bvh_alpha_wrap(int i, int n, uint mode) {
 // coordinates.
 float bvh_alpha_texel(uint data, uint width, int x, int y) {
     uint index = uint(y) * width + uint(x);
-    return float((bvh_alpha.words[data + index / 4u] >> (8u * (index % 4u))) & 0xffu) / 255.0;
+    return float((bvh_alpha_word(data + index / 4u) >> (8u * (index % 4u))) & 0xffu) / 255.0;
 }
 
 // Whether the alpha-test code is compiled in (specialization constant kBvhAlphaTest, id
@@ -324,17 +347,17 @@ bool bvh_alpha_passes(BvhTriangle tri, vec2 barycentrics) {
     }
     uint r = tri.alpha;
     vec3 w = vec3(1.0 - barycentrics.x - barycentrics.y, barycentrics.x, barycentrics.y);
-    float alpha = w.x * uintBitsToFloat(bvh_alpha.words[r + 6u]) + w.y * uintBitsToFloat(bvh_alpha.words[r + 7u]) +
-                  w.z * uintBitsToFloat(bvh_alpha.words[r + 8u]);
-    uint m = bvh_alpha.words[r + 9u];
-    float cutoff = uintBitsToFloat(bvh_alpha.words[m]);
-    uvec2 size = uvec2(bvh_alpha.words[m + 1u], bvh_alpha.words[m + 2u]);
+    float alpha = w.x * uintBitsToFloat(bvh_alpha_word(r + 6u)) + w.y * uintBitsToFloat(bvh_alpha_word(r + 7u)) +
+                  w.z * uintBitsToFloat(bvh_alpha_word(r + 8u));
+    uint m = bvh_alpha_word(r + 9u);
+    float cutoff = uintBitsToFloat(bvh_alpha_word(m));
+    uvec2 size = uvec2(bvh_alpha_word(m + 1u), bvh_alpha_word(m + 2u));
     if (size.x > 0u && size.y > 0u) {
-        vec2 uv = w.x * vec2(uintBitsToFloat(bvh_alpha.words[r]), uintBitsToFloat(bvh_alpha.words[r + 1u])) +
-                  w.y * vec2(uintBitsToFloat(bvh_alpha.words[r + 2u]), uintBitsToFloat(bvh_alpha.words[r + 3u])) +
-                  w.z * vec2(uintBitsToFloat(bvh_alpha.words[r + 4u]), uintBitsToFloat(bvh_alpha.words[r + 5u]));
-        uint wrap = bvh_alpha.words[m + 3u];
-        uint data = bvh_alpha.words[m + 4u];
+        vec2 uv = w.x * vec2(uintBitsToFloat(bvh_alpha_word(r)), uintBitsToFloat(bvh_alpha_word(r + 1u))) +
+                  w.y * vec2(uintBitsToFloat(bvh_alpha_word(r + 2u)), uintBitsToFloat(bvh_alpha_word(r + 3u))) +
+                  w.z * vec2(uintBitsToFloat(bvh_alpha_word(r + 4u)), uintBitsToFloat(bvh_alpha_word(r + 5u)));
+        uint wrap = bvh_alpha_word(m + 3u);
+        uint data = bvh_alpha_word(m + 4u);
         // Bilinear between texel centres at (i + 0.5) / size (Vulkan's convention); nearest is the
         // same code with the texel under uv at weight 1 (mix(a, b, 0.0) is a exactly), so that
         // the two filters are not two branches that lavapipe would both run.
@@ -365,10 +388,6 @@ BvhHit bvh_no_hit(float tmax) {
     hit.triangle = kBvhNoHit;
     return hit;
 }
-
-// Whether nodes and triangles are read at the header's addresses instead of through their
-// bindings (see the top of this file); stages::bvh_spec sets it from BvhBuffers::addressed.
-layout(constant_id = 24) const uint kBvhAddressed = 0u;
 
 // The header's addresses and record counts, read once per ray (only with kBvhAddressed).
 struct BvhArrays {

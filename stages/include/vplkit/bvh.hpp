@@ -81,9 +81,9 @@ inline constexpr float kBvhBoxPadding = 1.0f / 1048576.0f;  // 2^-20
 inline constexpr float kBvhOriginOffset = 1.0f / 65536.0f;  // 2^-16
 // The scene scale never falls below this (empty scenes).
 inline constexpr float kBvhMinScale = 1e-30f;
-// Words at the start of the alpha buffer that hold the header bvh.glsl reads (where the nodes
-// and triangles are; stages::bvh_header), before any alpha-test record.
-inline constexpr uint32_t kBvhHeaderWords = 8;
+// Words at the start of the alpha buffer that hold the header bvh.glsl reads (where the nodes,
+// triangles and alpha-test records are; stages::bvh_header), before any alpha-test record.
+inline constexpr uint32_t kBvhHeaderWords = 12;
 
 struct BvhBuildOptions {
     uint32_t bins = 32;                                  // 2..256 per axis

@@ -61,11 +61,14 @@ Spec bvh_spec(const BvhBuffers& bvh, Spec spec = {}) {
 
 // The header bvh.glsl reads from the first words of BvhSet::alpha (its layout: bvh.glsl): the
 // device addresses of `nodes` and `triangles` and how many records each view holds, and the
-// masked subtree's root (0 for one tree). Upload it over words [0, kBvhHeaderWords) of the alpha
-// buffer before tracing an `addressed` BVH (otherwise only word 0 is read). Throws Error for a
-// view without a buffer or without a whole record.
+// masked subtree's root (0 for one tree); with `alpha` (the alpha buffer the header goes into,
+// made with device-address usage), its address and word count, so that an `addressed` BVH reads
+// its alpha-test records there too (else through the binding, limited by its range). Upload it
+// over words [0, kBvhHeaderWords) of the alpha buffer before tracing an `addressed` BVH
+// (otherwise only word 0 is read). Throws Error for a view without a buffer or without a whole
+// record.
 std::array<uint32_t, kBvhHeaderWords> bvh_header(VkDevice device, const BufferView& nodes, const BufferView& triangles,
-                                                 uint32_t masked_root = 0);
+                                                 uint32_t masked_root = 0, const BufferView& alpha = {});
 
 // Binds `bvh` to a shader's bvh.glsl bindings (`bvh_nodes`, `bvh_triangles`, `bvh_alpha`). An
 // `addressed` BVH's nodes and triangles are read at the header's addresses; their bindings
@@ -77,7 +80,11 @@ void bind_bvh(Bindings& b, const BvhBuffers& bvh) {
     const VkDeviceSize triangle_range = bvh.addressed ? sizeof(shaders::BvhTriangle) : bvh.triangles.size;
     b.bvh_nodes = bvh.nodes.descriptor(0, std::min(bvh.nodes.size, node_range));
     b.bvh_triangles = bvh.triangles.descriptor(0, std::min(bvh.triangles.size, triangle_range));
-    b.bvh_alpha = bvh.alpha.descriptor();
+    // Addressed, the records are read at the header's address when it gives one, so the binding
+    // needs no more than every device's range (2^27 bytes, the least Vulkan allows), which the
+    // records may pass.
+    const VkDeviceSize alpha_range = bvh.addressed ? VkDeviceSize(1) << 27 : bvh.alpha.size;
+    b.bvh_alpha = bvh.alpha.descriptor(0, std::min(bvh.alpha.size, alpha_range));
 }
 
 }  // namespace vplkit::stages
