@@ -2,7 +2,8 @@
 // then the upload GpuScene::update_vertices makes) against posing them on the GPU
 // (PosableScene::pose_nodes, GpuPose::set_frame, one "pose vertices" pass, submitted and waited
 // for), frames interleaved host, GPU, host, ... and medians printed. Scenes: the deforming set-up
-// and skinned_tube at a size given on the command line (rings x (sides + 1) vertices).
+// and skinned_tube at a size given on the command line (rings x (sides + 1) vertices). Then the
+// whole geometry update through Renderer::pose on each path (pose, upload, BVH refit).
 //
 //   measure_gpu_pose [frames] [rings] [sides] [deforming_box.gltf]
 //   (defaults 24, 317, 315: 100,488 tube vertices; the file in this repository's scenes/)
@@ -13,6 +14,7 @@
 #include "vplkit/context.hpp"
 #include "vplkit/gpu_pose.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/renderer.hpp"
 #include "vplkit/scene_pose.hpp"
 
 #include <algorithm>
@@ -88,6 +90,33 @@ void measure(vplkit::Context& context, const std::string& name, const fs::path& 
                 median(gpu_nodes) + median(gpu_run), setup_ms);
 }
 
+// The whole geometry update of a frame through Renderer::pose on each path: the pose, the
+// vertices' upload, the BVH refit (rebuilds counted apart).
+void measure_renderer(vplkit::Context& context, const std::string& name, const fs::path& file, uint32_t frames,
+                      double duration) {
+    vplkit::scene::PosableScene host_scene(file), gpu_scene(file);
+    vplkit::Renderer host(context, host_scene.scene()), gpu(context, gpu_scene.scene());
+    // Per path: pose, upload, BVH (refit frames only: a rebuild is counted apart).
+    std::vector<double> times[2][3];
+    for (uint32_t f = 0; f <= frames; ++f) {
+        const double t = duration * f / frames + 0.01;
+        const vplkit::PoseUpdate updates[2] = {host.pose(host_scene, t, vplkit::PosePath::host),
+                                               gpu.pose(gpu_scene, t, vplkit::PosePath::gpu)};
+        if (f == 0 || updates[0].bvh != vplkit::BvhUpdate::refit || updates[1].bvh != vplkit::BvhUpdate::refit)
+            continue;
+        for (int p = 0; p < 2; ++p) {
+            times[p][0].push_back(updates[p].pose_ms);
+            times[p][1].push_back(updates[p].upload_ms);
+            times[p][2].push_back(updates[p].bvh_ms);
+        }
+    }
+    for (int p = 0; p < 2; ++p) {
+        std::printf("%-14s Renderer::pose on the %s, %zu refit frames: pose %.3f, upload %.3f, BVH refit %.3f\n",
+                    name.c_str(), p == 0 ? "host" : "GPU ", times[p][0].size(), median(times[p][0]),
+                    median(times[p][1]), median(times[p][2]));
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -110,5 +139,7 @@ int main(int argc, char** argv) {
     scene_test::TempDir dir("measure_gpu_pose");
     const fs::path tube = gltf_features::skinned_tube(rings, sides).write(dir.path(), "tube", false);
     measure(context, "skinned tube", tube, frames, 2.0);
+    measure_renderer(context, "deforming-box", deforming, frames, 4.0);
+    measure_renderer(context, "skinned tube", tube, frames, 2.0);
     return 0;
 }

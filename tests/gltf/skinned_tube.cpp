@@ -93,7 +93,9 @@ scene_test::GltfBuilder skinned_tube(uint32_t rings, uint32_t sides) {
                ",\"TANGENT\":" + std::to_string(qt) + "},\"indices\":" + std::to_string(qi) + "}]");
     const int quad = b.node("{\"name\":\"quad\",\"mesh\":" + std::to_string(quad_mesh) +
                             ",\"translation\":[1,0,-1],\"scale\":[-1,1,1]}");
-    b.roots = {joint0, body, quad};
+    b.lights.push_back(R"({"type":"point","color":[1,1,1],"intensity":5})");
+    const int light = b.node(R"({"translation":[0,1,2],"extensions":{"KHR_lights_punctual":{"light":0}}})");
+    b.roots = {joint0, body, quad, light};
     b.top_level_extra = ",\"skins\":[{\"joints\":[" + ints({joint0, joint1, joint2}) +
                         "],\"inverseBindMatrices\":" + std::to_string(ibm_accessor) + "}]";
 

@@ -4,7 +4,8 @@
 // third influence in every vertex) with a morph target (position, normal and tangent
 // displacements) and tangents whose handedness alternates ring by ring, and a mirrored quad
 // (scale -1 in x) with tangents on a node that turns and slides. Animation "bend" (0 to 2 s)
-// turns joints 1 and 2, slides joint 0, sets the morph weight and moves the quad.
+// turns joints 1 and 2, slides joint 0, sets the morph weight and moves the quad. A point light
+// at (0, 1, 2) lights it for a renderer.
 
 #include "gltf_builder.hpp"
 
