@@ -97,7 +97,7 @@ void measure_renderer(vplkit::Context& context, const std::string& name, const f
     vplkit::scene::PosableScene host_scene(file), gpu_scene(file);
     vplkit::Renderer host(context, host_scene.scene()), gpu(context, gpu_scene.scene());
     // Per path: pose, upload, BVH (refit frames only: a rebuild is counted apart).
-    std::vector<double> times[2][3];
+    std::vector<double> times[2][4];
     for (uint32_t f = 0; f <= frames; ++f) {
         const double t = duration * f / frames + 0.01;
         const vplkit::PoseUpdate updates[2] = {host.pose(host_scene, t, vplkit::PosePath::host),
@@ -108,12 +108,14 @@ void measure_renderer(vplkit::Context& context, const std::string& name, const f
             times[p][0].push_back(updates[p].pose_ms);
             times[p][1].push_back(updates[p].upload_ms);
             times[p][2].push_back(updates[p].bvh_ms);
+            times[p][3].push_back(updates[p].bvh_gpu_ms);
         }
     }
     for (int p = 0; p < 2; ++p) {
-        std::printf("%-14s Renderer::pose on the %s, %zu refit frames: pose %.3f, upload %.3f, BVH refit %.3f\n",
-                    name.c_str(), p == 0 ? "host" : "GPU ", times[p][0].size(), median(times[p][0]),
-                    median(times[p][1]), median(times[p][2]));
+        std::printf(
+            "%-14s Renderer::pose on the %s, %zu refit frames: pose %.3f, upload %.3f, BVH refit %.3f (GPU %.3f)\n",
+            name.c_str(), p == 0 ? "host" : "GPU ", times[p][0].size(), median(times[p][0]), median(times[p][1]),
+            median(times[p][2]), median(times[p][3]));
     }
 }
 
