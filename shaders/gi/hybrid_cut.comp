@@ -8,6 +8,16 @@
 // the surface; here they stay in the cut unsplit (only padding and dark nodes are left out), so
 // the cut still covers every VPL for the other pixels that use it.
 //
+// The specialization constant kCutPriority swaps eq. 5.2 for rtslc's bound F I / max(d_min^2, eps^2)
+// (rtslc_node_bound, the RTSLC paper sec. 3.3) as the split order: hybrid-lightcuts (hybrid_gi.comp's
+// kTraversal) takes it with rtslc's traversal. Why (reasoned): eq. 5.2 weighs a node by the
+// distance to its mean, so a cluster reaching close to the representative pixel looks no brighter
+// than its mean's distance says and stays unsplit, and the traversal's near samples below it are
+// heavy; the bound splits it first. Measured (tests/gi/test_hybrid_residue.cpp's glossy room, 64
+// frames): hybrid-lightcuts' per-frame noise 1.46x rtslc's with eq. 5.2 (and the lobe MIS),
+// 0.71x with the bound; on Sponza-lite the block noise is rtslc's either way
+// (docs/measurements.md, *Hybrid's floor*).
+//
 // Writes blocks[b] (HybridBlock) and cuts[b * cut_size + i]: the nodes in the order of their first
 // leaf (empty slots kCutEmptySlot at the end). Leaf order is the sorted (Morton) order, so slot i
 // of neighbouring blocks' cuts tends to cover the same part of the scene: cut blending picks slot
@@ -25,6 +35,9 @@
 #include "vplkit/gi_lobe.glsl"
 #include "vplkit/sst.glsl"
 #include "vplkit/sst_sampling.glsl"
+#include "vplkit/light_tree.glsl"
+#include "vplkit/rtslc.glsl"
+#include "vplkit/sst_lightcuts_traversal.glsl"
 #include "vplkit/cut_blending.glsl"
 #include "vplkit/dispatch.glsl"
 
@@ -47,6 +60,22 @@ layout(push_constant) uniform HybridCutPush {
     uint vpl_count;
     float scene_scale;  // bvh_scene_scale() on the host: the evaluation's distance clamp
 } push;
+
+// The split order: the thesis' expected contribution (eq. 5.2), or rtslc's bound (hybrid-lightcuts).
+const uint kCutPriorityExpected = 0u;
+const uint kCutPriorityBound = 1u;
+layout(constant_id = 0) const uint kCutPriority = kCutPriorityExpected;
+
+// A node's priority for the split at p; 0 where it cannot light p (its box behind the surface).
+float cut_priority(GiPoint p, SstNode data, float min_distance) {
+    if (kCutPriority == kCutPriorityBound) {
+        RtslcShading s = RtslcShading(p.position, p.normal, p.wo, p.albedo, p.roughness, p.metallic);
+        return rtslc_node_bound(s, sst_as_light_tree_node(data), min_distance * min_distance);
+    }
+    float d2;
+    float a = sst_weight_numerator(p, data, kSstWeightExpected, min_distance, d2);
+    return a > 0.0 ? a / d2 : 0.0;
+}
 
 // The first leaf below heap node `node` of a tree with leaf_count = 2^depth leaves.
 uint first_leaf(uint node, uint depth) {
@@ -95,16 +124,14 @@ void main() {
     float min_distance = vpl_min_distance(push.scene_scale);
 
     uint node[kGiMaxSamplesPerPixel];
-    float priority[kGiMaxSamplesPerPixel];  // the expected contribution a / d2, or -1 for a leaf (never split)
+    float priority[kGiMaxSamplesPerPixel];  // cut_priority, or -1 for a leaf (never split)
     uint size_now = 0u;
     // The root always starts the cut, even when it looks dark from here: other pixels of the
     // block may see its light, and an empty cut would give them none.
     SstNode root = sst_fetch(0u, push.leaf_count, push.vpl_count);
     if (root.leaf_count > 0u) {
-        float d2;
-        float a = sst_weight_numerator(p, root, kSstWeightExpected, min_distance, d2);
         node[0] = 0u;
-        priority[0] = sst_is_leaf(0u, push.leaf_count) ? -1.0 : a / d2;
+        priority[0] = sst_is_leaf(0u, push.leaf_count) ? -1.0 : cut_priority(p, root, min_distance);
         size_now = 1u;
     }
     while (size_now < push.cut_size) {
@@ -131,15 +158,14 @@ void main() {
             if (data.leaf_count == 0u || !(data.intensity > 0.0)) {
                 continue;
             }
-            float d2;
-            float a = sst_weight_numerator(p, data, kSstWeightExpected, min_distance, d2);
+            float a = cut_priority(p, data, min_distance);
             // A child that cannot light the representative pixel (its box behind the surface, a = 0)
             // stays in the cut but is never split (priority -1, as a leaf): the cut serves every
             // pixel of the block and the pixels that blend with it, and a pixel at another place
             // may see that light. Dropped, its light was lost to all of them (with spp >= 2 a
             // block whose representative sees the root only from behind had an empty cut).
             child_node[kept] = child;
-            child_priority[kept] = a > 0.0 && !sst_is_leaf(child, push.leaf_count) ? a / d2 : -1.0;
+            child_priority[kept] = a > 0.0 && !sst_is_leaf(child, push.leaf_count) ? a : -1.0;
             ++kept;
         }
         if (kept == 0u) {

@@ -10,10 +10,12 @@
 // its VPLs drawn by intensity (hybrid_add_cluster_sample, where sec. 5.3 evaluates the node's
 // Gaussian substitute: see there why). The pixel's estimate is the sum over its cut's nodes. The
 // specialization constant kTraversal swaps the traversal for rtslc's to a leaf (sec. 7.1's
-// comparison protocol). With kGlossyLobe
-// (gi_lobe.glsl), a glossy receiver picks the diffuse or the glossy lobe per cut node's traversal
-// (the SST paper sec. 4.2); the cut itself, shared by the block, is chosen for the whole BRDF, and the
-// node's share of the estimate is weighed by the probability of the lobe it was sampled in.
+// comparison protocol), with rtslc's one-sample MIS over the lobes on glossy receivers
+// (sst_traverse_lightcuts_lobe_mis), and hybrid_cut.comp then splits the cuts by rtslc's bound.
+// With kGlossyLobe (gi_lobe.glsl), a glossy receiver picks the diffuse or the glossy lobe per cut
+// node's traversal (the SST paper sec. 4.2); the cut itself, shared by the block, is chosen for
+// the whole BRDF, and the node's share of the estimate is weighed by the probability of the lobe
+// it was sampled in.
 //
 // indirect.rgb: the estimate; indirect.a: the pixel's dropped samples. Background pixels: 0.
 
@@ -193,7 +195,14 @@ void main() {
         }
         GiLobe lobe = gi_choose_lobe(p.normal, p.wo, p.albedo, p.roughness, p.metallic, rng);
         HybridSample s;
-        if (kTraversal == kHybridTraversalLightcuts) {
+        uint evaluated_lobe = lobe.kind;
+        if (kTraversal == kHybridTraversalLightcuts && lobe.kind != kBrdfLobeBoth) {
+            // rtslc's lobe MIS (rtslc_gi.comp's default): the whole BRDF over the lobes' mixture pmf.
+            float q_glossy = lobe.kind == kBrdfLobeGlossy ? lobe.probability : 1.0 - lobe.probability;
+            s = hybrid_sample_of(sst_traverse_lightcuts_lobe_mis(p, start, push.leaf_count, push.vpl_count, lobe,
+                                                                 q_glossy, min_distance, rng));
+            evaluated_lobe = kBrdfLobeBoth;
+        } else if (kTraversal == kHybridTraversalLightcuts) {
             s = hybrid_sample_of(
                 sst_traverse_lightcuts(p, start, push.leaf_count, push.vpl_count, lobe, min_distance, rng));
         } else if (lobe.kind == kBrdfLobeGlossy) {
@@ -208,7 +217,7 @@ void main() {
             ++dead;
             continue;
         }
-        hybrid_add_cluster_sample(p, s, lobe.kind, min_distance, scale, rng, total, dropped);
+        hybrid_add_cluster_sample(p, s, evaluated_lobe, min_distance, scale, rng, total, dropped);
     }
     if (!blended && !mock) {
         total /= float(push.cut_size);  // cut_size estimates of the whole tree

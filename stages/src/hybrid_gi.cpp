@@ -67,7 +67,10 @@ void add_hybrid_gi_passes(Device& device, StepList& passes, const GbufferViews& 
     // Report the caller's names, not the bindings' ("sst_nodes", "cuts").
     passes.names({bvh.nodes, bvh.triangles, bvh.alpha, trees.sst, trees.leaves, cuts.blocks, cuts.cuts});
     const glm::vec3 camera = camera_position;
-    const auto& cut_pipeline = device.pipeline<shaders::hybrid_cut::Pipeline>();
+    // hybrid-lightcuts splits its cuts by rtslc's bound, as rtslc does (hybrid_cut.comp says why).
+    shaders::hybrid_cut::Spec cut_spec;
+    cut_spec.kCutPriority = options.traversal == HybridTraversal::lightcuts ? 1u : 0u;
+    const auto& cut_pipeline = device.pipeline<shaders::hybrid_cut::Pipeline>(cut_spec);
     shaders::hybrid_cut::Bindings cut_bindings;
     cut_bindings.sst_nodes = trees.sst.descriptor();
     cut_bindings.sst_leaves = trees.leaves.descriptor();

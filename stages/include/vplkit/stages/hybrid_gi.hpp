@@ -33,7 +33,8 @@ inline constexpr uint32_t kMaxHybridBlockSize = 32;
 enum class HybridTraversal {
     substitute,  // the thesis': expected-contribution weights, early stop at a suitable node (default)
     lightcuts,   // stochastic lightcuts' min/max-distance weights to a leaf: the thesis sec. 7.1's
-                 // protocol, rtslc's traversal over hybrid's own cuts and blending
+                 // protocol, rtslc's traversal (with its lobe MIS) over hybrid's own cuts and
+                 // blending; the cuts split by rtslc's bound instead of eq. 5.2 (hybrid_cut.comp)
 };
 
 struct HybridOptions {
