@@ -2,8 +2,10 @@
 # The converged residue of hybrid, hybrid-lightcuts and rtslc against exact over the same VPLs:
 # each method's raw frames (new samples per frame, the same VPLs, a static
 # camera, no filter) averaged by scripts/pfm_residue.py; block error and the brightest pixel at
-# each frame count. rtslc is unbiased: its block error is the noise left at that many samples,
-# the yardstick for the others.
+# each frame count, then the block error expected after that many
+# frames, from all of them (scripts/block_noise.py: disjoint windows and the per-frame variance).
+# rtslc is unbiased: its block error is the noise left at that many samples, the yardstick for
+# the others.
 #
 # usage: scripts/hybrid_residue.sh [OUT_DIR]      (default out/hybrid_residue)
 # environment: VPLKIT (binary, default build/release/samples/vplkit), SCENE (sponza-lite-sun),
@@ -51,3 +53,6 @@ for m in $methods; do
 done
 python3 scripts/pfm_residue.py --direct "$out/direct/frame_0000.pfm" --exact "$out/exact/frame_0000.pfm" \
     --block "$block" --frames "$counts" "${dirs[@]}" | tee "$out/residue.txt"
+# One draw of N frames is a poor yardstick under heavy tails: the expectation from all frames.
+python3 scripts/block_noise.py --direct "$out/direct/frame_0000.pfm" --exact "$out/exact/frame_0000.pfm" \
+    --block "$block" --frames "$counts" "${dirs[@]}" | tee -a "$out/residue.txt"
