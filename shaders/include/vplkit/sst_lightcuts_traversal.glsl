@@ -70,8 +70,8 @@ SstSample sst_traverse_lightcuts(GiPoint p, uint start, uint leaf_count, uint co
 // traversal from `start` reaches this leaf whichever lobe it chose; the caller evaluates the
 // whole BRDF at the leaf over it. rtslc's default (rtslc_gi.comp): with one lobe per sample each
 // lobe's estimate is weighed by 1 / q; on Sponza-lite (1000 frames) that left hybrid-lightcuts'
-// per-pixel noise at 1.06x rtslc's, 7x in the sunlit floor's corner block; with the MIS 0.98x
-// and 4.6x. `q_glossy` is gi_glossy_lobe_probability.
+// per-pixel noise at 1.06x rtslc's (7x its variance in the sunlit floor's corner block); with
+// the MIS 0.98x (4.6x). `q_glossy` is gi_glossy_lobe_probability.
 SstSample sst_traverse_lightcuts_lobe_mis(GiPoint p, uint start, uint leaf_count, uint count, GiLobe lobe,
                                           float q_glossy, float min_distance, inout Rng rng) {
     RtslcShading shading = RtslcShading(p.position, p.normal, p.wo, p.albedo, p.roughness, p.metallic);
