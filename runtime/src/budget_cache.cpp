@@ -14,7 +14,8 @@ namespace vplkit::detail {
 namespace {
 
 constexpr const char* kFormat =
-    "vplkit-budget-cache 4";  // 2: slopes >= 0; 3: noise exponents; 4: no first-dispatch compiles in the times
+    "vplkit-budget-cache 5";  // 2: slopes >= 0; 3: noise exponents; 4: no first-dispatch compiles in the
+                              // times; 5: the VPL budget's error, svgf's effect per method
 
 }  // namespace
 
@@ -61,13 +62,19 @@ std::optional<BudgetModel> read_budget_cache(const std::filesystem::path& file, 
         } else if (kind == "noise") {
             NoiseMeasurement m;
             int method = 0, half = 0;
-            fields >> method >> half >> m.block_size >> m.spp >> m.variance >> m.exponent;
+            int has_svgf = 0;
+            fields >> method >> half >> m.block_size >> m.spp >> m.variance >> m.exponent >> has_svgf;
+            if (has_svgf) {
+                SvgfEffect svgf;
+                fields >> svgf.floor_variance >> svgf.noise_share;
+                m.svgf = svgf;
+            }
             if (!fields) return std::nullopt;
             m.method = GiMethod(method);
             m.half_resolution = half != 0;
             model.error.sampling.push_back(m);
-        } else if (kind == "vpl_noise") {
-            fields >> model.error.vpl_measured >> model.error.vpl_variance;
+        } else if (kind == "vpl_budget") {
+            fields >> model.error.vpl_measured >> model.error.vpl_small >> model.error.vpl_small_mse;
             if (!fields) return std::nullopt;
         } else if (kind == "end") {
             complete = true;
@@ -95,9 +102,12 @@ void write_budget_cache(const std::filesystem::path& file, const std::string& ke
         }
         for (const NoiseMeasurement& m : model.error.sampling) {
             out << "noise " << int(m.method) << " " << (m.half_resolution ? 1 : 0) << " " << m.block_size << " "
-                << m.spp << " " << m.variance << " " << m.exponent << "\n";
+                << m.spp << " " << m.variance << " " << m.exponent << " " << (m.svgf ? 1 : 0);
+            if (m.svgf) out << " " << m.svgf->floor_variance << " " << m.svgf->noise_share;
+            out << "\n";
         }
-        out << "vpl_noise " << model.error.vpl_measured << " " << model.error.vpl_variance << "\nend\n";
+        out << "vpl_budget " << model.error.vpl_measured << " " << model.error.vpl_small << " "
+            << model.error.vpl_small_mse << "\nend\n";
         out.close();
         if (!out) {
             std::filesystem::remove(temporary, ec);

@@ -1,14 +1,17 @@
 // The budget's calibration frames (budget_calibration.hpp). Per method, resolution and block
 // size: two frames at spp0 with other random numbers and two at a second spp1 (the noise and how
-// it falls with spp, and four cost samples). Once: a frame at the second spp with another VPL seed (the VPL set's
-// noise), one with the space's smallest VPL budget, and frames at half the size, with and without svgf (the cost per
-// pixel). An untimed frame first compiles the shaders and fixes the exposure.
+// it falls with spp, and four cost samples); per method, runs of 3 svgf frames at both spp (svgf's
+// floor and kept noise on this scene). Once: four frames at 64 spp, a pair with the settings' VPL
+// budget and a pair with the space's smallest (the smaller budget's error), and frames at half the
+// size, with and without svgf (the cost per pixel). An untimed frame first compiles the shaders
+// and fixes the exposure.
 
 #include "vplkit/budget_calibration.hpp"
 
 #include "budget_cache.hpp"
 #include "vplkit/budget_noise.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/planner.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
@@ -19,6 +22,11 @@
 
 namespace vplkit {
 namespace {
+
+// svgf runs as the bench runs it: 3 frames, the last compared.
+constexpr uint32_t kSvgfFrames = 3;
+// The spp of the VPL budget's frames: the most the space allows.
+constexpr uint32_t kReferenceSpp = 64;
 
 // One frame to render: a configuration, its size, seed and frame counter.
 struct CalibrationFrame {
@@ -73,6 +81,15 @@ std::vector<T> unique_in_order(const std::vector<T>& list) {
         if (std::find(out.begin(), out.end(), v) == out.end()) out.push_back(v);
     }
     return out;
+}
+
+// The tonemapped frame on the bench's scale (sRGB / 255), 3 values a pixel.
+std::vector<float> unit_rgb(const RenderedImage& image) {
+    std::vector<float> rgb(image.rgba8.size() / 4 * 3);
+    for (size_t p = 0; p < rgb.size() / 3; ++p) {
+        for (size_t c = 0; c < 3; ++c) rgb[p * 3 + c] = float(image.rgba8[p * 4 + c]) / 255.0f;
+    }
+    return rgb;
 }
 
 }  // namespace
@@ -132,6 +149,11 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
     const uint32_t v0 = vpl_count_knob(base, source);
     const uint32_t v_small = *std::min_element(space.vpls.begin(), space.vpls.end());
     const GiMethod m0 = space.methods.front();
+    // The VPL budget's frames by an unbiased method where the space has one: sst's substitutes
+    // smooth over the VPL set's blotches that the exact frame shows.
+    const bool has_rtslc =
+        std::find(space.methods.begin(), space.methods.end(), GiMethod::rtslc) != space.methods.end();
+    const GiMethod m_vpl = has_rtslc ? GiMethod::rtslc : m0;
     const bool half0 = space.half_resolution.front();
     const uint32_t b0 = space.block_sizes.front();
     auto config = [&](GiMethod m, uint32_t spp, bool half, DenoiseMode d, uint32_t vpls, uint32_t block) {
@@ -152,17 +174,39 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
             }
         }
     }
-    // Another VPL seed at spp1, compared with the first group's spp1 frame: at the higher spp the
-    // sampling noise, subtracted from the pair's, is a quarter as large, so the VPL set's own
-    // (often far smaller) stands out of the estimate's spread.
-    const size_t vpl_pair_first = noise_pairs.front().first + 2;
-    const size_t vpl_frame = frames.size();
-    frames.push_back({config(m0, spp1, half0, DenoiseMode::off, v0, b0), w, h, base.seed + 1, 4});
-    if (v_small != v0) frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v_small, b0), w, h, base.seed, 1});
+    // The VPL budget's error: two frames at kReferenceSpp (rtslc's where the space has it) with the
+    // settings' VPL budget and two with the space's smallest: the error a smaller budget adds
+    // against the frame over the settings' VPLs (vpl_set_variance: at this spp, low-passed, the
+    // sampling noise beside it is small).
+    const size_t reference_first = frames.size();
+    if (v_small != v0) {
+        frames.push_back({config(m_vpl, kReferenceSpp, half0, DenoiseMode::off, v0, b0), w, h, base.seed, 6});
+        frames.push_back({config(m_vpl, kReferenceSpp, half0, DenoiseMode::off, v0, b0), w, h, base.seed, 7});
+        frames.push_back({config(m_vpl, kReferenceSpp, half0, DenoiseMode::off, v_small, b0), w, h, base.seed, 8});
+        frames.push_back({config(m_vpl, kReferenceSpp, half0, DenoiseMode::off, v_small, b0), w, h, base.seed, 9});
+    }
     const uint32_t w2 = std::max(w / 2, 1u), h2 = std::max(h / 2, 1u);
     frames.push_back({config(m0, spp0, half0, DenoiseMode::off, v0, b0), w2, h2, base.seed, 1});
-    if (std::find(space.denoise.begin(), space.denoise.end(), DenoiseMode::svgf) != space.denoise.end()) {
-        frames.push_back({config(m0, spp0, half0, DenoiseMode::svgf, v0, b0), w, h, base.seed, 0});
+    // svgf's effect on this scene, per method: a run of 3 filtered frames (frame 0 starts the
+    // history; the last is what the bench compares) at spp0 and one at spp1, each set against the
+    // method's raw pair at spp1 (its noise, its correlation over a cut's block, are the method's).
+    const bool svgf = std::find(space.denoise.begin(), space.denoise.end(), DenoiseMode::svgf) != space.denoise.end();
+    std::vector<std::pair<size_t, size_t>> svgf_runs;  // (noise pair, first filtered frame)
+    if (svgf) {
+        for (size_t pair = 0; pair < noise_pairs.size(); ++pair) {
+            const BudgetConfig raw = frames[noise_pairs[pair].first].config;  // a copy: frames grows below
+            const bool first_of_method = std::none_of(svgf_runs.begin(), svgf_runs.end(), [&](const auto& run) {
+                return frames[noise_pairs[run.first].first].config.method == raw.method;
+            });
+            if (raw.half_resolution != half0 || !first_of_method) continue;
+            svgf_runs.emplace_back(pair, frames.size());
+            for (uint32_t spp : {spp0, spp1}) {
+                for (uint32_t f = 0; f < kSvgfFrames; ++f) {
+                    frames.push_back(
+                        {config(raw.method, spp, half0, DenoiseMode::svgf, v0, raw.block_size), w, h, base.seed, f});
+                }
+            }
+        }
         frames.push_back({config(m0, spp0, half0, DenoiseMode::svgf, v0, b0), w2, h2, base.seed, 0});
     }
 
@@ -262,15 +306,38 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
         m.exponent = spp_exponent(m.variance, spp0, at_spp1, spp1);
         result.model.error.sampling.push_back(m);
     }
-    {
-        // The same frame with other VPLs: sampling noise and the VPL set's, sigma_s^2 + sigma_v^2.
-        const RenderedImage& a = images[vpl_pair_first];
-        const RenderedImage& e = images[vpl_frame];
-        const double both = half_difference_variance(a.indirect, e.indirect) * tonemap_scale(a, e);
-        const NoiseMeasurement& first = result.model.error.sampling.front();
-        const double sampling = variance_at_samples(first.variance, spp0, spp1, first.exponent);
+    if (v_small != v0) {
+        // The smaller budget's error, low-passed (vpl_set_variance), on the tonemapped frames (the
+        // bench's scale, where a dark region's error weighs more than the linear light says): its
+        // half-difference is half its mean squared error.
+        const std::vector<float> r1 = unit_rgb(images[reference_first]);
+        const std::vector<float> r2 = unit_rgb(images[reference_first + 1]);
+        const std::vector<float> s1 = unit_rgb(images[reference_first + 2]);
+        const std::vector<float> s2 = unit_rgb(images[reference_first + 3]);
+        const uint32_t block = std::min({vpl_noise_block(w), w, h});
         result.model.error.vpl_measured = v0;
-        result.model.error.vpl_variance = std::max(0.0, both - sampling);
+        result.model.error.vpl_small = v_small;
+        result.model.error.vpl_small_mse = 2.0 * vpl_set_variance(r1, r2, s1, s2, w, h, block);
+    }
+    for (const auto& [pair, filtered_first] : svgf_runs) {
+        // svgf's error at spp0 and spp1 against the method's raw pair at spp1, c and d, on the
+        // tonemapped frames (its blur falls on edges and dark corners, where the tone curve weighs
+        // an error otherwise than where the noise is): its half-differences from both less theirs
+        // from each other, so no square of the pair's own noise is left in it (its rare bright
+        // samples do not swing it); with the raw noise at spp0 and spp1, svgf_effect().
+        const auto [first, second] = noise_pairs[pair];
+        const std::vector<float> c = unit_rgb(images[second + 1]);
+        const std::vector<float> d = unit_rgb(images[second + 2]);
+        const double reference_noise = half_difference_variance(c, d);
+        auto filtered_error = [&](size_t run) {
+            const std::vector<float> filtered = unit_rgb(images[filtered_first + run * kSvgfFrames + kSvgfFrames - 1]);
+            return half_difference_variance(filtered, c) + half_difference_variance(filtered, d) - reference_noise;
+        };
+        const NoiseMeasurement& raw = result.model.error.sampling[pair];
+        const double raw0 = raw.variance;
+        const double raw1 = variance_at_samples(raw.variance, raw.spp, spp1, raw.exponent);
+        const double e0 = filtered_error(0), e1 = filtered_error(1);
+        if (auto effect = svgf_effect(raw0, e0, raw1, e1)) result.model.error.sampling[pair].svgf = *effect;
     }
     result.frames = total;
     result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

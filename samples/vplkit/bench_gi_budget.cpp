@@ -13,6 +13,7 @@
 #include "vplkit/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -54,6 +55,19 @@ double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     const size_t n = v.size();
     return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// "sst 0.0123, 0.045; rtslc ...": svgf's effect per method as measured.
+std::string svgf_effects(const ErrorModel& error) {
+    std::string out;
+    for (const NoiseMeasurement& m : error.sampling) {
+        if (!m.svgf) continue;
+        char text[96];
+        std::snprintf(text, sizeof text, "%s%s %.4f, %.3f", out.empty() ? "" : "; ", gi_method_name(m.method),
+                      std::sqrt(m.svgf->floor_variance), m.svgf->noise_share);
+        out += text;
+    }
+    return out.empty() ? "not measured" : out;
 }
 
 }  // namespace
@@ -194,13 +208,16 @@ void check_budget_chooser(Renderer& renderer, const DeviceInfo& device, const sc
     const std::string made = calibration.from_cache
                                  ? std::string("read from")
                                  : "calibrated (" + std::to_string(calibration.frames) + " frames) and cached in";
-    char note[512];
+    char note[768];
     std::snprintf(note, sizeof note,
                   "model %s %s (%zu configurations predicted); the %zu comparable sweep points span %.1f-%.1f ms; "
-                  "measured / predicted frame time over %zu of them: median %.2f, %.2f-%.2f",
+                  "measured / predicted frame time over %zu of them: median %.2f, %.2f-%.2f; error model: "
+                  "%u VPLs' error %.4f RMSE against %u's; svgf floor, kept noise share: %s",
                   made.c_str(), calibration.cache_file.string().c_str(), candidates.size(), comparable.size(), lo, hi,
                   ratios.size(), median(ratios), ratios.empty() ? 0.0 : *std::min_element(ratios.begin(), ratios.end()),
-                  ratios.empty() ? 0.0 : *std::max_element(ratios.begin(), ratios.end()));
+                  ratios.empty() ? 0.0 : *std::max_element(ratios.begin(), ratios.end()),
+                  calibration.model.error.vpl_small, std::sqrt(calibration.model.error.vpl_small_mse),
+                  calibration.model.error.vpl_measured, svgf_effects(calibration.model.error).c_str());
     run.budget_note = note;
 
     std::vector<BenchPoint> measured;  // each distinct choice once

@@ -62,11 +62,12 @@ TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is ca
 
     const auto first = vplkit::calibrate_budget(renderer, ctx.info(), scene, scene.camera(), base, space, options);
     CHECK(!first.from_cache);
-    // 2 methods x 2 resolutions x 4 frames, the VPL seed, the smaller VPL budget, half size with
-    // and without svgf, and the untimed first frame; and 7 untimed frames before those whose
-    // shaders or size differ from the frame before (rtslc half, hybrid full and half, the VPL seed's
-    // rtslc full after them, half size, svgf, svgf at half size).
-    CHECK(first.frames == 22 + 7);
+    // 2 methods x 2 resolutions x 4 frames, four at 64 spp (two VPL budgets), half size, per method
+    // two runs of 3 svgf frames (spp 4 and 16), svgf at half size, and the untimed first frame; and
+    // 8 untimed frames before those whose shaders or size differ from the frame before (rtslc half,
+    // hybrid full and half, the 64 spp rtslc full after them, half size, rtslc svgf, hybrid svgf,
+    // svgf at half size).
+    CHECK(first.frames == 35 + 8);
     CHECK(std::filesystem::exists(first.cache_file));
     REQUIRE(first.model.error.sampling.size() == 4);
     for (const auto& m : first.model.error.sampling) {
@@ -77,7 +78,17 @@ TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is ca
         CHECK(m.exponent <= 1.0);
     }
     CHECK(first.model.error.vpl_measured == 256);
-    CHECK(first.model.error.vpl_variance >= 0.0);
+    CHECK(first.model.error.vpl_small == 64);
+    CHECK(first.model.error.vpl_small_mse >= 0.0);
+    // svgf measured on this scene, per method: it keeps part of the noise, and its floor is an error.
+    for (const auto& m : first.model.error.sampling) {
+        if (m.half_resolution) continue;
+        CAPTURE(int(m.method));
+        REQUIRE(m.svgf);
+        CHECK(m.svgf->noise_share >= 0.0);
+        CHECK(m.svgf->noise_share < 1.0);
+        CHECK(m.svgf->floor_variance >= 0.0);
+    }
 
     const auto candidates = vplkit::budget_candidates(first.model, space, scene, base);
     CHECK(candidates.size() == 2 * 3 * 2 * 2 * 2);
@@ -95,6 +106,10 @@ TEST_CASE("budget: a calibration at 32x32 predicts every configuration and is ca
     CHECK(second.from_cache);
     CHECK(second.frames == 0);
     CHECK(second.key == first.key);
+    CHECK(second.model.error.vpl_small_mse == first.model.error.vpl_small_mse);
+    for (size_t i = 0; i < first.model.error.sampling.size(); ++i) {
+        CHECK(second.model.error.sampling[i].svgf.has_value() == first.model.error.sampling[i].svgf.has_value());
+    }
     const auto again = vplkit::budget_candidates(second.model, space, scene, base);
     REQUIRE(again.size() == candidates.size());
     for (size_t i = 0; i < again.size(); ++i) {

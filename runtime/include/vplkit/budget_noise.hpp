@@ -18,6 +18,31 @@ double half_difference_variance(std::span<const float> a, std::span<const float>
 // the scale of the bench's RMSE of tonemapped frames.
 double half_difference_variance_rgba8(std::span<const uint8_t> a, std::span<const uint8_t> b);
 
+// The same over a low-pass of the difference: (a - b) averaged over whole blocks of block x block
+// pixels (3 floats a pixel, rows of `width`; a partial block at the right or bottom edge is left
+// out), per channel, then the mean over blocks of that mean squared / 2. Noise independent from
+// pixel to pixel falls by the block's pixel count; noise that is smooth over a block (a VPL set's
+// blotches) stays. Throws vplkit::Error for sizes that do not match width x height x 3, a block of
+// 0 or larger than the frame, or a value that is not finite.
+double low_pass_half_difference_variance(std::span<const float> a, std::span<const float> b, uint32_t width,
+                                         uint32_t height, uint32_t block);
+
+// The VPL set's noise per value, sigma_v^2, from four frames at one spp: `a1`, `a2` share a VPL
+// set and differ in their sampling numbers, as do `b1`, `b2` over another VPL set. The low-pass
+// half-difference of the pairs' means holds the VPL sets' difference and a quarter of each pair's
+// sampling noise, which the pairs' own low-pass half-differences measure and which is subtracted:
+// what is left has no square of a sampling noise in it (only products of independent ones), so a
+// frame's rare bright samples do not swing it. The low-pass keeps the VPL set's noise while it
+// takes most of the sampling noise away (at the pixel level the VPL set's noise is a percent or
+// so of the sampling noise's and lost in the estimate's spread). Not below 0. The VPL set's
+// blotches are assumed smooth over a block: it reads less where they are not.
+double vpl_set_variance(std::span<const float> a1, std::span<const float> a2, std::span<const float> b1,
+                        std::span<const float> b2, uint32_t width, uint32_t height, uint32_t block);
+
+// The low-pass block for a frame of `width` pixels: about a fortieth of the width (4 at 160, 8 at
+// 320; 2..16), so it covers the same share of the view at every size.
+uint32_t vpl_noise_block(uint32_t width);
+
 // A variance measured with `measured_samples` samples per pixel, for `samples` instead:
 // variance x (measured_samples / samples)^exponent. An average of independent samples has
 // exponent 1; the samplers' measured noise falls slower (budget_error.hpp).
