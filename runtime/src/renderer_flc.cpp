@@ -146,12 +146,12 @@ void Renderer::render_flc(const stages::CameraView& view, GbufferImages& gbuffer
 
     PassList& passes = frame.passes();
     passes.set_tag(stage_tag(FrameStage::flc_vpls));
-    stages::add_flc_candidates_pass(context_, passes,
-                                    {scene_.vertices(), scene_.indices(), *flc_vertex_random_, candidates}, partition,
-                                    triangles, settings.seed);
+    stages::add_flc_candidates_pass(
+        context_, passes, {scene_.vertices(), scene_.indices(), *flc_vertex_random_, candidates, scene_.addressed()},
+        partition, triangles, settings.seed);
     stages::add_flc_subdivide_pass(context_, passes,
                                    {scene_.vertices(), scene_.indices(), *flc_vertex_random_, entries, candidates,
-                                    vpl_sources().triangle_albedo, albedo},
+                                    vpl_sources().triangle_albedo, albedo, scene_.addressed()},
                                    partition, subdivision, triangles, settings.seed);
     stages::add_flc_stratify_passes(context_, passes, {candidates, order_buffer, carries}, partition, candidate_count,
                                     settings.seed);

@@ -7,8 +7,22 @@
 // The triangle's uniform number comes from the xor of its three vertices' random integers and the
 // frame's (Alg. 2, REGULARRAND), so it follows the triangle under any transform of its mesh.
 
+layout(push_constant) uniform FlcCandidatesPush {
+    uint triangle_count;
+    uint seed;
+    int level_count;  // N + 1
+    float s0;         // S_0, world units squared
+    float mu;         // > 1
+    // raster_scene.glsl's addresses (read only with kSceneAddressed: a scene past a binding's range)
+    uvec2 scene_vertex_address;
+    uvec2 scene_index_address;
+    uint scene_vertex_count;
+    uint scene_index_count;
+} push;
+
 #define VPLKIT_SCENE_VERTICES_BINDING 0
 #define VPLKIT_SCENE_INDICES_BINDING 1
+#define VPLKIT_SCENE_PUSH push
 #include "vplkit/raster_scene.glsl"
 #include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
@@ -22,25 +36,18 @@ layout(std430, set = 0, binding = 2) readonly buffer VertexRandomBuffer { uint i
 
 layout(std430, set = 0, binding = 3) writeonly buffer FlcCandidateBuffer { FlcCandidate items[]; } candidates;
 
-layout(push_constant) uniform FlcCandidatesPush {
-    uint triangle_count;
-    uint seed;
-    int level_count;  // N + 1
-    float s0;         // S_0, world units squared
-    float mu;         // > 1
-} push;
 
 void main() {
     uint t = linear_thread_index();
     if (t >= push.triangle_count) {
         return;
     }
-    uint i0 = scene_indices.items[3u * t];
-    uint i1 = scene_indices.items[3u * t + 1u];
-    uint i2 = scene_indices.items[3u * t + 2u];
-    vec3 p0 = scene_vertices.items[i0].position;
-    vec3 p1 = scene_vertices.items[i1].position;
-    vec3 p2 = scene_vertices.items[i2].position;
+    uint i0 = scene_index(3u * t);
+    uint i1 = scene_index(3u * t + 1u);
+    uint i2 = scene_index(3u * t + 2u);
+    vec3 p0 = scene_vertex(i0).position;
+    vec3 p1 = scene_vertex(i1).position;
+    vec3 p2 = scene_vertex(i2).position;
 
     // Scaled before squaring so 1e-3-scale triangles (areas ~1e-8) keep their digits.
     vec3 c = cross(p1 - p0, p2 - p0);

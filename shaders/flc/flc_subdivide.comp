@@ -15,8 +15,24 @@
 // entry whose range holds s). A sub-triangle whose parent the candidates pass did not mark divergent
 // (the host's list allows a 1% margin on the area) is written discarded.
 
+layout(push_constant) uniform FlcSubdividePush {
+    uint triangle_count;
+    uint entry_count;
+    uint sub_count;
+    uint seed;
+    int level_count;
+    float s0;
+    float mu;
+    // raster_scene.glsl's addresses (read only with kSceneAddressed: a scene past a binding's range)
+    uvec2 scene_vertex_address;
+    uvec2 scene_index_address;
+    uint scene_vertex_count;
+    uint scene_index_count;
+} push;
+
 #define VPLKIT_SCENE_VERTICES_BINDING 0
 #define VPLKIT_SCENE_INDICES_BINDING 1
+#define VPLKIT_SCENE_PUSH push
 #include "vplkit/raster_scene.glsl"
 #include "vplkit/flc_candidate.glsl"
 #include "vplkit/flc_partition.glsl"
@@ -40,15 +56,6 @@ layout(std430, set = 0, binding = 4) buffer FlcCandidateBuffer { FlcCandidate it
 layout(std430, set = 0, binding = 5) readonly buffer TriangleAlbedoBuffer { vec4 items[]; } triangle_albedo;
 layout(std430, set = 0, binding = 6) writeonly buffer CandidateAlbedoBuffer { vec4 items[]; } candidate_albedo;
 
-layout(push_constant) uniform FlcSubdividePush {
-    uint triangle_count;
-    uint entry_count;
-    uint sub_count;
-    uint seed;
-    int level_count;
-    float s0;
-    float mu;
-} push;
 
 // A grid corner's stand-in for the paper's noise texel: depends on (i, j, m) only.
 uint grid_random(uint i, uint j, uint m) {
@@ -101,12 +108,12 @@ void main() {
             b = uvec2(k + 1u, r + 1u);
             d = uvec2(k, r + 1u);
         }
-        uint i0 = scene_indices.items[3u * e.triangle];
-        uint i1 = scene_indices.items[3u * e.triangle + 1u];
-        uint i2 = scene_indices.items[3u * e.triangle + 2u];
-        vec3 p0 = scene_vertices.items[i0].position;
-        vec3 e1 = scene_vertices.items[i1].position - p0;
-        vec3 e2 = scene_vertices.items[i2].position - p0;
+        uint i0 = scene_index(3u * e.triangle);
+        uint i1 = scene_index(3u * e.triangle + 1u);
+        uint i2 = scene_index(3u * e.triangle + 2u);
+        vec3 p0 = scene_vertex(i0).position;
+        vec3 e1 = scene_vertex(i1).position - p0;
+        vec3 e2 = scene_vertex(i2).position - p0;
         vec2 middle = vec2(a + b + d) / (3.0 * float(m));
         sub.position = p0 + middle.x * e1 + middle.y * e2;
         sub.area = parent.area / float(m * m);

@@ -7,6 +7,7 @@
 #include "vplkit/stages/binding_uses.hpp"
 
 #include "gi_inputs.hpp"
+#include "scene_draws.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -74,6 +75,8 @@ void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidat
     passes.names({buffers.vertices, buffers.indices, buffers.vertex_random, buffers.candidates});
     validate(partition);
     if (triangle_count == 0) throw Error("flc candidates: the scene has no triangle");
+    const SceneBuffers scene{.vertices = buffers.vertices, .indices = buffers.indices, .addressed = buffers.addressed};
+    check_scene_range(scene, device.limits().max_storage_buffer_range, "flc candidates");
     // One random integer per vertex (scene::Vertex is 72 bytes): a scene built by hand, or by a
     // loader that left scene::Scene::vertex_random empty, must not read past it or a stale buffer.
     const uint64_t vertex_count = buffers.vertices.size / sizeof(shaders::SceneVertex);
@@ -84,13 +87,14 @@ void add_flc_candidates_pass(Device& device, StepList& passes, const FlcCandidat
                     " vertices (one random integer per vertex: scene::Scene::vertex_random)");
     }
     namespace shader = shaders::flc_candidates;
-    const auto& pipeline = device.pipeline<shader::Pipeline>();
+    shader::Spec spec{};
+    spec.kSceneAddressed = scene.addressed;
+    const auto& pipeline = device.pipeline<shader::Pipeline>(spec);
     shader::Bindings bindings;
-    bindings.scene_vertices = buffers.vertices.descriptor();
-    bindings.scene_indices = buffers.indices.descriptor();
+    shader::Push push{};
+    bind_scene(device.device(), scene, push, bindings);
     bindings.vertex_random = buffers.vertex_random.descriptor();
     bindings.candidates = buffers.candidates.descriptor();
-    shader::Push push{};
     push.triangle_count = triangle_count;
     push.seed = seed;
     push.level_count = int32_t(partition.level_count);

@@ -3,6 +3,8 @@
 #include "vplkit/stages/binding_uses.hpp"
 #include "vplkit/stages/flc.hpp"
 
+#include "scene_draws.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -66,17 +68,20 @@ void add_flc_subdivide_pass(Device& device, StepList& passes, const FlcSubdivide
     need(buffers.candidates, candidates * sizeof(shaders::FlcCandidate), "candidates");
     need(buffers.triangle_albedo, uint64_t(triangle_count) * 4 * sizeof(float), "triangle albedo");
     need(buffers.candidate_albedo, candidates * 4 * sizeof(float), "candidate albedo");
+    const SceneBuffers scene{.vertices = buffers.vertices, .indices = buffers.indices, .addressed = buffers.addressed};
+    check_scene_range(scene, device.limits().max_storage_buffer_range, "flc subdivide");
     namespace shader = shaders::flc_subdivide;
-    const auto& pipeline = device.pipeline<shader::Pipeline>();
+    shader::Spec spec{};
+    spec.kSceneAddressed = scene.addressed;
+    const auto& pipeline = device.pipeline<shader::Pipeline>(spec);
     shader::Bindings bindings;
-    bindings.scene_vertices = buffers.vertices.descriptor();
-    bindings.scene_indices = buffers.indices.descriptor();
+    shader::Push push{};
+    bind_scene(device.device(), scene, push, bindings);
     bindings.vertex_random = buffers.vertex_random.descriptor();
     bindings.entries = buffers.entries.descriptor();
     bindings.candidates = buffers.candidates.descriptor();
     bindings.triangle_albedo = buffers.triangle_albedo.descriptor();
     bindings.candidate_albedo = buffers.candidate_albedo.descriptor();
-    shader::Push push{};
     push.triangle_count = triangle_count;
     push.entry_count = uint32_t(subdivision.entries.size());
     push.sub_count = subdivision.sub_count;

@@ -64,6 +64,9 @@ struct FlcCandidateBuffers {
     BufferView indices;        // uint32 x 3 per triangle; read
     BufferView vertex_random;  // uint32 per vertex (scene::Scene::vertex_random); read
     BufferView candidates;     // shaders::FlcCandidate[triangle_count]; written here
+    // Read vertices and indices at their device addresses (SceneBuffers::addressed, which
+    // GpuScene::addressed gives): required past maxStorageBufferRange (the pass throws otherwise).
+    bool addressed = false;
 };
 
 // Adds the pass "flc candidates". `seed` picks the frame's decimation (the same seed, the same
@@ -145,6 +148,7 @@ struct FlcSubdivideBuffers {
     BufferView candidates;        // FlcCandidate[triangle_count + sub_count]: the head read, the tail written
     BufferView triangle_albedo;   // vec4[triangle_count]; read
     BufferView candidate_albedo;  // vec4[triangle_count + sub_count]: the albedo per candidate; written
+    bool addressed = false;       // as FlcCandidateBuffers::addressed
 };
 
 // Adds "flc subdivide" (flc_subdivide.comp), after the candidates pass: candidate triangle_count + s
