@@ -18,6 +18,16 @@ void require(const BufferView& view, VkDeviceSize bytes, const std::string& what
     }
 }
 
+// Every buffer is bound whole; past maxStorageBufferRange a binding would be invalid (VUID-00333).
+// The scene's vertices (72 bytes each) pass it first, at 1.86M vertices on lavapipe.
+void require_bindable(const BufferView& view, uint64_t max_storage_buffer_range, const std::string& what) {
+    if (view.size > max_storage_buffer_range) {
+        throw Error("pose vertices: '" + (view.name.empty() ? what : view.name) + "' (" + std::to_string(view.size) +
+                    " bytes) is larger than a storage binding may be on this device (maxStorageBufferRange " +
+                    std::to_string(max_storage_buffer_range) + "): pose this scene on the host");
+    }
+}
+
 }  // namespace
 
 void add_pose_vertices_pass(Device& device, StepList& passes, const PoseVerticesBuffers& buffers,
@@ -29,6 +39,13 @@ void add_pose_vertices_pass(Device& device, StepList& passes, const PoseVertices
     require(buffers.morph_deltas, sizeof(shaders::MorphDelta), "morph deltas");
     require(buffers.morph_weights, sizeof(float), "morph weights");
     require(buffers.posed_vertices, sizeof(shaders::SceneVertex), "posed vertices");
+    const uint64_t range = device.limits().max_storage_buffer_range;
+    require_bindable(buffers.rest_vertices, range, "rest vertices");
+    require_bindable(buffers.instances, range, "instances");
+    require_bindable(buffers.matrices, range, "matrices");
+    require_bindable(buffers.morph_deltas, range, "morph deltas");
+    require_bindable(buffers.morph_weights, range, "morph weights");
+    require_bindable(buffers.posed_vertices, range, "posed vertices");
     passes.names({buffers.rest_vertices, buffers.instances, buffers.matrices, buffers.morph_deltas,
                   buffers.morph_weights, buffers.posed_vertices});
 

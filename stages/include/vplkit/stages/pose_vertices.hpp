@@ -35,7 +35,8 @@ struct PoseVerticesBuffers {
 };
 
 // Adds the pass "pose vertices" over `vertex_count` rest vertices. Throws vplkit::Error naming the
-// buffer when one is missing or too small for `vertex_count` rest vertices.
+// buffer when one is missing or too small for `vertex_count` rest vertices, or larger than
+// maxStorageBufferRange (bound whole: such a scene is posed on the host).
 void add_pose_vertices_pass(Device& device, StepList& passes, const PoseVerticesBuffers& buffers,
                             uint32_t vertex_count);
 
