@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 #include <glm/trigonometric.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -41,7 +42,15 @@ bool on_tall_block(const glm::vec3& p) {
 struct SetFlux {
     size_t count = 0, block_count = 0;
     double flux = 0.0, block_flux = 0.0;
+    size_t face_count[5] = {0, 0, 0, 0, 0};
+    double face_flux[5] = {0, 0, 0, 0, 0};  // the block's top, then its sides by the normal's azimuth
 };
+
+int block_face(const glm::vec3& n) {
+    if (n.y > 0.9f) return 0;
+    const float a = std::atan2(n.z, n.x) + 3.14159265f;  // 0 .. 2 pi
+    return 1 + std::min(3, int(a / (0.5f * 3.14159265f)));
+}
 
 SetFlux set_flux(const std::vector<vplkit::VplPoint>& vpls) {
     SetFlux s;
@@ -52,6 +61,9 @@ SetFlux set_flux(const std::vector<vplkit::VplPoint>& vpls) {
         if (on_tall_block(v.position)) {
             ++s.block_count;
             s.block_flux += f;
+            const int face = block_face(v.normal);
+            ++s.face_count[face];
+            s.face_flux[face] += f;
         }
     }
     return s;
@@ -151,6 +163,21 @@ int main(int argc, char** argv) {
                     (sum[0] + sum[1]) / (ref[0] + ref[1]), ref[1] > 0 ? sum[1] / ref[1] : 0.0, sum[0] / ref[0],
                     error / (double(size) * size), s.count, s.block_count, s.flux, s.block_flux, r.flux, r.block_flux,
                     set.smc ? set.smc->invalid : 0u, set.smc ? set.smc->moved : 0u);
+        if (!std::filesystem::exists(flux_file.string() + ".faces")) {
+            const SetFlux faces = set_flux(reference_renderer.render(camera, reference_vpls).vpls);
+            std::FILE* out = std::fopen((flux_file.string() + ".faces").c_str(), "w");
+            for (int face = 0; face < 5; ++face) std::fprintf(out, "%.9g ", faces.face_flux[face]);
+            std::fclose(out);
+        }
+        std::FILE* in = std::fopen((flux_file.string() + ".faces").c_str(), "r");
+        std::printf("      faces (top, sides by azimuth): smc count/flux, reference flux:");
+        for (int face = 0; face < 5; ++face) {
+            double reference_flux = 0.0;
+            if (std::fscanf(in, "%lf", &reference_flux) != 1) reference_flux = 0.0;
+            std::printf("  %zu/%.3f %.3f", s.face_count[face], s.face_flux[face], reference_flux);
+        }
+        std::fclose(in);
+        std::printf("\n");
         std::fflush(stdout);
     }
     return 0;

@@ -54,9 +54,10 @@ struct SmcOptions {
     uint32_t visibility_tries = 16;  // V: invalid VPLs each camera point tries per round (the paper's 16)
     uint32_t visibility_rounds = 2;  // rounds of those tries per update (the paper's 2)
     float strong_quantile = 0.95f;   // eq. 9: candidates stronger than this share of Y are "strong"
-    // Points that measure how much of each VPL's kNN disc is surface (its area where a surface
-    // ends: smc_density.comp), 0..kSmcMaxSurfaceSamples; 0: eq. 7's whole disc.
-    uint32_t surface_samples = 16;
+    // Points that measure each VPL's area: the part of its kNN disc that is open surface nearer
+    // to it than to any other VPL on its plane (its Voronoi cell, smc_density.comp),
+    // 0..kSmcMaxSurfaceSamples; 0: eq. 7's whole disc over k + 1/2.
+    uint32_t surface_samples = 32;
     uint32_t seed = 0;
 };
 
@@ -64,7 +65,7 @@ struct SmcOptions {
 // 65535 iterations; k by eq. 8 stays within the shader's 32 neighbours below it too.
 inline constexpr uint32_t kSmcMaxBudget = 32768;
 inline constexpr uint32_t kSmcMaxNeighbours = 32;
-inline constexpr uint32_t kSmcMaxSurfaceSamples = 256;
+inline constexpr uint32_t kSmcMaxSurfaceSamples = 32;  // smc_density.comp's kSmcCellSamples
 
 // Throws vplkit::Error naming the bad option.
 void validate(const SmcOptions& options);
