@@ -13,9 +13,9 @@
 namespace vplkit::detail {
 namespace {
 
-constexpr const char* kFormat =
-    "vplkit-budget-cache 5";  // 2: slopes >= 0; 3: noise exponents; 4: no first-dispatch compiles in the
-                              // times; 5: the VPL budget's error, svgf's effect per method
+constexpr const char* kFormat = "vplkit-budget-cache 6";  // 2: slopes >= 0; 3: noise exponents; 4: no first-dispatch
+                                                          // compiles in the times; 5: the VPL budget's error, svgf's
+                                                          // effect per method; 6: svgf against rtslc at 64 spp
 
 }  // namespace
 

@@ -9,6 +9,7 @@
 #include "vplkit/budget_calibration.hpp"
 
 #include "budget_cache.hpp"
+#include "vplkit/budget_error.hpp"
 #include "vplkit/budget_noise.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
@@ -320,18 +321,24 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
         result.model.error.vpl_small_mse = 2.0 * vpl_set_variance(r1, r2, s1, s2, w, h, block);
     }
     for (const auto& [pair, filtered_first] : svgf_runs) {
-        // svgf's error at spp0 and spp1 against the method's raw pair at spp1, c and d, on the
-        // tonemapped frames (its blur falls on edges and dark corners, where the tone curve weighs
-        // an error otherwise than where the noise is): its half-differences from both less theirs
-        // from each other, so no square of the pair's own noise is left in it (its rare bright
-        // samples do not swing it); with the raw noise at spp0 and spp1, svgf_effect().
+        // svgf's error at spp0 and spp1 on the tonemapped frames (its blur falls on edges and dark
+        // corners, where the tone curve weighs an error otherwise than where the noise is), against
+        // the 64 spp rtslc pair where there is one (unbiased over the same VPLs; at 16 spp the tone
+        // curve's clipping of rare bright samples shifted the raw frames' mean in Breakfast), else
+        // the method's raw pair at spp1: its half-differences from both less theirs from each
+        // other, so no square of the pair's own noise is left in it; less the method's bias floor
+        // (the model adds it beside) against rtslc; with the raw noise at spp0 and spp1, svgf_effect().
         const auto [first, second] = noise_pairs[pair];
-        const std::vector<float> c = unit_rgb(images[second + 1]);
-        const std::vector<float> d = unit_rgb(images[second + 2]);
+        const bool rtslc_reference = v_small != v0 && m_vpl == GiMethod::rtslc;
+        const std::vector<float> c = unit_rgb(images[rtslc_reference ? reference_first : second + 1]);
+        const std::vector<float> d = unit_rgb(images[rtslc_reference ? reference_first + 1 : second + 2]);
         const double reference_noise = half_difference_variance(c, d);
+        const GiMethod method = frames[first].config.method;
+        const double bias = rtslc_reference ? method_bias_floor(method) : 0.0;
         auto filtered_error = [&](size_t run) {
             const std::vector<float> filtered = unit_rgb(images[filtered_first + run * kSvgfFrames + kSvgfFrames - 1]);
-            return half_difference_variance(filtered, c) + half_difference_variance(filtered, d) - reference_noise;
+            return half_difference_variance(filtered, c) + half_difference_variance(filtered, d) - reference_noise -
+                   bias * bias;
         };
         const NoiseMeasurement& raw = result.model.error.sampling[pair];
         const double raw0 = raw.variance;
