@@ -305,4 +305,27 @@ void GpuScene::update_vertices(const scene::Scene& scene) {
     vertices_.upload(scene.vertices);
 }
 
+BufferView GpuScene::begin_device_pose(StepList& passes) {
+    if (!motion_) {
+        const bool first = !previous_vertices_;
+        if (first) {
+            previous_vertices_ =
+                Buffer::create(*context_, vertices_.size(), kVertexUsage, MemoryUse::device, "scene previous vertices");
+        }
+        std::swap(vertices_, previous_vertices_);
+        motion_ = true;
+        if (first) {
+            // The new buffer is empty; the older pose an earlier swap leaves in it differs from
+            // the previous one only in vertices every pose writes.
+            const BufferView from = previous_vertices_, to = vertices_;
+            passes.add("scene vertices copy", {Use::transfer_src(from), Use::transfer_dst(to)},
+                       [from, to](VkCommandBuffer cmd) {
+                           const VkBufferCopy region{0, 0, from.size};
+                           vkCmdCopyBuffer(cmd, from.buffer, to.buffer, 1, &region);
+                       });
+        }
+    }
+    return vertices_;
+}
+
 }  // namespace vplkit

@@ -2,7 +2,10 @@
 // scatters its leaves (the cost past kBvhRebuildCostRatio times its build's), and the frame traced
 // through either equal to a renderer's made on the moved scene.
 
+#include "vplkit/bvh_gpu_build.hpp"
 #include "vplkit/context.hpp"
+#include "vplkit/gpu_scene.hpp"
+#include "vplkit/pass_list.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit_test/context.hpp"
@@ -11,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <utility>
 #include <vector>
 
@@ -123,6 +127,52 @@ TEST_CASE("pose bvh: refitted while a motion keeps its cost, rebuilt when the mo
     for (float v : expected.direct) peak = std::max(peak, double(v));
     CHECK(max_difference(still.direct, expected.direct) > 0.01 * peak);  // the translation shows
     CHECK(max_difference(posed.direct, expected.direct) <= 1e-5 * peak);
+}
+
+TEST_CASE("pose bvh: a refit from the scene's vertex buffer equals the refit from host vertices") {
+    // The GPU pose's path: the moved vertices already in GpuScene's buffer, gathered on the GPU.
+    vplkit::Context& ctx = vplkit::test::context();
+    scene::Scene s = grid_scene(8);
+    vplkit::GpuScene gpu = vplkit::GpuScene::create(ctx, s);
+    vplkit::GpuBvhBuild from_host(ctx, scene::triangle_positions(s)), from_device(ctx, scene::triangle_positions(s));
+
+    // A device pose's bookkeeping: the first one fills the second buffer with the current pose.
+    vplkit::PassList start("device pose");
+    const vplkit::BufferView posed = gpu.begin_device_pose(start);
+    start.run(ctx);
+    CHECK(gpu.has_motion());
+    CHECK(posed.buffer == vplkit::BufferView(gpu.vertices()).buffer);
+    const auto copied = gpu.vertices().download<scene::Vertex>(s.vertices.size());
+    CHECK(std::equal(copied.begin(), copied.end(), s.vertices.begin(),
+                     [](const scene::Vertex& a, const scene::Vertex& b) { return a.position == b.position; }));
+
+    translate(s, {0.1f, -0.05f, 0.02f});
+    scatter(s, 16);
+    gpu.update_vertices(s);  // a second pose before a frame: into the same buffer, as a pose pass writes it
+    from_host.refit(scene::triangle_positions(s));
+    vplkit::PassList refit("device refit");
+    from_device.add_refit_passes(refit, gpu.vertices(), gpu.indices());
+    refit.run(ctx);
+    from_device.finish_refit(refit.total_gpu_ms());
+
+    const vplkit::GpuBvh& a = from_host.bvh();
+    const vplkit::GpuBvh& b = from_device.bvh();
+    REQUIRE(a.node_count == b.node_count);
+    CHECK(a.scene_scale == b.scene_scale);
+    const auto nodes_a = a.nodes.download<vplkit::shaders::BvhNode>(a.node_count);
+    const auto nodes_b = b.nodes.download<vplkit::shaders::BvhNode>(b.node_count);
+    CHECK(std::memcmp(nodes_a.data(), nodes_b.data(), nodes_a.size() * sizeof(nodes_a[0])) == 0);
+    const auto tris_a = a.triangles.download<vplkit::shaders::BvhTriangle>(a.triangle_count);
+    const auto tris_b = b.triangles.download<vplkit::shaders::BvhTriangle>(b.triangle_count);
+    const auto same_triangle = [](const vplkit::shaders::BvhTriangle& x, const vplkit::shaders::BvhTriangle& y) {
+        const auto same = [](const vplkit::shaders::vec3& p, const vplkit::shaders::vec3& q) {
+            return p.x == q.x && p.y == q.y && p.z == q.z;
+        };
+        return same(x.v0, y.v0) && same(x.v1, y.v1) && same(x.v2, y.v2) && x.id == y.id && x.alpha == y.alpha;
+    };
+    CHECK(std::equal(tris_a.begin(), tris_a.end(), tris_b.begin(), same_triangle));  // padding aside
+    // The move shows in the root box.
+    CHECK(nodes_b.at(0).lo.x > -1.0f + 0.05f);
 }
 
 TEST_CASE("pose bvh: the SAH cost of a BVH's nodes") {

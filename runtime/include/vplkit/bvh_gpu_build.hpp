@@ -77,6 +77,21 @@ public:
     // different count or a vertex build_bvh would refuse. A triangle left out at the build stays out.
     void refit(std::span<const glm::vec3> vertices);
 
+    // The refit from positions already on the device (a GPU pose's, tests/render's
+    // test_gpu_pose_frames): `scene_vertices` (scene::Vertex[]) and `scene_indices` (uint32 x 3
+    // per triangle, triangle t the build's input triangle t, as scene::triangle_positions lays
+    // them out) as GpuScene holds them. Adds "bvh refit gather" (each built triangle's corners
+    // into the input records) and the refit passes, ordered after whatever `passes` writes the
+    // vertices with; run them, then call finish_refit. No vertex reaches the host, so the host's
+    // checks (finite, below kBvhMaxCoordinate) are not made. Throws Error for a buffer too small
+    // for the build's triangles, or a build whose input is read at its address (addressed).
+    void add_refit_passes(StepList& passes, const BufferView& scene_vertices, const BufferView& scene_indices);
+    // Whether that refit can run (not for a build whose input is read at its address).
+    bool refits_from_device() const { return !addressed_; }
+    // After those passes ran: reads the refit's node count and scale back (as refit does), and
+    // records `gpu_ms` as the refit's GPU time.
+    void finish_refit(double gpu_ms);
+
     // The build or refit passes over this object's buffers (the input as last uploaded), for a
     // caller that records them into its own list (a benchmark, a frame that rebuilds); node
     // count, scene scale and stats are not read back. Nothing for a scene without triangles.
@@ -88,6 +103,7 @@ private:
     stages::BvhGpuBuildBuffers buffers() const;
     void upload_input(std::span<const glm::vec3> vertices);
     void run(bool build);
+    void read_info(bool build);
 
     Context* context_ = nullptr;
     stages::BvhGpuBuildOptions options_;
@@ -97,6 +113,7 @@ private:
     std::vector<uint32_t> kept_;                 // input triangle of each built one
     std::vector<shaders::BvhTriangle> records_;  // the input records (ids kept across refits)
     Buffer input_, info_, build_nodes_, build_links_, keys_, order_;
+    Buffer kept_triangles_;                        // kept_ on the device, for the gather (made at its first use)
     bool addressed_ = false;                       // BvhGpuBuildBuffers::addressed
     std::unique_ptr<stages::RadixSorter> sorter_;  // at a fixed address while recording
 };

@@ -11,6 +11,7 @@
 #include "vplkit/buffer.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/scene_buffers.hpp"
+#include "vplkit/steps.hpp"
 
 #include <vulkan/vulkan.h>
 
@@ -103,6 +104,15 @@ public:
     // buffer, made at the first pose, the two swapped after that: no copy) until settle_motion.
     // Throws Error for a scene of another vertex count.
     void update_vertices(const scene::Scene& scene);
+    // A pose written on the device instead (GpuPose::add_pose_pass into the returned buffer,
+    // recorded after this call's steps): the previous pose is kept as update_vertices keeps it
+    // (the two buffers swapped; at the first pose a "scene vertices copy" step fills the second
+    // buffer, so what does not move stays as it was). bounds() stays as it was until set_bounds.
+    // Nothing is uploaded. The buffer stays valid until the next update.
+    BufferView begin_device_pose(StepList& passes);
+    // The bounds of a pose the host did not see (e.g. a refitted BVH's root box: conservative).
+    void set_bounds(const scene::Bounds& bounds) { bounds_ = bounds; }
+
     // A frame was drawn with the current pose: it is the previous pose from now on (no motion
     // until the next update_vertices).
     void settle_motion() { motion_ = false; }

@@ -6,6 +6,8 @@
 
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
+#include "vplkit/shaders/bvh_refit_gather.hpp"
+#include "vplkit/stages/binding_uses.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -180,6 +182,10 @@ void GpuBvhBuild::run(bool build) {
     passes.run(*context_);
     timings_ = passes.timings();
     stats_.gpu_ms = passes.total_gpu_ms();
+    read_info(build);
+}
+
+void GpuBvhBuild::read_info(bool build) {
     const shaders::BvhBuildInfo info = info_.download<shaders::BvhBuildInfo>(1).at(0);
     bvh_.node_count = info.node_count;
     bvh_.scene_scale = info.scene_scale;
@@ -217,6 +223,49 @@ void GpuBvhBuild::refit(std::span<const glm::vec3> vertices) {
     }
     upload_input(vertices);
     run(false);
+}
+
+void GpuBvhBuild::add_refit_passes(StepList& passes, const BufferView& scene_vertices,
+                                   const BufferView& scene_indices) {
+    if (kept_.empty()) return;
+    if (addressed_) {
+        throw Error(
+            "GPU BVH refit: this build reads its input at device addresses (past maxStorageBufferRange); "
+            "the refit from the scene's buffers binds it: refit from host vertices");
+    }
+    const VkDeviceSize index_bytes = VkDeviceSize(stats_.input_triangles) * 3 * sizeof(uint32_t);
+    if (scene_indices.size < index_bytes) {
+        throw Error("GPU BVH refit: '" + scene_indices.name + "' holds " + std::to_string(scene_indices.size) +
+                    " bytes, the build's " + std::to_string(stats_.input_triangles) + " triangles need " +
+                    std::to_string(index_bytes));
+    }
+    if (scene_vertices.size < sizeof(shaders::SceneVertex)) {
+        throw Error("GPU BVH refit: no vertices in '" + scene_vertices.name + "'");
+    }
+    check_range(*context_, scene_vertices.size, "scene vertices");
+    check_range(*context_, scene_indices.size, "scene indices");
+    if (!kept_triangles_) {
+        kept_triangles_ = storage(*context_, kept_.size() * sizeof(uint32_t), "bvh kept triangles");
+        kept_triangles_.upload(kept_);
+    }
+    passes.names({scene_vertices, scene_indices});
+    namespace shader = shaders::bvh_refit_gather;
+    shader::Bindings bindings;
+    bindings.scene_vertices = scene_vertices.descriptor();
+    bindings.scene_indices = scene_indices.descriptor();
+    bindings.kept_triangles = BufferView(kept_triangles_).descriptor();
+    bindings.input_triangles = BufferView(input_).descriptor();
+    shader::Push push{};
+    push.triangle_count = uint32_t(kept_.size());
+    stages::add_dispatch<shader::Module>(passes, "bvh refit gather", context_->pipeline<shader::Pipeline>(), bindings,
+                                         push, push.triangle_count);
+    add_refit_passes(passes);
+}
+
+void GpuBvhBuild::finish_refit(double gpu_ms) {
+    if (kept_.empty()) return;
+    stats_.gpu_ms = gpu_ms;
+    read_info(false);
 }
 
 }  // namespace vplkit
