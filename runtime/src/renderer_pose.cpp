@@ -1,6 +1,8 @@
 // Renderer::update_pose: a new pose of the scene's vertices and lights uploaded, the BVH refitted
 // (or rebuilt) on the GPU, and the version the planner compares its caches' against moved on.
-// Renderer::pose: the scene posed first, its moving vertices on the host or on the GPU.
+// Renderer::pose: the scene posed first, its moving vertices on the host or on the GPU. On the
+// GPU they stay there: the pose pass writes GpuScene's vertex buffer and the BVH is refitted from
+// it in the same submission; the host scene takes them only where a host reader needs them.
 
 #include "vplkit/renderer.hpp"
 
@@ -32,6 +34,39 @@ std::string format_ms(double ms) {
     char text[32];
     std::snprintf(text, sizeof text, "%.2f ms", ms);
     return text;
+}
+
+// What the host computes from a pose's vertices, which a GPU pose then reads back into the host
+// scene ("" when nothing does: the pose stays on the GPU): the emitters and light trees built
+// from emissive triangles, the VPL sources' disc over the scene's bounding sphere and the shadow
+// maps fitted to its bounds for directional lights, forward light cuts' triangle areas and order
+// (once that method has run: `flc_used`).
+std::string host_readers_of_vertices(const scene::Scene& scene, bool flc_used) {
+    std::string readers;
+    const auto add = [&](const char* what) { readers += (readers.empty() ? "" : ", ") + std::string(what); };
+    if (!scene.emissive_triangles.empty()) add("the emissive triangles");
+    if (!directional_lights(scene).empty()) add("the directional lights' bounds");
+    if (flc_used) add("forward light cuts' triangle areas");
+    return readers;
+}
+
+// The box of the indexed vertices, as GpuScene::update_vertices computes it.
+scene::Bounds indexed_bounds(const scene::Scene& scene) {
+    scene::Bounds bounds;
+    bounds.min = bounds.max = scene.vertices.at(scene.indices.at(0)).position;
+    for (uint32_t index : scene.indices) {
+        bounds.min = glm::min(bounds.min, scene.vertices[index].position);
+        bounds.max = glm::max(bounds.max, scene.vertices[index].position);
+    }
+    return bounds;
+}
+
+// A BVH's root box: the posed triangles' bounds, padded (conservative).
+scene::Bounds root_bounds(const shaders::BvhNode& root) {
+    scene::Bounds bounds;
+    bounds.min = glm::vec3(root.lo.x, root.lo.y, root.lo.z);
+    bounds.max = glm::vec3(root.hi.x, root.hi.y, root.hi.z);
+    return bounds;
 }
 
 }  // namespace
@@ -69,6 +104,7 @@ PoseUpdate Renderer::update_pose(const scene::PoseChange& change) {
     PoseUpdate update;
     std::string summary;
     if (change.vertices) {
+        host_pose_stale_ = false;  // the caller moved the host scene: it is the pose from now on
         const auto upload_start = std::chrono::steady_clock::now();
         scene_.update_vertices(scene);  // throws for another vertex or triangle count
         if (!scene.emissive_triangles.empty()) emitters_ = upload_emitters(context_, scene);
@@ -144,6 +180,7 @@ PoseUpdate Renderer::pose(scene::PosableScene& posable, double time, PosePath pa
     }
     const auto start = std::chrono::steady_clock::now();
     if (!on_gpu) {
+        host_pose_stale_ = false;  // every vertex is posed again on the host
         const scene::PoseChange change = posable.pose(time);
         const double pose_ms = ms_since(start);
         PoseUpdate update = update_pose(change);
@@ -152,35 +189,126 @@ PoseUpdate Renderer::pose(scene::PosableScene& posable, double time, PosePath pa
     }
     scene::VertexPoseFrame frame;
     const scene::PoseChange change = posable.pose_nodes(time, frame);  // Error naming a refusal
-    double gpu_ms = 0.0;
-    if (change.vertices) {
-        const std::vector<scene::Vertex>& vertices = scene_source_.vertices;
-        if (!gpu_pose_) {
-            gpu_pose_.emplace(context_, posable.vertex_pose_rest());
-            gpu_posed_vertices_ =
-                Buffer::create(context_, vertices.size() * sizeof(scene::Vertex), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               MemoryUse::device, "gpu-posed vertices");
-            gpu_posed_vertices_.upload(vertices);  // what does not move stays as loaded
+    if (!change.vertices) {
+        PoseUpdate update = update_pose(change);
+        update.pose_ms = ms_since(start);
+        update.posed_on_gpu = true;
+        return update;
+    }
+    if (!gpu_pose_) gpu_pose_.emplace(context_, posable.vertex_pose_rest());
+    gpu_pose_->set_frame(frame);
+    // One submission: the pose written into the scene's vertex buffer, the BVH refitted from it.
+    PassList passes("gpu pose");
+    const BufferView vertices = scene_.begin_device_pose(passes);
+    gpu_pose_->add_pose_pass(passes, vertices);
+    const bool refit = moving_bvh_.has_value();
+    const bool device_refit = refit && moving_bvh_->refits_from_device();
+    if (device_refit) moving_bvh_->add_refit_passes(passes, vertices, scene_.indices());
+    passes.run(context_);
+    PoseUpdate update;
+    for (const PassTiming& timing : passes.timings()) {
+        const bool pose = timing.name == "pose vertices" || timing.name == "scene vertices copy";
+        (pose ? update.pose_gpu_ms : update.bvh_gpu_ms) += timing.gpu_ms;
+    }
+    update.pose_ms = ms_since(start);
+
+    // Read back only for what the host computes from vertices (host_readers_of_vertices), and
+    // for a BVH build (its checks and the triangles it leaves out are the host's).
+    std::vector<scene::Vertex> posed;
+    const auto read_back = [&] {
+        if (posed.empty()) posed = scene_.vertices().download<scene::Vertex>(scene_.vertex_count());
+    };
+    const auto posed_positions = [&] {
+        read_back();
+        std::vector<glm::vec3> positions;
+        positions.reserve(scene_source_.indices.size());
+        for (uint32_t index : scene_source_.indices) positions.push_back(posed.at(index).position);
+        return positions;
+    };
+    const std::string for_host = host_readers_of_vertices(scene_source_, flc_vertex_random_.has_value());
+    const auto upload_start = std::chrono::steady_clock::now();
+    host_pose_stale_ = for_host.empty();
+    if (!for_host.empty()) {
+        read_back();
+        posable.take_posed_vertices(posed);  // the scene's bounds follow
+        if (!scene_source_.emissive_triangles.empty()) emitters_ = upload_emitters(context_, scene_source_);
+    }
+    update.upload_ms = ms_since(upload_start);
+
+    const auto bvh_start = std::chrono::steady_clock::now();
+    std::string summary;
+    shaders::BvhNode root{};
+    if (!refit) {
+        build_moving_bvh(posed_positions());
+        update.bvh = BvhUpdate::rebuild;
+        update.bvh_gpu_ms = moving_bvh_->stats().gpu_ms;
+        summary = "BVH built on the GPU from the posed vertices read back (the first move)";
+    } else {
+        if (device_refit) {
+            moving_bvh_->finish_refit(update.bvh_gpu_ms);
+        } else {
+            moving_bvh_->refit(posed_positions());  // a BVH read at its addresses: from the host
+            update.bvh_gpu_ms = moving_bvh_->stats().gpu_ms;
         }
-        gpu_pose_->set_frame(frame);
-        PassList passes("gpu pose");
-        gpu_pose_->add_pose_pass(passes, gpu_posed_vertices_);
-        passes.run(context_);
-        gpu_ms = passes.total_gpu_ms();
-        // The host scene takes the pose, so the upload, the BVH and every host reader follow it.
-        posable.take_posed_vertices(gpu_posed_vertices_.download<scene::Vertex>(vertices.size()));
+        const GpuBvh& refitted = moving_bvh_->bvh();
+        const std::vector<shaders::BvhNode> nodes = refitted.nodes.download<shaders::BvhNode>(refitted.node_count);
+        root = nodes.at(0);
+        const double cost = bvh_sah_cost(nodes);
+        update.bvh_cost_ratio = moving_bvh_built_cost_ > 0.0 ? cost / moving_bvh_built_cost_ : 1.0;
+        update.bvh = BvhUpdate::refit;
+        char ratio[64];
+        std::snprintf(ratio, sizeof ratio, "%.3g", update.bvh_cost_ratio);
+        summary = std::string("BVH refitted on the GPU") + (device_refit ? " from the posed vertices" : "") +
+                  " (SAH cost " + ratio + "x its build's)";
+        if (update.bvh_cost_ratio > kBvhRebuildCostRatio) {
+            update.refit_cost_ratio = update.bvh_cost_ratio;
+            build_moving_bvh(posed_positions());
+            update.bvh = BvhUpdate::rebuild;
+            update.bvh_cost_ratio = 1.0;
+            update.bvh_gpu_ms += moving_bvh_->stats().gpu_ms;
+            std::snprintf(ratio, sizeof ratio, "%.3g", update.refit_cost_ratio);
+            summary = std::string(
+                          "BVH rebuilt on the GPU from the posed vertices read back (refitted, its SAH cost "
+                          "was ") +
+                      ratio + "x its build's)";
+        }
     }
-    const double pose_ms = ms_since(start);
-    PoseUpdate update = update_pose(change);
-    update.pose_ms = pose_ms;
+    if (update.bvh == BvhUpdate::rebuild) root = moving_bvh_->bvh().nodes.download<shaders::BvhNode>(1).at(0);
+    // The raster stages' scene bounds (shadow maps, forward light cuts' partition).
+    scene_.set_bounds(for_host.empty() ? root_bounds(root) : indexed_bounds(scene_source_));
+    update.bvh_ms = ms_since(bvh_start);
+    // What update_pose does after its upload: forward light cuts' areas and order go, the
+    // version moves on, the lights (if they moved) are uploaded and the caches reset.
+    flc_triangle_areas_.clear();
+    flc_triangle_order_.clear();
+    ++version_.geometry;
+    vpl_sources_.reset();
+    accumulator_ = FrameAccumulator{};
+    if (smc_) smc_->scene_moved(true, false);
+    scene::PoseChange rest = change;
+    rest.vertices = false;
+    const PoseUpdate lights = update_pose(rest);
+    update.lights = lights.lights;
+    update.upload_ms += lights.upload_ms;
+    update.geometry = true;
     update.posed_on_gpu = true;
-    update.pose_gpu_ms = gpu_ms;
-    if (change.vertices) {
-        update.summary += " (posed on the GPU: " + std::to_string(gpu_pose_->vertex_count()) + " vertices, " +
-                          format_ms(pose_ms) + ")";
-        pose_note_ = update.summary;
-    }
+    update.summary =
+        "pose: geometry moved, posed on the GPU: " + std::to_string(gpu_pose_->vertex_count()) + " vertices (" +
+        format_ms(update.pose_ms) + ")" +
+        (for_host.empty() ? ", the host scene left as it was" : ", read back into the host scene for " + for_host) +
+        ", " + summary + " (" + format_ms(update.bvh_ms) + ")";
+    if (!lights.summary.empty()) update.summary += "; " + lights.summary.substr(6);  // without its "pose: "
+    pose_note_ = update.summary;
     return update;
+}
+
+void Renderer::read_pose_back(scene::PosableScene& posable) {
+    if (&posable.scene() != &scene_source_) {
+        throw Error("Renderer::read_pose_back: the posable scene is not the one this renderer was made with");
+    }
+    if (!host_pose_stale_) return;
+    posable.take_posed_vertices(scene_.vertices().download<scene::Vertex>(scene_.vertex_count()));
+    host_pose_stale_ = false;
 }
 
 }  // namespace vplkit

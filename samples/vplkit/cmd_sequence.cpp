@@ -242,7 +242,10 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
                                        : o.pose == "host" ? PosePath::host
                                                           : PosePath::automatic;
             const PoseUpdate update = renderer.pose(*loaded.posable, frame_time(f), pose_path);
-            if (reference_renderer) reference_renderer->update_pose({update.geometry, update.lights, false});
+            if (reference_renderer) {
+                renderer.read_pose_back(*loaded.posable);  // a GPU pose's vertices, for the reference's upload
+                reference_renderer->update_pose({update.geometry, update.lights, false});
+            }
             std::printf("frame %u: t = %.3f s: %s\n", f + 1, frame_time(f), update.summary.c_str());
         }
         if (fresh_vpls) settings.seed = base_seed + f;

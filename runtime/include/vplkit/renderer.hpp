@@ -163,11 +163,18 @@ public:
     PoseUpdate update_pose(const scene::PoseChange& change);
     // Poses `posable` (the scene this renderer was made with) at `time` and brings this renderer to
     // it (update_pose). On the GPU path, the moving vertices are posed by one "pose vertices" pass
-    // from the frame's joint matrices and morph weights and read back into posable.scene(), so
-    // every reader of the host scene (the BVH, the VPL sources, a second renderer) sees them; the
-    // host path is PosableScene::pose. Throws Error for another scene than this renderer's, and
-    // what pose, pose_nodes and update_pose throw.
+    // from the frame's joint matrices and morph weights into this renderer's vertex buffer, and the
+    // BVH is refitted from it in the same submission: posable.scene() keeps its vertices, except
+    // where this renderer computes on the host from them (emissive triangles, directional lights'
+    // bounds, forward light cuts once used: then they are read back into it; the summary says
+    // which). A BVH build (the first move, a rebuild) reads the posed positions back for itself.
+    // The host path is PosableScene::pose. Throws Error for another scene than this renderer's,
+    // and what pose, pose_nodes and update_pose throw.
     PoseUpdate pose(scene::PosableScene& posable, double time, PosePath path = PosePath::automatic);
+    // The vertices the last GPU pose left on the device read back into posable.scene() (the
+    // renderer's own scene), for a reader outside this renderer (a second renderer's update_pose,
+    // a reference). Nothing when the host scene already has them.
+    void read_pose_back(scene::PosableScene& posable);
     // The pose this renderer's data is at (counts of update_pose's geometry and light moves).
     SceneVersion scene_version() const { return version_; }
 
@@ -261,10 +268,10 @@ private:
     SceneVersion denoise_scene_;                     // the pose of the denoiser's history
     std::optional<SceneVersion> direct_tree_scene_;  // the pose the direct light tree was built at
     std::string pose_note_;                          // the last update_pose's summary, for the next plan
-    // Renderer::pose's GPU path: the rest pose uploaded on first use, and the scene's vertices it
-    // writes (all of them, so one readback gives the host scene its pose).
+    // Renderer::pose's GPU path: the rest pose uploaded on first use; whether the host scene lacks
+    // the pose it wrote into scene_'s vertex buffer.
     std::optional<GpuPose> gpu_pose_;
-    Buffer gpu_posed_vertices_;
+    bool host_pose_stale_ = false;
     GpuLights lights_;
     GpuEmitters emitters_;
     GpuLights directional_lights_;            // the direct-light pass's lights when the tree samples the rest
