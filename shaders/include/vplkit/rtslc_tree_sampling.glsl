@@ -22,6 +22,7 @@
 #include "vplkit/light_tree.glsl"
 #include "vplkit/rtslc.glsl"
 #include "vplkit/gi_lobe.glsl"
+#include "vplkit/rtslc_lobe_mis.glsl"
 
 layout(std430, set = 0, binding = VPLKIT_LIGHT_TREE_BINDING) readonly buffer LightTreeBuffer {
     LightTreeNode items[];
@@ -275,21 +276,12 @@ RtslcTraversal rtslc_traverse_lobe_mis(RtslcShading s, uint node, uint leaf_coun
         }
         uint left = light_tree_left_child(t.node);
         LightTreeNode node_left = light_tree.items[left], node_right = light_tree.items[left + 1u];
-        RtslcChildProbability diffuse =
-            rtslc_child_probability(s, node_left, node_right, min_distance2, kBrdfLobeDiffuse);
-        RtslcChildProbability reflection =
-            rtslc_child_probability(s, node_left, node_right, min_distance2, kBrdfLobeGlossy);
-        RtslcChildProbability at_mean =
-            rtslc_child_probability(s, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
-        RtslcChildProbability steer = !glossy ? diffuse : glossy_path.by_reflection ? reflection : at_mean;
-        if (steer.dead) {
+        bool go_left;
+        if (!rtslc_lobe_mis_step(s, node_left, node_right, min_distance2, glossy, glossy_path, diffuse_path, rng,
+                                 go_left)) {
             t.status = kRtslcDeadBranch;
             break;
         }
-        bool go_left = rtslc_choose_left(steer.left, rng_next_float(rng));
-        diffuse_path *= diffuse.dead ? 0.0 : rtslc_choice_probability(diffuse.left, go_left);
-        gi_glossy_path_step(glossy_path, reflection.dead ? -1.0 : reflection.left, at_mean.dead ? -1.0 : at_mean.left,
-                            go_left);
         t.node = go_left ? left : left + 1u;
         ++t.levels;
     }

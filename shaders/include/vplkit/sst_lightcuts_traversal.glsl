@@ -9,7 +9,9 @@
 // no substitute is used and no early stop: the sample is the leaf's VPL over its path
 // probability, unbiased for the start node's subtree.
 //
-// Include vplkit/rtslc.glsl (and what it needs) and vplkit/sst_sampling.glsl first.
+// Include vplkit/rtslc.glsl, vplkit/gi_lobe.glsl (and what they need) and vplkit/sst_sampling.glsl first.
+
+#include "vplkit/rtslc_lobe_mis.glsl"
 
 LightTreeNode sst_as_light_tree_node(SstNode node) {
     if (node.leaf_count == 0u) {
@@ -91,21 +93,12 @@ SstSample sst_traverse_lightcuts_lobe_mis(GiPoint p, uint start, uint leaf_count
         uint left = sst_left_child(s.node), right = sst_right_child(s.node);
         SstNode l = sst_fetch(left, leaf_count, count), r = sst_fetch(right, leaf_count, count);
         LightTreeNode node_left = sst_as_light_tree_node(l), node_right = sst_as_light_tree_node(r);
-        RtslcChildProbability diffuse =
-            rtslc_child_probability(shading, node_left, node_right, min_distance2, kBrdfLobeDiffuse);
-        RtslcChildProbability reflection =
-            rtslc_child_probability(shading, node_left, node_right, min_distance2, kBrdfLobeGlossy);
-        RtslcChildProbability at_mean =
-            rtslc_child_probability(shading, node_left, node_right, min_distance2, kGiWeightGlossyAtMean);
-        RtslcChildProbability steer = !glossy ? diffuse : path.by_reflection ? reflection : at_mean;
-        if (steer.dead) {
+        bool go_left;
+        if (!rtslc_lobe_mis_step(shading, node_left, node_right, min_distance2, glossy, path, diffuse_path, rng,
+                                 go_left)) {
             s.dead = true;
             break;
         }
-        bool go_left = rtslc_choose_left(steer.left, rng_next_float(rng));
-        diffuse_path *= diffuse.dead ? 0.0 : rtslc_choice_probability(diffuse.left, go_left);
-        gi_glossy_path_step(path, reflection.dead ? -1.0 : reflection.left, at_mean.dead ? -1.0 : at_mean.left,
-                            go_left);
         s.node = go_left ? left : right;
         s.data = go_left ? l : r;
         ++s.levels;
