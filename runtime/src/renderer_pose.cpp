@@ -175,8 +175,13 @@ PoseUpdate Renderer::pose(scene::PosableScene& posable, double time, PosePath pa
     }
     bool on_gpu = path == PosePath::gpu;
     if (path == PosePath::automatic) {
-        on_gpu = posable.vertex_pose_refusal().empty() &&
-                 posable.vertex_pose_rest().vertices.size() >= size_t(kGpuPoseMinVertices);
+        // The pose pass binds its buffers whole: a scene past one binding's range poses on the host.
+        const scene::VertexPoseRest& rest = posable.vertex_pose_rest();
+        const uint64_t range = context_.info().max_storage_buffer_range;
+        const auto within_range = [range](size_t count, size_t element) { return count * element <= range; };
+        on_gpu = posable.vertex_pose_refusal().empty() && rest.vertices.size() >= size_t(kGpuPoseMinVertices) &&
+                 !scene_.addressed() && within_range(rest.vertices.size(), sizeof(shaders::PoseRestVertex)) &&
+                 within_range(rest.deltas.size(), sizeof(shaders::MorphDelta));
     }
     const auto start = std::chrono::steady_clock::now();
     if (!on_gpu) {

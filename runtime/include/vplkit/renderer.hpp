@@ -121,7 +121,8 @@ struct PoseUpdate {
 
 // Where Renderer::pose poses the moving vertices.
 enum class PosePath {
-    automatic,  // the GPU where it can (PosableScene::vertex_pose_refusal) and kGpuPoseMinVertices move
+    automatic,  // the GPU where it can (PosableScene::vertex_pose_refusal), kGpuPoseMinVertices move and
+                // its buffers fit one binding (maxStorageBufferRange); else the host
     host,       // PosableScene::pose (the reference)
     gpu,        // PosableScene::pose_nodes and GpuPose; Error where the scene cannot be
 };
