@@ -23,24 +23,7 @@ import pfm_residue  # noqa: E402
 
 
 def main():
-    args = sys.argv[1:]
-    opts = {"--block": "6", "--frames": "64,256"}
-    dirs = []
-    while args:
-        a = args.pop(0)
-        if a in ("--direct", "--exact", "--block", "--frames"):
-            opts[a] = args.pop(0)
-        else:
-            dirs.append(a)
-    if "--direct" not in opts or "--exact" not in opts or not dirs:
-        raise SystemExit(__doc__)
-    w, h, direct = pfm_residue.read_pfm(opts["--direct"])
-    we, he, exact = pfm_residue.read_pfm(opts["--exact"])
-    if (we, he) != (w, h):
-        raise SystemExit("--exact and --direct differ in size")
-    exact = [a - d for a, d in zip(exact, direct)]
-    k = int(opts["--block"])
-    counts = sorted(int(n) for n in opts["--frames"].split(","))
+    w, h, direct, exact, k, counts, dirs = pfm_residue.read_inputs(__doc__)
     mean_ref = sum(exact) / len(exact)
     reference = pfm_residue.block_means(exact, w, h, k)
     print(f"{w}x{h}, {k}x{k} blocks, expected block error after N frames (over exact's image mean)")

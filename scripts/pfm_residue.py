@@ -64,7 +64,9 @@ def measure(avg, exact, w, h, k):
     return mean / mean_ref, block, pixel, luminance(avg, brightest) / ref_max, (brightest % w, brightest // w)
 
 
-def main():
+def read_inputs(usage):
+    """The command line both this script and block_noise.py take: (w, h, direct, exact's indirect,
+    block size, frame counts, NAME=FRAME_DIR entries); `usage` is printed when it is incomplete."""
     args = sys.argv[1:]
     opts = {"--block": "6", "--frames": "64,256"}
     dirs = []
@@ -75,7 +77,7 @@ def main():
         else:
             dirs.append(a)
     if "--direct" not in opts or "--exact" not in opts or not dirs:
-        raise SystemExit(__doc__)
+        raise SystemExit(usage)
     w, h, direct = read_pfm(opts["--direct"])
     we, he, exact = read_pfm(opts["--exact"])
     if (we, he) != (w, h):
@@ -83,6 +85,11 @@ def main():
     exact = [a - d for a, d in zip(exact, direct)]
     k = int(opts["--block"])
     counts = sorted(int(n) for n in opts["--frames"].split(","))
+    return w, h, direct, exact, k, counts, dirs
+
+
+def main():
+    w, h, direct, exact, k, counts, dirs = read_inputs(__doc__)
     print(f"{w}x{h}, {k}x{k} blocks; exact's indirect mean {sum(exact) / len(exact):.5g}")
     for entry in dirs:
         name, _, folder = entry.rpartition("=")
