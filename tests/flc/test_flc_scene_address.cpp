@@ -13,6 +13,7 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/flc.hpp"
 #include "vplkit_test/context.hpp"
+#include "vplkit_test/placed_buffer.hpp"
 
 #include <doctest/doctest.h>
 
@@ -27,22 +28,7 @@ namespace {
 
 using vplkit::shaders::FlcCandidate;
 
-constexpr VkBufferUsageFlags kAddressed =
-    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-
-// `records` after `before` decoys and followed by `after` more, in one device buffer; the view
-// covers `records` only. A pass that read past the view's start or end would meet decoys.
-template <class T>
-vplkit::BufferView placed(std::vector<vplkit::Buffer>& keep, const std::vector<T>& records, const T& decoy,
-                          size_t before, size_t after, const char* name) {
-    std::vector<T> contents(before, decoy);
-    contents.insert(contents.end(), records.begin(), records.end());
-    contents.insert(contents.end(), after, decoy);
-    keep.push_back(vplkit::Buffer::create(vplkit::test::context(), contents.size() * sizeof(T), kAddressed,
-                                          vplkit::MemoryUse::device, name));
-    keep.back().upload(contents);
-    return {keep.back().handle(), before * sizeof(T), records.size() * sizeof(T), name};
-}
+using vplkit::test::placed;
 
 template <class T>
 vplkit::BufferView whole(std::vector<vplkit::Buffer>& keep, const std::vector<T>& records, const char* name) {

@@ -129,7 +129,7 @@ TEST_CASE("pose bvh: refitted while a motion keeps its cost, rebuilt when the mo
     CHECK(max_difference(posed.direct, expected.direct) <= 1e-5 * peak);
 }
 
-TEST_CASE("pose bvh: a refit from the scene's vertex buffer equals the refit from host vertices") {
+TEST_CASE("pose bvh: a refit from the scene's vertex buffer (bvh_refit_gather) equals the refit from host vertices") {
     // The GPU pose's path: the moved vertices already in GpuScene's buffer, gathered on the GPU.
     vplkit::Context& ctx = vplkit::test::context();
     scene::Scene s = grid_scene(8);
@@ -171,6 +171,17 @@ TEST_CASE("pose bvh: a refit from the scene's vertex buffer equals the refit fro
         return same(x.v0, y.v0) && same(x.v1, y.v1) && same(x.v2, y.v2) && x.id == y.id && x.alpha == y.alpha;
     };
     CHECK(std::equal(tris_a.begin(), tris_a.end(), tris_b.begin(), same_triangle));  // padding aside
+    // bvh_refit_gather against the CPU: each record's corners are its scene triangle's posed positions.
+    const std::vector<glm::vec3> corners = scene::triangle_positions(s);
+    const auto at = [](const vplkit::shaders::vec3& p) { return glm::vec3(p.x, p.y, p.z); };
+    size_t gathered = 0;
+    for (const vplkit::shaders::BvhTriangle& t : tris_b) {
+        REQUIRE(3 * size_t(t.id) + 2 < corners.size());
+        gathered +=
+            at(t.v0) == corners[3 * t.id] && at(t.v1) == corners[3 * t.id + 1] && at(t.v2) == corners[3 * t.id + 2];
+    }
+    CHECK(!tris_b.empty());
+    CHECK(gathered == tris_b.size());
     // The move shows in the root box.
     CHECK(nodes_b.at(0).lo.x > -1.0f + 0.05f);
 }
