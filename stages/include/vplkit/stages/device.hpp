@@ -10,8 +10,8 @@
 //   steps.record(cmd);
 //
 // The device must have been created with what required_device_features() lists (Vulkan 1.3,
-// VK_KHR_push_descriptor, shaderInt64, scalarBlockLayout, synchronization2, dynamicRendering;
-// vplkit/stages/device_requirements.hpp), and missing_device_features() says what a device lacks.
+// VK_KHR_push_descriptor, shaderInt64, scalarBlockLayout, bufferDeviceAddress, synchronization2,
+// dynamicRendering; vplkit/stages/device_requirements.hpp), and missing_device_features() says what a device lacks.
 
 #include "vplkit/error.hpp"
 #include "vplkit/stages/views.hpp"
