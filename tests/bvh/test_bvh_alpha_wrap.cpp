@@ -1,4 +1,4 @@
-// The alpha test's texture read (bvh.glsl's bvh_alpha_passes, bvh_alpha_wrap): glTF's wrap
+// The alpha test's texture read (bvh_alpha_test.glsl's bvh_alpha_passes, bvh_alpha_wrap): glTF's wrap
 // modes (repeat, clamp to edge, mirrored repeat) on negative and far texel coordinates of a
 // texture whose sides are not powers of two, with nearest and bilinear filtering, against a
 // double-precision reference of the same rules (integer floor-modulo, texel centres at i + 0.5).

@@ -1,4 +1,4 @@
-// Alpha-tested visibility in the BVH traversal (bvh.glsl's bvh_alpha_passes, records from
+// Alpha-tested visibility in the BVH traversal (bvh_alpha_test.glsl's bvh_alpha_passes, records from
 // add_alpha_tests): a ray through a MASK material's cut-out passes, elsewhere it is blocked,
 // as the G-buffer shows the surface; BLEND is MASK at 0.5; OPAQUE ignores alpha.
 //
