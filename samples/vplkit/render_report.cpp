@@ -81,17 +81,19 @@ std::vector<std::string> plan_lines(const std::vector<FramePlan>& plans) {
     if (runs.size() == 1) return {runs.front().plan->summary()};
     const FramePlan& first = *runs.front().plan;
     for (const Run& run : runs) {
-        // summary() opens with "plan: "; the frames it holds for go in between.
-        std::string text = "plan, " + frames_text(run.first, run.last) + ": " + run.plan->summary().substr(6);
-        std::string reused;
+        // A later run's line puts the stages frame 1 made and this run reuses under "reused", not
+        // under "left out": their work is in this frame's image.
+        const bool reuses = run.first > runs.front().last && (run.plan->reuse_vpls || run.plan->reuse_trees);
+        std::string kept, out, reused;
         for (const PlannedStage& s : run.plan->stages) {
-            if (!s.runs && first.runs(s.stage) && run.first > runs.front().last) {
-                reused += (reused.empty() ? "" : ", ") + std::string(stage_name(s.stage));
-            }
+            std::string& list = s.runs ? kept : (reuses && first.runs(s.stage) ? reused : out);
+            list += (list.empty() ? "" : ", ") + std::string(stage_name(s.stage));
         }
-        if (!reused.empty() && (run.plan->reuse_vpls || run.plan->reuse_trees)) {
+        std::string text = "plan, " + frames_text(run.first, run.last) + ": " + kept;
+        if (!out.empty()) text += "; left out: " + out;
+        if (!reused.empty())
             text += "; reused from " + frames_text(runs.front().first, runs.front().last) + ": " + reused;
-        }
+        if (run.plan->glossy_branch) text += "; glossy branch on";
         lines.push_back(text);
     }
     return lines;
