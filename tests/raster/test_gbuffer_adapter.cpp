@@ -31,9 +31,10 @@
 //                             wall, over a tangent of ~0.05 (a pixel there), at both ends and for
 //                             both tangents
 //   roughness, metallic       exact from constants; 1e-6 from an RGBA8 UNORM image (k / 255)
-//   albedo                    exact from RGBA16F; from sRGB8: the code's exact decode within
-//                             1e-3 relative (RGBA16F out) + 1.5e-3 (lavapipe's sRGB decode,
-//                             measured in test_gbuffer.cpp)
+//   albedo                    exact from RGBA16F and RGBA32F (the kit's RGBA16F values); from
+//                             RGBA8 UNORM: code / 255 within 2^-10 relative (RGBA16F out); from
+//                             sRGB8: the code's exact decode within 1e-3 relative (RGBA16F out)
+//                             + 1.5e-3 (lavapipe's sRGB decode, measured in test_gbuffer.cpp)
 
 #include "gbuffer_adapter_reference.hpp"
 #include "raster_test_scenes.hpp"
@@ -67,6 +68,9 @@ using vplkit::stages::GbufferNormalEncoding;
 using vplkit::stages::GbufferNormalSpace;
 
 constexpr uint32_t kWidth = 64, kHeight = 48;
+// The albedo formats a renderer stores its base colour in.
+constexpr VkFormat kSrgbAlbedo = VK_FORMAT_R8G8B8A8_SRGB, kUnormAlbedo = VK_FORMAT_R8G8B8A8_UNORM,
+                   kHalfAlbedo = VK_FORMAT_R16G16B16A16_SFLOAT, kFloatAlbedo = VK_FORMAT_R32G32B32A32_SFLOAT;
 
 struct KitGbuffer {
     std::vector<glm::vec4> position, normal, geometric_normal, albedo;
@@ -114,7 +118,7 @@ struct AdapterCase {
     VkFormat normal_format;
     GbufferNormalSpace space;
     DepthConvention depth;
-    bool srgb_albedo;
+    VkFormat albedo_format;  // sRGB8, UNORM8, RGBA16F or RGBA32F
     bool material_image;
     double normal_bound;
     bool d16_depth = false;  // else D32
@@ -226,20 +230,22 @@ TEST_CASE("gbuffer adapter: depth, normals and albedo in a renderer's encodings 
     const KitGbuffer& kit = kit_gbuffer(ctx);
 
     const AdapterCase cases[] = {
-        {"xyz RGBA32F world, standard Z", GbufferNormalEncoding::xyz, VK_FORMAT_R32G32B32A32_SFLOAT,
-         GbufferNormalSpace::world, DepthConvention::standard, false, false, 1e-6},
+        {"xyz RGBA32F world, standard Z, RGBA32F albedo", GbufferNormalEncoding::xyz, VK_FORMAT_R32G32B32A32_SFLOAT,
+         GbufferNormalSpace::world, DepthConvention::standard, kFloatAlbedo, false, 1e-6},
         {"xyz RGBA16F view, reversed Z, sRGB albedo, material image", GbufferNormalEncoding::xyz,
-         VK_FORMAT_R16G16B16A16_SFLOAT, GbufferNormalSpace::view, DepthConvention::reversed, true, true, 1e-3},
-        {"RGB10A2 world, standard Z", GbufferNormalEncoding::xyz_unorm, VK_FORMAT_A2B10G10R10_UNORM_PACK32,
-         GbufferNormalSpace::world, DepthConvention::standard, false, false, 3.4e-3},
+         VK_FORMAT_R16G16B16A16_SFLOAT, GbufferNormalSpace::view, DepthConvention::reversed, kSrgbAlbedo, true, 1e-3},
+        {"RGB10A2 world, standard Z, RGBA8 UNORM albedo", GbufferNormalEncoding::xyz_unorm,
+         VK_FORMAT_A2B10G10R10_UNORM_PACK32, GbufferNormalSpace::world, DepthConvention::standard, kUnormAlbedo, false,
+         3.4e-3},
         {"octahedral RG16 SNORM view, reversed Z", GbufferNormalEncoding::octahedral, VK_FORMAT_R16G16_SNORM,
-         GbufferNormalSpace::view, DepthConvention::reversed, false, false, 2e-4},
+         GbufferNormalSpace::view, DepthConvention::reversed, kHalfAlbedo, false, 2e-4},
         {"octahedral RG16F world, standard Z, material image", GbufferNormalEncoding::octahedral,
-         VK_FORMAT_R16G16_SFLOAT, GbufferNormalSpace::world, DepthConvention::standard, false, true, 2e-3},
+         VK_FORMAT_R16G16_SFLOAT, GbufferNormalSpace::world, DepthConvention::standard, kHalfAlbedo, true, 2e-3},
         {"octahedral RG8 UNORM world, reversed Z", GbufferNormalEncoding::octahedral_unorm, VK_FORMAT_R8G8_UNORM,
-         GbufferNormalSpace::world, DepthConvention::reversed, true, false, 3e-2},
+         GbufferNormalSpace::world, DepthConvention::reversed, kSrgbAlbedo, false, 3e-2},
         {"octahedral RG16 SNORM world, D16 depth, standard Z", GbufferNormalEncoding::octahedral,
-         VK_FORMAT_R16G16_SNORM, GbufferNormalSpace::world, DepthConvention::standard, false, false, 2e-4, true, 0.2},
+         VK_FORMAT_R16G16_SNORM, GbufferNormalSpace::world, DepthConvention::standard, kHalfAlbedo, false, 2e-4, true,
+         0.2},
     };
     const glm::dmat4 view_projection(kit.view.view_projection);
     glm::dmat4 reverse(1.0);  // clip z -> w - z
@@ -276,29 +282,34 @@ TEST_CASE("gbuffer adapter: depth, normals and albedo in a renderer's encodings 
         const std::vector<uint8_t> normal_bytes = encode_normals(kit, c);
         normal_image.upload(normal_bytes.data(), normal_bytes.size());
 
+        // The kit's albedo as the renderer's image holds it; `expected_albedo` the value stored.
         std::vector<glm::dvec3> expected_albedo(kit.albedo.size());
-        vplkit::Image albedo_image;
-        if (c.srgb_albedo) {
-            std::vector<uint8_t> texels(kit.albedo.size() * 4, 255);
-            for (size_t i = 0; i < kit.albedo.size(); ++i) {
-                for (int k = 0; k < 3; ++k) {
-                    texels[4 * i + k] = linear_to_srgb_code(kit.albedo[i][k]);
-                    expected_albedo[i][k] = srgb_to_linear(texels[4 * i + k] / 255.0);
+        std::vector<uint8_t> albedo_bytes;
+        for (size_t i = 0; i < kit.albedo.size(); ++i) {
+            for (int k = 0; k < 4; ++k) {
+                const float a = kit.albedo[i][k];
+                double stored = a;
+                if (c.albedo_format == kSrgbAlbedo || c.albedo_format == kUnormAlbedo) {
+                    const uint8_t code = k == 3                           ? uint8_t(255)
+                                         : c.albedo_format == kSrgbAlbedo ? linear_to_srgb_code(a)
+                                                                          : uint8_t(std::lround(a * 255.0));
+                    albedo_bytes.push_back(code);
+                    stored = c.albedo_format == kSrgbAlbedo ? srgb_to_linear(code / 255.0) : code / 255.0;
+                } else if (c.albedo_format == kHalfAlbedo) {
+                    const uint16_t half = glm::packHalf1x16(a);
+                    albedo_bytes.resize(albedo_bytes.size() + 2);
+                    std::memcpy(albedo_bytes.data() + albedo_bytes.size() - 2, &half, 2);
+                    stored = glm::unpackHalf1x16(half);
+                } else {
+                    albedo_bytes.resize(albedo_bytes.size() + 4);
+                    std::memcpy(albedo_bytes.data() + albedo_bytes.size() - 4, &a, 4);
                 }
+                if (k < 3) expected_albedo[i][k] = stored;
             }
-            albedo_image = vplkit::Image::create(ctx, kWidth, kHeight, VK_FORMAT_R8G8B8A8_SRGB,
-                                                 VK_IMAGE_USAGE_SAMPLED_BIT, "renderer albedo");
-            albedo_image.upload(texels);
-        } else {
-            std::vector<uint16_t> halves(kit.albedo.size() * 4);
-            for (size_t i = 0; i < kit.albedo.size(); ++i) {
-                for (int k = 0; k < 4; ++k) halves[4 * i + k] = glm::packHalf1x16(kit.albedo[i][k]);
-                expected_albedo[i] = glm::dvec3(kit.albedo[i]);
-            }
-            albedo_image = vplkit::Image::create(ctx, kWidth, kHeight, VK_FORMAT_R16G16B16A16_SFLOAT,
-                                                 VK_IMAGE_USAGE_SAMPLED_BIT, "renderer albedo");
-            albedo_image.upload(halves);
         }
+        auto albedo_image =
+            vplkit::Image::create(ctx, kWidth, kHeight, c.albedo_format, VK_IMAGE_USAGE_SAMPLED_BIT, "renderer albedo");
+        albedo_image.upload(albedo_bytes.data(), albedo_bytes.size());
 
         // Roughness in alpha, metallic in red: channels other than glTF's G, B.
         constexpr uint8_t kRoughnessCode = 51, kMetallicCode = 204;
@@ -389,11 +400,14 @@ TEST_CASE("gbuffer adapter: depth, normals and albedo in a renderer's encodings 
                 }
                 for (int k = 0; k < 3; ++k) {
                     CAPTURE(k);
-                    if (c.srgb_albedo) {
-                        CHECK(std::abs(albedo[i][k] - expected_albedo[i][k]) <= 1e-3 * expected_albedo[i][k] + 1.5e-3);
-                    } else {
-                        CHECK(albedo[i][k] == kit.albedo[i][k]);
-                    }
+                    // sRGB: lavapipe's decode within 1.5e-3 of the exact one (test_gbuffer.cpp);
+                    // UNORM: code / 255 to the kit's RGBA16F, within one half step (2^-10 relative:
+                    // lavapipe's storage-image conversion truncates, not rounds); half and
+                    // float (values the kit's RGBA16F held): exact.
+                    const double bound = c.albedo_format == kSrgbAlbedo    ? 1e-3 * expected_albedo[i][k] + 1.5e-3
+                                         : c.albedo_format == kUnormAlbedo ? std::ldexp(expected_albedo[i][k], -10)
+                                                                           : 0.0;
+                    CHECK(std::abs(albedo[i][k] - expected_albedo[i][k]) <= bound);
                 }
                 CHECK(albedo[i].w == 1.0f);
             }
