@@ -69,8 +69,8 @@ bool same_pipelines(const CalibrationFrame& a, const CalibrationFrame& b) {
 }
 
 std::vector<uint32_t> blocks_of(GiMethod method, const BudgetSpace& space) {
-    // sst builds no cuts: one block size stands for all.
-    if (method == GiMethod::sst) return {space.block_sizes.front()};
+    // A method without blocks (sst) builds no cuts: one block size stands for all.
+    if (!gi_method(method).blocks) return {space.block_sizes.front()};
     return space.block_sizes;
 }
 
@@ -111,10 +111,10 @@ void validate_budget_space(const BudgetSpace& space) {
             "block sizes) needs an entry");
     }
     for (GiMethod m : space.methods) {
-        if (m != GiMethod::sst && m != GiMethod::rtslc && m != GiMethod::hybrid) {
+        if (!gi_method(m).budget) {
             throw Error(std::string("budget: `method` ") + gi_method_name(m) +
-                        " cannot be chosen by the budget (only sst, rtslc and hybrid trade samples for time "
-                        "with a noise the frame shows)");
+                        " cannot be chosen by the budget (only " + gi_method_names(&GiMethodInfo::budget) +
+                        ": the methods that trade samples for time with a noise the frame shows)");
         }
     }
     for (uint32_t n : space.spp) {

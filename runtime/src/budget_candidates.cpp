@@ -3,6 +3,7 @@
 #include "vplkit/budget_calibration.hpp"
 
 #include "vplkit/error.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/planner.hpp"
 
 namespace vplkit {
@@ -13,9 +14,9 @@ std::vector<BudgetCandidate> budget_candidates(const BudgetModel& model, const B
     const VplSource source = plan_frame(scene, base, "budget").vpl_source;
     std::vector<BudgetCandidate> out;
     for (GiMethod method : space.methods) {
-        // sst builds no cuts: one block size stands for all.
+        // A method without blocks (sst) builds no cuts: one block size stands for all.
         const std::vector<uint32_t> blocks =
-            method == GiMethod::sst ? std::vector<uint32_t>{space.block_sizes.front()} : space.block_sizes;
+            gi_method(method).blocks ? space.block_sizes : std::vector<uint32_t>{space.block_sizes.front()};
         for (uint32_t spp : space.spp) {
             for (bool half : space.half_resolution) {
                 for (DenoiseMode denoise : space.denoise) {

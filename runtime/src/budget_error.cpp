@@ -3,6 +3,7 @@
 #include "vplkit/budget_error.hpp"
 
 #include "vplkit/budget_noise.hpp"
+#include "vplkit/gi_methods.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,14 +11,7 @@
 namespace vplkit {
 
 double method_bias_floor(GiMethod method) {
-    switch (method) {
-        case GiMethod::sst:
-            return kSstBiasFloor;
-        case GiMethod::hybrid:
-            return kHybridBiasFloor;
-        default:
-            return 0.0;
-    }
+    return gi_method(method).bias_floor;
 }
 
 std::optional<SvgfEffect> svgf_effect(double raw_noise0, double filtered_error0, double raw_noise1,
@@ -31,8 +25,8 @@ std::optional<SvgfEffect> svgf_effect(double raw_noise0, double filtered_error0,
 
 const NoiseMeasurement* ErrorModel::find(GiMethod method, bool half_resolution, uint32_t block_size) const {
     for (const NoiseMeasurement& m : sampling) {
-        // sst builds no cuts: its noise does not depend on the block size.
-        const bool block_matches = m.block_size == block_size || method == GiMethod::sst;
+        // A method without blocks (sst) builds no cuts: its noise does not depend on the block size.
+        const bool block_matches = m.block_size == block_size || !gi_method(method).blocks;
         if (m.method == method && m.half_resolution == half_resolution && block_matches) return &m;
     }
     return nullptr;

@@ -2,6 +2,8 @@
 
 #include "vplkit/budget_fixed.hpp"
 
+#include "vplkit/gi_methods.hpp"
+
 namespace vplkit {
 
 std::string describe_budget_fixed(const BudgetFixed& f) {
@@ -30,8 +32,9 @@ bool keeps_fixed(const BudgetConfig& c, const BudgetFixed& f) {
     return (!f.method || c.method == *f.method) && (!f.spp || c.spp == *f.spp) &&
            (!f.half_resolution || c.half_resolution == *f.half_resolution) && (!f.denoise || c.denoise == *f.denoise) &&
            (!f.vpls || c.vpls == *f.vpls) &&
-           // sst builds no cuts: its block size is no knob (budget_candidates gives it the first).
-           (!f.block_size || c.method == GiMethod::sst || c.block_size == *f.block_size);
+           // A method without blocks (sst) builds no cuts: its block size is no knob
+           // (budget_candidates gives it the first).
+           (!f.block_size || !gi_method(c.method).blocks || c.block_size == *f.block_size);
 }
 
 std::vector<BudgetCandidate> candidates_keeping(std::span<const BudgetCandidate> candidates, const BudgetFixed& fixed) {

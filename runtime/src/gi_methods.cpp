@@ -3,6 +3,7 @@
 #include "vplkit/gi_methods.hpp"
 
 #include "gi_stage_options.hpp"
+#include "vplkit/budget_error.hpp"
 #include "vplkit/error.hpp"
 
 #include <iterator>
@@ -64,6 +65,8 @@ constexpr GiMethodInfo kGiMethods[] = {
         .samples = true,
         .validate = validate_sst,
         .bench = kSstCurves,
+        .budget = true,
+        .bias_floor = kSstBiasFloor,
     },
     {
         .method = GiMethod::rtslc,
@@ -76,6 +79,7 @@ constexpr GiMethodInfo kGiMethods[] = {
         .interleaves = true,
         .validate = validate_rtslc,
         .bench = kRtslcCurves,
+        .budget = true,
     },
     {
         .method = GiMethod::hybrid,
@@ -90,6 +94,8 @@ constexpr GiMethodInfo kGiMethods[] = {
         .mock_cuts = true,
         .validate = validate_hybrid,
         .bench = kHybridCurves,
+        .budget = true,
+        .bias_floor = kHybridBiasFloor,
     },
     {
         .method = GiMethod::flc,
@@ -151,6 +157,14 @@ std::string gi_method_names(bool GiMethodInfo::*trait) {
         if (!trait || m.*trait) names.push_back(m.name);
     }
     return listed(names);
+}
+
+std::vector<GiMethod> gi_methods_with(bool GiMethodInfo::*trait) {
+    std::vector<GiMethod> out;
+    for (const GiMethodInfo& m : kGiMethods) {
+        if (m.*trait) out.push_back(m.method);
+    }
+    return out;
 }
 
 std::string_view GiBenchCurveOf::quality_sweep() const {

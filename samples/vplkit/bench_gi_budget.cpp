@@ -23,8 +23,6 @@ namespace vplkit::cli {
 
 namespace {
 
-const char* const kSpaceMethods[] = {"sst", "rtslc", "hybrid"};
-
 // "rtslc 64 spp half svgf, 1024 vpls"
 std::string short_config(const BudgetConfig& c) {
     std::string s = std::string(gi_method_name(c.method)) + " " + std::to_string(c.spp) + " spp";
@@ -42,7 +40,7 @@ BudgetConfig config_of(const BenchPoint& p, const RenderSettings& base, VplSourc
 
 bool same_config(const BudgetConfig& a, const BudgetConfig& b) {
     return a.method == b.method && a.spp == b.spp && a.half_resolution == b.half_resolution && a.denoise == b.denoise &&
-           a.vpls == b.vpls && (a.method == GiMethod::sst || a.block_size == b.block_size);
+           a.vpls == b.vpls && (!gi_method(a.method).blocks || a.block_size == b.block_size);
 }
 
 std::string fixed2(double v) {
@@ -159,8 +157,8 @@ nlohmann::ordered_json budget_check_json(const BenchRun& run) {
 }
 
 bool in_budget_space(const BenchPoint& p) {
-    const bool method =
-        std::find(std::begin(kSpaceMethods), std::end(kSpaceMethods), p.method) != std::end(kSpaceMethods);
+    const GiMethodInfo* info = find_gi_method(p.method);  // null for a variant's curve (hybrid-lightcuts)
+    const bool method = info && info->budget;
     const bool sweep = p.sweep == "spp" || p.sweep == "resolution" || p.sweep == "denoise";
     return method && sweep && p.block == 8 && p.interleave == 1 && p.mock_cuts && p.frames > 0;
 }

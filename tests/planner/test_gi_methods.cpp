@@ -44,12 +44,18 @@ TEST_CASE("gi methods: every row is found by its method and its name, in the enu
         CHECK(m.samples == (m.reads_light_tree || m.reads_sst));
         CHECK(m.no_tree.empty() == m.samples);
         CHECK(m.stage.has_value() == (m.vpls != vplkit::GiVpls::none));
+        // The budget weighs only methods that trade samples for time; only they have a bias floor.
+        CHECK((!m.budget || m.samples));
+        CHECK((m.bias_floor == 0.0 || m.budget));
     }
     CHECK(vplkit::find_gi_method("foo") == nullptr);
     CHECK(vplkit::find_gi_method("") == nullptr);
     CHECK(vplkit::gi_method_names() == "direct, exact, sst, rtslc, hybrid or flc");
     CHECK(vplkit::gi_method_names(&GiMethodInfo::blocks) == "rtslc or hybrid");
     CHECK(vplkit::gi_method_names(&GiMethodInfo::interleaves) == "rtslc");
+    CHECK(vplkit::gi_method_names(&GiMethodInfo::budget) == "sst, rtslc or hybrid");
+    CHECK(vplkit::gi_methods_with(&GiMethodInfo::budget) ==
+          std::vector<vplkit::GiMethod>{vplkit::GiMethod::sst, vplkit::GiMethod::rtslc, vplkit::GiMethod::hybrid});
 }
 
 TEST_CASE("gi methods: a plan runs the method's own stage and exactly the trees its row reads") {

@@ -10,6 +10,7 @@
 #include "vplkit/budget_cost.hpp"
 #include "vplkit/budget_error.hpp"
 #include "vplkit/device_info.hpp"
+#include "vplkit/gi_methods.hpp"
 #include "vplkit/render_settings.hpp"
 
 #include <cstdint>
@@ -26,9 +27,10 @@ struct Scene;
 struct Camera;
 }  // namespace scene
 
-// The configurations the chooser weighs: every combination (block sizes only for rtslc and hybrid).
+// The configurations the chooser weighs: every combination (block sizes only for the methods with
+// blocks, rtslc and hybrid).
 struct BudgetSpace {
-    std::vector<GiMethod> methods{GiMethod::sst, GiMethod::rtslc, GiMethod::hybrid};
+    std::vector<GiMethod> methods = gi_methods_with(&GiMethodInfo::budget);  // sst, rtslc, hybrid
     std::vector<uint32_t> spp{1, 2, 4, 8, 16, 32, 64};
     std::vector<bool> half_resolution{false, true};
     std::vector<DenoiseMode> denoise{DenoiseMode::off, DenoiseMode::svgf};

@@ -48,7 +48,7 @@ struct SvgfEffect {
 std::optional<SvgfEffect> svgf_effect(double raw_noise0, double filtered_error0, double raw_noise1,
                                       double filtered_error1);
 
-// The method's bias floor: 0 for rtslc, the constants above for sst and hybrid.
+// The method's bias floor (the method table's: 0 for rtslc, the constants above for sst and hybrid).
 double method_bias_floor(GiMethod method);
 
 // Sampling noise measured for one method, resolution and block size.

@@ -2,8 +2,9 @@
 // The indirect-light methods, a row each (the table is in runtime/src/gi_methods.cpp): the one
 // place that names a method and says what it reads, which settings it takes, what it counts and
 // how the bench sweeps it. The planner (which trees and which stage), the renderer (the stage's
-// tag, the settings' check), the CLI (--method, the options a method takes, what it prints) and
-// `vplkit bench gi` (its curves) read the rows; a new method adds its row and its stage.
+// tag, the settings' check), the CLI (--method, the options a method takes, what it prints),
+// `vplkit bench gi` (its curves) and the budget (which methods it weighs, their block sizes and
+// bias) read the rows; a new method adds its row and its stage.
 
 #include "vplkit/planner.hpp"
 #include "vplkit/render_settings.hpp"
@@ -57,6 +58,12 @@ struct GiMethodInfo {
     // Throws vplkit::Error naming its first bad setting; null: nothing of its own to check.
     void (*validate)(const RenderSettings&) = nullptr;
     std::span<const GiBenchCurve> bench;  // its curves in `vplkit bench gi`; none: not benched
+    // The budget chooser weighs it (BudgetSpace's methods, budget_calibration.hpp): it trades
+    // samples for time with a noise the frame shows.
+    bool budget = false;
+    // The error the budget's model adds beside the noise (budget_error.hpp): the bias left at any
+    // spp, 0 for an unbiased method.
+    double bias_floor = 0.0;
 };
 
 // Every method, in the enum's order (direct light only first).
@@ -68,6 +75,8 @@ const GiMethodInfo* find_gi_method(std::string_view name);
 // The names of the methods with `trait` (every method without one) as a list:
 // "sst, rtslc or hybrid".
 std::string gi_method_names(bool GiMethodInfo::*trait = nullptr);
+// The methods with `trait`, in the table's order.
+std::vector<GiMethod> gi_methods_with(bool GiMethodInfo::*trait);
 
 // A bench curve and its method.
 struct GiBenchCurveOf {
