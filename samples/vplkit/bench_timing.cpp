@@ -1,7 +1,11 @@
 #include "bench_timing.hpp"
 
+#include "cli.hpp"
+#include "cli_checks.hpp"
+
 #include "vplkit/error.hpp"
 #include "vplkit/pass_list.hpp"
+#include "vplkit/stages/vpl_keys.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -63,6 +67,24 @@ void write_csv(const std::string& path, const std::string& text) {
         std::filesystem::remove(temporary, error);
         throw Error("could not write " + path + ": " + error.message());
     }
+}
+
+void write_csv_if_asked(const std::optional<std::string>& path, const std::string& text) {
+    if (!path) return;
+    write_csv(*path, text);
+    std::printf("wrote %s\n", path->c_str());
+}
+
+void add_vpl_counts_option(CLI::App& command, std::optional<std::string>& counts) {
+    whole_number_list(
+        command.add_option_function<std::string>(
+            "--counts", [&counts](const std::string& v) { counts = v; }, "VPL counts (default 4096,65536,1048576)"),
+        "N", stages::kMaxKeyedVpls);
+}
+
+std::vector<uint32_t> vpl_counts(const std::optional<std::string>& counts) {
+    if (!counts) return {4096, 65536, 1048576};
+    return parse_whole_number_list("--counts", *counts, stages::kMaxKeyedVpls);
 }
 
 }  // namespace vplkit::cli

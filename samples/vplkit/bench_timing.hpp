@@ -1,10 +1,16 @@
 #pragma once
 // What every `vplkit bench` run shares: timing a pass list over many runs (median, min, max of the
-// GPU timestamps per pass, with progress on the terminal), and writing the CSV whole.
+// GPU timestamps per pass, with progress on the terminal), the VPL counts bench sort and bench
+// tree time, and writing the CSV whole.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
+
+namespace CLI {
+class App;
+}  // namespace CLI
 
 namespace vplkit {
 class Context;
@@ -26,5 +32,14 @@ std::vector<StageStats> time_passes(Context& context, PassList& passes, uint32_t
 // Writes `text` to `path` through a temporary file: a failure leaves no partial file.
 // Throws vplkit::Error naming the path.
 void write_csv(const std::string& path, const std::string& text);
+// write_csv when `path` was given (--csv), and says so on stdout. Called at the end of a run, so
+// that a failed run leaves no file.
+void write_csv_if_asked(const std::optional<std::string>& path, const std::string& text);
+
+// Declares --counts, the VPL counts of bench sort and bench tree, on `command`; `counts` (the
+// command's options object's) keeps the text for vpl_counts.
+void add_vpl_counts_option(CLI::App& command, std::optional<std::string>& counts);
+// The VPL counts --counts gave, else 4096, 65536 and 1048576.
+std::vector<uint32_t> vpl_counts(const std::optional<std::string>& counts);
 
 }  // namespace vplkit::cli

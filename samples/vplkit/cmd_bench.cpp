@@ -66,8 +66,7 @@ struct BenchSortOptions {
 
 int run_bench_sort(const BenchSortOptions& o) {
     const ContextOptions& options = o.context;
-    std::vector<uint32_t> counts = {4096, 65536, 1048576};
-    if (o.counts) counts = parse_whole_number_list("--counts", *o.counts, stages::kMaxKeyedVpls);
+    const std::vector<uint32_t> counts = vpl_counts(o.counts);
     const uint32_t runs = o.runs;
     std::vector<stages::SortAlgorithm> algorithms = {stages::SortAlgorithm::bitonic, stages::SortAlgorithm::radix};
     if (o.algorithm != "both") algorithms = {*stages::parse_sort_algorithm(o.algorithm)};
@@ -120,10 +119,7 @@ int run_bench_sort(const BenchSortOptions& o) {
         }
     }
 
-    if (csv_path) {
-        write_csv(*csv_path, csv.str());  // at the end: a failed run leaves no file
-        std::printf("wrote %s\n", csv_path->c_str());
-    }
+    write_csv_if_asked(csv_path, csv.str());
     return 0;
 }
 
@@ -145,10 +141,7 @@ void add_bench(CLI::App& vplkit, Runners& runners) {
         "normals).");
     auto o = std::make_shared<BenchSortOptions>();
     add_device_options(*sort_command, o->context, false);
-    whole_number_list(
-        sort_command->add_option_function<std::string>(
-            "--counts", [o](const std::string& v) { o->counts = v; }, "VPL counts (default 4096,65536,1048576)"),
-        "N", stages::kMaxKeyedVpls);
+    add_vpl_counts_option(*sort_command, o->counts);
     whole_number(sort_command->add_option("--runs", o->runs, "timed runs per count")->capture_default_str(), "R", 1,
                  100000);
     one_of(sort_command->add_option("--algorithm", o->algorithm, "the sort, or both")->capture_default_str(),

@@ -261,10 +261,7 @@ int run_bench_bvh(const BenchBvhOptions& o) {
                         " closest hits differ between the host and the GPU BVH of " + c.name);
         }
     }
-    if (csv_path) {
-        write_csv(*csv_path, csv.str());
-        std::printf("wrote %s\n", csv_path->c_str());
-    }
+    write_csv_if_asked(csv_path, csv.str());
     return 0;
 }
 

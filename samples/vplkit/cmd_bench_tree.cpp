@@ -70,8 +70,7 @@ struct BenchTreeOptions {
 
 int run_bench_tree(const BenchTreeOptions& o) {
     const ContextOptions& options = o.context;
-    std::vector<uint32_t> counts = {4096, 65536, 1048576};
-    if (o.counts) counts = parse_whole_number_list("--counts", *o.counts, stages::kMaxKeyedVpls);
+    const std::vector<uint32_t> counts = vpl_counts(o.counts);
     const uint32_t runs = o.runs;
     const std::string& source = o.source;
     stages::SortOptions sort_options;
@@ -133,10 +132,7 @@ int run_bench_tree(const BenchTreeOptions& o) {
                 << s.max_ms << '\n';
         }
     }
-    if (csv_path) {
-        write_csv(*csv_path, csv.str());
-        std::printf("wrote %s\n", csv_path->c_str());
-    }
+    write_csv_if_asked(csv_path, csv.str());
     return 0;
 }
 
@@ -150,10 +146,7 @@ void add_bench_tree(CLI::App& bench, Runners& runners) {
         "median, min and max per stage, and checks the last run's trees.");
     auto o = std::make_shared<BenchTreeOptions>();
     add_device_options(*tree, o->context, false);
-    whole_number_list(
-        tree->add_option_function<std::string>(
-            "--counts", [o](const std::string& v) { o->counts = v; }, "VPL counts (default 4096,65536,1048576)"),
-        "N", stages::kMaxKeyedVpls);
+    add_vpl_counts_option(*tree, o->counts);
     whole_number(tree->add_option("--runs", o->runs, "timed runs per count")->capture_default_str(), "R", 1, 100000);
     tree->add_option("--source", o->source,
                      "random, or a standard set-up (scenes/setups.txt) whose scene surfaces the VPLs are sampled "
