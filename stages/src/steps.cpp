@@ -185,6 +185,7 @@ ResourceUse resource_use(const MergedUse& m, const std::string& step, const std:
     out.stages = m.access.stages;
     out.access_flags = m.access.read | m.access.write;
     out.layout = m.access.layout;
+    out.aspect = m.use->is_image() ? m.use->image.aspect : 0;
     return out;
 }
 

@@ -3,7 +3,8 @@
 // buffers and images it touches and how. A stage function appends its steps; the caller then
 //   - records them into its own command buffer: steps.record(cmd) inserts a synchronization2
 //     barrier before a step only where a use conflicts with an earlier one (read-after-write,
-//     write-after-write, write-after-read, an image layout change);
+//     write-after-write, write-after-read, an image layout change); record_with_caller_barriers
+//     adds a barrier on each side from and to all of the caller's own commands;
 //   - or hands them to its own frame graph: steps.steps() (name, uses, record function) and
 //     entry() / exit(): the first and last access of each resource, what the caller must make
 //     visible before the stage and what later work must wait for.
@@ -128,6 +129,7 @@ struct ResourceUse {
     VkPipelineStageFlags2 stages = 0;
     VkAccessFlags2 access_flags = 0;
     VkImageLayout layout = VK_IMAGE_LAYOUT_UNDEFINED;  // images: the layout that step uses
+    VkImageAspectFlags aspect = 0;                     // images: the view's (DEPTH_BIT for a depth image)
 };
 
 struct Step {
@@ -173,6 +175,15 @@ public:
     // The first / last use of each resource, in order of first appearance.
     std::vector<ResourceUse> entry() const;
     std::vector<ResourceUse> exit() const;
+
+    // record() between two barriers in the caller's terms, for a caller without a frame graph:
+    // before the steps, from all of the caller's earlier commands (`caller_stages`, their writes)
+    // to each resource's first use (entry()); after them, from each resource's last use (exit())
+    // to the caller's later commands (their reads and writes). An image whose view has a layout
+    // pointer moves from that layout to its first use's in the first barrier; hand the kit any
+    // other image in its first use's layout. Each image is left in its last use's layout.
+    std::vector<BarrierRecord> record_with_caller_barriers(
+        VkCommandBuffer cmd, VkPipelineStageFlags2 caller_stages = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT) const;
 
     // Tags every step added from now on (a frame graph's id for the stage that adds them, so that
     // steps are grouped by a value rather than by their names). 0 = untagged, the default.
