@@ -1,6 +1,7 @@
 // VPL sources from a renderer's own data (stages/renderer_vpl_sources.hpp, renderer_lights.hpp)
-// against the kit's scene loader (upload_vpl_sources): the same lights, emitters and per-triangle
-// albedo traced with the same seed must give the same VPLs bit for bit, with a kind absent
+// and the scene block (renderer_scene.hpp: BVH and sources in one buffer) against the kit's scene
+// loader (upload_vpl_sources, upload_bvh): the same lights, emitters and per-triangle albedo
+// traced with the same seed must give the same VPLs bit for bit, with a kind absent
 // (no punctual light, no emissive triangle, nothing at all) bound as no buffer. Plus the unit
 // helper and the errors.
 
@@ -12,6 +13,7 @@
 #include "vplkit/pass_list.hpp"
 #include "vplkit/scene.hpp"
 #include "vplkit/shaders/types.hpp"
+#include "vplkit/stages/renderer_scene.hpp"
 #include "vplkit/stages/renderer_vpl_sources.hpp"
 #include "vplkit/vpl_tracing_buffers.hpp"
 #include "vplkit_test/context.hpp"
@@ -116,7 +118,7 @@ struct Traced {
     std::vector<uint32_t> bounces;
 };
 
-Traced trace(const vplkit::GpuBvh& bvh, const vplkit::stages::VplSourceBuffers& sources) {
+Traced trace(const vplkit::stages::BvhBuffers& bvh, const vplkit::stages::VplSourceBuffers& sources) {
     vplkit::Context& ctx = vplkit::test::context();
     auto output = vplkit::VplTracingOutput::create(ctx, kOptions);
     vplkit::PassList passes("renderer vpl sources test");
@@ -131,7 +133,23 @@ Traced trace(const vplkit::GpuBvh& bvh, const vplkit::stages::VplSourceBuffers& 
     return t;
 }
 
-// The scene traced through the loader's sources and through the renderer's; returns the VPL count.
+void check_same(const Traced& got, const Traced& expected) {
+    REQUIRE(got.vpls.size() == expected.vpls.size());
+    CHECK(got.bounces == expected.bounces);
+    // Field by field: the padding between a Vpl's vec3s is not written by the shader.
+    size_t differing = 0;
+    for (size_t i = 0; i < got.vpls.size(); ++i) {
+        const vplkit::shaders::Vpl &g = got.vpls[i], &e = expected.vpls[i];
+        for (auto member :
+             {&vplkit::shaders::Vpl::position, &vplkit::shaders::Vpl::normal, &vplkit::shaders::Vpl::flux}) {
+            differing += std::memcmp(&(g.*member), &(e.*member), sizeof(g.*member)) != 0;
+        }
+    }
+    CHECK(differing == 0);
+}
+
+// The scene traced through the loader's sources and through the renderer's (its sources beside
+// the loader's BVH, and renderer_scene's BVH and sources in one block); returns the VPL count.
 size_t check_same_vpls(const Scene& scene, const std::vector<RendererEmitter>& emitters) {
     vplkit::Context& ctx = vplkit::test::context();
     const std::vector<glm::vec3> triangles = vplkit::scene::triangle_positions(scene);
@@ -155,19 +173,25 @@ size_t check_same_vpls(const Scene& scene, const std::vector<RendererEmitter>& e
     CHECK(bool(views.lights) == !lights.empty());
     CHECK(bool(views.emissive) == !emitters.empty());
     const Traced got = trace(bvh, views);
+    check_same(got, expected);
 
-    REQUIRE(got.vpls.size() == expected.vpls.size());
-    CHECK(got.bounces == expected.bounces);
-    // Field by field: the padding between a Vpl's vec3s is not written by the shader.
-    size_t differing = 0;
-    for (size_t i = 0; i < got.vpls.size(); ++i) {
-        const vplkit::shaders::Vpl &g = got.vpls[i], &e = expected.vpls[i];
-        for (auto member :
-             {&vplkit::shaders::Vpl::position, &vplkit::shaders::Vpl::normal, &vplkit::shaders::Vpl::flux}) {
-            differing += std::memcmp(&(g.*member), &(e.*member), sizeof(g.*member)) != 0;
-        }
-    }
-    CHECK(differing == 0);
+    // The BVH and the sources in one block (renderer_scene), placed at an offset in a buffer.
+    const vplkit::stages::RendererSceneData scene_data =
+        vplkit::stages::renderer_scene(lights, emitters, {triangles, albedo});
+    constexpr VkDeviceSize kAt = 512;
+    std::vector<uint8_t> scene_bytes(kAt + scene_data.bytes(), 0xAB);
+    scene_data.write(scene_bytes.data() + kAt);
+    auto scene_buffer = vplkit::Buffer::create(ctx, scene_bytes.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                                               vplkit::MemoryUse::device, "renderer scene");
+    scene_buffer.upload(scene_bytes);
+    const vplkit::BufferView scene_block{scene_buffer.handle(), kAt, scene_data.bytes(), "renderer scene"};
+    const vplkit::stages::RendererSceneBuffers scene_views = scene_data.views(scene_block);
+    CHECK(scene_views.bvh.node_count == vplkit::stages::BvhBuffers(bvh).node_count);
+    CHECK(scene_views.bvh.scene_scale == vplkit::stages::BvhBuffers(bvh).scene_scale);
+    check_same(trace(scene_views.bvh, scene_views.sources), expected);
+    vplkit::BufferView short_block = scene_block;
+    short_block.size -= 1;
+    CHECK_THROWS_WITH_AS(scene_data.views(short_block), doctest::Contains("the scene needs"), vplkit::Error);
     return got.vpls.size();
 }
 
