@@ -15,6 +15,7 @@
 
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/gi_chain.hpp"
+#include "vplkit/stages/renderer_scene.hpp"
 
 #include <memory>
 #include <vector>
@@ -34,18 +35,15 @@ public:
     // before the denoiser (RGBA32F, GENERAL) and the scene scale the kit's lengths are shares of.
     std::vector<vplkit::shaders::Vpl> traced_vpls() const;
     const GpuImage& indirect() const;
-    float scene_scale() const { return bvh_.scene_scale; }
+    float scene_scale() const { return scene_.bvh.scene_scale; }
 
 private:
-    void record(VkCommandBuffer cmd, const vplkit::StepList& steps) const;
-
     const Gpu* gpu_;
     const Rasterizer* targets_;
     std::unique_ptr<vplkit::stages::Device> kit_;
     std::vector<HostBuffer> buffers_;
     std::vector<GpuImage> images_;
-    vplkit::stages::VplSourceBuffers sources_;
-    vplkit::stages::BvhBuffers bvh_;
+    vplkit::stages::RendererSceneBuffers scene_;
     std::unique_ptr<vplkit::stages::GiChain> chain_;
 };
 
