@@ -3,6 +3,7 @@
 
 #include "budget_cache.hpp"
 
+#include "vplkit/cache_key.hpp"
 #include "vplkit/error.hpp"
 
 #include <cstdio>
@@ -18,17 +19,6 @@ constexpr const char* kFormat = "vplkit-budget-cache 6";  // 2: slopes >= 0; 3: 
                                                           // effect per method; 6: svgf against rtslc at 64 spp
 
 }  // namespace
-
-std::string fnv1a_hex(const std::string& text) {
-    uint64_t h = 14695981039346656037ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    char out[17];
-    std::snprintf(out, sizeof(out), "%016llx", static_cast<unsigned long long>(h));
-    return out;
-}
 
 std::filesystem::path budget_cache_file(const std::filesystem::path& dir, const std::string& key) {
     return dir / ("budget-" + fnv1a_hex(key) + ".txt");

@@ -21,7 +21,4 @@ std::optional<BudgetModel> read_budget_cache(const std::filesystem::path& file, 
 // Throws vplkit::Error naming the file when it cannot be written.
 void write_budget_cache(const std::filesystem::path& file, const std::string& key, const BudgetModel& model);
 
-// FNV-1a, 64 bits, as 16 hex digits.
-std::string fnv1a_hex(const std::string& text);
-
 }  // namespace vplkit::detail

@@ -11,6 +11,7 @@
 #include "budget_cache.hpp"
 #include "vplkit/budget_error.hpp"
 #include "vplkit/budget_noise.hpp"
+#include "vplkit/cache_key.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
 #include "vplkit/planner.hpp"
@@ -233,8 +234,7 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
     std::replace(scene_id.begin(), scene_id.end(), '\n', ' ');
     BudgetCalibration result;
     result.key = "device " + device.name + "; driver " + device.driver_name + " " + device.driver_info + "; scene " +
-                 scene_id + "; size " + std::to_string(w) + "x" + std::to_string(h) + "; plans " +
-                 detail::fnv1a_hex(plans);
+                 scene_id + "; size " + std::to_string(w) + "x" + std::to_string(h) + "; plans " + fnv1a_hex(plans);
     if (!options.cache_dir.empty()) {
         result.cache_file = detail::budget_cache_file(options.cache_dir, result.key);
         if (auto cached = detail::read_budget_cache(result.cache_file, result.key)) {

@@ -13,6 +13,7 @@
 #include "commands.hpp"
 #include "scene_warnings.hpp"
 
+#include "vplkit/cache_key.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
@@ -45,18 +46,6 @@
 namespace vplkit::cli {
 
 namespace {
-
-// FNV-1a: a stable 64-bit name for a cache key (the key text is stored beside and checked).
-std::string fnv1a_hex(const std::string& text) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    char out[17];
-    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-    return out;
-}
 
 std::string read_text(const std::filesystem::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -5,6 +5,7 @@
 #include "vplkit/budget_calibration.hpp"
 
 #include "vplkit/budget.hpp"
+#include "vplkit/cache_key.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/renderer.hpp"
 #include "vplkit/scene.hpp"
@@ -182,4 +183,10 @@ TEST_CASE("budget: the space refuses methods without a noise to trade, and bad k
     space = vplkit::default_budget_space(small(), vplkit::VplSource::ir);
     space.block_sizes.clear();
     CHECK_THROWS_AS(vplkit::validate_budget_space(space), vplkit::Error);
+}
+
+TEST_CASE("budget: cache files are named by FNV-1a of their key (the published 64-bit test vectors)") {
+    CHECK(vplkit::fnv1a_hex("") == "cbf29ce484222325");
+    CHECK(vplkit::fnv1a_hex("a") == "af63dc4c8601ec8c");
+    CHECK(vplkit::fnv1a_hex("foobar") == "85944171f73967e8");
 }
