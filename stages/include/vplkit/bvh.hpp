@@ -98,7 +98,7 @@ struct Bvh {
     std::vector<shaders::BvhNode> nodes;
     // In leaf order; empty for an empty scene (upload_bvh still makes a non-empty buffer).
     std::vector<shaders::BvhTriangle> triangles;
-    // The alpha-test records of bvh.glsl (BvhTriangle::alpha points into them) after
+    // The alpha-test records of bvh_alpha_test.glsl (BvhTriangle::alpha points into them) after
     // kBvhHeaderWords words of header (of which the host sets word 0, the masked subtree's root;
     // the upload the rest); empty when every triangle is opaque (build_bvh leaves it so;
     // vplkit::add_alpha_tests fills it).

@@ -50,7 +50,7 @@ struct BvhSet {
 };
 using BvhBuffers = BvhSet<BufferView>;
 
-// A shader's specialization with bvh.glsl's kBvhAlphaTest and kBvhAddressed set from `bvh` (the
+// A shader's specialization with kBvhAlphaTest (bvh_alpha_test.glsl) and kBvhAddressed (bvh.glsl) set from `bvh` (the
 // shader must include bvh.glsl and call its traversal, else its Spec has no such members).
 template <typename Spec>
 Spec bvh_spec(const BvhBuffers& bvh, Spec spec = {}) {
