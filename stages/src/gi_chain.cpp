@@ -113,6 +113,10 @@ GiChain::GiChain(Device& device, const GiChainOptions& options, const AllocateBu
             refuse("the image for '" + need.name + "' is not of the format and size its requirement names");
         }
         if (view.name.empty()) view.name = need.name;
+        if (!view.layout) {  // the chain tracks it, so the caller need not transition it first
+            image_layouts_.push_back(VK_IMAGE_LAYOUT_UNDEFINED);
+            view.layout = &image_layouts_.back();
+        }
         images[need.name] = view;
     }
     auto buffer = [&buffers](const char* name) { return buffers.count(name) ? buffers.at(name) : BufferView{}; };

@@ -4,7 +4,8 @@
 // back wall lit by a point light; the camera sees the floor through a depth, normal and albedo
 // the adapter reads): no stage throws for a too-small buffer, no validation message
 // (synchronization validation included), for hybrid and rtslc (also interleaved, which needs
-// one more image), with and without SVGF. Then: every listed slot is used by some step (none the
+// one more image), with and without SVGF, and with images handed over as created (UNDEFINED, no
+// layout pointer: the chain tracks their layouts). Then: every listed slot is used by some step (none the
 // method does not read or write), each slot's usage flags cover how the steps use it, and the
 // indirect light on the floor (from the VPLs on the wall) is finite and positive.
 
@@ -27,6 +28,7 @@
 #include <deque>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vs = vplkit::stages;
@@ -100,7 +102,8 @@ struct Allocations {
     std::deque<vplkit::Image> images;
     std::map<VkBuffer, vs::BufferRequirement> buffer_needs;
     std::map<VkImage, vs::ImageRequirement> image_needs;
-    std::string shortened;  // a slot allocated 4 bytes short, for the refusal test
+    std::string shortened;   // a slot allocated 4 bytes short, for the refusal test
+    bool untracked = false;  // images returned without a layout pointer, as created (UNDEFINED)
 
     vs::GiChain chain(vplkit::Context& context, const vs::GiChainOptions& options) {
         return vs::GiChain(
@@ -115,7 +118,8 @@ struct Allocations {
                 images.push_back(
                     vplkit::Image::create(context, need.width, need.height, need.format, need.usage, need.name));
                 image_needs[images.back().handle()] = need;
-                return vplkit::ImageView(images.back());  // with its tracked layout
+                if (untracked) return vplkit::ImageView(std::as_const(images.back()));  // the chain tracks it
+                return vplkit::ImageView(images.back());                                // with its tracked layout
             });
     }
 };
@@ -143,14 +147,17 @@ TEST_CASE("gi chain: what gi_chain_requirements lists is what the stages check a
         vs::GiChainMethod method;
         bool denoise;
         uint32_t interleave;
+        bool untracked = false;
     };
     for (const Case& c :
          {Case{"hybrid", vs::GiChainMethod::hybrid, false, 1},
           Case{"hybrid + svgf", vs::GiChainMethod::hybrid, true, 1}, Case{"rtslc", vs::GiChainMethod::rtslc, false, 1},
           Case{"rtslc + svgf", vs::GiChainMethod::rtslc, true, 1},
-          Case{"rtslc interleaved", vs::GiChainMethod::rtslc, false, 2}}) {
+          Case{"rtslc interleaved", vs::GiChainMethod::rtslc, false, 2},
+          Case{"hybrid + svgf, images as created", vs::GiChainMethod::hybrid, true, 1, true}}) {
         CAPTURE(std::string(c.name));
         Allocations memory;
+        memory.untracked = c.untracked;
         vs::GiChain chain = memory.chain(context, options_for(c.method, c.denoise, c.interleave));
         const vs::GiChainRequirements& needs = chain.requirements();
         CHECK(needs.vpl_capacity == 512);

@@ -49,6 +49,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -89,9 +90,10 @@ struct BufferRequirement {
     VkBufferUsageFlags usage = 0;
 };
 
-// One image: this format and size exactly, with `usage`, in GENERAL layout before its first use
-// (transition it once after creating it: the chain keeps it in GENERAL from then on; or return a
-// view with a layout pointer, and step recording transitions it).
+// One image: this format and size exactly, with `usage`, in any layout (as created: UNDEFINED).
+// The chain keeps the layout of a view returned without a layout pointer itself, from UNDEFINED
+// (its first recording moves it; what it held is not kept); a view with one is moved from there.
+// Layouts move as a StepList is recorded: record the lists in the order the chain filled them.
 struct ImageRequirement {
     std::string name;
     VkFormat format = VK_FORMAT_UNDEFINED;
@@ -164,6 +166,7 @@ private:
     GbufferViews gbuffer_;
     ImageView indirect_;
     std::vector<ImageView> svgf_;
+    std::deque<VkImageLayout> image_layouts_;   // of the caller's images returned without a layout pointer
     float scene_scale_ = 1.0f;                  // the last add_gi_passes' BVH's
     glm::mat4 previous_view_projection_{1.0f};  // unused by SVGF's first frame (index 0)
 };
