@@ -7,7 +7,8 @@
 //                              coordinates (gbuffer_shade.frag: so rays can start there, also at
 //                              concave edges); w = 1 where a surface was drawn, 0 background
 //   normal            RGBA32F  xyz unit shading normal (normal map applied), on the viewer's side
-//                              of the surface; w = perceptual roughness (glTF roughness)
+//                              of the surface; w = perceptual roughness (glTF roughness);
+//                              negative: the pure Lambertian BRDF, albedo / pi (brdf.glsl)
 //   geometric_normal  RGBA32F  xyz unit face normal, on the same side as `normal` (ray origins
 //                              are offset along it); w = metallic
 //   albedo            RGBA16F  rgb linear base colour (factor x texture); a = 1

@@ -40,7 +40,7 @@
 //   o.normal_encoding = vplkit::stages::GbufferNormalEncoding::octahedral;
 //   o.normal_space = vplkit::stages::GbufferNormalSpace::view;
 //   o.view_to_world = glm::mat3(glm::inverse(view));
-//   o.roughness = -1.0f;  // its materials are Lambertian
+//   o.roughness = vplkit::stages::kLambertianRoughness;  // its materials are Lambertian
 //   vplkit::stages::add_gbuffer_adapter_pass(device, steps, {depth, normal, albedo, {}}, o, gbuffer);
 // Pixel (x, y) is read at clip x = (x + 0.5) / width * 2 - 1, y = (y + 0.5) / height * 2 - 1
 // (Vulkan's viewport: row 0 at clip y = -1). A renderer that flips its viewport (negative height,
@@ -85,6 +85,10 @@ struct GbufferAdapterInputs {
     ImageView albedo;    // sampled
     ImageView material;  // sampled, optional (empty: the constants of the options)
 };
+
+// The roughness that selects the pure Lambertian BRDF, base colour / pi (any negative value does:
+// gbuffer.glsl, brdf.glsl), for a renderer whose surfaces are all diffuse.
+inline constexpr float kLambertianRoughness = -1.0f;
 
 struct GbufferAdapterOptions {
     // Vulkan clip space -> world: the inverse of the projection x view the depth was rendered
