@@ -12,7 +12,7 @@ namespace vs = vplkit::stages;
 namespace {
 
 vplkit::ImageView view(const GpuImage& i, const std::string& name) {
-    return {i.image, i.view, i.format, i.width, i.height, name, i.aspect};  // no layout pointer: layouts are ours
+    return {i.image, i.view, i.format, i.width, i.height, name, i.aspect};  // no layout pointer
 }
 
 void* mapped(const std::vector<HostBuffer>& buffers, const vplkit::BufferView& v) {
@@ -49,15 +49,12 @@ IndirectLight::IndirectLight(const Gpu& gpu, const Scene& scene, const Rasterize
     options.height = targets.colour.height;
     options.hybrid.samples_per_pixel = 16;
     options.adapter.normal_encoding = vs::GbufferNormalEncoding::octahedral;
-    options.adapter.roughness = -1.0f;  // the renderer's surfaces are Lambertian
+    options.adapter.roughness = vs::kLambertianRoughness;  // the renderer's surfaces are all diffuse
     chain_ = std::make_unique<vs::GiChain>(
         *kit_, options, [&](const vs::BufferRequirement& r) { return buffer(r.bytes, r.name, r.usage); },
         [&](const vs::ImageRequirement& r) {
             images_.push_back(GpuImage::create(gpu, r.width, r.height, r.format, r.usage));
-            gpu.submit([&](VkCommandBuffer cmd) {
-                transition(cmd, images_.back(), VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_GENERAL);
-            });
-            return view(images_.back(), r.name);
+            return view(images_.back(), r.name);  // as created: the chain keeps its layout
         });
 }
 

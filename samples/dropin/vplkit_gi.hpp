@@ -7,8 +7,8 @@
 //   -> radix sort -> leaves -> SST -> G-buffer from the renderer's depth, normal and albedo
 //   -> hybrid GI -> SVGF; then compose colour + indirect into the renderer's RGBA16F output.
 //
-// What is left here: the scene in the kit's terms, memory for what the chain lists, and the
-// barriers between the renderer's work and the kit's steps (from their entry() and exit()).
+// What is left here: the scene in the kit's terms and memory for what the chain lists (the
+// barriers between the renderer's commands and the kit's steps are the StepList's).
 
 #include "plain_vulkan.hpp"
 #include "renderer.hpp"
