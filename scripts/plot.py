@@ -13,8 +13,9 @@ and each PNG is written under a temporary name and renamed, so bad input (a miss
 malformed CSV or JSON) leaves no picture behind: one line on stderr names the file and the
 problem, and the exit status is 1.
 
-bench gi's Pareto front is not computed here: points.json lists it ("pareto_front", indices into
-"points"), the front report.md lists, so the plot and the report agree by construction.
+bench gi's Pareto fronts are not computed here: points.json lists them (of all methods:
+"pareto_front", indices into "points"; each method's own: "method_fronts"), the fronts report.md
+lists, so the plot and the report agree by construction.
 """
 
 import argparse
@@ -209,6 +210,12 @@ def read_bench_gi(folder):
     for i in run["pareto_front"]:
         if not isinstance(i, int) or not 0 <= i < len(run["points"]):
             raise InputError(f"{path}: pareto_front holds {i!r}, not the index of a point")
+    fronts = run.setdefault("method_fronts", {})
+    if not isinstance(fronts, dict):
+        raise InputError(f"{path}: \"method_fronts\" is not an object")
+    for method, indices in fronts.items():
+        if not isinstance(indices, list) or not all(isinstance(i, int) and 0 <= i < len(run["points"]) for i in indices):
+            raise InputError(f"{path}: method_fronts[{method!r}] is not a list of indices of points")
     return run
 
 
@@ -224,8 +231,9 @@ def variant_style(key):
 
 def rmse_vs_time(run, folder, gi_only, wrote):
     """RMSE against frame time (or GI + tree time) of every comparable point (the VPL-count sweep
-    places other budgets), log-log: colour by method, marker by variant; the Pareto front by
-    frame time (report.md's) ringed, joined by its staircase and labelled."""
+    places other budgets), log-log: colour by method, marker by variant; each method's own front
+    as a wide pale staircase in its colour; the Pareto front of all by frame time (report.md's)
+    ringed, joined by its staircase and labelled."""
     size = f"{run['width']}x{run['height']}"
     scene = short_name(run["scene"])
 
@@ -255,6 +263,15 @@ def rmse_vs_time(run, folder, gi_only, wrote):
         name, marker, style = variant_style(key)
         handles.append(Line2D([], [], color="grey", marker=marker, linestyle=style or "none", label=name))
     if not gi_only:
+        # Each method's own front (report.md's list): a staircase in its colour under the points.
+        for i, curve in enumerate(run["curves"]):
+            own = [run["points"][j] for j in run["method_fronts"].get(curve["name"], [])]
+            xy = sorted(placeable([x_of(p) for p in own], [number(p["rmse"]) for p in own], True, True))
+            if len(xy) > 1:
+                ax.plot(*zip(*xy), color=COLOURS[i % len(COLOURS)], linestyle="-", linewidth=3, alpha=0.3,
+                        drawstyle="steps-post", zorder=0)
+        if any(len(v) > 1 for v in run["method_fronts"].values()):
+            handles.append(Line2D([], [], color="grey", linewidth=3, alpha=0.3, label="a method's own front"))
         front = [run["points"][i] for i in run["pareto_front"]]
         front = sorted((p for p in front if placeable([x_of(p)], [number(p["rmse"])], True, True)), key=x_of)
         if front:
@@ -262,8 +279,11 @@ def rmse_vs_time(run, folder, gi_only, wrote):
             ax.plot(xs, ys, color="black", linestyle="--", linewidth=1, drawstyle="steps-post", zorder=1)
             ax.plot(xs, ys, marker="o", markersize=14, markerfacecolor="none", markeredgecolor="black",
                     markeredgewidth=1.5, linestyle="none", zorder=3)
-            for p, x, y in zip(front, xs, ys):
-                ax.annotate(p["label"], (x, y), textcoords="offset points", xytext=(8, 8), fontsize=8)
+            for k, (p, x, y) in enumerate(zip(front, xs, ys)):
+                # Points within 5% of each other on both axes: their labels stacked, not overprinted.
+                near = sum(1 for x0, y0 in zip(xs[:k], ys[:k]) if abs(math.log(x / x0)) < 0.05
+                           and abs(math.log(y / y0)) < 0.05)
+                ax.annotate(p["label"], (x, y), textcoords="offset points", xytext=(8, 8 + 11 * near), fontsize=8)
             handles.append(Line2D([], [], color="black", linestyle="--", marker="o", markerfacecolor="none",
                                   markersize=10, label="Pareto front (report.md)"))
     if handles and has_data:

@@ -74,14 +74,16 @@ bool comparable(const BenchPoint& p) {
     return p.sweep != "vpls";
 }
 
-// Points no other point beats in both frame time and RMSE.
-std::vector<const BenchPoint*> pareto_front(const BenchRun& run) {
+// Points no other point beats in both frame time and RMSE; with a method, among its own points
+// only (that method's front: the best it reaches at each frame time).
+std::vector<const BenchPoint*> pareto_front(const BenchRun& run, const std::string& method = "") {
+    const auto counted = [&](const BenchPoint& p) { return comparable(p) && (method.empty() || p.method == method); };
     std::vector<const BenchPoint*> front;
     for (const BenchPoint& p : run.points) {
-        if (!comparable(p)) continue;
+        if (!counted(p)) continue;
         bool dominated = false;
         for (const BenchPoint& q : run.points) {
-            if (&q == &p || !comparable(q)) continue;
+            if (&q == &p || !counted(q)) continue;
             if (q.frame_ms <= p.frame_ms && q.rmse <= p.rmse && (q.frame_ms < p.frame_ms || q.rmse < p.rmse)) {
                 dominated = true;
                 break;
@@ -92,6 +94,16 @@ std::vector<const BenchPoint*> pareto_front(const BenchRun& run) {
     std::sort(front.begin(), front.end(),
               [](const BenchPoint* a, const BenchPoint* b) { return a->frame_ms < b->frame_ms; });
     return front;
+}
+
+// "label (frame ms, RMSE); ..." of a front.
+std::string front_text(const std::vector<const BenchPoint*>& front) {
+    std::string text;
+    for (const BenchPoint* p : front) {
+        text +=
+            (text.empty() ? "" : "; ") + p->label() + " (" + fixed(p->frame_ms, 1) + " ms, " + fixed(p->rmse, 4) + ")";
+    }
+    return text;
 }
 
 void write_file(const std::filesystem::path& path, const std::string& text) {
@@ -172,6 +184,12 @@ nlohmann::json points_json(const BenchRun& run) {
     }
     json front = json::array();
     for (const BenchPoint* p : pareto_front(run)) front.push_back(p - run.points.data());
+    json method_fronts = json::object();
+    for (const std::string& m : curves()) {
+        json indices = json::array();
+        for (const BenchPoint* p : pareto_front(run, m)) indices.push_back(p - run.points.data());
+        if (!indices.empty()) method_fronts[m] = indices;
+    }
     return {{"scene", run.scene},
             {"device", run.device},
             {"width", run.width},
@@ -186,6 +204,7 @@ nlohmann::json points_json(const BenchRun& run) {
             {"curves", curve_list},
             {"vpl_count_curve", vpl_count_curve()},
             {"pareto_front", front},
+            {"method_fronts", method_fronts},
             {"points", points},
             {"budget_note", run.budget_note},
             {"budget_check", budget_check_json(run)}};
@@ -294,10 +313,13 @@ void write_bench_report(const std::filesystem::path& folder, const BenchRun& run
         }
     }
     md << "\n\n## RMSE vs frame time (Fig. 7.3)\n\n![RMSE vs frame time](rmse_vs_time.png)\n\n"
-       << "![RMSE vs GI time](rmse_vs_gi_time.png)\n\nThe Pareto front by frame time (ringed): ";
-    for (const BenchPoint* p : pareto_front(run))
-        md << p->label() << " (" << fixed(p->frame_ms, 1) << " ms, " << fixed(p->rmse, 4) << "); ";
-    md << "\n\n" << kTableHead;
+       << "![RMSE vs GI time](rmse_vs_gi_time.png)\n\nThe Pareto front by frame time (ringed): "
+       << front_text(pareto_front(run)) << ".\n\nEach method's own front (the staircase in its colour):\n\n";
+    for (const std::string& m : curves()) {
+        const std::vector<const BenchPoint*> front = pareto_front(run, m);
+        if (!front.empty()) md << "- " << m << ": " << front_text(front) << "\n";
+    }
+    md << "\n" << kTableHead;
     for (const std::string& m : curves()) {
         for (const BenchPoint* p : select(run, m, quality_sweep(m))) md << row(*p);
     }

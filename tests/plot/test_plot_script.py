@@ -90,7 +90,8 @@ def bench_gi_run():
                "samples": True},
               {"name": "flc", "quality_sweep": "navg", "sweeps": ["navg"], "samples": False}]
     return {"scene": "cornell", "width": 64, "height": 48, "curves": curves, "vpl_count_curve": "hybrid",
-            "pareto_front": [9, 7, 4, 5, 6], "points": points}
+            "pareto_front": [9, 7, 4, 5, 6], "points": points,
+            "method_fronts": {"rtslc": [0, 1, 2], "hybrid": [3, 7, 4, 5, 6], "flc": [9]}}
 
 
 def write(folder, name, text):
@@ -149,6 +150,10 @@ def case_malformed_json(script, work):
     broken["pareto_front"].append(99)
     write(work, "points.json", json.dumps(broken))
     expect_refusal(script, work, "bench-gi", "pareto_front holds 99, not the index of a point")
+    broken = bench_gi_run()
+    broken["method_fronts"]["hybrid"].append(99)
+    write(work, "points.json", json.dumps(broken))
+    expect_refusal(script, work, "bench-gi", "method_fronts['hybrid'] is not a list of indices of points")
     broken = bench_gi_run()
     del broken["points"][0]["rmse"]
     write(work, "points.json", json.dumps(broken))
