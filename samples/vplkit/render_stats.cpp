@@ -88,29 +88,38 @@ nlohmann::ordered_json timing_stats(const std::vector<std::vector<PassTiming>>& 
     const size_t first = frames.size() > 1 ? 1 : 0;
     nlohmann::ordered_json every = nlohmann::ordered_json::array();
     std::vector<double> totals;
-    // Per stage and per pass name: the timed frames' values, in first-seen order.
+    // Per stage and per pass name: the timed frames' values, in first-seen order over the timed
+    // frames (a stage a later frame alone ran, e.g. a VPL set remade, is kept too).
     std::vector<std::string> stage_order, pass_order;
     std::map<std::string, std::vector<double>> stage_ms, pass_ms;
     std::map<std::string, size_t> pass_count;
+    std::map<std::string, double> first_stage_sum, first_pass_sum;  // frame 0's, when it is not timed
+    std::vector<std::string> first_stage_order, first_pass_order;
+    const auto note = [](std::vector<std::string>& order, const std::string& name) {
+        if (std::find(order.begin(), order.end(), name) == order.end()) order.push_back(name);
+    };
     for (size_t f = 0; f < frames.size(); ++f) {
         double total = 0.0;
         std::map<std::string, double> stage_sum, pass_sum;
+        std::map<std::string, size_t> passes_here;
         for (const PassTiming& t : frames[f]) {
             total += t.gpu_ms;
             const std::string stage = t.tag == 0 ? "untagged" : stage_name(FrameStage(t.tag - 1));
             stage_sum[stage] += t.gpu_ms;
             pass_sum[t.name] += t.gpu_ms;
-            if (f != first) continue;
-            if (std::find(stage_order.begin(), stage_order.end(), stage) == stage_order.end()) {
-                stage_order.push_back(stage);
-            }
-            if (++pass_count[t.name] == 1) pass_order.push_back(t.name);
+            ++passes_here[t.name];
+            note(f < first ? first_stage_order : stage_order, stage);
+            note(f < first ? first_pass_order : pass_order, t.name);
         }
         every.push_back(json_number(total));
-        if (f < first) continue;
+        if (f < first) {
+            first_stage_sum = stage_sum, first_pass_sum = pass_sum;
+            continue;
+        }
         totals.push_back(total);
         for (const auto& [name, ms] : stage_sum) stage_ms[name].push_back(ms);
         for (const auto& [name, ms] : pass_sum) pass_ms[name].push_back(ms);
+        for (const auto& [name, n] : passes_here) pass_count[name] = std::max(pass_count[name], n);
     }
     nlohmann::ordered_json stages = nlohmann::ordered_json::array(), passes = nlohmann::ordered_json::array();
     for (const std::string& name : stage_order) {
@@ -119,11 +128,24 @@ nlohmann::ordered_json timing_stats(const std::vector<std::vector<PassTiming>>& 
     for (const std::string& name : pass_order) {
         passes.push_back({{"pass", name}, {"ms", json_number(median(pass_ms[name]))}, {"passes", pass_count[name]}});
     }
+    // What only the untimed first frame ran (the VPLs and trees the later frames reuse): its cost
+    // is paid once, so it is not in the medians; frame 0's time, shader compiles included.
+    nlohmann::ordered_json first_stages = nlohmann::ordered_json::array();
+    nlohmann::ordered_json first_passes = nlohmann::ordered_json::array();
+    for (const std::string& name : first_stage_order) {
+        if (!stage_ms.count(name))
+            first_stages.push_back({{"stage", name}, {"ms", json_number(first_stage_sum[name])}});
+    }
+    for (const std::string& name : first_pass_order) {
+        if (!pass_ms.count(name)) first_passes.push_back({{"pass", name}, {"ms", json_number(first_pass_sum[name])}});
+    }
     return {{"frame_ms", json_number(median(totals))},
             {"timed_frame_indices", {first, frames.size() - 1}},
             {"frame_gpu_ms", every},
             {"stage_ms", stages},
-            {"pass_ms", passes}};
+            {"pass_ms", passes},
+            {"first_frame_only_stage_ms", first_stages},
+            {"first_frame_only_pass_ms", first_passes}};
 }
 
 nlohmann::ordered_json counters_stats(const RenderedImage& image, const RenderSettings& settings) {

@@ -42,8 +42,11 @@ private:
 // GPU times from each frame's passes. With more than one frame the first is left out (it pays
 // for shader compiles, as render's table does). Keys: frame_ms (the median of the timed frames'
 // sums over every pass), timed_frame_indices [first, last], frame_gpu_ms (every frame's sum),
-// stage_ms (each planner stage's median, by the passes' tags: also the VPLs' cost), pass_ms (each
-// pass name's median and its passes per frame, as render's table prints them).
+// stage_ms (each planner stage's median over the timed frames that ran it, by the passes' tags:
+// also the VPLs' cost), pass_ms (each pass name's median and its passes per frame, as render's
+// table prints them), first_frame_only_stage_ms and first_frame_only_pass_ms (what only the
+// untimed first frame ran, e.g. the VPLs and trees later frames reuse, with its time; render's
+// "made on frame 1 only" lines).
 nlohmann::ordered_json timing_stats(const std::vector<std::vector<PassTiming>>& frames);
 
 // The frame's counters, those render prints: VPLs, reuse, the sampling methods' traversal

@@ -152,6 +152,16 @@ TEST_CASE("render writes a layered EXR whose beauty is its PFM and whose stats p
     CHECK(timed_stages.count("gbuffer") == 1);
     CHECK(timed_stages.count("gi hybrid") == 1);
     CHECK(timed_stages.count("denoise") == 1);
+    // What frame 1 made and frame 2 reused: its own list with frame 1's time, not in the medians.
+    std::set<std::string> first_only;
+    for (const auto& stage : s["first_frame_only_stage_ms"]) {
+        first_only.insert(stage["stage"].get<std::string>());
+        CHECK(stage["ms"].get<double>() >= 0.0);
+    }
+    CHECK(first_only.count("vpl sort") == 1);
+    CHECK(first_only.count("sst") == 1);
+    CHECK(timed_stages.count("vpl sort") == 0);
+    CHECK(!s["first_frame_only_pass_ms"].empty());
     CHECK(s["counters"]["vpls"].get<int>() > 0);
     CHECK(s["counters"]["gi"]["traversals"].get<int>() > 0);
     CHECK(s["firefly_moved_fraction"].is_number());
