@@ -9,7 +9,7 @@
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <glm/vec3.hpp>
 

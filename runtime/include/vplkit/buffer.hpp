@@ -2,7 +2,7 @@
 // A VkBuffer with its own memory allocation (one vkAllocateMemory per buffer: the kit allocates a
 // few dozen long-lived buffers, far below any allocation limit, so no sub-allocator is needed).
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -3,7 +3,7 @@
 // The image remembers its current layout so that PassList and transition() know what to
 // transition from.
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -6,7 +6,7 @@
 // generated compute pipelines); compute stages use the generated Pipeline directly.
 
 #include "vplkit/error.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

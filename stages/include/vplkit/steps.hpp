@@ -16,7 +16,7 @@
 // Resources are tracked whole (no sub-ranges), by handle. vplkit::PassList (the runtime's
 // convenience layer) is a StepList that also submits and times each step.
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

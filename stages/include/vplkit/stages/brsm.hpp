@@ -41,7 +41,7 @@
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/shadow_maps.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -13,7 +13,7 @@
 
 #include "vplkit/bvh.hpp"
 #include "vplkit/shaders/types.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

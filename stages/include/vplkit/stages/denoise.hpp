@@ -19,7 +19,7 @@
 
 #include "vplkit/stages/device.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <glm/mat4x4.hpp>
 

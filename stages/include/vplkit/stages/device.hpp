@@ -14,7 +14,7 @@
 // dynamicRendering; vplkit/stages/device_requirements.hpp), and missing_device_features() says what a device lacks.
 
 #include "vplkit/error.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -35,7 +35,7 @@
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/scene_light_tree.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <glm/vec3.hpp>
 

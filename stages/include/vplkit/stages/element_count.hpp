@@ -12,7 +12,7 @@
 // leaves become bogus padding). The count is clamped to the capacity: producers count attempts
 // past their room. Shaders read it through shaders/include/vplkit/element_count.glsl.
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <cstdint>
 

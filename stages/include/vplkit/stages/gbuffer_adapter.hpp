@@ -49,7 +49,7 @@
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>

@@ -3,7 +3,7 @@
 // Bring your own: any images of these formats and one size, in GENERAL layout for the compute
 // stages (storage images), as colour/depth attachments for the raster G-buffer pass.
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

@@ -37,7 +37,7 @@
 #include "vplkit/stages/rtslc.hpp"
 #include "vplkit/stages/sst.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 #include "vplkit/stages/vpl_keys.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
 #include "vplkit/stages/vpl_tree_buffers.hpp"

@@ -6,7 +6,7 @@
 // create_gi_counters / read_gi_counters (vplkit/gi_counters_buffer.hpp) allocate and read it.
 
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <cstdint>
 

@@ -17,7 +17,7 @@
 #include "vplkit/stages/glossy_lobe.hpp"
 #include "vplkit/stages/gi_counters.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 #include "vplkit/stages/vpl_tree_buffers.hpp"
 
 #include <glm/vec3.hpp>

@@ -18,7 +18,7 @@
 // gather) is ordered after this step by the StepList's barriers.
 
 #include "vplkit/stages/device.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 #include "vplkit/steps.hpp"
 
 #include <cstdint>

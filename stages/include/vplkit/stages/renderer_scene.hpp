@@ -18,7 +18,7 @@
 #include "vplkit/bvh.hpp"
 #include "vplkit/stages/bvh_buffers.hpp"
 #include "vplkit/stages/renderer_vpl_sources.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
 
 #include <cstdint>

@@ -16,7 +16,7 @@
 #include "vplkit/shaders/types.hpp"
 #include "vplkit/stages/renderer_lights.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <glm/vec3.hpp>
 

@@ -4,7 +4,7 @@
 // (vplkit/gpu_scene.hpp) uploads a scene::Scene and converts to SceneBuffers; bring your own
 // buffers and sampled images in these layouts otherwise.
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <vulkan/vulkan.h>
 

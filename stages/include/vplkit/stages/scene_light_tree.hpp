@@ -15,7 +15,7 @@
 #include "vplkit/stages/light_tree.hpp"
 #include "vplkit/stages/sort.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <cstdint>
 

@@ -28,7 +28,7 @@
 #include "vplkit/stages/device.hpp"
 #include "vplkit/stages/scene_buffers.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <glm/mat4x4.hpp>
 #include <vulkan/vulkan.h>

@@ -35,7 +35,7 @@
 #include "vplkit/stages/gbuffer_views.hpp"
 #include "vplkit/stages/sort.hpp"
 #include "vplkit/steps.hpp"
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 #include "vplkit/stages/vpl_tracing.hpp"
 
 #include <cstdint>

@@ -5,7 +5,7 @@
 //   light_tree  LightTreeNode[2 leaf_count - 1] (light_tree.hpp), read by rtslc
 //   sst         SstNode[sst_node_count(count)] (sst.hpp), read by sst and hybrid
 
-#include "vplkit/stages/views.hpp"
+#include "vplkit/views.hpp"
 
 #include <cstdint>
 #include <type_traits>
