@@ -53,12 +53,19 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
     // A fixed first size: an auto-sized window stays hidden in its first frame, and a one-frame
     // screenshot would miss the panel.
     const float height = std::min(ImGui::GetIO().DisplaySize.y - 16.0f, 560.0f);
-    ImGui::SetNextWindowSize(ImVec2(360, std::max(height, 120.0f)), ImGuiCond_FirstUseEver);
+    const float width = std::min(ImGui::GetIO().DisplaySize.x * 0.8f, 420.0f);  // leaves some of a small window
+    ImGui::SetNextWindowSize(ImVec2(width, std::max(height, 120.0f)), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowBgAlpha(0.8f);
     bool changed = false;
     if (ImGui::Begin("vplkit")) {
         ImGui::Text("%ux%u, %u VPLs, frame %u, exposure %.2f", last.width, last.height, last.vpl_count, settings.frame,
                     double(last.exposure));
+        // The cameras and keys, where a user looks for them (view --help says the same).
+        ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+        ImGui::TextWrapped(
+            "orbit: left-drag, wheel; fly: right-drag, W A S D, Q E (Shift faster); F12 screenshot, "
+            "F1 panel");
+        ImGui::PopStyleColor();
         if (!budget_.empty()) ImGui::TextWrapped("%s", budget_.c_str());
         RenderSettings edited = settings;
         if (draw_settings(edited, last.plan)) {
