@@ -5,7 +5,10 @@
 
 #include "vplkit/stages/device_requirements.hpp"
 
+#include "vplkit/error.hpp"
+
 #include <algorithm>
+#include <cstddef>
 
 namespace vplkit::stages {
 namespace {
@@ -14,7 +17,76 @@ std::string version_name(uint32_t version) {
     return std::to_string(VK_API_VERSION_MAJOR(version)) + "." + std::to_string(VK_API_VERSION_MINOR(version));
 }
 
+// Every member of these structs from `first` on is a VkBool32 feature flag: OR `from`'s into `into`.
+template <class Features>
+void add_flags(Features& into, const Features& from, size_t first) {
+    static_assert((sizeof(Features) % sizeof(VkBool32)) == 0);
+    auto* to = reinterpret_cast<VkBool32*>(reinterpret_cast<char*>(&into) + first);
+    const auto* flags = reinterpret_cast<const VkBool32*>(reinterpret_cast<const char*>(&from) + first);
+    for (size_t i = 0; i < (sizeof(Features) - first) / sizeof(VkBool32); ++i) to[i] = to[i] | flags[i];
+}
+
+const char* feature_struct_name(VkStructureType type) {
+    switch (type) {
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2:
+            return "VkPhysicalDeviceFeatures2";
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES:
+            return "VkPhysicalDeviceVulkan12Features";
+        case VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES:
+            return "VkPhysicalDeviceVulkan13Features";
+        default:
+            return nullptr;
+    }
+}
+
 }  // namespace
+
+VkPhysicalDeviceFeatures2* DeviceRequirements::chain(void* next) {
+    for (auto* s = static_cast<const VkBaseInStructure*>(next); s != nullptr; s = s->pNext) {
+        if (const char* name = feature_struct_name(s->sType)) {
+            throw Error(std::string("DeviceRequirements::chain: your feature chain already holds a ") + name +
+                        " (a pNext chain may hold each type once): pass it to merge_into, which adds the kit's "
+                        "flags to yours");
+        }
+    }
+    features.pNext = &features12;
+    features12.pNext = &features13;
+    features13.pNext = next;
+    return &features;
+}
+
+void* DeviceRequirements::merge_into(void* your_chain) {
+    bool has[3] = {false, false, false};  // Features2, Vulkan12Features, Vulkan13Features
+    for (auto* s = static_cast<VkBaseOutStructure*>(your_chain); s != nullptr; s = s->pNext) {
+        if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2) {
+            auto& yours = reinterpret_cast<VkPhysicalDeviceFeatures2*>(s)->features;
+            add_flags(yours, features.features, 0);
+            has[0] = true;
+        } else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES) {
+            add_flags(*reinterpret_cast<VkPhysicalDeviceVulkan12Features*>(s), features12,
+                      offsetof(VkPhysicalDeviceVulkan12Features, samplerMirrorClampToEdge));
+            has[1] = true;
+        } else if (s->sType == VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES) {
+            add_flags(*reinterpret_cast<VkPhysicalDeviceVulkan13Features*>(s), features13,
+                      offsetof(VkPhysicalDeviceVulkan13Features, robustImageAccess));
+            has[2] = true;
+        }
+    }
+    void* head = your_chain;
+    if (!has[2]) {
+        features13.pNext = head;
+        head = &features13;
+    }
+    if (!has[1]) {
+        features12.pNext = head;
+        head = &features12;
+    }
+    if (!has[0]) {
+        features.pNext = head;
+        head = &features;
+    }
+    return head;
+}
 
 DeviceRequirements required_device_features() {
     DeviceRequirements needs;

@@ -13,8 +13,11 @@
 //   vplkit::stages::DeviceRequirements kit_needs = vplkit::stages::required_device_features();
 //   for (const std::string& missing : vplkit::stages::missing_device_features(physical_device, kit_needs))
 //       ...  // "feature scalarBlockLayout (Vulkan 1.2)", "extension VK_KHR_push_descriptor"
-//   create_info.pNext = kit_needs.chain(my_feature_chain);  // merge into your own structs if you have them
+//   create_info.pNext = kit_needs.merge_into(my_feature_chain);  // your chain, with the kit's flags added
 //   create_info.ppEnabledExtensionNames = kit_needs.extensions.data();  // plus your own
+// merge_into, not chain(my_feature_chain), when your chain already holds a VkPhysicalDeviceFeatures2,
+// Vulkan12Features or Vulkan13Features: a pNext chain may hold each struct type once
+// (VUID-VkDeviceCreateInfo-sType-unique), so the kit's flags go into yours.
 
 #include <vulkan/vulkan.h>
 
@@ -33,13 +36,16 @@ struct DeviceRequirements {
 
     // Links features -> features12 -> features13 -> next and returns &features, for
     // VkDeviceCreateInfo::pNext (with pEnabledFeatures null). Relinks on every call, so a copy
-    // of this struct chains its own members.
-    VkPhysicalDeviceFeatures2* chain(void* next = nullptr) {
-        features.pNext = &features12;
-        features12.pNext = &features13;
-        features13.pNext = next;
-        return &features;
-    }
+    // of this struct chains its own members. Throws vplkit::Error naming the struct when `next`
+    // already holds one of the three types (use merge_into).
+    VkPhysicalDeviceFeatures2* chain(void* next = nullptr);
+
+    // For a caller whose feature chain may hold its own VkPhysicalDeviceFeatures2, Vulkan12Features
+    // or Vulkan13Features: ORs the kit's flags into those it holds, links the kit's struct in
+    // front for each type it lacks, and returns the head for VkDeviceCreateInfo::pNext (the
+    // caller's chain itself when it holds all three). Changes flags of the caller's structs only
+    // from false to true, and the pNext of the kit's structs only.
+    void* merge_into(void* your_chain);
 };
 
 // The version, extensions and features every stage of the kit may use (the list above).
