@@ -14,22 +14,11 @@ class Context;
 
 namespace vplkit {
 
-struct GbufferImages {
-    Image position;
-    Image normal;
-    Image geometric_normal;
-    Image albedo;
-    Image emission;
-    Image depth;
-    Image motion;
-
+// The images, owned (stages/gbuffer_views.hpp's GbufferSet; converts to GbufferViews, layouts
+// staying tracked in these Images).
+struct GbufferImages : stages::GbufferSet<Image> {
     // Throws vplkit::Error for a zero size.
     static GbufferImages create(Context& context, uint32_t width, uint32_t height);
-    uint32_t width() const { return position.width(); }
-    uint32_t height() const { return position.height(); }
-
-    // As the stages take it; layouts stay tracked in these Images.
-    operator stages::GbufferViews() { return {position, normal, geometric_normal, albedo, emission, depth, motion}; }
 };
 
 }  // namespace vplkit
