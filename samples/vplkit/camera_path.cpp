@@ -44,8 +44,8 @@ std::vector<CameraKey> read_camera_keys(const std::filesystem::path& file) {
 
 namespace {
 
-scene::Camera looking(const scene::Camera& base, glm::vec3 position, glm::vec3 target) {
-    scene::Camera c = scene::look_at(position, target, {0.0f, 1.0f, 0.0f}, base.yfov);
+scene::Camera looking(const scene::Camera& base, glm::vec3 position, glm::vec3 target, glm::vec3 up) {
+    scene::Camera c = scene::look_at(position, target, up, base.yfov);
     c.aspect = base.aspect;
     c.znear = base.znear;
     c.zfar = base.zfar;
@@ -65,18 +65,26 @@ std::vector<scene::Camera> keyframe_path(const std::vector<CameraKey>& keys, con
         const CameraKey& a = keys[k];
         const CameraKey& b = keys[k + 1];
         const float f = float(std::clamp((t - a.time) / (b.time - a.time), 0.0, 1.0));
-        path.push_back(looking(base, glm::mix(a.position, b.position, f), glm::mix(a.target, b.target, f)));
+        path.push_back(
+            looking(base, glm::mix(a.position, b.position, f), glm::mix(a.target, b.target, f), {0.0f, 1.0f, 0.0f}));
     }
     return path;
 }
 
-std::vector<scene::Camera> orbit_path(const scene::Camera& base, glm::vec3 target, float degrees, uint32_t n) {
+std::vector<scene::Camera> orbit_path(const scene::Camera& base, glm::vec3 target, float degrees, uint32_t n,
+                                      glm::vec3 up) {
     std::vector<scene::Camera> path;
+    const glm::vec3 axis = glm::normalize(up);
     const glm::vec3 d = base.position - target;
+    // d's part along the axis stays; the rest turns about it (Rodrigues). With +Y up:
+    // (d.x cos a + d.z sin a, d.y, d.z cos a - d.x sin a).
+    const glm::vec3 along = axis * glm::dot(axis, d);
+    const glm::vec3 across = d - along;
+    const glm::vec3 side = glm::cross(axis, d);
     for (uint32_t i = 0; i < n; ++i) {
         const float a = glm::radians(n > 1 ? degrees * float(i) / float(n - 1) : 0.0f);
-        const glm::vec3 turned{d.x * std::cos(a) + d.z * std::sin(a), d.y, -d.x * std::sin(a) + d.z * std::cos(a)};
-        path.push_back(looking(base, target + turned, target));
+        const glm::vec3 turned = along + across * std::cos(a) + side * std::sin(a);
+        path.push_back(looking(base, target + turned, target, axis));
     }
     return path;
 }

@@ -26,11 +26,12 @@ struct CameraKey {
 // that do not increase.
 std::vector<CameraKey> read_camera_keys(const std::filesystem::path& file);
 
-// n cameras along the keys (see above), each with `base`'s field of view, planes and aspect.
+// n cameras along the keys (see above), each with `base`'s field of view, planes and aspect, +Y up.
 std::vector<scene::Camera> keyframe_path(const std::vector<CameraKey>& keys, const scene::Camera& base, uint32_t n);
 
-// n cameras turning `degrees` in all about the vertical axis (+Y) through `target`, starting at
-// `base` (frame 0 is `base`'s position, looking at the target).
-std::vector<scene::Camera> orbit_path(const scene::Camera& base, glm::vec3 target, float degrees, uint32_t n);
+// n cameras turning `degrees` in all about the axis `up` (default +Y, the vertical) through
+// `target`, starting at `base` (frame 0 is `base`'s position, looking at the target), `up` up.
+std::vector<scene::Camera> orbit_path(const scene::Camera& base, glm::vec3 target, float degrees, uint32_t n,
+                                      glm::vec3 up = {0.0f, 1.0f, 0.0f});
 
 }  // namespace vplkit::cli

@@ -141,7 +141,6 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         settings.denoise = DenoiseMode::svgf;
     }
     if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
-    if (request.camera_flags.up) throw UsageError("--up: sequence's paths keep +Y up");
     if (request.camera_flags.position && path_arg != "orbit") {
         throw UsageError(
             "--position and --target are for --path orbit (its start and centre): a keyframe file "
@@ -184,8 +183,10 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         std::printf("animation: %.3f s to %.3f s at %g frames per second, %s\n", start_time, animation_end, o.fps,
                     o.loop ? "looping" : "holding the last pose after the end");
     }
+    // --up (an orbit's only: it needs --position): the orbit turns about it and keeps it up.
+    const glm::vec3 up = request.camera_flags.up.value_or(glm::vec3(0.0f, 1.0f, 0.0f));
     const std::vector<scene::Camera> path = keys ? keyframe_path(*keys, scene.camera(), frames)
-                                                 : orbit_path(scene.camera(), loaded.target, orbit_degrees, frames);
+                                                 : orbit_path(scene.camera(), loaded.target, orbit_degrees, frames, up);
 
     auto context = Context::create(request.context);
     std::printf("device: %s (%s)\n", context->info().name.c_str(), context->info().type_name.c_str());
@@ -416,8 +417,8 @@ void add_sequence(CLI::App& vplkit, Runners& runners) {
         "Renders N frames along a camera path and writes DIR/frame_NNNN.png (and .pfm with --pfm, linear "
         "radiance) and DIR/stage_times.csv (each frame's GPU time per stage). A renderer lives for the whole "
         "sequence, so --vpl-source smc carries its VPLs from frame to frame. Takes render's options; --position "
-        "X,Y,Z --target X,Y,Z place an orbit's first frame and its centre, --fov is every frame's (keyframes "
-        "too), and the paths keep +Y up (no --up).");
+        "X,Y,Z --target X,Y,Z place an orbit's first frame and its centre, --up the axis it turns about and "
+        "its frames' up (default +Y; keyframes keep +Y up), --fov is every frame's (keyframes too).");
     auto o = std::make_shared<SequenceOptions>();
     sequence
         ->add_option_function<std::string>(
