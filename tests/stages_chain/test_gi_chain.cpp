@@ -254,3 +254,21 @@ TEST_CASE("gi chain: sigma_max's default share of the scene scale is the runtime
     CHECK(vs::kGiChainSigmaMaxSceneFraction == vplkit::kSigmaMaxSceneFraction);
     CHECK(vs::GiChainOptions{}.sigma_max_scene_fraction.value() == vplkit::kSigmaMaxSceneFraction);
 }
+
+TEST_CASE(
+    "gi chain: GiChainFrame::from_camera takes the eye, view-projection and view_to_world from view and projection") {
+    const glm::vec3 eye{1.2f, 1.8f, 3.2f};
+    const glm::mat4 view = glm::lookAtRH(eye, glm::vec3(0.0f, 0.4f, -0.5f), glm::vec3(0, 1, 0));
+    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(55.0f), 16.0f / 9.0f, 50.0f, 0.1f);  // reversed Z
+    projection[1][1] = -projection[1][1];
+    const vs::GiChainFrame frame = vs::GiChainFrame::from_camera(7, view, projection);
+    CHECK(frame.index == 7);
+    for (int i = 0; i < 3; ++i) CHECK(frame.camera_position[i] == doctest::Approx(eye[i]).epsilon(1e-5));
+    CHECK(frame.view_projection == projection * view);
+    // A world direction taken to view space by the view comes back.
+    const glm::vec3 world_normal = glm::normalize(glm::vec3(0.3f, 0.8f, -0.5f));
+    const glm::vec3 back = frame.view_to_world * glm::vec3(view * glm::vec4(world_normal, 0.0f));
+    for (int i = 0; i < 3; ++i) CHECK(back[i] == doctest::Approx(world_normal[i]).epsilon(1e-5));
+    CHECK(glm::length(glm::vec3(frame.view_to_world[2]) - glm::normalize(eye - glm::vec3(0.0f, 0.4f, -0.5f))) <
+          1e-5f);  // the camera's +z axis, world space: away from the target
+}

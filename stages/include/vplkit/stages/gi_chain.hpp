@@ -46,6 +46,7 @@
 
 #include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
+#include <glm/matrix.hpp>
 #include <glm/vec3.hpp>
 
 #include <cstdint>
@@ -124,7 +125,16 @@ struct GiChainFrame {
     uint32_t index = 0;
     glm::vec3 camera_position{0.0f};
     glm::mat4 view_projection{1.0f};  // world -> Vulkan clip, what the depth was rendered with
-    glm::mat3 view_to_world{1.0f};    // only for view-space normals (GbufferNormalSpace::view)
+    // Only for view-space normals (GbufferNormalSpace::view). Its default, identity, reads them as
+    // world-space normals without a word: from_camera sets it.
+    glm::mat3 view_to_world{1.0f};
+
+    // Every member from the camera the raster pass used: `view` world -> view (a rigid
+    // transform, as lookAt's), `projection` view -> Vulkan clip (reversed Z or not, y down).
+    static GiChainFrame from_camera(uint32_t index, const glm::mat4& view, const glm::mat4& projection) {
+        const glm::mat4 camera_to_world = glm::inverse(view);
+        return {index, glm::vec3(camera_to_world[3]), projection * view, glm::mat3(camera_to_world)};
+    }
 };
 
 class GiChain {
