@@ -14,26 +14,11 @@ class Context;
 
 namespace vplkit {
 
-struct RtslcScratch {
-    uint32_t width = 0, height = 0;
-    uint32_t block_size = 0;
-    uint32_t cut_size = 0;  // samples_per_pixel: slots per block in `cuts`
-    uint32_t interleave = 1;
-    Buffer cuts;             // RtslcScratchBuffers::cuts
-    Buffer representatives;  // RtslcScratchBuffers::representatives
-    Image estimates;         // RGBA32F, interleave > 1 only
-
-    uint32_t blocks_x() const { return (width + block_size - 1) / block_size; }
-    uint32_t blocks_y() const { return (height + block_size - 1) / block_size; }
-    uint32_t block_count() const { return blocks_x() * blocks_y(); }
-
+// The scratch, owned (stages/rtslc.hpp's RtslcScratchSet; converts to RtslcScratchBuffers, the
+// estimates' layout staying tracked in `estimates`).
+struct RtslcScratch : stages::RtslcScratchSet<Buffer, Image> {
     // Validates the options; throws vplkit::Error for a zero size too (rtslc_scratch_requirements).
     static RtslcScratch create(Context& context, uint32_t width, uint32_t height, const stages::RtslcOptions& options);
-
-    // As the stage takes it; the estimates' layout stays tracked in `estimates`.
-    operator stages::RtslcScratchBuffers() {
-        return {width, height, block_size, cut_size, interleave, cuts, representatives, estimates};
-    }
 };
 
 }  // namespace vplkit

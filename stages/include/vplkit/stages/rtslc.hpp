@@ -32,6 +32,7 @@
 #include <glm/vec3.hpp>
 
 #include <cstdint>
+#include <type_traits>
 
 namespace vplkit::stages {
 
@@ -71,23 +72,32 @@ void validate(const RtslcOptions& options);
 // What the passes hand each other: the cuts and their representative pixels, and with
 // interleaving the per-pixel estimates before reconstruction. Sized for one image size and
 // (samples_per_pixel, block_size, interleave) by rtslc_scratch_requirements; reusable across
-// frames. The runtime's RtslcScratch (vplkit/rtslc_scratch.hpp) allocates them.
-struct RtslcScratchBuffers {
+// frames. One definition for views (RtslcScratchBuffers, what the passes take) and owned buffers
+// (the runtime's RtslcScratch, vplkit/rtslc_scratch.hpp, which allocates them): a set whose
+// buffers and image convert to BufferView and ImageView converts to the views.
+template <class BufferT, class ImageT>
+struct RtslcScratchSet {
     uint32_t width = 0, height = 0;
     uint32_t block_size = 0;
     uint32_t cut_size = 0;  // samples_per_pixel: slots per block in `cuts`
     uint32_t interleave = 1;
-    BufferView cuts;             // uint32[block_count() * cut_size]: light tree node indices, the cut's
-                                 // nodes first (in no particular order), then kRtslcNoNode
-    BufferView representatives;  // uint32[block_count()]: the pixel y * width + x that chose the cut;
-                                 // kRtslcNoNode for a block without covered pixels (its cut is empty)
-    ImageView estimates;         // RGBA32F, width x height, storage usage; interleave > 1 only: each
-                                 // pixel's sum over its own share
+    BufferT cuts;             // uint32[block_count() * cut_size]: light tree node indices, the cut's
+                              // nodes first (in no particular order), then kRtslcNoNode
+    BufferT representatives;  // uint32[block_count()]: the pixel y * width + x that chose the cut;
+                              // kRtslcNoNode for a block without covered pixels (its cut is empty)
+    ImageT estimates;         // RGBA32F, width x height, storage usage; interleave > 1 only: each
+                              // pixel's sum over its own share
 
     uint32_t blocks_x() const { return (width + block_size - 1) / block_size; }
     uint32_t blocks_y() const { return (height + block_size - 1) / block_size; }
     uint32_t block_count() const { return blocks_x() * blocks_y(); }
+
+    // Non-const: an owned image's view points at the layout it keeps.
+    operator RtslcScratchSet<BufferView, ImageView>() requires(!std::is_same_v<BufferT, BufferView>) {
+        return {width, height, block_size, cut_size, interleave, cuts, representatives, estimates};
+    }
 };
+using RtslcScratchBuffers = RtslcScratchSet<BufferView, ImageView>;
 
 // What the scratch for an image of width x height and these options must hold.
 struct RtslcScratchRequirements {
