@@ -151,11 +151,12 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
     const uint32_t v0 = vpl_count_knob(base, source);
     const uint32_t v_small = *std::min_element(space.vpls.begin(), space.vpls.end());
     const GiMethod m0 = space.methods.front();
-    // The VPL budget's frames by an unbiased method where the space has one: sst's substitutes
-    // smooth over the VPL set's blotches that the exact frame shows.
-    const bool has_rtslc =
-        std::find(space.methods.begin(), space.methods.end(), GiMethod::rtslc) != space.methods.end();
-    const GiMethod m_vpl = has_rtslc ? GiMethod::rtslc : m0;
+    // The VPL budget's frames by an unbiased method (bias floor 0 in the method table: rtslc)
+    // where the space has one: sst's substitutes smooth over the VPL set's blotches that the exact
+    // frame shows.
+    const auto unbiased = std::find_if(space.methods.begin(), space.methods.end(),
+                                       [](GiMethod m) { return gi_method(m).bias_floor == 0.0; });
+    const GiMethod m_vpl = unbiased != space.methods.end() ? *unbiased : m0;
     const bool half0 = space.half_resolution.front();
     const uint32_t b0 = space.block_sizes.front();
     auto config = [&](GiMethod m, uint32_t spp, bool half, DenoiseMode d, uint32_t vpls, uint32_t block) {
@@ -329,7 +330,7 @@ BudgetCalibration calibrate_budget(Renderer& renderer, const DeviceInfo& device,
         // other, so no square of the pair's own noise is left in it; less the method's bias floor
         // (the model adds it beside) against rtslc; with the raw noise at spp0 and spp1, svgf_effect().
         const auto [first, second] = noise_pairs[pair];
-        const bool rtslc_reference = v_small != v0 && m_vpl == GiMethod::rtslc;
+        const bool rtslc_reference = v_small != v0 && gi_method(m_vpl).bias_floor == 0.0;
         const std::vector<float> c = unit_rgb(images[rtslc_reference ? reference_first : second + 1]);
         const std::vector<float> d = unit_rgb(images[rtslc_reference ? reference_first + 1 : second + 2]);
         const double reference_noise = half_difference_variance(c, d);
