@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <initializer_list>
 #include <map>
 #include <utility>
 
@@ -9,46 +10,56 @@ namespace vplkit::cli {
 
 namespace {
 
-using StageTimes = std::vector<std::pair<std::string, double>>;
+// One line of the table: a pass name, its time summed over its passes, and how many it had.
+struct StageTime {
+    std::string name;
+    double ms = 0.0;
+    size_t passes = 0;
+};
+using StageTimes = std::vector<StageTime>;
 
 // Passes of one name (e.g. the importance mip levels) summed into one line, in first-seen order.
 StageTimes by_stage(const std::vector<PassTiming>& timings) {
     StageTimes stages;
     std::map<std::string, size_t> index;
-    std::map<std::string, int> passes;
     for (const PassTiming& t : timings) {
         auto [it, added] = index.try_emplace(t.name, stages.size());
-        if (added) stages.push_back({t.name, 0.0});
-        stages[it->second].second += t.gpu_ms;
-        ++passes[t.name];
-    }
-    for (auto& [name, ms] : stages) {
-        if (passes[name] > 1) name += " (" + std::to_string(passes[name]) + " passes)";
+        if (added) stages.push_back({t.name, 0.0, 0});
+        stages[it->second].ms += t.gpu_ms;
+        ++stages[it->second].passes;
     }
     return stages;
 }
 
-// Each stage's median over the frames that ran it, in the order the frames first ran them.
+// Each stage's median over the frames that ran it, in the order the frames first ran them, with
+// the most passes a frame gave it (a frame that ran more passes of a name is still that stage).
 StageTimes median_stages(const std::vector<StageTimes>& frames) {
-    std::vector<std::string> names;
+    StageTimes out;
     for (const StageTimes& frame : frames) {
-        for (const auto& [name, ms] : frame) {
-            if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+        for (const StageTime& stage : frame) {
+            if (std::none_of(out.begin(), out.end(), [&](const StageTime& o) { return o.name == stage.name; })) {
+                out.push_back({stage.name, 0.0, 0});
+            }
         }
     }
-    StageTimes out;
-    for (const std::string& name : names) {
+    for (StageTime& stage : out) {
         std::vector<double> values;
         for (const StageTimes& frame : frames) {
-            for (const auto& [n, v] : frame) {
-                if (n == name) values.push_back(v);
+            for (const StageTime& s : frame) {
+                if (s.name != stage.name) continue;
+                values.push_back(s.ms);
+                stage.passes = std::max(stage.passes, s.passes);
             }
         }
         std::sort(values.begin(), values.end());
         const size_t n = values.size();
-        out.push_back({name, n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2])});
+        stage.ms = n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
     }
     return out;
+}
+
+std::string label(const StageTime& stage) {
+    return stage.passes > 1 ? stage.name + " (" + std::to_string(stage.passes) + " passes)" : stage.name;
 }
 
 std::string frames_text(uint32_t first, uint32_t last) {
@@ -56,10 +67,11 @@ std::string frames_text(uint32_t first, uint32_t last) {
                          : "frames " + std::to_string(first + 1) + ".." + std::to_string(last + 1);
 }
 
-std::string line(const char* format, const std::string& name, double ms) {
-    char text[160];
-    std::snprintf(text, sizeof text, format, name.c_str(), ms);
-    return text;
+// "  name ....... 1.234 ms": the name column as wide as the longest name of the table.
+std::string line(const std::string& name, double ms, int width) {
+    char text[48];
+    std::snprintf(text, sizeof text, " %9.3f ms\n", ms);
+    return "  " + name + std::string(size_t(std::max(0, width - int(name.size()))), ' ') + text;
 }
 
 }  // namespace
@@ -103,30 +115,36 @@ std::string stage_table(const std::vector<std::vector<PassTiming>>& frames, uint
     const uint32_t count = uint32_t(frames.size());
     std::vector<StageTimes> timed;
     for (uint32_t f = count > 1 ? 1 : 0; f < count; ++f) timed.push_back(by_stage(frames[f]));
+    const StageTimes medians = median_stages(timed);
+    // What frame 1 made and the later frames reused (by name: frame 1 may run more passes of a
+    // stage every frame runs, e.g. SMC's warm-up updates): its cost is paid once, not per frame.
+    StageTimes made;
+    if (count > 1) {
+        for (const StageTime& stage : by_stage(frames.front())) {
+            const auto same = [&](const StageTime& m) { return m.name == stage.name; };
+            if (std::none_of(medians.begin(), medians.end(), same)) made.push_back(stage);
+        }
+    }
+    int column = 30;
+    for (const StageTimes* list : std::initializer_list<const StageTimes*>{&medians, &made}) {
+        for (const StageTime& stage : *list) column = std::max(column, int(label(stage).size()));
+    }
     std::string text = std::to_string(width) + "x" + std::to_string(height) + ", GPU time per stage" +
                        (count > 1 ? " (median of frames 2.." + std::to_string(count) + "):\n" : ":\n");
     double total = 0.0;
-    const StageTimes medians = median_stages(timed);
-    for (const auto& [name, ms] : medians) {
-        text += line("  %-30s %9.3f ms\n", name, ms);
-        total += ms;
+    for (const StageTime& stage : medians) {
+        text += line(label(stage), stage.ms, column);
+        total += stage.ms;
     }
-    text += line("  %-30s %9.3f ms\n", "total", total);
-    if (count > 1) {
-        // What frame 1 made and the later frames reused: its cost is paid once, not per frame.
-        std::string made;
+    text += line("total", total, column);
+    if (!made.empty()) {
         double made_total = 0.0;
-        for (const auto& [name, ms] : by_stage(frames.front())) {
-            const bool timed_later =
-                std::any_of(medians.begin(), medians.end(), [&](const auto& stage) { return stage.first == name; });
-            if (timed_later) continue;
-            made += line("  %-30s %9.3f ms\n", name, ms);
-            made_total += ms;
+        text += "made on frame 1 only and reused after (frame 1's time, which includes its shader compiles):\n";
+        for (const StageTime& stage : made) {
+            text += line(label(stage), stage.ms, column);
+            made_total += stage.ms;
         }
-        if (!made.empty()) {
-            text += "made on frame 1 only and reused after (frame 1's time, which includes its shader compiles):\n" +
-                    made + line("  %-30s %9.3f ms\n", "total", made_total);
-        }
+        text += line("total", made_total, column);
     }
     return text;
 }
