@@ -12,6 +12,7 @@
 #include "render_stats.hpp"
 #include "stats_json.hpp"
 
+#include "vplkit/cache_key.hpp"
 #include "vplkit/context.hpp"
 #include "vplkit/error.hpp"
 #include "vplkit/gi_methods.hpp"
@@ -21,7 +22,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cinttypes>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -37,16 +37,6 @@
 namespace vplkit::cli {
 
 namespace {
-
-// FNV-1a, 64 bit: a cache file name from a key.
-uint64_t fnv1a(const std::string& text) {
-    uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return h;
-}
 
 std::string camera_key(const scene::Camera& c) {
     std::ostringstream key;
@@ -291,9 +281,7 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
                 << settings.width << 'x' << settings.height << " paths " << reference_paths << " bounces "
                 << settings.vpl_bounces << " seed " << reference_settings.seed << " brdf "
                 << (request.lambertian ? "lambert" : "gltf") << "\n";
-            char hash[32];
-            std::snprintf(hash, sizeof(hash), "%016" PRIx64, fnv1a(key.str()));
-            const std::filesystem::path cached = cache / (std::string("reference_") + hash + ".pfm");
+            const std::filesystem::path cached = cache / ("reference_" + fnv1a_hex(key.str()) + ".pfm");
             std::vector<float> truth;
             if (std::filesystem::exists(cached)) {
                 PfmImage r = read_pfm(cached);
