@@ -117,12 +117,12 @@ std::string csv(const BenchRun& run) {
          "image,flc_navg\n";
     s.precision(9);
     for (const BenchPoint& p : run.points) {
-        s << run.scene << ",\"" << run.device << "\"," << run.width << ',' << run.height << ',' << p.method << ','
-          << p.sweep << ',' << p.spp << ',' << p.block << ',' << p.interleave << ',' << (p.half ? 1 : 0) << ','
-          << (p.mock_cuts ? 1 : 0) << ',' << p.vpls << ',' << p.frames << ',' << p.frame_ms << ',' << p.frame_min_ms
-          << ',' << p.frame_max_ms << ',' << p.gi_ms << ',' << p.trees_ms << ',' << p.vpls_ms << ',' << p.rmse << ','
-          << p.ssim << ',' << p.relmse << ',' << p.levels_per_traversal << ',' << p.mock_cut_pixels << ','
-          << p.dropped_samples << ',' << p.image << ',' << p.flc_navg << '\n';
+        s << csv_field(run.scene) << ',' << csv_field(run.device) << ',' << run.width << ',' << run.height << ','
+          << p.method << ',' << p.sweep << ',' << p.spp << ',' << p.block << ',' << p.interleave << ','
+          << (p.half ? 1 : 0) << ',' << (p.mock_cuts ? 1 : 0) << ',' << p.vpls << ',' << p.frames << ',' << p.frame_ms
+          << ',' << p.frame_min_ms << ',' << p.frame_max_ms << ',' << p.gi_ms << ',' << p.trees_ms << ',' << p.vpls_ms
+          << ',' << p.rmse << ',' << p.ssim << ',' << p.relmse << ',' << p.levels_per_traversal << ','
+          << p.mock_cut_pixels << ',' << p.dropped_samples << ',' << csv_field(p.image) << ',' << p.flc_navg << '\n';
     }
     return s.str();
 }

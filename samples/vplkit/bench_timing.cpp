@@ -69,6 +69,15 @@ void write_csv(const std::string& path, const std::string& text) {
     }
 }
 
+std::string csv_field(std::string_view text) {
+    std::string field = "\"";
+    for (char c : text) {
+        if (c == '"') field += '"';
+        field += c;
+    }
+    return field + '"';
+}
+
 void write_csv_if_asked(const std::optional<std::string>& path, const std::string& text) {
     if (!path) return;
     write_csv(*path, text);

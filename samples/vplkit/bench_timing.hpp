@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace CLI {
@@ -28,6 +29,10 @@ struct StageStats {
 // timed times, and returns one entry per pass in pass order, then "total". `label` names the
 // case in the progress line (stderr).
 std::vector<StageStats> time_passes(Context& context, PassList& passes, uint32_t runs, const std::string& label);
+
+// `text` as one CSV field (RFC 4180): in double quotes, a quote inside doubled, so that a device
+// name or a scene path with a comma or quote stays one column.
+std::string csv_field(std::string_view text);
 
 // Writes `text` to `path` through a temporary file: a failure leaves no partial file.
 // Throws vplkit::Error naming the path.

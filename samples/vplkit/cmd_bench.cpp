@@ -114,8 +114,8 @@ int run_bench_sort(const BenchSortOptions& o) {
         for (const StageStats& s : stats) {
             std::printf("%10u  %-18s %-9s %10.3f %10.3f %10.3f\n", count, s.stage.c_str(), algorithm_name, s.median_ms,
                         s.min_ms, s.max_ms);
-            csv << '"' << device.name << "\"," << count << ',' << algorithm_name << ',' << s.stage << ',' << runs << ','
-                << s.median_ms << ',' << s.min_ms << ',' << s.max_ms << ',' << dispatches << '\n';
+            csv << csv_field(device.name) << ',' << count << ',' << algorithm_name << ',' << s.stage << ',' << runs
+                << ',' << s.median_ms << ',' << s.min_ms << ',' << s.max_ms << ',' << dispatches << '\n';
         }
     }
 

@@ -250,12 +250,12 @@ int run_bench_bvh(const BenchBvhOptions& o) {
         std::printf("  gpu   refit %10.2f ms (GPU); build by stage (median ms):", refit_ms);
         for (const auto& [name, ms] : stage_medians(build_stats)) std::printf(" %s %.2f", name.c_str(), ms);
         std::printf("\n  closest hits that differ between the trees: %u of %u\n", mismatches, ray_count);
-        csv << '"' << device.name << "\",\"" << c.name << "\"," << triangles << ",host," << host_ms << ",,"
+        csv << csv_field(device.name) << ',' << csv_field(c.name) << ',' << triangles << ",host," << host_ms << ",,"
             << host_bvh.nodes.size() << ',' << host_bvh.depth << ",,," << host_sah << ',' << host_closest << ','
             << host_occlusion << ',' << mismatches << '\n';
-        csv << '"' << device.name << "\",\"" << c.name << "\"," << triangles << ",gpu," << gpu_ms << ',' << refit_ms
-            << ',' << s.node_count << ',' << s.depth << ',' << s.lbvh_depth << ',' << s.capped_leaves << ',' << gpu_sah
-            << ',' << gpu_closest << ',' << gpu_occlusion << ',' << mismatches << '\n';
+        csv << csv_field(device.name) << ',' << csv_field(c.name) << ',' << triangles << ",gpu," << gpu_ms << ','
+            << refit_ms << ',' << s.node_count << ',' << s.depth << ',' << s.lbvh_depth << ',' << s.capped_leaves << ','
+            << gpu_sah << ',' << gpu_closest << ',' << gpu_occlusion << ',' << mismatches << '\n';
         if (mismatches > ray_count / 1000) {
             throw Error("bench bvh: " + std::to_string(mismatches) + " of " + std::to_string(ray_count) +
                         " closest hits differ between the host and the GPU BVH of " + c.name);

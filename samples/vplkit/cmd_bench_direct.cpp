@@ -7,6 +7,7 @@
 // and two plots (PNG, scripts/plot.py).
 
 #include "bench_options.hpp"
+#include "bench_timing.hpp"
 #include "camera_flags.hpp"
 #include "cli.hpp"
 #include "cli_checks.hpp"
@@ -215,7 +216,7 @@ int run_bench_direct(const BenchDirectOptions& o) {
     std::ostringstream csv;
     csv << "scene,device,width,height,sampler,spp,direct_ms,relative_rmse\n";
     for (const DirectPoint& p : points) {
-        csv << setup.name << ",\"" << device.name << "\"," << base.width << ',' << base.height << ','
+        csv << csv_field(setup.name) << ',' << csv_field(device.name) << ',' << base.width << ',' << base.height << ','
             << direct_sampler_name(p.sampler) << ',' << p.spp << ',' << p.direct_ms << ',' << p.relative_rmse << '\n';
     }
     write_text(out / "points.csv", csv.str());

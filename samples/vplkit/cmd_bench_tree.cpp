@@ -127,9 +127,9 @@ int run_bench_tree(const BenchTreeOptions& o) {
 
         for (const StageStats& s : stats) {
             std::printf("%10u  %-22s %10.3f %10.3f %10.3f\n", count, s.stage.c_str(), s.median_ms, s.min_ms, s.max_ms);
-            csv << '"' << device.name << "\"," << source << ',' << stages::sort_algorithm_name(sort_options.algorithm)
-                << ',' << count << ',' << s.stage << ',' << runs << ',' << s.median_ms << ',' << s.min_ms << ','
-                << s.max_ms << '\n';
+            csv << csv_field(device.name) << ',' << csv_field(source) << ','
+                << stages::sort_algorithm_name(sort_options.algorithm) << ',' << count << ',' << s.stage << ',' << runs
+                << ',' << s.median_ms << ',' << s.min_ms << ',' << s.max_ms << '\n';
         }
     }
     write_csv_if_asked(csv_path, csv.str());
