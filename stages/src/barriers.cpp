@@ -35,6 +35,17 @@ void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout old_layout,
     vkCmdPipelineBarrier2(cmd, &dependency);
 }
 
+void pipeline_barriers(VkCommandBuffer cmd, std::span<const VkBufferMemoryBarrier2> buffers,
+                       std::span<const VkImageMemoryBarrier2> images) {
+    if (buffers.empty() && images.empty()) return;
+    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dependency.bufferMemoryBarrierCount = uint32_t(buffers.size());
+    dependency.pBufferMemoryBarriers = buffers.data();
+    dependency.imageMemoryBarrierCount = uint32_t(images.size());
+    dependency.pImageMemoryBarriers = images.data();
+    vkCmdPipelineBarrier2(cmd, &dependency);
+}
+
 void compute_barrier(VkCommandBuffer cmd) {
     memory_barrier(cmd, VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_WRITE_BIT,
                    VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT, VK_ACCESS_2_SHADER_READ_BIT | VK_ACCESS_2_SHADER_WRITE_BIT);

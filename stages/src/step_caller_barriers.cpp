@@ -3,6 +3,8 @@
 
 #include "vplkit/steps.hpp"
 
+#include "vplkit/barriers.hpp"
+
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -47,13 +49,7 @@ void record_barriers(VkCommandBuffer cmd, const std::vector<ResourceUse>& uses, 
             images.push_back(b);
         }
     }
-    if (buffers.empty() && images.empty()) return;
-    VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dependency.bufferMemoryBarrierCount = uint32_t(buffers.size());
-    dependency.pBufferMemoryBarriers = buffers.data();
-    dependency.imageMemoryBarrierCount = uint32_t(images.size());
-    dependency.pImageMemoryBarriers = images.data();
-    vkCmdPipelineBarrier2(cmd, &dependency);
+    pipeline_barriers(cmd, buffers, images);
 }
 
 }  // namespace

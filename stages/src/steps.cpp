@@ -3,6 +3,8 @@
 
 #include "vplkit/steps.hpp"
 
+#include "vplkit/barriers.hpp"
+
 #include "hazard_tracker.hpp"
 #include "vplkit/error.hpp"
 
@@ -361,14 +363,7 @@ std::vector<BarrierRecord> StepList::record(VkCommandBuffer cmd, const Hooks& ho
                     if (use.image.layout) *use.image.layout = need.new_layout;
                 }
             }
-            if (!buffer_barriers.empty() || !image_barriers.empty()) {
-                VkDependencyInfo dependency{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-                dependency.bufferMemoryBarrierCount = uint32_t(buffer_barriers.size());
-                dependency.pBufferMemoryBarriers = buffer_barriers.data();
-                dependency.imageMemoryBarrierCount = uint32_t(image_barriers.size());
-                dependency.pImageMemoryBarriers = image_barriers.data();
-                vkCmdPipelineBarrier2(cmd, &dependency);
-            }
+            pipeline_barriers(cmd, buffer_barriers, image_barriers);
             try {
                 step.record(cmd);
             } catch (const std::length_error& e) {

@@ -5,6 +5,8 @@
 
 #include <vulkan/vulkan.h>
 
+#include <span>
+
 namespace vplkit {
 
 // Global memory barrier: compute-shader writes -> compute-shader reads and writes. Between the
@@ -22,5 +24,9 @@ void memory_barrier(VkCommandBuffer cmd, VkPipelineStageFlags2 src_stages, VkAcc
 void image_barrier(VkCommandBuffer cmd, VkImage image, VkImageLayout old_layout, VkImageLayout new_layout,
                    VkPipelineStageFlags2 src_stages, VkAccessFlags2 src_access, VkPipelineStageFlags2 dst_stages,
                    VkAccessFlags2 dst_access, VkImageSubresourceRange range = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1});
+
+// One vkCmdPipelineBarrier2 with these buffer and image barriers; nothing when both are empty.
+void pipeline_barriers(VkCommandBuffer cmd, std::span<const VkBufferMemoryBarrier2> buffers,
+                       std::span<const VkImageMemoryBarrier2> images);
 
 }  // namespace vplkit
