@@ -1,7 +1,7 @@
 // `vplkit view`: the renderer in a window. Each loop renders a frame with the current camera and
-// settings (render's options set them at start), blits it into the window and draws the panel on
-// top. With --screenshot the loop runs --frames frames and writes the last one as the window shows
-// it: the mode tests and scripts use.
+// settings (render's options set them at start), blits it into the window's left part and draws
+// the panel in a column on the right (view_layout.hpp). With --screenshot the loop runs --frames
+// frames and writes the last one as the window shows it: the mode tests and scripts use.
 
 #include "budget_option.hpp"
 #include "cli.hpp"
@@ -11,6 +11,7 @@
 #include "setting_flags.hpp"
 #include "view_camera.hpp"
 #include "view_gui.hpp"
+#include "view_layout.hpp"
 #include "view_panel.hpp"
 #include "view_presenter.hpp"
 #include "view_swapchain.hpp"
@@ -145,7 +146,8 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
     LoadedScene loaded = load_request_scene(request);
     RenderSettings& settings = request.settings;
     const scene::Scene& scene = loaded.scene;
-    const WindowSize size = window_size.value_or(WindowSize{settings.width, settings.height});
+    const VkExtent2D size = window_size ? VkExtent2D{window_size->width, window_size->height}
+                                        : default_window_size({settings.width, settings.height}, show_panel);
     ViewWindow window(size.width, size.height, "vplkit view: " + loaded.described);
     request.context.instance_extensions = window.required_instance_extensions();
     request.context.device_extensions.push_back(VK_KHR_SWAPCHAIN_EXTENSION_NAME);
@@ -198,7 +200,12 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
         // over the panel.
         gui.begin_frame();
         const bool moved = camera.update(window.handle(), seconds, !gui.wants_mouse(), !gui.wants_keyboard());
-        const bool changed = show_panel && panel.draw(settings, image);
+        const ViewLayout layout = view_layout(swapchain.extent(), show_panel);
+        const float points = 1.0f / gui.pixels_per_point();
+        const PanelColumn column{float(layout.panel_area.offset.x) * points,
+                                 float(layout.panel_area.extent.width) * points,
+                                 float(layout.panel_area.extent.height) * points};
+        const bool changed = show_panel && panel.draw(settings, image, column);
         if (moved || changed) {
             frame = 0;
             exact.clear();
@@ -248,7 +255,8 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
         const bool capture = (screenshot && last_frame) || g_presses.screenshot;
         WindowPixels pixels;
         auto overlay = [&](VkCommandBuffer cmd) { gui.record(cmd); };
-        if (!presenter.present(image.rgba8, image.width, image.height, overlay, capture ? &pixels : nullptr)) {
+        if (!presenter.present(image.rgba8, image.width, image.height, layout.image_area, overlay,
+                               capture ? &pixels : nullptr)) {
             // The window changed size: new images, and the frame again (a screenshot too).
             while (!swapchain.recreate(window.framebuffer_size()) && !window.close_requested()) window.poll_events();
             gui.swapchain_changed(swapchain);
@@ -285,14 +293,16 @@ void add_view(CLI::App& vplkit, Runners& runners) {
         "a window: the scene rendered live, a panel to switch methods and settings; --screenshot for scripts",
         "A window showing the renderer's frames, with a panel to change the method and its settings while it "
         "runs (the planner's reasons and per-stage GPU times alongside). Takes render's options: they set the "
-        "first frame's scene, size, method and settings.\n"
+        "first frame's scene, size, method and settings. The panel sits in a column right of the frame "
+        "(F1 hides it and the frame takes the whole window).\n"
         "  mouse: left-drag orbits the target, right-drag looks around, wheel zooms\n"
         "  keys: W A S D move, Q E down and up, Shift faster; F1 shows or hides the panel; F12 writes the "
         "window to vplkit-view-<time>.png in the working folder; Esc quits");
     auto o = std::make_shared<ViewOptions>();
     view->add_option_function<std::string>(
             "--screenshot", [o](const std::string& v) { o->screenshot = v; },
-            "render --frames frames, write the window's image (the panel too, unless hidden) to FILE.png, exit")
+            "render --frames frames, write the window's image (the panel's column too, unless hidden) to "
+            "FILE.png, exit")
         ->check(png_path_check())
         ->option_text("FILE.png")
         ->group("view");
@@ -303,11 +313,15 @@ void add_view(CLI::App& vplkit, Runners& runners) {
         ->group("view");
     view->add_option_function<std::string>(
             "--window", [o](const std::string& v) { o->window = v; },
-            "the window's size (default: the frame's size); the frame is scaled to fit")
+            "the window's size, the panel's column included (default: the frame's size, plus a column of " +
+                std::to_string(kPanelColumnWidth) + " for the panel, at least " + std::to_string(kPanelMinHeight) +
+                " high); the frame is scaled to fit the part left of the panel")
         ->check(window_size_check())
         ->option_text("WxH")
         ->group("view");
-    view->add_flag("--no-panel", o->no_panel, "start with the panel hidden (F1 shows it)")->group("view");
+    view->add_flag("--no-panel", o->no_panel,
+                   "start with the panel hidden (F1 shows it): the window is the frame's size, the frame fills it")
+        ->group("view");
     view->add_flag("--compare-exact", o->compare_exact,
                    "render the exact frame (every VPL at every pixel) once at start and show each frame's "
                    "relative RMSE against it (the panel's button does the same)")

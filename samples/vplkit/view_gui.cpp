@@ -99,6 +99,11 @@ void Gui::swapchain_changed(const Swapchain& swapchain) {
     ImGui_ImplVulkan_SetMinImageCount(swapchain.min_image_count());
 }
 
+float Gui::pixels_per_point() const {
+    const float scale = ImGui::GetIO().DisplayFramebufferScale.x;
+    return scale > 0.0f ? scale : 1.0f;
+}
+
 bool Gui::wants_mouse() const {
     return ImGui::GetIO().WantCaptureMouse;
 }

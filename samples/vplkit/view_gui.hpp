@@ -30,6 +30,10 @@ public:
     // After the swapchain was recreated.
     void swapchain_changed(const Swapchain& swapchain);
 
+    // Framebuffer pixels per ImGui unit (the window's points; 1 but on a scaled display). Valid
+    // after begin_frame.
+    float pixels_per_point() const;
+
     // The panel has the mouse or the keyboard: the camera leaves them alone.
     bool wants_mouse() const;
     bool wants_keyboard() const;

@@ -48,16 +48,18 @@ bool slide_count(const char* label, uint32_t& value, int low, int high) {
 
 }  // namespace
 
-bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    // A fixed first size: an auto-sized window stays hidden in its first frame, and a one-frame
-    // screenshot would miss the panel.
-    const float height = std::min(ImGui::GetIO().DisplaySize.y - 16.0f, 560.0f);
-    const float width = std::min(ImGui::GetIO().DisplaySize.x * 0.8f, 420.0f);  // leaves some of a small window
-    ImGui::SetNextWindowSize(ImVec2(width, std::max(height, 120.0f)), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.8f);
+bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last, const PanelColumn& column) {
+    // Docked beside the frame, not over it: placed and sized every frame (a resized window
+    // moves it), opaque, not movable; a fixed size also shows it in a one-frame screenshot (an
+    // auto-sized window stays hidden in its first frame).
+    ImGui::SetNextWindowPos(ImVec2(column.x, 0.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(column.width, column.height), ImGuiCond_Always);
+    ImGui::SetNextWindowBgAlpha(1.0f);
+    const ImGuiWindowFlags docked = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
     bool changed = false;
-    if (ImGui::Begin("vplkit")) {
+    if (ImGui::Begin("vplkit", nullptr, docked)) {
+        // The widgets leave room on their right for the longest label.
+        ImGui::PushItemWidth(-ImGui::CalcTextSize("VPLs (smc budget)").x - ImGui::GetStyle().ItemInnerSpacing.x);
         ImGui::Text("%ux%u, %u VPLs, frame %u, exposure %.2f", last.width, last.height, last.vpl_count, settings.frame,
                     double(last.exposure));
         // The cameras and keys, where a user looks for them (view --help says the same).
@@ -85,6 +87,7 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last) {
             for (std::string line; std::getline(lines, line);) ImGui::TextWrapped("%s", line.c_str());
         }
         if (ImGui::CollapsingHeader("GPU time per stage", ImGuiTreeNodeFlags_DefaultOpen)) draw_times(last);
+        ImGui::PopItemWidth();
     }
     ImGui::End();
     return changed;

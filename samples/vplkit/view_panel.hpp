@@ -20,11 +20,18 @@ struct RenderedImage;
 
 namespace vplkit::cli {
 
+// Where the panel goes, in ImGui's coordinates (the window's points): a column x..x+width, the
+// window's height; it scrolls when its contents are taller.
+struct PanelColumn {
+    float x = 0.0f, width = 0.0f, height = 0.0f;
+};
+
 class ViewPanel {
 public:
-    // Draws the panel (between Gui::begin_frame and record) for the frame `last`. Returns true
-    // when it changed `settings` (only to settings validate_gi_settings accepts).
-    bool draw(RenderSettings& settings, const RenderedImage& last);
+    // Draws the panel (between Gui::begin_frame and record) for the frame `last`, filling
+    // `column`. Returns true when it changed `settings` (only to settings validate_gi_settings
+    // accepts).
+    bool draw(RenderSettings& settings, const RenderedImage& last, const PanelColumn& column);
     // Adds a rendered frame's stage times to the graphs.
     void add_frame(const RenderedImage& image);
     // Shows a message under the settings (e.g. why the renderer refused them) until they change.

@@ -69,7 +69,7 @@ void FramePresenter::ensure_semaphores() {
     }
 }
 
-bool FramePresenter::present(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+bool FramePresenter::present(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height, VkRect2D area,
                              const std::function<void(VkCommandBuffer)>& overlay, WindowPixels* read_back) {
     if (rgba8.size() != size_t(width) * height * 4 || width == 0 || height == 0) {
         throw Error("vplkit: view: a frame of " + std::to_string(width) + "x" + std::to_string(height) + " came with " +
@@ -101,7 +101,7 @@ bool FramePresenter::present(std::span<const uint8_t> rgba8, uint32_t width, uin
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     VPLKIT_CHECK(vkBeginCommandBuffer(cmd_, &begin));
-    record(cmd_, index, overlay, read_back != nullptr);
+    record(cmd_, index, area, overlay, read_back != nullptr);
     VPLKIT_CHECK(vkEndCommandBuffer(cmd_));
 
     VkSemaphoreSubmitInfo wait{VK_STRUCTURE_TYPE_SEMAPHORE_SUBMIT_INFO};
@@ -147,8 +147,8 @@ bool FramePresenter::present(std::span<const uint8_t> rgba8, uint32_t width, uin
     return acquired == VK_SUCCESS && presented == VK_SUCCESS;
 }
 
-void FramePresenter::record(VkCommandBuffer cmd, uint32_t index, const std::function<void(VkCommandBuffer)>& overlay,
-                            bool read_back) {
+void FramePresenter::record(VkCommandBuffer cmd, uint32_t index, VkRect2D area,
+                            const std::function<void(VkCommandBuffer)>& overlay, bool read_back) {
     const VkImage target = swapchain_.image(index);
     const VkExtent2D extent = swapchain_.extent();
     frame_.transition(cmd, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
@@ -156,12 +156,17 @@ void FramePresenter::record(VkCommandBuffer cmd, uint32_t index, const std::func
                   VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
                   VK_ACCESS_2_TRANSFER_WRITE_BIT);
 
-    // The frame keeps its aspect ratio: scaled to fit, centred, the rest cleared.
-    const float scale = std::min(float(extent.width) / frame_.width(), float(extent.height) / frame_.height());
-    const int32_t w = std::clamp(int32_t(frame_.width() * scale + 0.5f), 1, int32_t(extent.width));
-    const int32_t h = std::clamp(int32_t(frame_.height() * scale + 0.5f), 1, int32_t(extent.height));
-    const int32_t x = (int32_t(extent.width) - w) / 2;
-    const int32_t y = (int32_t(extent.height) - h) / 2;
+    // The frame keeps its aspect ratio: scaled to fit the area, centred in it, the rest of the
+    // window (the panel's column included) cleared.
+    const int32_t area_x = std::clamp(area.offset.x, 0, int32_t(extent.width) - 1);
+    const int32_t area_y = std::clamp(area.offset.y, 0, int32_t(extent.height) - 1);
+    const int32_t area_w = std::clamp(int32_t(area.extent.width), 1, int32_t(extent.width) - area_x);
+    const int32_t area_h = std::clamp(int32_t(area.extent.height), 1, int32_t(extent.height) - area_y);
+    const float scale = std::min(float(area_w) / frame_.width(), float(area_h) / frame_.height());
+    const int32_t w = std::clamp(int32_t(frame_.width() * scale + 0.5f), 1, area_w);
+    const int32_t h = std::clamp(int32_t(frame_.height() * scale + 0.5f), 1, area_h);
+    const int32_t x = area_x + (area_w - w) / 2;
+    const int32_t y = area_y + (area_h - h) / 2;
     if (w != int32_t(extent.width) || h != int32_t(extent.height)) {
         const VkClearColorValue grey{{0.05f, 0.05f, 0.05f, 1.0f}};
         const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
@@ -180,7 +185,7 @@ void FramePresenter::record(VkCommandBuffer cmd, uint32_t index, const std::func
     vkCmdBlitImage(cmd, frame_.handle(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, target,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, same_size ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
 
-    // The panel on top (the render pass's dependency orders it after the blit).
+    // The panel (the render pass's dependency orders it after the blit).
     VkRenderPassBeginInfo pass{VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO};
     pass.renderPass = swapchain_.render_pass();
     pass.framebuffer = swapchain_.framebuffer(index);

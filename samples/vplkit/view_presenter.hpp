@@ -1,7 +1,7 @@
 #pragma once
 // Puts a rendered frame on the window: uploads its 8-bit texels, blits them into the acquired
-// swapchain image (scaled to fit, letterboxed), lets the panel draw on top, presents, and on
-// request copies the presented image back (what --screenshot and F12 write).
+// swapchain image (scaled to fit a given part of the window, letterboxed), lets the panel draw,
+// presents, and on request copies the presented image back (what --screenshot and F12 write).
 
 #include "view_swapchain.hpp"
 
@@ -35,16 +35,16 @@ public:
     FramePresenter(const FramePresenter&) = delete;
     FramePresenter& operator=(const FramePresenter&) = delete;
 
-    // Shows `rgba8` (width x height, sRGB-encoded, rows top to bottom) with `overlay` recorded in
-    // the swapchain's render pass. `read_back`: also fills it with the presented image (Error
-    // when the surface's images cannot be copied from). Returns false when the swapchain no
+    // Shows `rgba8` (width x height, sRGB-encoded, rows top to bottom) fitted into `area` of the
+    // window (clipped to it), with `overlay` recorded in the swapchain's render pass. `read_back`: also fills it with
+    // the presented image (Error when the surface's images cannot be copied from). Returns false when the swapchain no
     // longer matches the window (out of date or suboptimal): recreate it and show the frame again.
     // Blocks until the frame's commands are done.
-    bool present(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height,
+    bool present(std::span<const uint8_t> rgba8, uint32_t width, uint32_t height, VkRect2D area,
                  const std::function<void(VkCommandBuffer)>& overlay, WindowPixels* read_back = nullptr);
 
 private:
-    void record(VkCommandBuffer cmd, uint32_t index, const std::function<void(VkCommandBuffer)>& overlay,
+    void record(VkCommandBuffer cmd, uint32_t index, VkRect2D area, const std::function<void(VkCommandBuffer)>& overlay,
                 bool read_back);
     void ensure_semaphores();
     void release();

@@ -1,6 +1,6 @@
 // `vplkit view --screenshot` on lavapipe under xvfb-run: the window's image (not the renderer's
-// buffer) comes back lit, at the window's size, with the panel drawn over it; bad input fails
-// before a window opens. Each case runs the program, with the validation layer on.
+// buffer) comes back lit, at the window's size, the frame whole left of the panel's column; bad
+// input fails before a window opens. Each case runs the program, with the validation layer on.
 
 #include <doctest/doctest.h>
 
@@ -75,9 +75,61 @@ TEST_CASE("view screenshot: the window shows the lit Cornell box") {
     CHECK(at(74, 36, 1) > at(74, 36, 0) + 40);  // right wall: green
 }
 
-TEST_CASE("view screenshot: the frame is scaled into a larger window and the panel drawn over it") {
+// The mean absolute difference (0..255) of `a`'s pixels in the w x h rectangle at (ax, ay) and
+// `b`'s at (bx, by), over R, G and B.
+double region_difference(const vplkit::PngImage& a, uint32_t ax, uint32_t ay, const vplkit::PngImage& b, uint32_t bx,
+                         uint32_t by, uint32_t w, uint32_t h) {
+    double sum = 0.0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            for (size_t c = 0; c < 3; ++c) {
+                const size_t i = ((size_t(ay) + y) * a.width + ax + x) * 4 + c;
+                const size_t j = ((size_t(by) + y) * b.width + bx + x) * 4 + c;
+                sum += std::abs(int(a.rgba[i]) - int(b.rgba[j]));
+            }
+    return sum / double(w * h * 3);
+}
+
+// The mean of R, G and B (0..255) over the w x h rectangle at (x0, y0).
+double region_luminance(const vplkit::PngImage& image, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h) {
+    double sum = 0.0;
+    for (uint32_t y = y0; y < y0 + h; ++y)
+        for (uint32_t x = x0; x < x0 + w; ++x)
+            for (size_t c = 0; c < 3; ++c) sum += image.rgba[(size_t(y) * image.width + x) * 4 + c];
+    return sum / double(w * h * 3);
+}
+
+TEST_CASE("view screenshot: the panel is docked right of the frame, which stays whole and lit") {
     const std::string plain = output_path("plain.png");
-    const std::string panel = output_path("panel.png");
+    const std::string docked = output_path("docked.png");
+    const std::string common = "view --scene cornell --width 64 --height 48 --frames 1 --validation ";
+    const Run without = run_vplkit(common + "--no-panel --screenshot " + plain);
+    const Run with = run_vplkit(common + "--screenshot " + docked);
+    INFO(without.output);
+    INFO(with.output);
+    REQUIRE(without.exit_code == 0);
+    REQUIRE(with.exit_code == 0);
+    const vplkit::PngImage a = vplkit::read_png(plain);
+    const vplkit::PngImage b = vplkit::read_png(docked);
+    // Without the panel the window is the frame; with it, the frame plus a 380-pixel column, at
+    // least 480 high, the frame at its own size centred in the left part.
+    REQUIRE(a.width == 64);
+    REQUIRE(a.height == 48);
+    REQUIRE(b.width == 64 + 380);
+    REQUIRE(b.height == 480);
+    CHECK(region_luminance(a, 0, 0, 64, 48) > 40.0);
+    CHECK(region_difference(a, 0, 0, b, 0, (480 - 48) / 2, 64, 48) < 1.0);  // the same frame, uncovered
+    // The column holds the panel: text and widgets, not one colour (the window's clear colour is
+    // at its top left, above the frame).
+    uint32_t drawn = 0;
+    for (uint32_t y = 0; y < b.height; ++y)
+        for (uint32_t x = 64; x < b.width; ++x) drawn += region_difference(b, x, y, b, 0, 0, 1, 1) > 30.0 ? 1 : 0;
+    CHECK(drawn > (b.width - 64) * b.height / 50);
+}
+
+TEST_CASE("view screenshot: --window scales the frame into the window, left of the panel when it shows") {
+    const std::string plain = output_path("scaled.png");
+    const std::string panel = output_path("scaled-panel.png");
     const std::string common = "view --scene cornell --width 64 --height 48 --window 480x360 --frames 1 --validation ";
     const Run without = run_vplkit(common + "--no-panel --screenshot " + plain);
     const Run with = run_vplkit(common + "--screenshot " + panel);
@@ -91,20 +143,10 @@ TEST_CASE("view screenshot: the frame is scaled into a larger window and the pan
     REQUIRE(a.height == 360);
     REQUIRE(b.width == 480);
     REQUIRE(b.height == 360);
-    CHECK((mean_of(a, 0) + mean_of(a, 1) + mean_of(a, 2)) / 3.0 > 40.0);  // scaled up, still lit
-    // The panel's corner (top left) differs; the far corner of the frame (bottom right) does not.
-    auto region_difference = [&](uint32_t x0, uint32_t y0, uint32_t x1, uint32_t y1) {
-        double sum = 0.0;
-        for (uint32_t y = y0; y < y1; ++y)
-            for (uint32_t x = x0; x < x1; ++x)
-                for (int c = 0; c < 3; ++c) {
-                    const size_t i = (size_t(y) * a.width + x) * 4 + size_t(c);
-                    sum += std::abs(int(a.rgba[i]) - int(b.rgba[i]));
-                }
-        return sum / double((x1 - x0) * (y1 - y0) * 3);
-    };
-    CHECK(region_difference(10, 10, 60, 30) > 10.0);
-    CHECK(region_difference(420, 300, 470, 350) < 1.0);
+    CHECK(region_luminance(a, 0, 0, 480, 360) > 40.0);  // scaled up to the whole window, still lit
+    // With the panel the frame fits the 100 pixels left of the column: 100x75, centred.
+    CHECK(region_luminance(b, 0, 143, 100, 74) > 40.0);
+    CHECK(region_difference(a, 0, 0, b, 100, 0, 380, 360) > 10.0);  // the column is not the frame
 }
 
 // The number after "relative RMSE against the exact frame: " in the output, or -1.
