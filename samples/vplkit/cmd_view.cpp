@@ -128,7 +128,7 @@ struct ViewOptions {
     std::optional<std::string> screenshot;
     std::optional<uint32_t> frames;
     std::optional<std::string> window;
-    bool no_panel = false, compare_exact = false;
+    bool no_panel = false, compare_exact = false, no_antialias = false;
     std::optional<double> budget_ms;
 };
 
@@ -145,6 +145,9 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
 
     LoadedScene loaded = load_request_scene(request);
     RenderSettings& settings = request.settings;
+    // As render --frames does: jittered G-buffers averaged, here while the camera stays still
+    // (a move restarts the mean).
+    settings.antialias = !o.no_antialias && !settings.vpls_only;
     const scene::Scene& scene = loaded.scene;
     const VkExtent2D size = window_size ? VkExtent2D{window_size->width, window_size->height}
                                         : default_window_size({settings.width, settings.height}, show_panel);
@@ -294,7 +297,8 @@ void add_view(CLI::App& vplkit, Runners& runners) {
         "A window showing the renderer's frames, with a panel to change the method and its settings while it "
         "runs (the planner's reasons and per-stage GPU times alongside). Takes render's options: they set the "
         "first frame's scene, size, method and settings. The panel sits in a column right of the frame "
-        "(F1 hides it and the frame takes the whole window).\n"
+        "(F1 hides it and the frame takes the whole window); anti-aliasing accumulates while the camera is "
+        "still.\n"
         "  mouse: left-drag orbits the target, right-drag looks around, wheel zooms\n"
         "  keys: W A S D move, Q E down and up, Shift faster; F1 shows or hides the panel; F12 writes the "
         "window to vplkit-view-<time>.png in the working folder; Esc quits");
@@ -322,9 +326,13 @@ void add_view(CLI::App& vplkit, Runners& runners) {
     view->add_flag("--no-panel", o->no_panel,
                    "start with the panel hidden (F1 shows it): the window is the frame's size, the frame fills it")
         ->group("view");
+    view->add_flag("--no-antialias", o->no_antialias,
+                   "start with anti-aliasing off (the panel's checkbox): every frame at the pixel centres")
+        ->group("view");
     view->add_flag("--compare-exact", o->compare_exact,
                    "render the exact frame (every VPL at every pixel) once at start and show each frame's "
-                   "relative RMSE against it (the panel's button does the same)")
+                   "relative RMSE against it (the panel's button does the same); anti-aliased edges count as "
+                   "error against its pixel centres (--no-antialias leaves them out)")
         ->group("view");
     add_budget_option(*view, o->budget_ms,
                       "; chosen for the start view (shown in the panel), chosen again when the median of the last 5 "
