@@ -115,6 +115,7 @@ std::vector<float> exact_radiance(Renderer& renderer, const scene::Camera& camer
     exact.denoise = DenoiseMode::off;
     exact.half_resolution_gi = false;
     exact.frame = 0;
+    exact.antialias = false;  // pixel centres; the viewer's frames leave out the jitter while it is held
     exact.progress = [](uint32_t done, uint32_t total) {
         if (done == total || done % 1024 < 32) std::fprintf(stderr, "[exact gi] %u/%u VPLs\n", done, total);
     };
@@ -218,8 +219,12 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
             panel.set_budget("budget: off (a setting was changed here)");
         }
         settings.frame = frame++;
+        // The exact frame is sampled at pixel centres: while it is held the frames are too, so
+        // that the error measures noise and bias, not the edges anti-aliasing softens.
+        RenderSettings drawn = settings;
+        if (!exact.empty()) drawn.antialias = false;
         try {
-            image = renderer.render(camera.camera(), settings);
+            image = renderer.render(camera.camera(), drawn);
             accepted = settings;
         } catch (const Error& e) {
             if (!changed) throw;
@@ -331,8 +336,8 @@ void add_view(CLI::App& vplkit, Runners& runners) {
         ->group("view");
     view->add_flag("--compare-exact", o->compare_exact,
                    "render the exact frame (every VPL at every pixel) once at start and show each frame's "
-                   "relative RMSE against it (the panel's button does the same); anti-aliased edges count as "
-                   "error against its pixel centres (--no-antialias leaves them out)")
+                   "relative RMSE against it (the panel's button does the same); while it is held, frames are "
+                   "drawn at its pixel centres (anti-aliasing pauses), so the error is the method's own")
         ->group("view");
     add_budget_option(*view, o->budget_ms,
                       "; chosen for the start view (shown in the panel), chosen again when the median of the last 5 "

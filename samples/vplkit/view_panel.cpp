@@ -146,7 +146,7 @@ void ViewPanel::draw_exact_error() {
     if (ImGui::Button("compare with exact")) exact_requested_ = true;
     ImGui::SameLine();
     if (exact_error_) {
-        ImGui::Text("relative RMSE %.4f", *exact_error_);
+        ImGui::Text("relative RMSE %.4f (pixel centres)", *exact_error_);
     } else {
         ImGui::TextDisabled("(renders every VPL once: slow)");
     }
