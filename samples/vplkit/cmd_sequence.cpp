@@ -124,12 +124,8 @@ int run_sequence(const CLI::App& command, const SequenceOptions& o, const Render
         }
     }
     validate_render_request(request);
+    filter_frames_by_default(request);
     RenderSettings& settings = request.settings;
-    // Sequences are what the filter is for: svgf unless asked otherwise (never for exact).
-    const GiMethodInfo& method = gi_method(settings.method);
-    if (!request.denoise_given && method.vpls != GiVpls::none && !method.ground_truth) {
-        settings.denoise = DenoiseMode::svgf;
-    }
     if (settings.vpls_only) throw UsageError("--vpls-only is for vplkit render");
     if (request.camera_flags.position && path_arg != "orbit") {
         throw UsageError(

@@ -143,6 +143,7 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
     bool compare_exact = o.compare_exact;
     RenderRequest request = render_options.request();
     validate_render_request(request);
+    filter_frames_by_default(request);
 
     LoadedScene loaded = load_request_scene(request);
     RenderSettings& settings = request.settings;
@@ -191,6 +192,7 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
     RenderSettings accepted = settings;  // the last settings the renderer took
     std::vector<float> exact;            // the exact frame of this view and settings, on request
     std::optional<double> exact_error;   // the last frame's relative RMSE against it
+    bool panel_changed = false;          // a setting changed in the panel: the next frame starts over
     while (!window.close_requested()) {
         window.poll_events();
         const auto now = std::chrono::steady_clock::now();
@@ -209,7 +211,7 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
         const PanelColumn column{float(layout.panel_area.offset.x) * points,
                                  float(layout.panel_area.extent.width) * points,
                                  float(layout.panel_area.extent.height) * points};
-        const bool changed = show_panel && panel.draw(settings, image, column);
+        const bool changed = std::exchange(panel_changed, false);
         if (moved || changed) {
             frame = 0;
             exact.clear();
@@ -258,6 +260,9 @@ int run_view(const CLI::App& command, const ViewOptions& o, const RenderOptions&
         exact_error = std::nullopt;
         if (exact.size() == image.radiance.size()) exact_error = relative_rmse(image.radiance, exact);
         panel.set_exact_error(exact_error);
+        // After the frame, so that the panel shows the frame it sits beside; what it changes
+        // applies from the next frame.
+        panel_changed = show_panel && panel.draw(settings, image, column);
 
         const bool last_frame = frames && shown + 1 == *frames;
         const bool capture = (screenshot && last_frame) || g_presses.screenshot;
@@ -344,6 +349,8 @@ void add_view(CLI::App& vplkit, Runners& runners) {
                       "frames' GPU time leaves 1/1.15..1.15 of the prediction, ended by a change in the panel")
         ->group("view");
     auto render_options = std::make_shared<RenderOptions>(*view);
+    // Frame after frame on a still or moving camera: what the filter is for, as in sequence.
+    view->get_option("--denoise")->default_str("svgf for a sampled method, off for direct and exact");
     runners.push_back({view, [view, o, render_options] { return run_view(*view, *o, *render_options); }});
 }
 

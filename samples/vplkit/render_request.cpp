@@ -17,6 +17,13 @@
 
 namespace vplkit::cli {
 
+void filter_frames_by_default(RenderRequest& request) {
+    const GiMethodInfo& method = gi_method(request.settings.method);
+    if (!request.denoise_given && method.vpls != GiVpls::none && !method.ground_truth) {
+        request.settings.denoise = DenoiseMode::svgf;
+    }
+}
+
 namespace {
 
 // Throws "OPTION is for --method <the methods with trait>" unless the chosen method has it.

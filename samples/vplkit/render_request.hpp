@@ -65,6 +65,10 @@ void add_light_options(CLI::App& command, std::vector<std::string>& suns, std::v
 // The sampling options checked before any work (a refused one is a UsageError).
 void validate_render_request(const RenderRequest& request);
 
+// For the commands that show frame after frame (sequence, view), which the filter is for: svgf
+// for a sampled method unless --denoise was given (never for exact or direct light alone).
+void filter_frames_by_default(RenderRequest& request);
+
 struct LoadedScene {
     scene::Scene scene;  // with the set-up's and the extra lights, its camera active
     // Instead of `scene` when loaded posable (load_request_posable): a glTF file posed again

@@ -60,8 +60,9 @@ bool ViewPanel::draw(RenderSettings& settings, const RenderedImage& last, const 
     if (ImGui::Begin("vplkit", nullptr, docked)) {
         // The widgets leave room on their right for the longest label.
         ImGui::PushItemWidth(-ImGui::CalcTextSize("VPLs (smc budget)").x - ImGui::GetStyle().ItemInnerSpacing.x);
-        ImGui::Text("%ux%u, %u VPLs, frame %u, exposure %.2f", last.width, last.height, last.vpl_count, settings.frame,
-                    double(last.exposure));
+        // frame: how many frames this view and these settings have accumulated, this one included.
+        ImGui::Text("%ux%u, %u VPLs, frame %u, exposure %.2f", last.width, last.height, last.vpl_count,
+                    settings.frame + 1, double(last.exposure));
         // The cameras and keys, where a user looks for them (view --help says the same).
         ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
         ImGui::TextWrapped(
