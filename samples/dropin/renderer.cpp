@@ -55,9 +55,10 @@ Scene make_scene() {
 Camera make_camera(uint32_t width, uint32_t height) {
     Camera c;
     c.eye = {0.3f, 1.5f, 2.3f};
-    glm::mat4 projection = glm::perspectiveRH_ZO(glm::radians(50.0f), float(width) / float(height), 0.1f, 10.0f);
-    projection[1][1] = -projection[1][1];  // Vulkan's clip y points down the image
-    c.view_projection = projection * glm::lookAtRH(c.eye, glm::vec3(0.0f, 0.35f, -0.2f), glm::vec3(0, 1, 0));
+    c.projection = glm::perspectiveRH_ZO(glm::radians(50.0f), float(width) / float(height), 0.1f, 10.0f);
+    c.projection[1][1] = -c.projection[1][1];  // Vulkan's clip y points down the image
+    c.view = glm::lookAtRH(c.eye, glm::vec3(0.0f, 0.35f, -0.2f), glm::vec3(0, 1, 0));
+    c.view_projection = c.projection * c.view;
     return c;
 }
 

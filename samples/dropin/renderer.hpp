@@ -33,7 +33,9 @@ Scene make_scene();
 
 struct Camera {
     glm::vec3 eye{0.0f};
-    glm::mat4 view_projection{1.0f};  // Vulkan clip space: y down the image, depth 0 (near) .. 1 (far)
+    glm::mat4 view{1.0f};
+    glm::mat4 projection{1.0f};       // Vulkan clip space: y down the image, depth 0 (near) .. 1 (far)
+    glm::mat4 view_projection{1.0f};  // projection * view
 };
 Camera make_camera(uint32_t width, uint32_t height);
 

@@ -62,13 +62,14 @@ void IndirectLight::record_gi(VkCommandBuffer cmd, const Camera& camera, uint32_
     vplkit::StepList steps;
     const Rasterizer& r = *targets_;  // its depth, octahedral world normal and albedo: the chain's G-buffer
     const vs::GbufferAdapterInputs gbuffer{view(r.depth, "depth"), view(r.normal, "normal"), view(r.albedo, "albedo")};
-    chain_->add_gi_passes(steps, {scene_.bvh, scene_.sources, gbuffer}, {frame, camera.eye, camera.view_projection});
+    chain_->add_gi_passes(steps, {scene_.bvh, scene_.sources, gbuffer},
+                          vs::GiChainFrame::from_camera(frame, camera.view, camera.projection));
     steps.record_with_caller_barriers(cmd);  // after all the renderer's commands, before its next
 }
 
 void IndirectLight::record_denoise_and_compose(VkCommandBuffer cmd, const Camera& camera, uint32_t frame) {
     vplkit::StepList steps;
-    chain_->add_denoise_passes(steps, {frame, camera.eye, camera.view_projection});
+    chain_->add_denoise_passes(steps, vs::GiChainFrame::from_camera(frame, camera.view, camera.projection));
     vs::add_compose_pass(*kit_, steps, view(targets_->colour, "colour"), chain_->indirect(),
                          view(targets_->output, "output"));
     steps.record_with_caller_barriers(cmd);
