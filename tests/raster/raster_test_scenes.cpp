@@ -166,6 +166,16 @@ Scene floor_scene(float half, glm::vec3 albedo) {
     return s;
 }
 
+vplkit::scene::Camera rolled_camera(const Scene& scene) {
+    const vplkit::scene::Camera& file_camera = scene.camera();
+    vplkit::scene::Camera camera =
+        vplkit::scene::look_at(file_camera.position + glm::vec3(0.4f, 0.3f, 0.0f), scene.bounds.center(),
+                               glm::normalize(glm::vec3(0.15f, 1.0f, 0.0f)), file_camera.yfov);
+    camera.znear = file_camera.znear;
+    camera.zfar = file_camera.zfar;
+    return camera;
+}
+
 std::vector<glm::vec4> download_rgba(vplkit::Image& image) {
     if (image.format() == VK_FORMAT_R32G32B32A32_SFLOAT) return image.download<glm::vec4>();
     if (image.format() != VK_FORMAT_R16G16B16A16_SFLOAT) throw std::runtime_error("download_rgba: unexpected format");

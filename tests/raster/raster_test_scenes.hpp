@@ -35,6 +35,10 @@ Scene gbuffer_scene(float scale = 1.0f);
 // `albedo` (no texture).
 Scene floor_scene(float half, glm::vec3 albedo);
 
+// The Cornell box file's camera moved aside and rolled, looking at the box's centre, its near and
+// far planes kept: a view space that is not world space (the file's camera has no rotation).
+vplkit::scene::Camera rolled_camera(const Scene& scene);
+
 // Image read-back as float RGBA (RGBA32F as is, RGBA16F converted).
 std::vector<glm::vec4> download_rgba(vplkit::Image& image);
 

@@ -84,14 +84,8 @@ const KitGbuffer& kit_gbuffer(vplkit::Context& ctx) {
     static const KitGbuffer kit = [&ctx] {
         const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
         const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
-        // The file's camera moved aside and rolled, looking at the box's centre: view space is
-        // then not world space (the file's camera has no rotation at all).
-        const vplkit::scene::Camera& file_camera = scene.camera();
-        vplkit::scene::Camera camera =
-            vplkit::scene::look_at(file_camera.position + glm::vec3(0.4f, 0.3f, 0.0f), scene.bounds.center(),
-                                   glm::normalize(glm::vec3(0.15f, 1.0f, 0.0f)), file_camera.yfov);
-        camera.znear = file_camera.znear;
-        camera.zfar = file_camera.zfar;
+        // View space is then not world space (the file's camera has no rotation at all).
+        const vplkit::scene::Camera camera = raster_test::rolled_camera(scene);
         KitGbuffer k;
         k.view = vplkit::camera_view(camera, kWidth, kHeight);
         k.view_to_world = glm::dmat3(glm::mat3(camera.world_from_camera()));

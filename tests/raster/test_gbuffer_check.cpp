@@ -47,12 +47,7 @@ const Renderer& renderer(vplkit::Context& ctx) {
     static const Renderer r = [&ctx] {
         const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
         const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
-        const vplkit::scene::Camera& file_camera = scene.camera();
-        vplkit::scene::Camera camera =
-            vplkit::scene::look_at(file_camera.position + glm::vec3(0.4f, 0.3f, 0.0f), scene.bounds.center(),
-                                   glm::normalize(glm::vec3(0.15f, 1.0f, 0.0f)), file_camera.yfov);
-        camera.znear = file_camera.znear;
-        camera.zfar = file_camera.zfar;
+        const vplkit::scene::Camera camera = raster_test::rolled_camera(scene);
         Renderer out;
         const vplkit::stages::CameraView view = vplkit::camera_view(camera, kWidth, kHeight);
         out.view_projection = view.view_projection;
