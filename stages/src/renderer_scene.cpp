@@ -1,9 +1,11 @@
 // renderer_scene: the BVH and the VPL sources of a renderer's scene in one block, each part at
-// a 256-byte boundary (the largest minStorageBufferOffsetAlignment Vulkan allows).
+// a 256-byte boundary (block_layout.hpp).
 
 #include "vplkit/stages/renderer_scene.hpp"
 
 #include "vplkit/error.hpp"
+
+#include "block_layout.hpp"
 
 #include <algorithm>
 #include <cstring>
@@ -13,30 +15,14 @@
 namespace vplkit::stages {
 namespace {
 
-constexpr uint64_t kAlignment = 256;
+using Layout = BlockLayout<4>;
 
-uint64_t aligned(uint64_t bytes) {
-    return (bytes + kAlignment - 1) / kAlignment * kAlignment;
-}
-
-// Offsets and sizes of nodes, triangles, the header and the sources, in that order.
-struct Layout {
-    uint64_t offset[4] = {};
-    uint64_t size[4] = {};
-    uint64_t total = 0;
-};
-
+// Nodes, triangles, the header and the sources, in that order.
 Layout layout_of(const RendererSceneData& d) {
-    Layout l;
-    l.size[0] = d.bvh.nodes.size() * sizeof(shaders::BvhNode);
-    l.size[1] = std::max<size_t>(d.bvh.triangles.size(), 1) * sizeof(shaders::BvhTriangle);
-    l.size[2] = kBvhHeaderWords * sizeof(uint32_t);  // word 0: the masked root, 0 for one tree
-    l.size[3] = d.sources.bytes();
-    for (int i = 0; i < 4; ++i) {
-        l.offset[i] = l.total;
-        l.total += aligned(l.size[i]);
-    }
-    return l;
+    return block_layout<4>({d.bvh.nodes.size() * sizeof(shaders::BvhNode),
+                            std::max<size_t>(d.bvh.triangles.size(), 1) * sizeof(shaders::BvhTriangle),
+                            kBvhHeaderWords * sizeof(uint32_t),  // word 0: the masked root, 0 for one tree
+                            d.sources.bytes()});
 }
 
 }  // namespace

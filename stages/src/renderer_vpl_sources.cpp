@@ -3,6 +3,8 @@
 #include "vplkit/error.hpp"
 #include "vplkit/stages/selection_cdf.hpp"
 
+#include "block_layout.hpp"
+
 #include <glm/geometric.hpp>
 #include <glm/vector_relational.hpp>
 
@@ -17,8 +19,6 @@ namespace vplkit::stages {
 
 namespace {
 
-constexpr uint64_t kArrayAlignment = 256;  // the largest minStorageBufferOffsetAlignment Vulkan allows
-
 bool finite(glm::vec3 v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
@@ -28,28 +28,13 @@ bool in_unit_range(glm::vec3 v) {
            glm::all(glm::lessThanEqual(v, glm::vec3(1.0f)));
 }
 
-uint64_t aligned(uint64_t bytes) {
-    return (bytes + kArrayAlignment - 1) / kArrayAlignment * kArrayAlignment;
-}
+using Layout = BlockLayout<4>;
 
-// The four arrays' offsets and sizes in the block, in the order lights, emissive, cdf, albedo.
-struct Layout {
-    uint64_t offset[4] = {};
-    uint64_t size[4] = {};
-    uint64_t total = 0;
-};
-
+// The four arrays in the block (block_layout.hpp), in the order lights, emissive, cdf, albedo.
 Layout layout_of(const VplSourceData& d) {
-    Layout l;
-    l.size[0] = d.lights.size() * sizeof(shaders::PunctualLight);
-    l.size[1] = d.emissive.size() * sizeof(shaders::EmitterTriangle);
-    l.size[2] = d.emitter_cdf.size() * sizeof(float);
-    l.size[3] = d.triangle_albedo.size() * sizeof(shaders::vec4);
-    for (int i = 0; i < 4; ++i) {
-        l.offset[i] = l.total;
-        l.total += aligned(l.size[i]);
-    }
-    return l;
+    return block_layout<4>({d.lights.size() * sizeof(shaders::PunctualLight),
+                            d.emissive.size() * sizeof(shaders::EmitterTriangle), d.emitter_cdf.size() * sizeof(float),
+                            d.triangle_albedo.size() * sizeof(shaders::vec4)});
 }
 
 }  // namespace
