@@ -1,8 +1,15 @@
 #include "raster_test_scenes.hpp"
 
+#include "vplkit/camera_view.hpp"
+#include "vplkit/gbuffer_images.hpp"
+#include "vplkit/gpu_scene.hpp"
+#include "vplkit/pass_list.hpp"
+#include "vplkit/stages/gbuffer.hpp"
+
 #include <glm/geometric.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include <filesystem>
 #include <utility>
 
 namespace raster_test {
@@ -166,14 +173,31 @@ Scene floor_scene(float half, glm::vec3 albedo) {
     return s;
 }
 
-vplkit::scene::Camera rolled_camera(const Scene& scene) {
+RolledCornellGbuffer rolled_cornell_gbuffer(vplkit::Context& ctx, uint32_t width, uint32_t height) {
+    const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
+    const Scene scene = vplkit::scene::load_gltf(path);
     const vplkit::scene::Camera& file_camera = scene.camera();
     vplkit::scene::Camera camera =
         vplkit::scene::look_at(file_camera.position + glm::vec3(0.4f, 0.3f, 0.0f), scene.bounds.center(),
                                glm::normalize(glm::vec3(0.15f, 1.0f, 0.0f)), file_camera.yfov);
     camera.znear = file_camera.znear;
     camera.zfar = file_camera.zfar;
-    return camera;
+    RolledCornellGbuffer out;
+    out.view = vplkit::camera_view(camera, width, height);
+    out.view_to_world = glm::mat3(camera.world_from_camera());
+    out.bounds_min = scene.bounds.min;
+    out.bounds_max = scene.bounds.max;
+    auto gpu = vplkit::GpuScene::create(ctx, scene);
+    auto images = vplkit::GbufferImages::create(ctx, width, height);
+    vplkit::PassList passes("raster test: the rolled Cornell box's gbuffer");
+    vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, out.view, images);
+    passes.run(ctx);
+    out.position = download_rgba(images.position);
+    out.normal = download_rgba(images.normal);
+    out.geometric_normal = download_rgba(images.geometric_normal);
+    out.albedo = download_rgba(images.albedo);
+    out.depth = images.depth.download<float>();
+    return out;
 }
 
 std::vector<glm::vec4> download_rgba(vplkit::Image& image) {

@@ -1,8 +1,10 @@
 #pragma once
 // Small scenes built in code for the raster tests, and read-back helpers.
 
+#include "vplkit/context.hpp"
 #include "vplkit/image.hpp"
 #include "vplkit/scene.hpp"
+#include "vplkit/stages/gbuffer.hpp"
 
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -35,9 +37,18 @@ Scene gbuffer_scene(float scale = 1.0f);
 // `albedo` (no texture).
 Scene floor_scene(float half, glm::vec3 albedo);
 
-// The Cornell box file's camera moved aside and rolled, looking at the box's centre, its near and
-// far planes kept: a view space that is not world space (the file's camera has no rotation).
-vplkit::scene::Camera rolled_camera(const Scene& scene);
+// The kit's own G-buffer of the Cornell box (scenes/cornell_point), seen by the file's camera
+// moved aside and rolled, looking at the box's centre, its near and far planes kept: a view
+// space that is not world space (the file's camera has no rotation). What the G-buffer adapter's
+// tests hand the adapter as a renderer's images, and compare its output with.
+struct RolledCornellGbuffer {
+    std::vector<glm::vec4> position, normal, geometric_normal, albedo;
+    std::vector<float> depth;  // standard Z
+    vplkit::stages::CameraView view;
+    glm::mat3 view_to_world{1.0f};
+    glm::vec3 bounds_min{0.0f}, bounds_max{0.0f};  // the scene's
+};
+RolledCornellGbuffer rolled_cornell_gbuffer(vplkit::Context& ctx, uint32_t width, uint32_t height);
 
 // Image read-back as float RGBA (RGBA32F as is, RGBA16F converted).
 std::vector<glm::vec4> download_rgba(vplkit::Image& image);

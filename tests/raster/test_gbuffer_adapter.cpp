@@ -82,25 +82,17 @@ struct KitGbuffer {
 
 const KitGbuffer& kit_gbuffer(vplkit::Context& ctx) {
     static const KitGbuffer kit = [&ctx] {
-        const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
-        const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
-        // View space is then not world space (the file's camera has no rotation at all).
-        const vplkit::scene::Camera camera = raster_test::rolled_camera(scene);
+        raster_test::RolledCornellGbuffer g = raster_test::rolled_cornell_gbuffer(ctx, kWidth, kHeight);
         KitGbuffer k;
-        k.view = vplkit::camera_view(camera, kWidth, kHeight);
-        k.view_to_world = glm::dmat3(glm::mat3(camera.world_from_camera()));
-        const glm::vec3 corner = glm::max(glm::abs(scene.bounds.min), glm::abs(scene.bounds.max));
+        k.view = g.view;
+        k.view_to_world = glm::dmat3(g.view_to_world);
+        const glm::vec3 corner = glm::max(glm::abs(g.bounds_min), glm::abs(g.bounds_max));
         k.max_coordinate = std::max({corner.x, corner.y, corner.z});
-        auto gpu = vplkit::GpuScene::create(ctx, scene);
-        auto images = vplkit::GbufferImages::create(ctx, kWidth, kHeight);
-        vplkit::PassList passes("gbuffer adapter: kit gbuffer");
-        vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, k.view, images);
-        passes.run(ctx);
-        k.position = raster_test::download_rgba(images.position);
-        k.normal = raster_test::download_rgba(images.normal);
-        k.geometric_normal = raster_test::download_rgba(images.geometric_normal);
-        k.albedo = raster_test::download_rgba(images.albedo);
-        k.depth = images.depth.download<float>();
+        k.position = std::move(g.position);
+        k.normal = std::move(g.normal);
+        k.geometric_normal = std::move(g.geometric_normal);
+        k.albedo = std::move(g.albedo);
+        k.depth = std::move(g.depth);
         return k;
     }();
     return kit;

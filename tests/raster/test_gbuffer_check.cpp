@@ -45,22 +45,14 @@ struct Renderer {
 // What a renderer would hand the adapter: the kit's own G-buffer of the Cornell box.
 const Renderer& renderer(vplkit::Context& ctx) {
     static const Renderer r = [&ctx] {
-        const auto path = std::filesystem::path(VPLKIT_SOURCE_DIR) / "scenes/cornell_point/cornell_point.gltf";
-        const vplkit::scene::Scene scene = vplkit::scene::load_gltf(path);
-        const vplkit::scene::Camera camera = raster_test::rolled_camera(scene);
+        raster_test::RolledCornellGbuffer kit = raster_test::rolled_cornell_gbuffer(ctx, kWidth, kHeight);
         Renderer out;
-        const vplkit::stages::CameraView view = vplkit::camera_view(camera, kWidth, kHeight);
-        out.view_projection = view.view_projection;
-        out.view_to_world = glm::mat3(camera.world_from_camera());
-        out.eye = view.position;
-        auto gpu = vplkit::GpuScene::create(ctx, scene);
-        auto images = vplkit::GbufferImages::create(ctx, kWidth, kHeight);
-        vplkit::PassList passes("gbuffer check: renderer's gbuffer");
-        vplkit::stages::add_gbuffer_pass(ctx, passes, gpu, view, images);
-        passes.run(ctx);
-        out.world_normal = raster_test::download_rgba(images.normal);
-        out.albedo = raster_test::download_rgba(images.albedo);
-        out.depth = images.depth.download<float>();
+        out.view_projection = kit.view.view_projection;
+        out.view_to_world = kit.view_to_world;
+        out.eye = kit.view.position;
+        out.world_normal = std::move(kit.normal);
+        out.albedo = std::move(kit.albedo);
+        out.depth = std::move(kit.depth);
         return out;
     }();
     return r;
