@@ -14,6 +14,7 @@
 #include "vplkit/stages/flc.hpp"
 #include "vplkit_test/context.hpp"
 #include "vplkit_test/placed_buffer.hpp"
+#include "vplkit_test/range_refusal.hpp"
 
 #include <doctest/doctest.h>
 
@@ -132,15 +133,8 @@ TEST_CASE("flc scene address: a scene past a binding's range must be addressed")
     const vplkit::BufferView candidates = whole(keep, std::vector<FlcCandidate>(1), "candidates");
     const vplkit::stages::FlcPartition partition{3, 0.25f, 1.0f, 2.0f};
     vplkit::PassList passes("flc scene address refusal");
-    try {
+    vplkit::test::check_refused_past_range(ctx, {"flc candidates", "scene vertices"}, [&] {
         vplkit::stages::add_flc_candidates_pass(ctx, passes, {vertices, indices, random, candidates}, partition,
                                                 uint32_t(scene.indices.size() / 3), 0);
-        FAIL("a vertex view past maxStorageBufferRange was bound");
-    } catch (const vplkit::Error& e) {
-        const std::string message = e.what();
-        CHECK(message.find("flc candidates") != std::string::npos);
-        CHECK(message.find("scene vertices") != std::string::npos);
-        CHECK(message.find("maxStorageBufferRange " + std::to_string(ctx.info().max_storage_buffer_range)) !=
-              std::string::npos);
-    }
+    });
 }

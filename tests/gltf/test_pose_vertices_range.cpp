@@ -9,6 +9,7 @@
 #include "vplkit/scene.hpp"
 #include "vplkit/stages/pose_vertices.hpp"
 #include "vplkit_test/context.hpp"
+#include "vplkit_test/range_refusal.hpp"
 
 #include <doctest/doctest.h>
 
@@ -25,13 +26,7 @@ TEST_CASE("pose vertices: a vertex buffer past a binding's range is refused by n
     vertices.name = "scene vertices";
     vertices.size = ctx.info().max_storage_buffer_range + sizeof(vplkit::scene::Vertex);
     vplkit::PassList passes("pose vertices range");
-    try {
+    vplkit::test::check_refused_past_range(ctx, {"scene vertices"}, [&] {
         vplkit::stages::add_pose_vertices_pass(ctx, passes, {small, small, small, small, small, vertices}, 1);
-        FAIL("a vertex view past maxStorageBufferRange was bound");
-    } catch (const vplkit::Error& e) {
-        const std::string message = e.what();
-        CHECK(message.find("scene vertices") != std::string::npos);
-        CHECK(message.find("maxStorageBufferRange " + std::to_string(ctx.info().max_storage_buffer_range)) !=
-              std::string::npos);
-    }
+    });
 }
